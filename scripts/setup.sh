@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs every build, run and test dependency of Penumbra from Debian 12 packages.
+# Idempotent: packages already present are left alone. This is the only way dependencies arrive.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
+  libembree-dev libtbb-dev libglfw3-dev libimgui-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  assimp-testmodels
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  sudo_cmd=()
+  [[ $(id -u) -ne 0 ]] && sudo_cmd=(sudo)
+  echo "setup: installing ${missing[*]}"
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: all dependencies present"
+fi

@@ -1,0 +1,25 @@
+// Included by C++ and GLSL alike: lets one struct definition serve both (niagara's config.h idea).
+// Only vec4 / uvec4 / mat4 members, so std140 and std430 layouts equal the C++ layout; each C++
+// struct gets static_asserts on size and offsets next to its definition.
+#ifndef PENUMBRA_GPU_SHARED_H
+#define PENUMBRA_GPU_SHARED_H
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+#define PENUMBRA_GPU_NAMESPACE_BEGIN namespace penumbra::gpu_data { \
+    using vec4 = glm::vec4; using uvec4 = glm::uvec4; using ivec4 = glm::ivec4; using mat4 = glm::mat4; using uint = uint32_t;
+#define PENUMBRA_GPU_NAMESPACE_END }
+#define PENUMBRA_CONST(type, name, value) inline constexpr type name = value;
+#define PENUMBRA_CHECK_LAYOUT(type, member, offset) static_assert(offsetof(type, member) == (offset), #type "." #member " offset");
+#define PENUMBRA_CHECK_SIZE(type, size) static_assert(sizeof(type) == (size), "sizeof(" #type ")");
+#else
+#define PENUMBRA_GPU_NAMESPACE_BEGIN
+#define PENUMBRA_GPU_NAMESPACE_END
+#define PENUMBRA_CONST(type, name, value) const type name = value;
+#define PENUMBRA_CHECK_LAYOUT(type, member, offset)
+#define PENUMBRA_CHECK_SIZE(type, size)
+#endif
+
+#endif

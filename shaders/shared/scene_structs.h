@@ -1,0 +1,82 @@
+// GPU data of the scene and frame, shared by C++ (render/) and GLSL (shaders/).
+#ifndef PENUMBRA_SCENE_STRUCTS_H
+#define PENUMBRA_SCENE_STRUCTS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+PENUMBRA_CONST(uint, kMaxDirectionalLights, 4u)
+PENUMBRA_CONST(uint, kMaxOtherLights, 64u)
+
+// Debug output of the lit pass (--aov).
+PENUMBRA_CONST(uint, kOutputColor, 0u)
+PENUMBRA_CONST(uint, kOutputShadowAov, 1u)
+PENUMBRA_CONST(uint, kOutputCascadesAov, 2u)
+
+// Material flags (MaterialData.flags.y)
+PENUMBRA_CONST(uint, kMaterialUnlit, 1u)
+PENUMBRA_CONST(uint, kMaterialDoubleSided, 2u)
+PENUMBRA_CONST(uint, kMaterialReceiveShadows, 4u)
+
+// Alpha and shadow modes (MaterialData.flags.z / .w) mirror scene::AlphaMode and MaterialShadowMode.
+PENUMBRA_CONST(uint, kAlphaOpaque, 0u)
+PENUMBRA_CONST(uint, kAlphaMask, 1u)
+PENUMBRA_CONST(uint, kAlphaBlend, 2u)
+PENUMBRA_CONST(uint, kShadowModeOn, 0u)
+PENUMBRA_CONST(uint, kShadowModeClip, 1u)
+PENUMBRA_CONST(uint, kShadowModeDither, 2u)
+PENUMBRA_CONST(uint, kShadowModeOff, 3u)
+
+PENUMBRA_CONST(uint, kLightDirectional, 0u)
+PENUMBRA_CONST(uint, kLightSpot, 1u)
+PENUMBRA_CONST(uint, kLightPoint, 2u)
+
+struct FrameData {
+    mat4 clipFromWorld;
+    mat4 viewFromWorld;
+    vec4 wsCameraPosition;  // xyz, w unused
+    vec4 viewport;          // width, height, 1/width, 1/height
+    uvec4 counts;           // directional light count, other light count, output mode, AOV light index
+    vec4 params;            // exposure, ambient, unused, unused
+};
+PENUMBRA_CHECK_SIZE(FrameData, 208)
+PENUMBRA_CHECK_LAYOUT(FrameData, viewFromWorld, 64)
+PENUMBRA_CHECK_LAYOUT(FrameData, wsCameraPosition, 128)
+PENUMBRA_CHECK_LAYOUT(FrameData, counts, 160)
+PENUMBRA_CHECK_LAYOUT(FrameData, params, 192)
+
+struct LightData {
+    vec4 colorIntensity;  // rgb = colour x intensity, a = light type
+    vec4 wsPosition;      // xyz position (spot, point), w = 1 / range^2 (0 = infinite)
+    vec4 wsToLight;       // xyz unit vector toward the light (directional) / opposite of the spot axis
+    vec4 spotAngles;      // x = 1/(cos inner - cos outer), y = -cos outer * x (KHR_lights_punctual)
+    uvec4 shadow;         // x = scene light index, y = shadow slot (~0u = none), zw reserved
+};
+PENUMBRA_CHECK_SIZE(LightData, 80)
+PENUMBRA_CHECK_LAYOUT(LightData, shadow, 64)
+
+struct InstanceData {
+    mat4 worldFromObject;
+    mat4 normalFromObject;  // inverse transpose of worldFromObject (upper 3x3 used)
+    uvec4 info;             // x = material index, yzw reserved
+};
+PENUMBRA_CHECK_SIZE(InstanceData, 144)
+PENUMBRA_CHECK_LAYOUT(InstanceData, info, 128)
+
+struct MaterialData {
+    vec4 baseColorFactor;
+    vec4 params;  // metallic, roughness, alphaCutoff, unused
+    uvec4 flags;  // x = base colour texture index + 1 (0 = none), y = kMaterial* bits, z = alpha mode, w = shadow mode
+};
+PENUMBRA_CHECK_SIZE(MaterialData, 48)
+PENUMBRA_CHECK_LAYOUT(MaterialData, flags, 32)
+
+// One vertex as the shaders pull it from the vertex storage buffer.
+struct VertexData {
+    vec4 osPositionU;  // xyz position, w = uv.x
+    vec4 osNormalV;    // xyz normal, w = uv.y
+};
+PENUMBRA_CHECK_SIZE(VertexData, 32)
+
+PENUMBRA_GPU_NAMESPACE_END
+#endif

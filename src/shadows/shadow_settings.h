@@ -1,0 +1,36 @@
+#pragma once
+// The shadow part of the pipeline settings (DESIGN.md "Settings"; seed 000 §1.1, §3.1, §4).
+#include <array>
+#include <cstdint>
+
+namespace penumbra {
+
+enum class ShadowFilter { PCF2x2, PCF3x3, PCF5x5, PCF7x7 };
+enum class CascadeBlend { Hard, Soft, Dither };
+
+struct DirectionalShadowSettings {
+    uint32_t atlasSize = 1024;
+    ShadowFilter filter = ShadowFilter::PCF2x2;
+    uint32_t cascadeCount = 4;
+    std::array<float, 3> cascadeRatios{0.1f, 0.25f, 0.5f};
+    float cascadeFade = 0.1f;
+    CascadeBlend cascadeBlend = CascadeBlend::Hard;
+};
+
+struct SpotShadowSettings {
+    uint32_t atlasSize = 1024;
+    ShadowFilter filter = ShadowFilter::PCF5x5;
+};
+
+struct ShadowSettings {
+    float maxDistance = 100.0f;
+    float distanceFade = 0.1f;
+    bool screenSpace = false;
+    DirectionalShadowSettings directional;
+    SpotShadowSettings spot;
+};
+
+// Filter footprint in texels beyond the centre tap: PCF2x2 -> 0 ... PCF7x7 -> 3 (seed 000 §4.7).
+inline float filterSize(ShadowFilter filter) { return float(int(filter)); }
+
+}  // namespace penumbra
