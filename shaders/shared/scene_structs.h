@@ -39,11 +39,11 @@ struct FrameData {
     uvec4 counts;           // directional light count, other light count, output mode, AOV light index
     vec4 params;            // exposure, ambient, unused, unused
 };
-PENUMBRA_CHECK_SIZE(FrameData, 208)
+PENUMBRA_CHECK_SIZE(FrameData, 192)
 PENUMBRA_CHECK_LAYOUT(FrameData, viewFromWorld, 64)
 PENUMBRA_CHECK_LAYOUT(FrameData, wsCameraPosition, 128)
 PENUMBRA_CHECK_LAYOUT(FrameData, counts, 160)
-PENUMBRA_CHECK_LAYOUT(FrameData, params, 192)
+PENUMBRA_CHECK_LAYOUT(FrameData, params, 176)
 
 struct LightData {
     vec4 colorIntensity;  // rgb = colour x intensity, a = light type

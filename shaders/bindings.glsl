@@ -1,0 +1,27 @@
+// Descriptor bindings shared by the scene shaders (set 0 is pushed per pass, set 1 is the texture table).
+#ifndef PENUMBRA_BINDINGS_GLSL
+#define PENUMBRA_BINDINGS_GLSL
+#include "scene_structs.h"
+
+layout(constant_id = 0) const uint kTextureCount = 1;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = 1, std430) readonly buffer VertexBlock { VertexData vertices[]; };
+layout(set = 0, binding = 2, std430) readonly buffer InstanceBlock { InstanceData instances[]; };
+layout(set = 0, binding = 3, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = 0, binding = 4, std430) readonly buffer LightBlock { LightData lights[]; };
+layout(set = 1, binding = 0) uniform sampler2D baseColorTextures[kTextureCount];
+
+// Base colour (factor x texture) of a material at uv; alpha included.
+vec4 materialBaseColor(MaterialData material, vec2 uv) {
+    vec4 color = material.baseColorFactor;
+    if (material.flags.x != 0u) color *= texture(baseColorTextures[material.flags.x - 1u], uv);
+    return color;
+}
+
+// Interleaved gradient noise (Jimenez 2014), the dither pattern Unity's pipelines use for dithered
+// shadows and cascade blending (seed 000 §4.8, §5.3).
+float interleavedGradientNoise(vec2 pixel) {
+    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
+#endif

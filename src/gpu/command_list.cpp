@@ -1,0 +1,212 @@
+// Command recording: barriers, dynamic rendering, binding, drawing, timers.
+#include "gpu/command_list.h"
+
+#include "gpu/vk_internal.h"
+
+namespace penumbra::gpu {
+
+namespace {
+
+struct StateInfo {
+    VkImageLayout layout;
+    VkPipelineStageFlags2 stages;
+    VkAccessFlags2 access;
+};
+
+StateInfo stateInfo(TextureState state) {
+    switch (state) {
+        case TextureState::Undefined: return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, 0};
+        case TextureState::ColorTarget:
+            return {VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT};
+        case TextureState::DepthTarget:
+            return {VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
+        case TextureState::ShaderRead:
+            return {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_READ_BIT};
+        case TextureState::Storage:
+            return {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                    VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT};
+        case TextureState::TransferSrc:
+            return {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
+        case TextureState::TransferDst:
+            return {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+    }
+    return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0};
+}
+
+VkCommandBuffer native(const CommandList& list) { return static_cast<VkCommandBuffer>(list.nativeCommandBuffer); }
+Device::Impl& impl(const CommandList& list) { return list.device->impl(); }
+
+}  // namespace
+
+void recordTransition(VkCommandBuffer commandBuffer, const TextureResource& texture, TextureState from, TextureState to) {
+    const StateInfo src = stateInfo(from), dst = stateInfo(to);
+    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = src.stages;
+    barrier.srcAccessMask = src.access;
+    barrier.dstStageMask = dst.stages;
+    barrier.dstAccessMask = dst.access;
+    barrier.oldLayout = src.layout;
+    barrier.newLayout = dst.layout;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = texture.image;
+    barrier.subresourceRange = {VkImageAspectFlags(isDepthFormat(texture.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
+                                0, texture.desc.mipLevels, 0, 1};
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.imageMemoryBarrierCount = 1;
+    dependency.pImageMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(commandBuffer, &dependency);
+}
+
+void CommandList::transition(TextureHandle texture, TextureState from, TextureState to) {
+    recordTransition(native(*this), impl(*this).textures.at(texture.id), from, to);
+}
+
+void CommandList::beginRendering(const RenderingDesc& desc) {
+    Device::Impl& d = impl(*this);
+    std::vector<VkRenderingAttachmentInfo> colors;
+    for (const ColorAttachment& c : desc.colors) {
+        VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = d.textures.at(c.texture.id).view;
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = c.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        for (int i = 0; i < 4; ++i) a.clearValue.color.float32[i] = c.clearColor[i];
+        colors.push_back(a);
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    if (desc.depth.texture) {
+        depth.imageView = d.textures.at(desc.depth.texture.id).view;
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+        depth.loadOp = desc.depth.clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil.depth = desc.depth.clearDepth;
+    }
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {desc.width, desc.height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = uint32_t(colors.size());
+    info.pColorAttachments = colors.data();
+    info.pDepthAttachment = desc.depth.texture ? &depth : nullptr;
+    vkCmdBeginRendering(native(*this), &info);
+    setViewport({0, 0, desc.width, desc.height});
+    setScissor({0, 0, desc.width, desc.height});
+}
+
+void CommandList::endRendering() { vkCmdEndRendering(native(*this)); }
+
+void CommandList::bindPipeline(PipelineHandle pipeline) {
+    const PipelineResource& p = impl(*this).pipelines.at(pipeline.id);
+    vkCmdBindPipeline(native(*this), p.bindPoint, p.pipeline);
+    boundPipeline = pipeline;
+}
+
+void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
+    Device::Impl& d = impl(*this);
+    const PipelineResource& p = d.pipelines.at(boundPipeline.id);
+    std::vector<VkWriteDescriptorSet> vkWrites;
+    std::vector<VkDescriptorBufferInfo> bufferInfos(writes.size());
+    std::vector<VkDescriptorImageInfo> imageInfos(writes.size());
+    for (size_t i = 0; i < writes.size(); ++i) {
+        const DescriptorWrite& w = writes[i];
+        DescriptorType type = DescriptorType::StorageBuffer;
+        for (const BindingDesc& b : p.bindings)
+            if (b.binding == w.binding) type = b.type;
+        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        write.dstBinding = w.binding;
+        write.descriptorCount = 1;
+        if (type == DescriptorType::UniformBuffer || type == DescriptorType::StorageBuffer) {
+            bufferInfos[i] = {d.buffers.at(w.buffer.id).buffer, 0, VK_WHOLE_SIZE};
+            write.descriptorType = type == DescriptorType::UniformBuffer ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                                                         : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            write.pBufferInfo = &bufferInfos[i];
+        } else if (type == DescriptorType::SampledTexture) {
+            imageInfos[i] = {d.samplers.at(w.sampler.id), d.textures.at(w.texture.id).view,
+                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            write.pImageInfo = &imageInfos[i];
+        } else {
+            imageInfos[i] = {VK_NULL_HANDLE, d.textures.at(w.texture.id).view, VK_IMAGE_LAYOUT_GENERAL};
+            write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+            write.pImageInfo = &imageInfos[i];
+        }
+        vkWrites.push_back(write);
+    }
+    d.cmdPushDescriptorSet(native(*this), p.bindPoint, p.layout, 0, uint32_t(vkWrites.size()), vkWrites.data());
+}
+
+void CommandList::bindTextureTable(TextureTableHandle table) {
+    Device::Impl& d = impl(*this);
+    const PipelineResource& p = d.pipelines.at(boundPipeline.id);
+    vkCmdBindDescriptorSets(native(*this), p.bindPoint, p.layout, 1, 1, &d.tables.at(table.id).set, 0, nullptr);
+}
+
+void CommandList::pushConstants(const void* data, uint32_t size) {
+    const PipelineResource& p = impl(*this).pipelines.at(boundPipeline.id);
+    vkCmdPushConstants(native(*this), p.layout, VK_SHADER_STAGE_ALL, 0, size, data);
+}
+
+void CommandList::setViewport(const Rect& rect) {
+    const VkViewport viewport{float(rect.x), float(rect.y), float(rect.width), float(rect.height), 0.0f, 1.0f};
+    vkCmdSetViewport(native(*this), 0, 1, &viewport);
+}
+
+void CommandList::setScissor(const Rect& rect) {
+    const VkRect2D scissor{{rect.x, rect.y}, {rect.width, rect.height}};
+    vkCmdSetScissor(native(*this), 0, 1, &scissor);
+}
+
+void CommandList::setDepthBias(float constantFactor, float slopeFactor) {
+    vkCmdSetDepthBias(native(*this), constantFactor, 0.0f, slopeFactor);
+}
+
+void CommandList::bindIndexBuffer(BufferHandle buffer) {
+    vkCmdBindIndexBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_INDEX_TYPE_UINT32);
+}
+
+void CommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
+                              uint32_t firstInstance) {
+    vkCmdDrawIndexed(native(*this), indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
+}
+
+void CommandList::draw(uint32_t vertexCount, uint32_t instanceCount) {
+    vkCmdDraw(native(*this), vertexCount, instanceCount, 0, 0);
+}
+
+void CommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) {
+    vkCmdDispatch(native(*this), groupsX, groupsY, groupsZ);
+}
+
+void CommandList::clearBuffer(BufferHandle buffer, uint32_t value) {
+    vkCmdFillBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_WHOLE_SIZE, value);
+}
+
+void CommandList::memoryBarrier() {
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(native(*this), &dependency);
+}
+
+void CommandList::beginTimer(const std::string& name) {
+    Device::Impl& d = impl(*this);
+    PENUMBRA_ASSERT(openTimer == ~0u);
+    if (!d.timestampsSupported || (timerNames.size() + 1) * 2 > d.timestampCapacity) return;
+    openTimer = uint32_t(timerNames.size());
+    timerNames.push_back(name);
+    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool, openTimer * 2);
+}
+
+void CommandList::endTimer() {
+    if (openTimer == ~0u) return;
+    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, impl(*this).timestampPool, openTimer * 2 + 1);
+    openTimer = ~0u;
+}
+
+}  // namespace penumbra::gpu

@@ -1,0 +1,45 @@
+#pragma once
+// Records GPU work against the Device's handles. Created by Device::beginCommands().
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "gpu/types.h"
+
+namespace penumbra::gpu {
+
+class Device;
+
+class CommandList {
+public:
+    void transition(TextureHandle texture, TextureState from, TextureState to);
+    void beginRendering(const RenderingDesc& desc);
+    void endRendering();
+    void bindPipeline(PipelineHandle pipeline);
+    void pushDescriptors(std::span<const DescriptorWrite> writes);  // set 0 of the bound pipeline
+    void bindTextureTable(TextureTableHandle table);                // set 1 of the bound pipeline
+    void pushConstants(const void* data, uint32_t size);
+    void setViewport(const Rect& rect);
+    void setScissor(const Rect& rect);
+    void setDepthBias(float constantFactor, float slopeFactor);
+    void bindIndexBuffer(BufferHandle buffer);
+    void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
+                     uint32_t firstInstance);
+    void draw(uint32_t vertexCount, uint32_t instanceCount = 1);
+    void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1);
+    void clearBuffer(BufferHandle buffer, uint32_t value);
+    // A full memory barrier between compute/graphics writes and later reads (buffers and storage images).
+    void memoryBarrier();
+    // GPU timestamps around a named pass; results in Device::lastTimings() after submitAndWait.
+    void beginTimer(const std::string& name);
+    void endTimer();
+
+    // Internal: the Device fills these.
+    Device* device = nullptr;
+    void* nativeCommandBuffer = nullptr;
+    PipelineHandle boundPipeline;
+    std::vector<std::string> timerNames;
+    uint32_t openTimer = ~0u;
+};
+
+}  // namespace penumbra::gpu

@@ -1,0 +1,339 @@
+// Instance, physical-device selection, logical device, submission and validation messages.
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "gpu/vk_internal.h"
+
+namespace penumbra::gpu {
+
+const char* vkResultName(VkResult result) {
+    switch (result) {
+        case VK_SUCCESS: return "VK_SUCCESS";
+        case VK_NOT_READY: return "VK_NOT_READY";
+        case VK_TIMEOUT: return "VK_TIMEOUT";
+        case VK_INCOMPLETE: return "VK_INCOMPLETE";
+        case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
+        case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+        case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+        case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
+        case VK_ERROR_MEMORY_MAP_FAILED: return "VK_ERROR_MEMORY_MAP_FAILED";
+        case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
+        case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+        case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+        case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
+        case VK_ERROR_TOO_MANY_OBJECTS: return "VK_ERROR_TOO_MANY_OBJECTS";
+        case VK_ERROR_FORMAT_NOT_SUPPORTED: return "VK_ERROR_FORMAT_NOT_SUPPORTED";
+        case VK_ERROR_OUT_OF_POOL_MEMORY: return "VK_ERROR_OUT_OF_POOL_MEMORY";
+        default: return "VkResult(other)";
+    }
+}
+
+namespace {
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* impl = static_cast<Device::Impl*>(user);
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        const std::string message = data && data->pMessage ? data->pMessage : "(no message)";
+        std::fprintf(stderr, "penumbra: Vulkan validation: %s\n", message.c_str());
+        std::lock_guard lock(impl->messagesMutex);
+        impl->validationMessages.push_back(message);
+    }
+    return VK_FALSE;
+}
+
+bool hasLayer(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> layers(count);
+    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    return std::any_of(layers.begin(), layers.end(), [&](const auto& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool hasDeviceExtension(VkPhysicalDevice physicalDevice, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(physicalDevice, nullptr, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+VkInstance createInstance(bool validation) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "penumbra";
+    app.pEngineName = "penumbra";
+    app.apiVersion = VK_API_VERSION_1_3;
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    if (validation) {
+        if (!hasLayer("VK_LAYER_KHRONOS_validation"))
+            throw Error("Vulkan validation requested but VK_LAYER_KHRONOS_validation is not installed "
+                        "(Debian package vulkan-validationlayers)");
+        layers.push_back("VK_LAYER_KHRONOS_validation");
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = uint32_t(layers.size());
+    info.ppEnabledLayerNames = layers.data();
+    info.enabledExtensionCount = uint32_t(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    const VkResult result = vkCreateInstance(&info, nullptr, &instance);
+    if (result != VK_SUCCESS)
+        throw Error(std::string("no Vulkan device: vkCreateInstance failed with ") + vkResultName(result) +
+                    " (is a Vulkan driver such as mesa-vulkan-drivers installed?)");
+    return instance;
+}
+
+std::vector<VkPhysicalDevice> enumerateUsable(VkInstance instance) {
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> all(count);
+    vkEnumeratePhysicalDevices(instance, &count, all.data());
+    std::vector<VkPhysicalDevice> usable;
+    for (VkPhysicalDevice pd : all) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(pd, &props);
+        if (props.apiVersion >= VK_API_VERSION_1_3 && hasDeviceExtension(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+            usable.push_back(pd);
+    }
+    return usable;
+}
+
+DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(pd, &props);
+    DeviceInfo info;
+    info.name = props.properties.deviceName;
+    info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    info.isCpu = props.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    info.index = index;
+    return info;
+}
+
+// auto: discrete GPU, else integrated GPU, else any GPU, else CPU (lavapipe).
+uint32_t choosePhysicalDevice(const std::vector<VkPhysicalDevice>& devices, const std::string& choice) {
+    if (devices.empty())
+        throw Error("no Vulkan device: no Vulkan 1.3 device with VK_KHR_push_descriptor was found");
+    auto typeOf = [&](uint32_t i) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(devices[i], &props);
+        return props.deviceType;
+    };
+    auto firstOf = [&](VkPhysicalDeviceType type) -> int {
+        for (uint32_t i = 0; i < devices.size(); ++i)
+            if (typeOf(i) == type) return int(i);
+        return -1;
+    };
+    if (choice == "cpu") {
+        const int i = firstOf(VK_PHYSICAL_DEVICE_TYPE_CPU);
+        if (i < 0) throw Error("no Vulkan device: --device cpu asked for a CPU device (lavapipe) and none is present");
+        return uint32_t(i);
+    }
+    const int discrete = firstOf(VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU);
+    const int integrated = firstOf(VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU);
+    const int virtualGpu = firstOf(VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU);
+    const int gpu = discrete >= 0 ? discrete : integrated >= 0 ? integrated : virtualGpu;
+    if (choice == "gpu") {
+        if (gpu < 0) throw Error("no Vulkan device: --device gpu asked for a GPU and only a CPU device is present");
+        return uint32_t(gpu);
+    }
+    if (choice == "auto") return gpu >= 0 ? uint32_t(gpu) : 0u;
+    char* end = nullptr;
+    const long index = std::strtol(choice.c_str(), &end, 10);
+    if (choice.empty() || *end != '\0' || index < 0)
+        throw Error("--device must be auto, gpu, cpu or a device index, not '" + choice + "'");
+    if (size_t(index) >= devices.size())
+        throw Error("no Vulkan device: --device " + choice + " is out of range (" + std::to_string(devices.size()) +
+                    " usable devices)");
+    return uint32_t(index);
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> Device::listDevices() {
+    VkInstance instance = createInstance(false);
+    std::vector<DeviceInfo> result;
+    const auto devices = enumerateUsable(instance);
+    for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe(devices[i], i));
+    vkDestroyInstance(instance, nullptr);
+    return result;
+}
+
+Device::Device(const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
+    Impl& d = *impl_;
+    d.options = options;
+    d.instance = createInstance(options.validation);
+    if (options.validation) {
+        VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+        info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+        info.pfnUserCallback = onDebugMessage;
+        info.pUserData = &d;
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(d.instance, "vkCreateDebugUtilsMessengerEXT"));
+        if (create) VK_CHECK(create(d.instance, &info, nullptr, &d.messenger));
+    }
+    const auto devices = enumerateUsable(d.instance);
+    const uint32_t chosen = choosePhysicalDevice(devices, options.device);
+    d.physicalDevice = devices[chosen];
+    d.info = describe(d.physicalDevice, chosen);
+    vkGetPhysicalDeviceProperties(d.physicalDevice, &d.properties);
+    vkGetPhysicalDeviceMemoryProperties(d.physicalDevice, &d.memoryProperties);
+
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physicalDevice, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physicalDevice, &familyCount, families.data());
+    bool found = false;
+    for (uint32_t i = 0; i < familyCount && !found; ++i) {
+        const auto need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        if ((families[i].queueFlags & need) == need) { d.queueFamily = i; found = true; }
+    }
+    if (!found) throw Error("no Vulkan device: " + d.info.name + " has no graphics+compute queue");
+    d.timestampsSupported = options.timestamps && families[d.queueFamily].timestampValidBits > 0 &&
+                            d.properties.limits.timestampComputeAndGraphics;
+
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(d.physicalDevice, &supported);
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    features13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    features12.pNext = &features13;
+    features12.scalarBlockLayout = VK_FALSE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &features12;
+    if (!supported.depthClamp) throw Error("no Vulkan device: " + d.info.name + " lacks depthClamp (needed for shadow pancaking)");
+    features.features.depthClamp = VK_TRUE;
+    features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = d.queueFamily;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.pNext = &features;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = 1;
+    deviceInfo.ppEnabledExtensionNames = extensions;
+    VK_CHECK(vkCreateDevice(d.physicalDevice, &deviceInfo, nullptr, &d.device));
+    vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
+    d.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(d.device, "vkCmdPushDescriptorSetKHR"));
+
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = d.queueFamily;
+    VK_CHECK(vkCreateCommandPool(d.device, &poolInfo, nullptr, &d.commandPool));
+    if (d.timestampsSupported) {
+        VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        queryInfo.queryCount = d.timestampCapacity;
+        VK_CHECK(vkCreateQueryPool(d.device, &queryInfo, nullptr, &d.timestampPool));
+    }
+}
+
+Device::~Device() {
+    Impl& d = *impl_;
+    if (d.device) {
+        vkDeviceWaitIdle(d.device);
+        for (auto& p : d.pipelines) {
+            if (p.pipeline) vkDestroyPipeline(d.device, p.pipeline, nullptr);
+            if (p.layout) vkDestroyPipelineLayout(d.device, p.layout, nullptr);
+            if (p.pushSetLayout) vkDestroyDescriptorSetLayout(d.device, p.pushSetLayout, nullptr);
+        }
+        for (auto& t : d.tables) {
+            if (t.pool) vkDestroyDescriptorPool(d.device, t.pool, nullptr);
+            if (t.layout) vkDestroyDescriptorSetLayout(d.device, t.layout, nullptr);
+        }
+        for (VkSampler s : d.samplers)
+            if (s) vkDestroySampler(d.device, s, nullptr);
+        for (uint32_t i = 1; i < d.textures.size(); ++i) destroy(TextureHandle{i});
+        for (uint32_t i = 1; i < d.buffers.size(); ++i) destroy(BufferHandle{i});
+        if (d.timestampPool) vkDestroyQueryPool(d.device, d.timestampPool, nullptr);
+        if (d.commandPool) vkDestroyCommandPool(d.device, d.commandPool, nullptr);
+        vkDestroyDevice(d.device, nullptr);
+    }
+    if (d.messenger) {
+        auto destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(d.instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroyMessenger) destroyMessenger(d.instance, d.messenger, nullptr);
+    }
+    if (d.instance) vkDestroyInstance(d.instance, nullptr);
+}
+
+const DeviceInfo& Device::info() const { return impl_->info; }
+
+uint32_t Device::validationMessageCount() const {
+    std::lock_guard lock(impl_->messagesMutex);
+    return uint32_t(impl_->validationMessages.size());
+}
+
+std::vector<std::string> Device::validationMessages() const {
+    std::lock_guard lock(impl_->messagesMutex);
+    return impl_->validationMessages;
+}
+
+const std::vector<PassTiming>& Device::lastTimings() const { return impl_->timings; }
+
+VkCommandBuffer Device::Impl::beginImmediate() {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = commandPool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &commandBuffer));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(commandBuffer, &begin));
+    return commandBuffer;
+}
+
+void Device::Impl::endImmediate(VkCommandBuffer commandBuffer) {
+    VK_CHECK(vkEndCommandBuffer(commandBuffer));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commandBuffer;
+    VK_CHECK(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE));
+    VK_CHECK(vkQueueWaitIdle(queue));
+    vkFreeCommandBuffers(device, commandPool, 1, &commandBuffer);
+}
+
+CommandList Device::beginCommands() {
+    CommandList commands;
+    commands.device = this;
+    VkCommandBuffer commandBuffer = impl_->beginImmediate();
+    commands.nativeCommandBuffer = commandBuffer;
+    if (impl_->timestampsSupported) vkCmdResetQueryPool(commandBuffer, impl_->timestampPool, 0, impl_->timestampCapacity);
+    return commands;
+}
+
+void Device::submitAndWait(CommandList& commands) {
+    Impl& d = *impl_;
+    PENUMBRA_ASSERT(commands.openTimer == ~0u);
+    d.endImmediate(static_cast<VkCommandBuffer>(commands.nativeCommandBuffer));
+    commands.nativeCommandBuffer = nullptr;
+    d.timings.clear();
+    if (!d.timestampsSupported || commands.timerNames.empty()) return;
+    const uint32_t queryCount = uint32_t(commands.timerNames.size()) * 2;
+    std::vector<uint64_t> ticks(queryCount);
+    VK_CHECK(vkGetQueryPoolResults(d.device, d.timestampPool, 0, queryCount, ticks.size() * sizeof(uint64_t),
+                                   ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double msPerTick = double(d.properties.limits.timestampPeriod) * 1e-6;
+    for (size_t i = 0; i < commands.timerNames.size(); ++i)
+        d.timings.push_back({commands.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
+}
+
+}  // namespace penumbra::gpu

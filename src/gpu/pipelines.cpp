@@ -1,0 +1,190 @@
+// Graphics and compute pipelines: shader modules from the embedded SPIR-V, a push-descriptor set 0,
+// an optional texture-table set 1, push constants, specialization constants, dynamic rendering.
+#include "gpu/shader_registry.h"
+#include "gpu/vk_internal.h"
+
+namespace penumbra::gpu {
+
+namespace {
+
+VkDescriptorType toVkDescriptorType(DescriptorType type) {
+    switch (type) {
+        case DescriptorType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        case DescriptorType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        case DescriptorType::SampledTexture: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        case DescriptorType::StorageTexture: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    }
+    return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+VkCompareOp toVkCompare(CompareOp op) {
+    static const VkCompareOp ops[] = {VK_COMPARE_OP_NEVER, VK_COMPARE_OP_LESS, VK_COMPARE_OP_LESS_OR_EQUAL,
+                                      VK_COMPARE_OP_GREATER, VK_COMPARE_OP_GREATER_OR_EQUAL, VK_COMPARE_OP_ALWAYS};
+    return ops[int(op)];
+}
+
+// Specialization data outlives the create call through this holder.
+struct Specialization {
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<uint32_t> values;
+    VkSpecializationInfo info{};
+
+    Specialization(const std::vector<SpecConstant>& constants, uint32_t textureCount) {
+        auto add = [&](uint32_t id, uint32_t value) {
+            entries.push_back({id, uint32_t(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+            values.push_back(value);
+        };
+        if (textureCount) add(0, textureCount);  // constant 0: size of the texture table
+        for (const SpecConstant& c : constants) add(c.id, c.value);
+        info.mapEntryCount = uint32_t(entries.size());
+        info.pMapEntries = entries.data();
+        info.dataSize = values.size() * sizeof(uint32_t);
+        info.pData = values.data();
+    }
+};
+
+void createLayout(Device::Impl& d, PipelineResource& p, const std::vector<BindingDesc>& bindings,
+                  uint32_t pushConstantSize, TextureTableHandle table) {
+    std::vector<VkDescriptorSetLayoutBinding> vkBindings;
+    for (const BindingDesc& b : bindings)
+        vkBindings.push_back({b.binding, toVkDescriptorType(b.type), 1, VK_SHADER_STAGE_ALL, nullptr});
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    setInfo.bindingCount = uint32_t(vkBindings.size());
+    setInfo.pBindings = vkBindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &p.pushSetLayout));
+    VkDescriptorSetLayout setLayouts[2] = {p.pushSetLayout, VK_NULL_HANDLE};
+    if (table) setLayouts[1] = d.tables.at(table.id).layout;
+    VkPushConstantRange range{VK_SHADER_STAGE_ALL, 0, pushConstantSize};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = table ? 2 : 1;
+    layoutInfo.pSetLayouts = setLayouts;
+    layoutInfo.pushConstantRangeCount = pushConstantSize ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    VK_CHECK(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &p.layout));
+    p.bindings = bindings;
+}
+
+}  // namespace
+
+VkShaderModule Device::Impl::loadShader(const std::string& name) {
+    const std::span<const uint32_t> code = embeddedShader(name);
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = code.size_bytes();
+    info.pCode = code.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
+    return module;
+}
+
+PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) {
+    Impl& d = *impl_;
+    PipelineResource p;
+    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+    const uint32_t textureCount = desc.textureTable ? d.tables.at(desc.textureTable.id).count : 0;
+    Specialization specialization(desc.specialization, textureCount);
+
+    std::vector<VkPipelineShaderStageCreateInfo> stages;
+    auto addStage = [&](VkShaderStageFlagBits stage, const std::string& name) {
+        VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        s.stage = stage;
+        s.module = d.loadShader(name);
+        s.pName = "main";
+        s.pSpecializationInfo = &specialization.info;
+        stages.push_back(s);
+    };
+    addStage(VK_SHADER_STAGE_VERTEX_BIT, desc.vertexShader);
+    if (!desc.fragmentShader.empty()) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, desc.fragmentShader);
+
+    VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.depthClampEnable = desc.depthClamp;
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = desc.cullMode == CullMode::Back ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+    // glTF front faces are CCW as seen by the viewer; the y-flipped projection shows the image upright
+    // on Vulkan's y-down framebuffer, so they stay counter-clockwise there.
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.depthBiasEnable = desc.dynamicDepthBias;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = desc.depthTest;
+    depth.depthWriteEnable = desc.depthWrite;
+    depth.depthCompareOp = toVkCompare(desc.depthCompare);
+    std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
+    for (auto& b : blends) {
+        b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+        if (desc.blend == BlendMode::Alpha) {
+            b.blendEnable = VK_TRUE;
+            b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+            b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+            b.colorBlendOp = VK_BLEND_OP_ADD;
+            b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+            b.alphaBlendOp = VK_BLEND_OP_ADD;
+        }
+    }
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = uint32_t(blends.size());
+    blend.pAttachments = blends.data();
+    std::vector<VkDynamicState> dynamicStates = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    if (desc.dynamicDepthBias) dynamicStates.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = uint32_t(dynamicStates.size());
+    dynamic.pDynamicStates = dynamicStates.data();
+
+    std::vector<VkFormat> colorFormats;
+    for (Format f : desc.colorFormats) colorFormats.push_back(toVkFormat(f));
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = uint32_t(colorFormats.size());
+    rendering.pColorAttachmentFormats = colorFormats.data();
+    rendering.depthAttachmentFormat = toVkFormat(desc.depthFormat);
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.pNext = &rendering;
+    info.stageCount = uint32_t(stages.size());
+    info.pStages = stages.data();
+    info.pVertexInputState = &vertexInput;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = p.layout;
+    const VkResult result = vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
+    for (auto& s : stages) vkDestroyShaderModule(d.device, s.module, nullptr);
+    VK_CHECK(result);
+    p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    d.pipelines.push_back(p);
+    return PipelineHandle{uint32_t(d.pipelines.size() - 1)};
+}
+
+PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
+    Impl& d = *impl_;
+    PipelineResource p;
+    createLayout(d, p, desc.bindings, desc.pushConstantSize, TextureTableHandle{});
+    Specialization specialization(desc.specialization, 0);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = d.loadShader(desc.shader);
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = &specialization.info;
+    info.layout = p.layout;
+    const VkResult result = vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
+    vkDestroyShaderModule(d.device, info.stage.module, nullptr);
+    VK_CHECK(result);
+    p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
+    d.pipelines.push_back(p);
+    return PipelineHandle{uint32_t(d.pipelines.size() - 1)};
+}
+
+}  // namespace penumbra::gpu

@@ -1,0 +1,94 @@
+// The lit pass against analytic expectations: Lambert N.L, culling, background.
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_support.h"
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+// A 20 x 20 m white, fully rough dielectric plane at y = 0 facing +Y, seen from straight above.
+Scene planeUnderSun(glm::vec3 wsSunDirection, float intensity, bool unlit = false) {
+    Scene scene;
+    Mesh plane;
+    plane.vertices = {{{-10, 0, -10}, {0, 1, 0}, {0, 0}}, {{10, 0, -10}, {0, 1, 0}, {1, 0}},
+                      {{10, 0, 10}, {0, 1, 0}, {1, 1}}, {{-10, 0, 10}, {0, 1, 0}, {0, 1}}};
+    plane.indices = {0, 2, 1, 0, 3, 2};  // CCW seen from +Y
+    plane.osBounds.extend({-10, 0, -10});
+    plane.osBounds.extend({10, 0, 10});
+    scene.meshes.push_back(plane);
+    Material white;
+    white.metallic = 0.0f;
+    white.roughness = 1.0f;
+    white.unlit = unlit;
+    white.baseColorFactor = glm::vec4(unlit ? 0.5f : 1.0f);
+    scene.materials.push_back(white);
+    Instance instance;
+    instance.wsBounds = plane.osBounds;
+    scene.instances.push_back(instance);
+    Light sun;
+    sun.type = LightType::Directional;
+    sun.wsDirection = glm::normalize(wsSunDirection);
+    sun.intensity = intensity;
+    sun.shadows = LightShadows::None;
+    scene.lights.push_back(sun);
+    Camera camera;
+    camera.worldFromView = glm::inverse(glm::lookAt(glm::vec3(0, 10, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1)));
+    camera.yfov = glm::radians(40.0f);
+    scene.camera = camera;
+    scene.wsBounds = plane.osBounds;
+    return scene;
+}
+
+Settings noAmbient() {
+    Settings settings;
+    settings.render.ambient = 0.0f;
+    return settings;
+}
+
+float centreLinear(const Image& image) { return srgbToLinear(image.at(image.width / 2, image.height / 2, 0)); }
+
+}  // namespace
+
+TEST_F(RenderTest, LitPlaneBrightnessFollowsLambertCosine) {
+    // Diffuse radiance = albedo / pi * E * N.L; with E = pi lux it is N.L (minus the small Fresnel
+    // share taken by the GGX lobe, which at roughness 1 stays under 6 %).
+    for (float degrees : {0.0f, 45.0f, 60.0f}) {
+        const float radians = glm::radians(degrees);
+        const glm::vec3 direction(std::sin(radians), -std::cos(radians), 0.0f);
+        const RenderResult result = renderScene(planeUnderSun(direction, float(M_PI)), {64, 64}, noAmbient());
+        EXPECT_NEAR(centreLinear(result.image), std::cos(radians), 0.06f) << "sun at " << degrees << " degrees";
+    }
+}
+
+TEST_F(RenderTest, SurfaceFacingAwayFromTheSunIsBlack) {
+    const RenderResult result = renderScene(planeUnderSun({0, 1, 0}, float(M_PI)), {32, 32}, noAmbient());
+    EXPECT_EQ(result.image.at(16, 16, 0), 0);
+}
+
+TEST_F(RenderTest, UnlitMaterialShowsItsBaseColourWhateverTheLight) {
+    const RenderResult result = renderScene(planeUnderSun({0, 1, 0}, 100.0f, true), {32, 32}, noAmbient());
+    EXPECT_NEAR(centreLinear(result.image), 0.5f, 0.01f);
+}
+
+TEST_F(RenderTest, BackFacesOfSingleSidedMaterialsAreCulled) {
+    Scene scene = planeUnderSun({0, -1, 0}, float(M_PI));
+    scene.camera->worldFromView =
+        glm::inverse(glm::lookAt(glm::vec3(0, -10, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1)));
+    const RenderResult result = renderScene(scene, {32, 32}, noAmbient());
+    EXPECT_EQ(result.image.at(16, 16, 0), 0);
+    scene.materials[0].doubleSided = true;
+    scene.materials[0].unlit = true;
+    const RenderResult doubleSided = renderScene(scene, {32, 32}, noAmbient());
+    EXPECT_GT(doubleSided.image.at(16, 16, 0), 200);
+}
+
+TEST_F(RenderTest, ShadowAovIsWhereNoShadowIsCast) {
+    RenderRequest request{32, 32, OutputMode::ShadowAov, 0, false};
+    const RenderResult result = renderScene(planeUnderSun({0, -1, 0}, 1.0f), request);
+    ASSERT_EQ(result.image.channels, 1u);
+    for (uint8_t v : result.image.pixels) ASSERT_EQ(v, 255);
+}
