@@ -6,6 +6,8 @@
 #include "shadows.glsl"
 
 layout(constant_id = 1) const bool kBlendPass = false;
+// The main directional light's shadow term from the screen-space resolve (seed 004), when enabled.
+layout(set = 0, binding = 9) uniform sampler2D screenSpaceShadows;
 
 layout(location = 0) in vec3 inWsPosition;
 layout(location = 1) in vec3 inWsNormal;
@@ -40,7 +42,12 @@ void main() {
         float attenuation = 1.0;
         ShadowSample shadow = ShadowSample(1.0, -1);
         if (uint(light.colorIntensity.a) == kLightDirectional) {
-            if (receives) shadow = directionalShadow(light.shadow.y, inWsPosition, wsNormal, gl_FragCoord.xy);
+            // Transparent surfaces are not in the depth prepass: they sample the atlas directly, as in URP.
+            bool resolved = frame.params.z > 0.5 && light.shadow.y == 0u && !kBlendPass && outputMode != kOutputCascadesAov;
+            if (receives && resolved)
+                shadow = ShadowSample(texelFetch(screenSpaceShadows, ivec2(gl_FragCoord.xy), 0).r, -1);
+            else if (receives)
+                shadow = directionalShadow(light.shadow.y, inWsPosition, wsNormal, gl_FragCoord.xy);
         } else {
             vec3 wsOffset = light.wsPosition.xyz - inWsPosition;
             float distanceSquared = dot(wsOffset, wsOffset);

@@ -34,16 +34,18 @@ PENUMBRA_CONST(uint, kLightPoint, 2u)
 struct FrameData {
     mat4 clipFromWorld;
     mat4 viewFromWorld;
+    mat4 worldFromClip;     // inverse of clipFromWorld: depth-buffer positions back to world space
     vec4 wsCameraPosition;  // xyz, w unused
     vec4 viewport;          // width, height, 1/width, 1/height
     uvec4 counts;           // directional light count, other light count, output mode, AOV light index
-    vec4 params;            // exposure, ambient, unused, unused
+    vec4 params;            // exposure, ambient, 1 = main light's shadows come from the screen-space resolve, unused
 };
-PENUMBRA_CHECK_SIZE(FrameData, 192)
+PENUMBRA_CHECK_SIZE(FrameData, 256)
 PENUMBRA_CHECK_LAYOUT(FrameData, viewFromWorld, 64)
-PENUMBRA_CHECK_LAYOUT(FrameData, wsCameraPosition, 128)
-PENUMBRA_CHECK_LAYOUT(FrameData, counts, 160)
-PENUMBRA_CHECK_LAYOUT(FrameData, params, 176)
+PENUMBRA_CHECK_LAYOUT(FrameData, worldFromClip, 128)
+PENUMBRA_CHECK_LAYOUT(FrameData, wsCameraPosition, 192)
+PENUMBRA_CHECK_LAYOUT(FrameData, counts, 224)
+PENUMBRA_CHECK_LAYOUT(FrameData, params, 240)
 
 struct LightData {
     vec4 colorIntensity;  // rgb = colour x intensity, a = light type

@@ -1,7 +1,76 @@
 #include "app/cli.h"
 
 #include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "core/error.h"
 
 namespace penumbra {
-int runCli(int, char**) { std::fprintf(stderr, "penumbra: not built yet\n"); return 1; }
+
+namespace {
+
+// Options every command that renders shares.
+void addRenderOptions(CLI::App& command, RenderOptions& options) {
+    command.add_option("scene", options.scenePath, "glTF 2.0 scene (.gltf or .glb); the built-in demo scene if omitted");
+    command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
+    command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
+    command.add_option("--settings", options.settingsPath, "settings JSON file (DESIGN.md: the pipeline asset)");
+    command.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
+    command.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
+    command.add_flag("--validation", options.validation, "enable the Vulkan validation layers");
+    command.add_option("--light", options.light, "light index (in the KHR_lights_punctual array) for AOVs and comparisons");
 }
+
+}  // namespace
+
+int runCli(int argc, char** argv) {
+    CLI::App app{"penumbra: real-time shadow rendering (cascaded and spot-light shadow maps) on Vulkan"};
+    app.require_subcommand(1);
+
+    RenderOptions renderOptions;
+    CLI::App* render = app.add_subcommand("render", "render a scene to a PNG (colour or a debug AOV)");
+    addRenderOptions(*render, renderOptions);
+    render->add_option("-o,--output", renderOptions.outputPath, "output PNG")->default_val("out.png");
+    render->add_option("--aov", renderOptions.aov, "debug output instead of colour: shadow | cascades")
+        ->check(CLI::IsMember({"shadow", "cascades"}));
+    render->add_option("--dump-atlas", renderOptions.dumpAtlasPath, "write the shadow atlases' depth as a grayscale PNG");
+    render->add_option("--stats", renderOptions.statsPath, "write stats JSON to FILE ('-' = stdout)");
+
+    RenderOptions referenceOptions;
+    CLI::App* reference = app.add_subcommand("reference", "ray-trace the exact shadow term of one light (Embree)");
+    addRenderOptions(*reference, referenceOptions);
+    reference->add_option("-o,--output", referenceOptions.outputPath, "output PNG (shadow AOV convention)")->default_val("reference.png");
+    reference->add_option("--mask", referenceOptions.maskPath, "write the validity mask PNG");
+
+    RenderOptions compareOptions;
+    CLI::App* compare = app.add_subcommand("compare", "compare the rasterized shadow AOV with the ray-traced reference");
+    addRenderOptions(*compare, compareOptions);
+    compare->add_option("--diff", compareOptions.diffPath, "write a diff image: false shadow and false lit in two colours");
+    compare->add_flag("--json", compareOptions.json, "print the metrics as JSON");
+
+    CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    try {
+        if (*render) return runRenderCommand(renderOptions);
+        if (*reference) return runReferenceCommand(referenceOptions);
+        if (*compare) return runCompareCommand(compareOptions);
+        if (*devices) return runDevicesCommand();
+    } catch (const Error& e) {
+        std::fprintf(stderr, "penumbra: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "penumbra: unexpected error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace penumbra

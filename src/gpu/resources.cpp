@@ -14,6 +14,7 @@ VkFormat toVkFormat(Format format) {
         case Format::R8Unorm: return VK_FORMAT_R8_UNORM;
         case Format::R32Float: return VK_FORMAT_R32_SFLOAT;
         case Format::R32Uint: return VK_FORMAT_R32_UINT;
+        case Format::RGBA16Float: return VK_FORMAT_R16G16B16A16_SFLOAT;
         case Format::D32Float: return VK_FORMAT_D32_SFLOAT;
         case Format::Undefined: break;
     }
@@ -25,6 +26,7 @@ bool isDepthFormat(Format format) { return format == Format::D32Float; }
 uint32_t bytesPerPixel(Format format) {
     switch (format) {
         case Format::R8Unorm: return 1;
+        case Format::RGBA16Float: return 8;
         case Format::Undefined: return 0;
         default: return 4;
     }

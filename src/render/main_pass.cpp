@@ -16,19 +16,19 @@ std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene
             {3, gpuScene.materialBuffer(), {}, {}}, {4, lights, {}, {}}};
 }
 
-const MainPass::PipelineSet& MainPass::pipelines(gpu::Format colorFormat, const MainPassInputs& inputs) {
-    auto found = pipelineSets_.find(colorFormat);
+const MainPass::PipelineSet& MainPass::pipelines(const Target& target, const MainPassInputs& inputs) {
+    const auto key = std::make_pair(target.colorFormat, target.fragmentShader);
+    auto found = pipelineSets_.find(key);
     if (found != pipelineSets_.end()) return found->second;
     PipelineSet set;
     for (int doubleSided = 0; doubleSided < 2; ++doubleSided) {
         for (int blended = 0; blended < 2; ++blended) {
             gpu::GraphicsPipelineDesc desc;
             desc.vertexShader = "mesh.vert";
-            desc.fragmentShader = "lit.frag";
-            desc.bindings = sceneBindings();
-            desc.bindings.insert(desc.bindings.end(), inputs.shadowBindings.begin(), inputs.shadowBindings.end());
+            desc.fragmentShader = target.fragmentShader;
+            desc.bindings = inputs.bindings;
             desc.textureTable = scene_.textureTable();
-            desc.colorFormats = {colorFormat};
+            desc.colorFormats = {target.colorFormat};
             desc.depthFormat = gpu::Format::D32Float;
             desc.depthCompare = gpu::CompareOp::GreaterOrEqual;  // reversed Z
             desc.depthWrite = !blended;
@@ -38,7 +38,7 @@ const MainPass::PipelineSet& MainPass::pipelines(gpu::Format colorFormat, const 
             (blended ? set.blended : set.opaque)[doubleSided] = device_.createGraphicsPipeline(desc);
         }
     }
-    return pipelineSets_.emplace(colorFormat, set).first->second;
+    return pipelineSets_.emplace(key, set).first->second;
 }
 
 void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const DrawItem*>& items, const PipelineSet& set,
@@ -58,17 +58,15 @@ void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const Dra
 }
 
 void MainPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
-                      const MainPassInputs& inputs, gpu::TextureHandle colorTarget, gpu::Format colorFormat,
-                      gpu::TextureHandle depthTarget, const float clearColor[4], bool drawBlended) {
-    const PipelineSet& set = pipelines(colorFormat, inputs);
-    std::vector<gpu::DescriptorWrite> writes = sceneDescriptorWrites(scene_, inputs.frameBuffer, inputs.lightBuffer);
-    writes.insert(writes.end(), inputs.shadowWrites.begin(), inputs.shadowWrites.end());
+                      const MainPassInputs& inputs, const Target& target) {
+    const PipelineSet& set = pipelines(target, inputs);
+    const std::vector<gpu::DescriptorWrite>& writes = inputs.writes;
 
     std::vector<const DrawItem*> opaque, blended;
     for (const DrawItem& item : scene_.draws()) {
         const bool isBlend = scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend;
         if (!isBlend) opaque.push_back(&item);
-        else if (drawBlended) blended.push_back(&item);
+        else if (target.drawBlended) blended.push_back(&item);
     }
     // Transparent draws back to front by the distance of their bounds' centre to the camera.
     auto distance = [&](const DrawItem* item) {
@@ -80,10 +78,10 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     rendering.width = view.width;
     rendering.height = view.height;
     gpu::ColorAttachment color;
-    color.texture = colorTarget;
-    std::copy(clearColor, clearColor + 4, color.clearColor);
+    color.texture = target.color;
+    std::copy(target.clearColor, target.clearColor + 4, color.clearColor);
     rendering.colors = {color};
-    rendering.depth = {depthTarget, true, 0.0f};
+    rendering.depth = {target.depth, true, 0.0f};
     commands.beginRendering(rendering);
     drawItems(commands, opaque, set, false, scene, writes);
     drawItems(commands, blended, set, true, scene, writes);

@@ -2,6 +2,8 @@
 // The forward main pass: opaque and alpha-tested draws, then alpha-blended draws back to front.
 // Unlit materials share the pipelines (the material flag selects the path in the shader).
 #include <map>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu/device.h"
@@ -10,35 +12,41 @@
 
 namespace penumbra {
 
-// Set 0 bindings of the main pass beyond the scene buffers (see shaders/bindings.glsl).
+// Everything set 0 of the scene passes binds: the scene buffers (0-4, sceneBindings()) plus the
+// shadow data, atlases and screen-space shadow texture (5-9).
 struct MainPassInputs {
-    gpu::BufferHandle frameBuffer;
-    gpu::BufferHandle lightBuffer;
-    std::vector<gpu::DescriptorWrite> shadowWrites;  // shadow data and atlases (bindings 5+)
-    std::vector<gpu::BindingDesc> shadowBindings;
+    std::vector<gpu::BindingDesc> bindings;
+    std::vector<gpu::DescriptorWrite> writes;
 };
 
 class MainPass {
 public:
     MainPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {}
 
-    // Records the pass into colorTarget / depthTarget (both already in their target states).
+    struct Target {
+        gpu::TextureHandle color;
+        gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+        gpu::TextureHandle depth;
+        std::string fragmentShader = "lit.frag";  // "normal_prepass.frag" for the depth prepass
+        float clearColor[4] = {0, 0, 0, 1};
+        bool drawBlended = true;
+    };
+    // Records the pass into target.color / target.depth (both already in their target states).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,
-                gpu::TextureHandle colorTarget, gpu::Format colorFormat, gpu::TextureHandle depthTarget,
-                const float clearColor[4], bool drawBlended);
+                const Target& target);
 
 private:
     struct PipelineSet {
         gpu::PipelineHandle opaque[2];   // [doubleSided]
         gpu::PipelineHandle blended[2];
     };
-    const PipelineSet& pipelines(gpu::Format colorFormat, const MainPassInputs& inputs);
+    const PipelineSet& pipelines(const Target& target, const MainPassInputs& inputs);
     void drawItems(gpu::CommandList& commands, const std::vector<const DrawItem*>& items, const PipelineSet& set,
                    bool blended, const Scene& scene, const std::vector<gpu::DescriptorWrite>& writes);
 
     gpu::Device& device_;
     const GpuScene& scene_;
-    std::map<gpu::Format, PipelineSet> pipelineSets_;
+    std::map<std::pair<gpu::Format, std::string>, PipelineSet> pipelineSets_;
 };
 
 std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, gpu::BufferHandle frame,

@@ -1,12 +1,17 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cstring>
 
 #include "core/error.h"
 #include "render/gpu_scene.h"
 #include "render/light_packing.h"
 #include "render/main_pass.h"
+#include "render/screen_space_shadow_pass.h"
+#include "render/shadow_caster_pass.h"
+#include "render/shadow_stats_json.h"
 #include "scene_structs.h"
+#include "shadows/shadow_planner.h"
 
 namespace penumbra {
 
@@ -15,14 +20,22 @@ struct Renderer::State {
     const Scene& scene;
     GpuScene gpuScene;
     MainPass mainPass;
-    gpu::BufferHandle frameBuffer;
-    gpu::BufferHandle lightBuffer;
+    ShadowCasterPass casterPass;
+    ScreenSpaceShadowPass screenSpacePass;
+    gpu::BufferHandle frameBuffer, lightBuffer, directionalShadowBuffer;
+    gpu::SamplerHandle shadowSampler, pointSampler;
 
     State(gpu::Device& d, const Scene& s)
-        : device(d), scene(s), gpuScene(d, s), mainPass(d, gpuScene) {
+        : device(d), scene(s), gpuScene(d, s), mainPass(d, gpuScene), casterPass(d, gpuScene), screenSpacePass(d, mainPass) {
         frameBuffer = d.createBuffer(sizeof(gpu_data::FrameData), gpu::kBufferUniform, gpu::MemoryKind::HostVisible);
         const size_t maxLights = gpu_data::kMaxDirectionalLights + gpu_data::kMaxOtherLights;
         lightBuffer = d.createBuffer(maxLights * sizeof(gpu_data::LightData), gpu::kBufferStorage, gpu::MemoryKind::HostVisible);
+        directionalShadowBuffer = d.createBuffer(sizeof(gpu_data::DirectionalShadowData), gpu::kBufferUniform,
+                                                 gpu::MemoryKind::HostVisible);
+        // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
+        shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
+                                         gpu::CompareOp::LessOrEqual});
+        pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
     }
 };
 
@@ -36,17 +49,18 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
 namespace {
 
 gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
-                                  const Settings& settings) {
+                                  const Settings& settings, bool screenSpaceShadows) {
     gpu_data::FrameData frame{};
     frame.clipFromWorld = view.clipFromWorld;
     frame.viewFromWorld = view.viewFromWorld;
+    frame.worldFromClip = glm::inverse(view.clipFromWorld);
     frame.wsCameraPosition = glm::vec4(view.wsPosition, 1.0f);
     frame.viewport = glm::vec4(float(view.width), float(view.height), 1.0f / float(view.width), 1.0f / float(view.height));
     uint32_t mode = gpu_data::kOutputColor;
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
     frame.counts = glm::uvec4(lights.directionalCount, lights.otherCount, mode, request.aovLight);
-    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, 0.0f, 0.0f);
+    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f, 0.0f);
     return frame;
 }
 
@@ -58,46 +72,94 @@ Image toOutputImage(const Image& rgba, OutputMode output) {
     return image;
 }
 
+// 32-bit float depth (0 = near the light, 1 = empty) to 8-bit gray.
+Image depthToGray(const Image& depth) {
+    Image gray(depth.width, depth.height, 1);
+    for (size_t p = 0; p < size_t(depth.width) * depth.height; ++p) {
+        float value = 0.0f;
+        std::memcpy(&value, &depth.pixels[p * 4], sizeof(float));
+        gray.pixels[p] = uint8_t(std::clamp(value, 0.0f, 1.0f) * 255.0f + 0.5f);
+    }
+    return gray;
+}
+
 }  // namespace
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
     State& s = *state_;
-    validateSettings(settings);  // settings built in code get the same checks as parsed ones
+    validateSettings(settings);
     if (request.output != OutputMode::Color && request.aovLight >= s.scene.lights.size() && !s.scene.lights.empty())
-        throw Error("--light " + std::to_string(request.aovLight) + ": the scene has " +
-                    std::to_string(s.scene.lights.size()) + " lights");
+        throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
+                    std::to_string(s.scene.lights.size()) + " lights)");
     RenderResult result;
     const auto planStart = std::chrono::steady_clock::now();
-    const PackedLights lights = packLights(s.scene, [](uint32_t) { return kNoShadowSlot; });
+    const ShadowFrame plan = ShadowPlanner::plan(s.scene, view, settings.shadows);
+    const PackedLights lights = packLights(s.scene, [&](uint32_t i) {
+        const int32_t slot = plan.directional.slotOfSceneLight.at(i);
+        return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
+    });
     result.stats.cpuPlanMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - planStart).count();
     result.stats.warnings = lights.warnings;
-    const gpu_data::FrameData frame = makeFrameData(view, lights, request, settings);
+    result.stats.shadowStatsJson = shadowStatsJson(plan);
+
+    const bool screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
+    const gpu_data::FrameData frame = makeFrameData(view, lights, request, settings, screenSpace);
     s.device.writeBuffer(s.frameBuffer, &frame, sizeof(frame));
     if (!lights.lights.empty())
         s.device.writeBuffer(s.lightBuffer, lights.lights.data(), lights.lights.size() * sizeof(lights.lights[0]));
+    s.device.writeBuffer(s.directionalShadowBuffer, &plan.directional.gpu, sizeof(plan.directional.gpu));
 
+    const uint32_t atlasSize = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
+    const gpu::TextureHandle atlas = s.device.createTexture(
+        {atlasSize, atlasSize, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "directional atlas"});
     const gpu::Format colorFormat = request.output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
     const gpu::TextureHandle color = s.device.createTexture(
         {view.width, view.height, colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
     const gpu::TextureHandle depth = s.device.createTexture(
-        {view.width, view.height, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "depth"});
+        {view.width, view.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
+    // Bound when the screen-space resolve is off, so binding 9 always holds something valid.
+    const gpu::TextureHandle noScreenShadows =
+        s.device.createTexture({1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "none"});
 
     gpu::CommandList commands = s.device.beginCommands();
+    commands.beginTimer("shadows.directional");
+    s.casterPass.record(commands, s.scene, plan.directional.tiles, atlas, atlasSize, s.frameBuffer, s.lightBuffer);
+    commands.endTimer();
+
+    MainPassInputs inputs;
+    inputs.bindings = sceneBindings();
+    inputs.bindings.push_back({5, gpu::DescriptorType::UniformBuffer});
+    inputs.bindings.push_back({6, gpu::DescriptorType::SampledTexture});
+    inputs.writes = sceneDescriptorWrites(s.gpuScene, s.frameBuffer, s.lightBuffer);
+    inputs.writes.push_back({5, s.directionalShadowBuffer, {}, {}});
+    inputs.writes.push_back({6, {}, atlas, s.shadowSampler});
+    gpu::TextureHandle screenShadows = noScreenShadows;
+    commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
+    if (screenSpace) screenShadows = s.screenSpacePass.record(commands, s.scene, view, inputs, 0);
+    inputs.bindings.push_back({9, gpu::DescriptorType::SampledTexture});
+    inputs.writes.push_back({9, {}, screenShadows, s.pointSampler});
+
+    commands.beginTimer("main");
     commands.transition(color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
     commands.transition(depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
-    MainPassInputs inputs{s.frameBuffer, s.lightBuffer, {}, {}};
-    // Shadow AOV: 1 (lit) where no geometry is; colour: black background.
-    const float white[4] = {1, 1, 1, 1}, black[4] = {0, 0, 0, 1};
-    commands.beginTimer("main");
-    s.mainPass.record(commands, s.scene, view, inputs, color, colorFormat, depth,
-                      request.output == OutputMode::ShadowAov ? white : black, request.output == OutputMode::Color);
+    MainPass::Target target;
+    target.color = color;
+    target.colorFormat = colorFormat;
+    target.depth = depth;
+    // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background. The AOVs show
+    // the opaque surface, so blended draws are left out of them.
+    if (request.output == OutputMode::ShadowAov) std::fill(target.clearColor, target.clearColor + 4, 1.0f);
+    target.drawBlended = request.output == OutputMode::Color;
+    s.mainPass.record(commands, s.scene, view, inputs, target);
     commands.endTimer();
     s.device.submitAndWait(commands);
+
     result.stats.gpuTimings = s.device.lastTimings();
     result.image = toOutputImage(s.device.readTexture(color, gpu::TextureState::ColorTarget), request.output);
-    s.device.destroy(color);
-    s.device.destroy(depth);
+    if (request.captureAtlas) result.atlas = depthToGray(s.device.readTexture(atlas, gpu::TextureState::ShaderRead));
+    s.screenSpacePass.releaseTargets();
+    for (gpu::TextureHandle t : {atlas, color, depth, noScreenShadows}) s.device.destroy(t);
     return result;
 }
 

@@ -1,0 +1,18 @@
+#version 460
+// Depth prepass of the screen-space shadow path (seed 004): depth plus the shading normal, which the
+// resolve needs for the normal bias. Alpha-tested like the lit pass so both see the same surfaces.
+#include "bindings.glsl"
+
+layout(location = 0) in vec3 inWsPosition;
+layout(location = 1) in vec3 inWsNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) flat in uint inInstance;
+layout(location = 0) out vec4 outWsNormal;
+
+void main() {
+    MaterialData material = materials[instances[inInstance].info.x];
+    if (material.flags.z == kAlphaMask && materialBaseColor(material, inUv).a < material.params.z) discard;
+    vec3 wsNormal = normalize(inWsNormal);
+    if (!gl_FrontFacing) wsNormal = -wsNormal;
+    outWsNormal = vec4(wsNormal, 1.0);
+}

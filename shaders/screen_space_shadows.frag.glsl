@@ -1,0 +1,22 @@
+#version 460
+// URP-style screen-space shadow resolve (seed 004): the main directional light's shadow term per
+// pixel, from the depth prepass, with exactly the forward path's sampling (shadows.glsl).
+#include "bindings.glsl"
+#include "shadows.glsl"
+
+layout(set = 0, binding = 10) uniform sampler2D sceneDepth;
+layout(set = 0, binding = 11) uniform sampler2D sceneNormals;
+layout(push_constant) uniform ResolveConstants { uvec4 slot; } resolve;
+
+layout(location = 0) in vec2 inUv;
+layout(location = 0) out float outAttenuation;
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(sceneDepth, pixel, 0).r;
+    if (depth <= 0.0) { outAttenuation = 1.0; return; }  // reversed Z: 0 = nothing drawn
+    vec2 ndc = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
+    vec4 wsPosition = frame.worldFromClip * vec4(ndc, depth, 1.0);
+    vec3 wsNormal = texelFetch(sceneNormals, pixel, 0).xyz;
+    outAttenuation = directionalShadow(resolve.slot.x, wsPosition.xyz / wsPosition.w, wsNormal, gl_FragCoord.xy).attenuation;
+}

@@ -1,0 +1,15 @@
+#version 460
+// Alpha-aware shadow casters (seed 000 §5.1-§5.3): `clip` materials drop texels below the alpha
+// cutoff, `dither` materials drop them with probability 1 - alpha using interleaved gradient noise.
+// Opaque (`on`) casters use a depth-only pipeline without this shader; `off` casters are not drawn.
+#include "bindings.glsl"
+
+layout(location = 0) in vec2 inUv;
+layout(location = 1) flat in uint inInstance;
+
+void main() {
+    MaterialData material = materials[instances[inInstance].info.x];
+    float alpha = materialBaseColor(material, inUv).a;
+    if (material.flags.w == kShadowModeClip && alpha < material.params.z) discard;
+    if (material.flags.w == kShadowModeDither && alpha < interleavedGradientNoise(gl_FragCoord.xy)) discard;
+}

@@ -1,0 +1,40 @@
+#pragma once
+// The CLI's commands, callable from tests too. Each returns the process exit code and throws
+// penumbra::Error for user mistakes (the caller prints the one-line message).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/settings.h"
+#include "scene/scene.h"
+
+namespace penumbra {
+
+struct RenderOptions {
+    std::string scenePath;  // empty: built-in demo scene
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    std::string settingsPath;
+    std::vector<std::string> overrides;
+    std::string device = "auto";
+    bool validation = false;
+    uint32_t light = 0;
+    std::string outputPath;
+    std::string aov;
+    std::string dumpAtlasPath;
+    std::string statsPath;
+    std::string maskPath;
+    std::string diffPath;
+    bool json = false;
+};
+
+Scene loadSceneOrDemo(const std::string& path);
+Settings loadSettings(const RenderOptions& options);
+
+int runRenderCommand(const RenderOptions& options);
+int runReferenceCommand(const RenderOptions& options);
+int runCompareCommand(const RenderOptions& options);
+int runDevicesCommand();
+
+}  // namespace penumbra

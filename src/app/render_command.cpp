@@ -1,0 +1,87 @@
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "gpu/device.h"
+#include "render/renderer.h"
+#include "scene/demo_scene.h"
+#include "scene/gltf_loader.h"
+
+namespace penumbra {
+
+Scene loadSceneOrDemo(const std::string& path) { return path.empty() ? makeDemoScene() : loadGltfScene(path); }
+
+Settings loadSettings(const RenderOptions& options) {
+    Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
+    for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
+    validateSettings(settings);
+    return settings;
+}
+
+namespace {
+
+// Fails before any rendering when the output can't be written (one line, no half-done work).
+void checkWritable(const std::string& path) {
+    if (path.empty() || path == "-") return;
+    std::ofstream probe(path, std::ios::binary | std::ios::app);
+    if (!probe) throw Error("cannot write " + path + ": the file could not be created");
+}
+
+std::string statsJson(const RenderResult& result, const gpu::Device& device, const RenderOptions& options) {
+    nlohmann::json stats;
+    stats["device"] = {{"name", device.info().name}, {"driver", device.info().driver}, {"cpu", device.info().isCpu}};
+    stats["width"] = options.width;
+    stats["height"] = options.height;
+    nlohmann::json gpuMs = nlohmann::json::object();
+    for (const auto& timing : result.stats.gpuTimings) gpuMs[timing.name] = timing.milliseconds;
+    stats["gpuMs"] = gpuMs;
+    stats["cpuPlanMs"] = result.stats.cpuPlanMilliseconds;
+    stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
+    stats["warnings"] = result.stats.warnings;
+    return stats.dump(2);
+}
+
+}  // namespace
+
+int runRenderCommand(const RenderOptions& options) {
+    checkWritable(options.outputPath);
+    checkWritable(options.dumpAtlasPath);
+    checkWritable(options.statsPath);
+    const Settings settings = loadSettings(options);
+    const Scene scene = loadSceneOrDemo(options.scenePath);
+    gpu::Device device({options.device, options.validation, true});
+    Renderer renderer(device, scene);
+    RenderRequest request;
+    request.width = options.width;
+    request.height = options.height;
+    request.aovLight = options.light;
+    if (options.aov == "shadow") request.output = OutputMode::ShadowAov;
+    if (options.aov == "cascades") request.output = OutputMode::CascadesAov;
+    request.captureAtlas = !options.dumpAtlasPath.empty();
+    const RenderResult result = renderer.render(request, settings);
+    for (const std::string& warning : result.stats.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    writePng(result.image, options.outputPath);
+    if (request.captureAtlas) writePng(result.atlas, options.dumpAtlasPath);
+    if (!options.statsPath.empty()) {
+        const std::string json = statsJson(result, device, options);
+        if (options.statsPath == "-") {
+            std::printf("%s\n", json.c_str());
+        } else {
+            std::ofstream(options.statsPath) << json << "\n";
+        }
+    }
+    if (options.validation && device.validationMessageCount() > 0)
+        throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
+    return 0;
+}
+
+int runDevicesCommand() {
+    for (const gpu::DeviceInfo& info : gpu::Device::listDevices())
+        std::printf("%u: %s (%s)%s\n", info.index, info.name.c_str(), info.driver.c_str(), info.isCpu ? " [cpu]" : "");
+    return 0;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,68 @@
+#include "render/shadow_caster_pass.h"
+
+#include "render/main_pass.h"
+
+namespace penumbra {
+
+ShadowCasterPass::ShadowCasterPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {
+    gpu::GraphicsPipelineDesc desc;
+    desc.vertexShader = "shadow_caster.vert";
+    desc.bindings = sceneBindings();
+    desc.pushConstantSize = sizeof(glm::mat4);
+    desc.textureTable = gpuScene.textureTable();
+    desc.depthFormat = gpu::Format::D32Float;
+    desc.depthCompare = gpu::CompareOp::LessOrEqual;  // standard depth in shadow maps: 0 = near the light
+    desc.depthClamp = true;
+    desc.dynamicDepthBias = true;
+    // Both faces cast: thin and open geometry (planes, foliage) must block light from either side.
+    desc.cullMode = gpu::CullMode::None;
+    desc.debugName = "shadow caster";
+    depthOnly_ = device.createGraphicsPipeline(desc);
+    desc.fragmentShader = "shadow_caster.frag";
+    alphaTested_ = device.createGraphicsPipeline(desc);
+}
+
+void ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene, const std::vector<ShadowTile>& tiles,
+                              gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle frameBuffer,
+                              gpu::BufferHandle lightBuffer) {
+    commands.transition(atlas, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    gpu::RenderingDesc rendering;
+    rendering.width = rendering.height = atlasSize;
+    rendering.depth = {atlas, true, 1.0f};
+    commands.beginRendering(rendering);
+    const std::vector<gpu::DescriptorWrite> writes = sceneDescriptorWrites(scene_, frameBuffer, lightBuffer);
+
+    // Draw items by instance, so the planner's instance lists select them directly.
+    std::vector<std::vector<const DrawItem*>> drawsOfInstance(scene.instances.size());
+    for (const DrawItem& item : scene_.draws()) drawsOfInstance[item.instanceIndex].push_back(&item);
+
+    for (const ShadowTile& tile : tiles) {
+        const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
+        for (int alphaPass = 0; alphaPass < 2; ++alphaPass) {
+            bool bound = false;
+            for (uint32_t instanceIndex : tile.casterInstances) {
+                for (const DrawItem* item : drawsOfInstance[instanceIndex]) {
+                    const MaterialShadowMode mode = scene.materials.at(item->materialIndex).shadows;
+                    if (mode == MaterialShadowMode::Off) continue;
+                    if ((mode != MaterialShadowMode::On) != bool(alphaPass)) continue;
+                    if (!bound) {
+                        commands.bindPipeline(alphaPass ? alphaTested_ : depthOnly_);
+                        commands.pushDescriptors(writes);
+                        commands.bindTextureTable(scene_.textureTable());
+                        commands.bindIndexBuffer(scene_.indexBuffer());
+                        commands.setViewport(rect);
+                        commands.setScissor(rect);
+                        commands.setDepthBias(0.0f, tile.slopeScaleBias);
+                        commands.pushConstants(&tile.clipFromWorld, sizeof(glm::mat4));
+                        bound = true;
+                    }
+                    commands.drawIndexed(item->indexCount, 1, item->firstIndex, item->vertexOffset, item->instanceIndex);
+                }
+            }
+        }
+    }
+    commands.endRendering();
+    commands.transition(atlas, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
+}
+
+}  // namespace penumbra
