@@ -111,7 +111,10 @@ bool needsShadowFilter(const GeometryData& g) {
     return !g.castsShadows || g.material->shadows != MaterialShadowMode::On;
 }
 
-std::unique_ptr<GeometryData> makeGeometryData(const Scene& scene, uint32_t instanceIndex) {
+// `materials` and `textures` are the EmbreeScene's own copies, which the geometry points into.
+std::unique_ptr<GeometryData> makeGeometryData(const Scene& scene, uint32_t instanceIndex,
+                                               const std::vector<Material>& materials,
+                                               const std::vector<Texture>& textures) {
     const Instance& instance = scene.instances[instanceIndex];
     if (instance.meshIndex >= scene.meshes.size())
         throw Error("scene: instance " + std::to_string(instanceIndex) + " uses mesh " +
@@ -122,9 +125,9 @@ std::unique_ptr<GeometryData> makeGeometryData(const Scene& scene, uint32_t inst
                     ", which does not exist");
     auto g = std::make_unique<GeometryData>();
     g->instanceIndex = instanceIndex;
-    g->material = &scene.materials[mesh.materialIndex];
+    g->material = &materials[mesh.materialIndex];
     const int textureIndex = g->material->baseColorTexture;
-    if (textureIndex >= 0 && size_t(textureIndex) < scene.textures.size()) g->texture = &scene.textures[textureIndex];
+    if (textureIndex >= 0 && size_t(textureIndex) < textures.size()) g->texture = &textures[textureIndex];
     g->castsShadows = instance.castShadows;
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.worldFromObject)));
     for (const Vertex& vertex : mesh.vertices) {
@@ -151,6 +154,9 @@ struct EmbreeScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<std::unique_ptr<GeometryData>> geometries;  // indexed by geomID = instance index
+    // Copies, so that the EmbreeScene doesn't depend on the Scene's lifetime.
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -194,8 +200,10 @@ EmbreeScene::EmbreeScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     impl_->scene = rtcNewScene(impl_->device);
     checkDevice(impl_->device, "rtcNewScene");
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    impl_->materials = scene.materials;
+    impl_->textures = scene.textures;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-        auto g = makeGeometryData(scene, i);
+        auto g = makeGeometryData(scene, i, impl_->materials, impl_->textures);
         if (g->indices.empty()) continue;
         for (const glm::vec3& p : g->wsPositions) wsBounds_.extend(p);
         triangleCount_ += uint32_t(g->indices.size() / 3);

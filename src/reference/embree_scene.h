@@ -30,11 +30,12 @@ struct SurfaceHit {
     glm::vec3 wsGeometricNormal{0.0f};   // unit, on the front (counter-clockwise) side
     glm::vec3 wsShadingNormal{0.0f};     // unit, interpolated vertex normal, front side as authored
     bool frontFacing = true;             // the ray arrived on the front side
-    const Material* material = nullptr;
+    const Material* material = nullptr;  // the EmbreeScene's copy, valid while it lives
 };
 
 class EmbreeScene {
 public:
+    // Copies what it needs from `scene`, which may be destroyed afterwards.
     // Throws penumbra::Error when Embree fails or an instance names a mesh or material that doesn't exist.
     explicit EmbreeScene(const Scene& scene);
     ~EmbreeScene();
