@@ -1,0 +1,47 @@
+#pragma once
+// Ray-traced ground truth for the `--aov shadow` image (DESIGN.md "Images and their conventions"):
+// one camera ray per pixel centre with the rasterizer's camera convention, one shadow ray from the
+// visible surface to the light, and a mask of the pixels where a comparison is meaningful.
+#include <cstdint>
+#include <limits>
+
+#include "core/image.h"
+#include "scene/camera_view.h"
+#include "scene/scene.h"
+
+namespace penumbra {
+
+struct ReferenceImages {
+    // 1 channel: round(255 × (1 - strength × fade × (1 - visibility))), visibility 0 or 1;
+    // 255 where no geometry is visible or the surface doesn't receive shadows.
+    Image shadow;
+    // 1 channel: 255 = the pixel takes part in comparisons, 0 = excluded (see traceReferenceShadow).
+    Image validMask;
+    uint64_t validPixels = 0;
+    uint64_t geometryPixels = 0;  // pixels whose camera ray hits a visible surface
+};
+
+// The shadow settings that shape the AOV beyond the light itself (seed 000 §3.6-3.7). Defaults
+// mean "no maximum distance": no fade, every distance is compared.
+struct ReferenceOptions {
+    float maxShadowDistance = std::numeric_limits<float>::infinity();  // view depth where shadows end
+    float distanceFade = 0.1f;  // fraction of maxShadowDistance over which shadows fade out
+};
+
+// Traces light `lightIndex`'s shadow as seen by `view`. A pixel is valid when all of these hold:
+// - its camera ray hits a visible surface;
+// - N·L >= 0.1 for both the shading and the geometric normal, turned to face the camera (the
+//   grazing terminator is where shadow maps legitimately disagree with rays);
+// - the point is inside a spot light's outer cone and within a spot or point light's range;
+// - it is not in the distance-fade band nor beyond maxShadowDistance;
+// - none of its 8 neighbours is across a discontinuity: no geometry, another instance, a geometric
+//   normal more than ~25° away (cos < 0.9, creases), or a point farther than 2 pixel footprints from
+//   this pixel's tangent plane (depth steps). Such pixels straddle edges that rasterization and ray
+//   casting may assign to different surfaces.
+// A scene with nothing in view gives all-255 shadow and validPixels == 0.
+// Throws penumbra::Error when the light doesn't exist or casts no shadows (shadows none or strength 0).
+// Runs on all cores (TBB); shows progress on stderr when `showProgress` and stderr is a terminal.
+ReferenceImages traceReferenceShadow(const Scene& scene, const CameraView& view, uint32_t lightIndex,
+                                     bool showProgress, const ReferenceOptions& options = {});
+
+}  // namespace penumbra
