@@ -2,6 +2,8 @@
 // The shadow part of the pipeline settings (DESIGN.md "Settings"; seed 000 §1.1, §3.1, §4).
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <string>
 
 namespace penumbra {
 
@@ -32,5 +34,15 @@ struct ShadowSettings {
 
 // Filter footprint in texels beyond the centre tap: PCF2x2 -> 0 ... PCF7x7 -> 3 (seed 000 §4.7).
 inline float filterSize(ShadowFilter filter) { return float(int(filter)); }
+
+// Names as written in the settings JSON ("PCF5x5", "soft") and back; nullopt for an unknown name.
+const char* shadowFilterName(ShadowFilter filter);
+const char* cascadeBlendName(CascadeBlend blend);
+std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
+std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
+
+// Checks the ranges of DESIGN.md; throws Error naming the first bad key with its allowed range, e.g.
+// "settings: shadows.directional.cascadeCount = 7 is out of range (allowed 1..4)".
+void validateShadowSettings(const ShadowSettings& settings);
 
 }  // namespace penumbra

@@ -1,0 +1,65 @@
+// GPU data of the directional shadows, shared by C++ (shadows/shadow_gpu_packing) and GLSL.
+// Filled by penumbra::packDirectionalShadowData from a ShadowFrame; one uniform/storage block per frame.
+//
+// Conventions (one for the whole project's shadow maps):
+// - Shadow-map clip space is Vulkan's: x right, y DOWN in NDC, z in [0, 1]. Light view space looks along
+//   -Z with +Y up (like the camera), so light-space +Y lands at the top of a tile.
+// - Standard depth: 0 at the near plane (closest to the light), 1 at the far plane. Clear to 1, render
+//   casters with compare op LESS (or LESS_OR_EQUAL), sample with a sampler2DShadow whose compare op is
+//   LESS_OR_EQUAL: "fragment depth <= stored depth -> lit (1)".
+// - atlasFromWorld maps a world position (w = 1) straight to (atlas u, atlas v, depth, 1): u, v in [0, 1]
+//   over the whole atlas with v = 0 at the top row (texel row 0); orthographic, so no divide by w needed.
+#ifndef PENUMBRA_SHADOW_STRUCTS_H
+#define PENUMBRA_SHADOW_STRUCTS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+PENUMBRA_CONST(uint, kMaxShadowedDirectionalLights, 4u)
+PENUMBRA_CONST(uint, kMaxCascades, 4u)
+PENUMBRA_CONST(uint, kMaxDirectionalShadowTiles, 16u)
+
+// DirectionalShadowData.config.y mirrors ShadowFilter, .z mirrors CascadeBlend.
+PENUMBRA_CONST(uint, kShadowFilterPcf2x2, 0u)
+PENUMBRA_CONST(uint, kShadowFilterPcf3x3, 1u)
+PENUMBRA_CONST(uint, kShadowFilterPcf5x5, 2u)
+PENUMBRA_CONST(uint, kShadowFilterPcf7x7, 3u)
+PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
+PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
+PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)
+
+struct DirectionalShadowData {
+    // Tile t = lights[slot].y + cascade: world -> (atlas uv, depth). Unused tiles are zero.
+    mat4 atlasFromWorld[16];
+    // Per cascade (shared by all lights, seed 000 §3.3): xyz = world centre, w = (r - filterSize)^2,
+    // the radius shrunk by the filter footprint so filtering stays inside the tile (seed 000 §4.6).
+    vec4 cullingSpheres[4];
+    // Per cascade: x = 1 / cullingSpheres.w (seed 000 §4.2), y = filterSize * sqrt(2), the world-space
+    // normal-bias unit (seed 000 §4.3, §4.6; filterSize = world texel size * (filter + 1)),
+    // z = world texel size (2r / tileSize), w unused.
+    vec4 cascadeData[4];
+    // Per shadowed light slot: x = strength, y = first tile index, z = normal bias (light's
+    // shadowNormalBias, multiplies cascadeData.y), w = scene light index.
+    vec4 lights[4];
+    // x = 1 / shadow distance, y = 1 / distanceFade, z = 1 / (1 - (1 - cascadeFade)^2) (seed 000 §3.7,
+    // §3.8), w = shadow distance: maxDistance, or the camera's zFar when nearer (seed 000 §3.6). The
+    // lit pass: strength = saturate((1 - viewDepth * x) * y) * light strength; in the last cascade also
+    // * saturate((1 - distanceSqr * cascadeData.x) * z).
+    vec4 fade;
+    // x = cascade count, y = filter (kShadowFilter*), z = cascade blend (kCascadeBlend*),
+    // w = shadowed directional light count (0 = no directional shadows this frame).
+    uvec4 config;
+    // x = atlas size in texels, y = 1 / atlas size, z = tile size in texels, w = 1 / tile size.
+    // The tent filters take vec4(1/size, 1/size, size, size) = atlasSize.yyxx (seed 000 §4.6).
+    vec4 atlasSize;
+};
+PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1264)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cullingSpheres, 1024)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascadeData, 1088)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lights, 1152)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, fade, 1216)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, config, 1232)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, atlasSize, 1248)
+
+PENUMBRA_GPU_NAMESPACE_END
+#endif

@@ -1,0 +1,191 @@
+#include "app/settings.h"
+
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace penumbra {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& message) { throw Error("settings: " + message); }
+
+[[noreturn]] void failType(const std::string& key, const json& value, const char* expected) {
+    fail(key + " = " + value.dump() + " has the wrong type (expected " + expected + ")");
+}
+
+float readFloat(const std::string& key, const json& value) {
+    if (!value.is_number()) failType(key, value, "a number");
+    return float(value.get<double>());  // too large for a float becomes inf: caught by validation
+}
+
+// Integers are range-checked here already, so that -1 or 2^40 never wrap into the uint32_t field.
+uint32_t readUint(const std::string& key, const json& value, const char* allowed) {
+    if (!value.is_number_integer()) failType(key, value, "an integer");
+    const bool fits = value.is_number_unsigned() ? value.get<uint64_t>() <= UINT32_MAX : false;
+    if (!fits) fail(key + " = " + value.dump() + " is out of range (allowed " + allowed + ")");
+    return uint32_t(value.get<uint64_t>());
+}
+
+bool readBool(const std::string& key, const json& value) {
+    if (!value.is_boolean()) failType(key, value, "true or false");
+    return value.get<bool>();
+}
+
+ShadowFilter readFilter(const std::string& key, const json& value) {
+    if (!value.is_string()) failType(key, value, "a string");
+    const auto filter = parseShadowFilter(value.get<std::string>());
+    if (!filter) fail(key + " = " + value.dump() + " is out of range (allowed PCF2x2, PCF3x3, PCF5x5, PCF7x7)");
+    return *filter;
+}
+
+CascadeBlend readBlend(const std::string& key, const json& value) {
+    if (!value.is_string()) failType(key, value, "a string");
+    const auto blend = parseCascadeBlend(value.get<std::string>());
+    if (!blend) fail(key + " = " + value.dump() + " is out of range (allowed hard, soft, dither)");
+    return *blend;
+}
+
+std::array<float, 3> readRatios(const std::string& key, const json& value) {
+    if (!value.is_array() || value.size() != 3) failType(key, value, "an array of 3 numbers");
+    std::array<float, 3> ratios{};
+    for (size_t i = 0; i < 3; ++i) ratios[i] = readFloat(key + "[" + std::to_string(i) + "]", value[i]);
+    return ratios;
+}
+
+using Setter = void (*)(Settings&, const std::string& key, const json& value);
+struct LeafKey {
+    const char* key;
+    Setter assign;
+};
+
+// Every leaf of the settings JSON (DESIGN.md "Settings" plus the "render" block).
+const LeafKey kLeafKeys[] = {
+    {"shadows.maxDistance", [](Settings& s, const std::string& k, const json& v) { s.shadows.maxDistance = readFloat(k, v); }},
+    {"shadows.distanceFade", [](Settings& s, const std::string& k, const json& v) { s.shadows.distanceFade = readFloat(k, v); }},
+    {"shadows.screenSpace", [](Settings& s, const std::string& k, const json& v) { s.shadows.screenSpace = readBool(k, v); }},
+    {"shadows.directional.atlasSize", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
+    {"shadows.directional.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.directional.filter = readFilter(k, v); }},
+    {"shadows.directional.cascadeCount", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.cascadeCount = readUint(k, v, "1..4"); }},
+    {"shadows.directional.cascadeRatios", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.cascadeRatios = readRatios(k, v); }},
+    {"shadows.directional.cascadeFade", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.cascadeFade = readFloat(k, v); }},
+    {"shadows.directional.cascadeBlend", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.cascadeBlend = readBlend(k, v); }},
+    {"shadows.spot.atlasSize", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.spot.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
+    {"shadows.spot.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.filter = readFilter(k, v); }},
+    {"render.exposure", [](Settings& s, const std::string& k, const json& v) { s.render.exposure = readFloat(k, v); }},
+    {"render.ambient", [](Settings& s, const std::string& k, const json& v) { s.render.ambient = readFloat(k, v); }},
+};
+
+const char* const kObjectKeys[] = {"shadows", "shadows.directional", "shadows.spot", "render"};
+
+const LeafKey* findLeaf(const std::string& key) {
+    for (const LeafKey& leaf : kLeafKeys) {
+        if (key == leaf.key) return &leaf;
+    }
+    return nullptr;
+}
+
+bool isObjectKey(const std::string& key) {
+    for (const char* objectKey : kObjectKeys) {
+        if (key == objectKey) return true;
+    }
+    return false;
+}
+
+void assignKey(Settings& settings, const std::string& key, const json& value);
+
+void assignObject(Settings& settings, const std::string& prefix, const json& object) {
+    for (const auto& [name, value] : object.items()) {
+        assignKey(settings, prefix.empty() ? name : prefix + "." + name, value);
+    }
+}
+
+void assignKey(Settings& settings, const std::string& key, const json& value) {
+    if (const LeafKey* leaf = findLeaf(key)) {
+        leaf->assign(settings, key, value);
+    } else if (isObjectKey(key)) {
+        if (!value.is_object()) failType(key, value, "an object");
+        assignObject(settings, key, value);
+    } else {
+        fail("unknown key " + key);
+    }
+}
+
+std::string trim(const std::string& text) {
+    const size_t begin = text.find_first_not_of(" \t");
+    if (begin == std::string::npos) return "";
+    const size_t end = text.find_last_not_of(" \t");
+    return text.substr(begin, end - begin + 1);
+}
+
+void validateRenderSettings(const RenderSettings& render) {
+    if (!std::isfinite(render.exposure) || render.exposure <= 0.0f) {
+        std::ostringstream value;
+        value << render.exposure;
+        fail("render.exposure = " + value.str() + " is out of range (allowed > 0)");
+    }
+    if (!std::isfinite(render.ambient) || render.ambient < 0.0f || render.ambient > 1.0f) {
+        std::ostringstream value;
+        value << render.ambient;
+        fail("render.ambient = " + value.str() + " is out of range (allowed 0..1)");
+    }
+}
+
+}  // namespace
+
+Settings parseSettingsJson(const std::string& jsonText, const std::string& origin) {
+    const json root = json::parse(jsonText, nullptr, /*allow_exceptions=*/false);
+    if (root.is_discarded()) throw Error("settings: " + origin + " is not valid JSON");
+    if (!root.is_object()) throw Error("settings: " + origin + " must hold a JSON object");
+    Settings settings;
+    try {
+        assignObject(settings, "", root);
+        validateSettings(settings);
+    } catch (const Error& error) {
+        throw Error(std::string(error.what()) + " (in " + origin + ")");
+    }
+    return settings;
+}
+
+Settings loadSettingsFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw Error("settings: cannot open " + path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return parseSettingsJson(text.str(), path);
+}
+
+void applySettingOverride(Settings& settings, const std::string& assignment) {
+    const size_t equals = assignment.find('=');
+    if (equals == std::string::npos) fail("--set expects key=value, got '" + assignment + "'");
+    const std::string key = trim(assignment.substr(0, equals));
+    const std::string valueText = trim(assignment.substr(equals + 1));
+    // JSON when it parses (numbers, true, [0.1,0.2,0.3], "quoted"), else the raw text as a string (PCF5x5).
+    json value = json::parse(valueText, nullptr, /*allow_exceptions=*/false);
+    if (value.is_discarded()) value = valueText;
+    Settings updated = settings;
+    assignKey(updated, key, value);
+    validateSettings(updated);
+    settings = updated;
+}
+
+void validateSettings(const Settings& settings) {
+    validateShadowSettings(settings.shadows);
+    validateRenderSettings(settings.render);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,64 @@
+#pragma once
+// Cascade geometry of the directional shadows (seed 000 §3): split distances along the view axis,
+// one culling sphere per cascade around the camera frustum slice (light-independent, seed 000 §3.3),
+// and the stabilized orthographic light view fitted to a sphere.
+//
+// Light view space: the light looks along -Z (its wsDirection), +Y up, like the camera. Shadow clip
+// space: Vulkan's (y down), standard depth 0 at the near plane (toward the light), 1 at the far plane.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/camera_view.h"
+#include "shadows/shadow_settings.h"
+
+namespace penumbra {
+
+// A cascade's slice of the camera frustum and the sphere that encloses it.
+struct CascadeSphere {
+    float vsNear = 0.0f;  // view depth where the slice begins
+    float vsFar = 0.0f;   // view depth of the split (the last cascade ends at the shadow distance)
+    glm::vec3 wsCenter{0.0f};
+    float radius = 0.0f;
+};
+
+// The shadow distance actually used: min(maxDistance, camera zFar) (seed 000 §3.6).
+float shadowDistance(const CameraView& camera, float maxDistance);
+
+// Far split of each cascade: ratios x shadow distance, the last cascade at the full distance
+// (seed 000 §3.1). Kept non-decreasing and within [zNear, distance] so every slice is valid.
+std::vector<float> cascadeSplitDistances(const CameraView& camera, float distance, uint32_t cascadeCount,
+                                         const std::array<float, 3>& ratios);
+
+// Minimal sphere around the 8 corners of the frustum slice between view depths vsNear and vsFar. The
+// corners of a symmetric frustum at depth d lie on a circle of radius k*d around the view axis
+// (k = half-diagonal of the unit-depth image plane), so the centre is on the axis at
+// c = min(vsFar, (vsNear + vsFar)(1 + k^2) / 2): equidistant to both rings, or the far ring's own
+// centre once the slice is wide enough. The radius depends on the slice only: rotating the camera
+// moves the centre but never resizes the sphere, which keeps texels stable.
+CascadeSphere frustumSliceSphere(const CameraView& camera, float vsNear, float vsFar);
+
+std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings);
+
+// World -> light view rotation for a light travelling along wsDirection (no translation).
+glm::mat4 lightRotationFromWorld(const glm::vec3& wsDirection);
+
+// The light view of one cascade: lightFromWorld = translate(-snapped centre) * rotation. The sphere
+// centre is rounded to whole texels in the light's x/y (texel = 2r / tileSize), so world geometry
+// always lands on the same sub-texel position while the camera moves and static shadows don't shimmer.
+struct CascadeLightView {
+    glm::mat4 lightFromWorld{1.0f};
+    glm::vec3 lsSphereCenter{0.0f};  // sphere centre in this light view: within half a texel of the origin
+    float halfExtent = 0.0f;         // the ortho box is [-halfExtent, halfExtent]^2 = the sphere radius
+    float wsTexelSize = 0.0f;        // 2r / tileSize
+};
+CascadeLightView fitCascadeLightView(const glm::mat4& lightRotation, const CascadeSphere& sphere,
+                                     uint32_t tileSize);
+
+// Orthographic Vulkan projection of the box [-h, h]^2 x z in [-farDistance, nearDistance]
+// (light view z grows toward the light): depth = (nearDistance - z) / (nearDistance + farDistance).
+glm::mat4 orthoClipFromLight(float halfExtent, float nearDistance, float farDistance);
+
+}  // namespace penumbra

@@ -1,0 +1,93 @@
+#include "shadows/caster_culling.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace penumbra {
+
+bool isShadowCaster(const Scene& scene, const Instance& instance) {
+    if (!instance.castShadows || !instance.wsBounds.valid()) return false;
+    if (instance.meshIndex >= scene.meshes.size()) return false;
+    const uint32_t materialIndex = scene.meshes[instance.meshIndex].materialIndex;
+    if (materialIndex < scene.materials.size() &&
+        scene.materials[materialIndex].shadows == MaterialShadowMode::Off) {
+        return false;
+    }
+    return true;
+}
+
+std::vector<uint32_t> shadowCasterInstances(const Scene& scene) {
+    std::vector<uint32_t> casters;
+    casters.reserve(scene.instances.size());
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        if (isShadowCaster(scene, scene.instances[i])) casters.push_back(i);
+    }
+    return casters;
+}
+
+std::vector<Aabb> rotatedCasterBounds(const Scene& scene, const std::vector<uint32_t>& casters,
+                                      const glm::mat4& lightRotation) {
+    // Exact bounds of a rotated box: per output axis, sum of |row| x half extents (cheaper than 8 corners).
+    const glm::mat3 rotation(lightRotation);
+    const glm::mat3 absRotation(glm::abs(rotation[0]), glm::abs(rotation[1]), glm::abs(rotation[2]));
+    std::vector<Aabb> bounds(casters.size());
+    for (size_t i = 0; i < casters.size(); ++i) {
+        const Aabb& ws = scene.instances[casters[i]].wsBounds;
+        const glm::vec3 center = rotation * ws.center();
+        const glm::vec3 halfExtent = absRotation * (0.5f * ws.extent());
+        bounds[i].min = center - halfExtent;
+        bounds[i].max = center + halfExtent;
+    }
+    return bounds;
+}
+
+bool intersectsExtrudedSphere(const Aabb& rsBounds, const glm::vec3& rsCenter, float radius) {
+    if (rsBounds.max.z < rsCenter.z - radius) return false;  // wholly beyond the sphere, away from the light
+    const glm::vec2 closest = glm::clamp(glm::vec2(rsCenter), glm::vec2(rsBounds.min), glm::vec2(rsBounds.max));
+    const glm::vec2 d = closest - glm::vec2(rsCenter);
+    return glm::dot(d, d) <= radius * radius;
+}
+
+bool intersectsCasterBox(const Aabb& lsBounds, float halfExtent, float farDistance) {
+    return lsBounds.max.z >= -farDistance && lsBounds.min.x <= halfExtent && lsBounds.max.x >= -halfExtent &&
+           lsBounds.min.y <= halfExtent && lsBounds.max.y >= -halfExtent;
+}
+
+float cascadeBlendCullingFactor(float cascadeFade) { return std::max(0.0f, 0.8f - cascadeFade); }
+
+bool insideScaledSphere(const Aabb& wsBounds, const CascadeSphere& sphere, float factor) {
+    const glm::vec3 farthest = glm::max(glm::abs(wsBounds.min - sphere.wsCenter), glm::abs(wsBounds.max - sphere.wsCenter));
+    const float radius = sphere.radius * factor;
+    return glm::dot(farthest, farthest) <= radius * radius;
+}
+
+TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& casters,
+                            const std::vector<Aabb>& rsBounds, const CascadeLightView& view,
+                            const std::vector<CascadeSphere>& spheres, uint32_t cascadeIndex,
+                            float cullingFactor) {
+    PENUMBRA_ASSERT(casters.size() == rsBounds.size() && cascadeIndex < spheres.size());
+    // lightFromWorld = translate(t) * rotation, so light-view bounds are the rotated bounds shifted by t.
+    const glm::vec3 translation(view.lightFromWorld[3]);
+    const float farDistance = spheres[cascadeIndex].radius - view.lsSphereCenter.z;
+    TileCasters result;
+    for (size_t i = 0; i < casters.size(); ++i) {
+        const Aabb ls{rsBounds[i].min + translation, rsBounds[i].max + translation};
+        if (!intersectsCasterBox(ls, view.halfExtent, farDistance)) continue;
+        const Aabb& ws = scene.instances[casters[i]].wsBounds;
+        bool coveredBySmaller = false;
+        for (uint32_t j = 0; j < cascadeIndex && cullingFactor > 0.0f && !coveredBySmaller; ++j) {
+            coveredBySmaller = insideScaledSphere(ws, spheres[j], cullingFactor);
+        }
+        if (coveredBySmaller) {
+            ++result.skippedByBlendCulling;
+            continue;
+        }
+        result.instances.push_back(casters[i]);
+        result.lsMaxZ = std::max(result.lsMaxZ, ls.max.z);
+    }
+    return result;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,55 @@
+#include "shadows/light_reservation.h"
+
+#include "shadows/caster_culling.h"
+
+namespace penumbra {
+
+namespace {
+
+bool anyCasterInShadowVolume(const Scene& scene, const std::vector<CascadeSphere>& spheres,
+                             const std::vector<uint32_t>& casters, const glm::mat4& lightRotation) {
+    std::vector<glm::vec3> rsCenters;
+    rsCenters.reserve(spheres.size());
+    for (const CascadeSphere& sphere : spheres) rsCenters.push_back(glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f)));
+    const glm::mat3 rotation(lightRotation);
+    const glm::mat3 absRotation(glm::abs(rotation[0]), glm::abs(rotation[1]), glm::abs(rotation[2]));
+    for (uint32_t casterIndex : casters) {
+        const Aabb& ws = scene.instances[casterIndex].wsBounds;
+        const glm::vec3 center = rotation * ws.center();
+        const glm::vec3 halfExtent = absRotation * (0.5f * ws.extent());
+        const Aabb rs{center - halfExtent, center + halfExtent};
+        for (size_t i = 0; i < spheres.size(); ++i) {
+            if (intersectsExtrudedSphere(rs, rsCenters[i], spheres[i].radius)) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& scene,
+                                                                const std::vector<CascadeSphere>& spheres,
+                                                                const std::vector<uint32_t>& casters,
+                                                                uint32_t cascadeCount) {
+    std::vector<ReservedDirectionalLight> reserved;
+    for (uint32_t i = 0; i < scene.lights.size() && reserved.size() < gpu_data::kMaxShadowedDirectionalLights; ++i) {
+        const Light& light = scene.lights[i];
+        if (light.type != LightType::Directional) continue;
+        if (light.shadows == LightShadows::None || !(light.shadowStrength > 0.0f)) continue;
+        if (glm::dot(light.wsDirection, light.wsDirection) <= 0.0f) continue;
+        const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
+        if (!anyCasterInShadowVolume(scene, spheres, casters, rotation)) continue;
+        ReservedDirectionalLight entry;
+        entry.sceneLightIndex = i;
+        entry.strength = light.shadowStrength;
+        entry.firstTile = uint32_t(reserved.size()) * cascadeCount;  // seed 000 §3.2
+        entry.normalBias = light.shadowNormalBias;
+        entry.slopeScaleBias = light.shadowBias;
+        entry.nearPlaneOffset = light.shadowNearPlane;
+        entry.wsDirection = glm::normalize(light.wsDirection);
+        reserved.push_back(entry);
+    }
+    return reserved;
+}
+
+}  // namespace penumbra

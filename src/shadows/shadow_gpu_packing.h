@@ -1,0 +1,21 @@
+#pragma once
+// Fills the std140/std430 block of the lit pass from a directional plan (seed 000 §2.2, §3.3, §3.7,
+// §3.8, §4.2, §4.3, §4.6).
+#include "shadow_structs.h"
+#include "shadows/cascades.h"
+#include "shadows/shadow_settings.h"
+
+namespace penumbra {
+
+struct DirectionalShadowPlan;
+
+// Seed 000 §4.6 SetCascadeData: texel = 2r / tileSize; filterSize = texel * (filter + 1);
+// sphere w = (r - filterSize)^2; cascadeData = (1 / w, filterSize * sqrt(2), texel, 0).
+void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter, glm::vec4& cullingSphere,
+                 glm::vec4& cascadeData);
+
+// Everything of DirectionalShadowData from the plan's lights, cascades and tiles and the settings.
+gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShadowPlan& plan,
+                                                          const ShadowSettings& settings, float shadowDistance);
+
+}  // namespace penumbra

@@ -1,0 +1,89 @@
+#include "shadows/shadow_planner.h"
+
+#include <algorithm>
+
+#include "shadows/caster_culling.h"
+#include "shadows/shadow_gpu_packing.h"
+
+namespace penumbra {
+
+namespace {
+
+struct TileInputs {
+    const Scene& scene;
+    const std::vector<uint32_t>& casters;
+    const std::vector<Aabb>& rsBounds;  // casters' bounds in the light's rotation-only space
+    const std::vector<CascadeSphere>& spheres;
+    const AtlasLayout& atlas;
+    float cullingFactor;
+};
+
+ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
+                    uint32_t slot, uint32_t cascadeIndex, uint32_t& skippedByBlendCulling) {
+    const CascadeSphere& sphere = in.spheres[cascadeIndex];
+    const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
+    TileCasters casters =
+        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.cullingFactor);
+    skippedByBlendCulling += casters.skippedByBlendCulling;
+
+    ShadowTile tile;
+    tile.lightSlot = slot;
+    tile.cascadeIndex = cascadeIndex;
+    const uint32_t tileIndex = light.firstTile + cascadeIndex;
+    tile.rect = tileRect(in.atlas, tileIndex);
+    tile.lightFromWorld = view.lightFromWorld;
+    tile.wsTexelSize = view.wsTexelSize;
+    // The near plane goes back toward the light far enough to hold every kept caster, including those
+    // outside the camera's view, plus the light's near-plane offset (seed 000 §4.5); depthClamp still
+    // pancakes anything in front. The far plane is the sphere's far side: nothing behind it is sampled.
+    tile.farDistance = sphere.radius - view.lsSphereCenter.z;
+    tile.nearDistance = std::max(sphere.radius + view.lsSphereCenter.z, casters.lsMaxZ) + light.nearPlaneOffset;
+    tile.clipFromLight = orthoClipFromLight(view.halfExtent, tile.nearDistance, tile.farDistance);
+    tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
+    tile.atlasFromWorld = atlasFromClip(in.atlas, tileIndex) * tile.clipFromWorld;
+    tile.slopeScaleBias = light.slopeScaleBias;
+    tile.depthClamp = true;
+    tile.casterInstances = std::move(casters.instances);
+    return tile;
+}
+
+}  // namespace
+
+ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings) {
+    ShadowFrame frame;
+    DirectionalShadowPlan& directional = frame.directional;
+    const DirectionalShadowSettings& config = settings.directional;
+    const float distance = shadowDistance(camera, settings.maxDistance);
+
+    directional.cascades = computeCascadeSpheres(camera, settings);
+    const std::vector<uint32_t> casters = shadowCasterInstances(scene);
+    directional.lights = reserveDirectionalShadows(scene, directional.cascades, casters, config.cascadeCount);
+    directional.slotOfSceneLight.assign(scene.lights.size(), -1);
+    directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
+
+    const float cullingFactor = cascadeBlendCullingFactor(config.cascadeFade);
+    for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
+        const ReservedDirectionalLight& light = directional.lights[slot];
+        directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
+        const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
+        const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
+        const TileInputs inputs{scene, casters, rsBounds, directional.cascades, directional.atlas, cullingFactor};
+        for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
+            directional.tiles.push_back(
+                planTile(inputs, light, rotation, slot, cascade, frame.stats.skippedByBlendCulling));
+        }
+    }
+
+    ShadowStats& stats = frame.stats;
+    for (const Light& light : scene.lights) stats.directionalLightsConsidered += light.type == LightType::Directional;
+    stats.directionalLightsReserved = uint32_t(directional.lights.size());
+    stats.shadowCasters = uint32_t(casters.size());
+    for (const ShadowTile& tile : directional.tiles) {
+        stats.castersPerTile.push_back(uint32_t(tile.casterInstances.size()));
+        stats.casterDraws += uint32_t(tile.casterInstances.size());
+    }
+    directional.gpu = packDirectionalShadowData(directional, settings, distance);
+    return frame;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,84 @@
+#pragma once
+// The shadow plan of one frame: Scene + CameraView + ShadowSettings -> ShadowFrame, pure CPU (DESIGN.md
+// "Architecture"). The renderer only executes it: one depth pass per tile, then the lit pass reads the
+// packed DirectionalShadowData.
+//
+// Depth convention of every shadow tile (see shaders/shared/shadow_structs.h):
+// - clip space is Vulkan's: x right, y down in NDC, z in [0, 1]; orthographic (w = 1);
+// - STANDARD depth: 0 at the near plane (toward the light), 1 at the far plane. Clear the atlas to 1,
+//   draw casters with depth test LESS, sample with compare op LESS_OR_EQUAL (fragment <= stored -> lit);
+// - pancaking (seed 000 §4.5): tiles with depthClamp set must be drawn with depthClampEnable so casters
+//   in front of the near plane flatten onto it instead of being clipped;
+// - slope-scale bias: depthBiasSlopeFactor = slopeScaleBias (the light's shadowBias, seed 000 §4.4),
+//   constant bias 0; the lit pass adds the normal bias instead (seed 000 §4.3).
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/camera_view.h"
+#include "scene/scene.h"
+#include "shadow_structs.h"
+#include "shadows/atlas_layout.h"
+#include "shadows/cascades.h"
+#include "shadows/light_reservation.h"
+#include "shadows/shadow_settings.h"
+
+namespace penumbra {
+
+// One shadow map inside an atlas: what one depth pass renders.
+struct ShadowTile {
+    uint32_t lightSlot = 0;     // index into ShadowFrame::directionalLights
+    uint32_t cascadeIndex = 0;  // index into ShadowFrame::cascades
+    AtlasTileRect rect;         // viewport = scissor, in atlas pixels (top-left origin)
+    glm::mat4 lightFromWorld{1.0f};
+    glm::mat4 clipFromLight{1.0f};
+    glm::mat4 clipFromWorld{1.0f};   // what the caster pass's vertex shader uses
+    glm::mat4 atlasFromWorld{1.0f};  // world -> (atlas u, v, depth); also packed for the lit pass
+    float wsTexelSize = 0.0f;        // world size of one texel of this tile
+    float nearDistance = 0.0f;       // light-view distance from the sphere centre to the near plane
+    float farDistance = 0.0f;        // ... and to the far plane (the sphere radius)
+    float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor
+    bool depthClamp = true;          // pancaking: draw with depthClampEnable
+    std::vector<uint32_t> casterInstances;  // indices into Scene::instances, scene order
+};
+
+struct ShadowStats {
+    uint32_t directionalLightsConsidered = 0;  // directional lights in the scene
+    uint32_t directionalLightsReserved = 0;
+    uint32_t shadowCasters = 0;              // instances that may cast at all
+    std::vector<uint32_t> castersPerTile;    // = tiles[i].casterInstances.size()
+    uint32_t casterDraws = 0;                // sum over tiles
+    uint32_t skippedByBlendCulling = 0;      // caster/tile pairs removed by the culling factor (seed 000 §4.9)
+};
+
+struct DirectionalShadowPlan {
+    AtlasLayout atlas;  // tileCount 0 when no light is reserved (the renderer may bind a 1x1 dummy)
+    std::vector<ReservedDirectionalLight> lights;  // slots, in scene light order
+    std::vector<CascadeSphere> cascades;           // shared by every light (seed 000 §3.3)
+    std::vector<ShadowTile> tiles;                 // tile i = light slot * cascadeCount + cascade
+    std::vector<int32_t> slotOfSceneLight;         // per Scene::lights entry: slot, or -1
+    gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
+};
+
+// Spot and point light shadows (seed 001) are planned by a later module into their own atlas; this is
+// where their tiles go. Empty for now.
+struct OtherShadowPlan {
+    AtlasLayout atlas;
+    std::vector<ShadowTile> tiles;
+    std::vector<int32_t> slotOfSceneLight;
+};
+
+struct ShadowFrame {
+    DirectionalShadowPlan directional;
+    OtherShadowPlan other;
+    ShadowStats stats;
+};
+
+class ShadowPlanner {
+public:
+    // Settings must be valid (validateShadowSettings); scene and camera are read only.
+    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings);
+};
+
+}  // namespace penumbra

@@ -1,0 +1,211 @@
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "app/settings.h"
+#include "core/error.h"
+
+using namespace penumbra;
+
+namespace {
+
+// The message of the Error thrown by parsing `json`, or "" when it parses.
+std::string parseError(const std::string& json) {
+    try {
+        parseSettingsJson(json, "test.json");
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "";
+}
+
+std::string overrideError(const std::string& assignment) {
+    Settings settings;
+    try {
+        applySettingOverride(settings, assignment);
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(SettingsJson, EmptyObjectGivesTheDesignDefaults) {
+    const Settings settings = parseSettingsJson("{}", "test.json");
+    EXPECT_EQ(settings.shadows.maxDistance, 100.0f);
+    EXPECT_EQ(settings.shadows.distanceFade, 0.1f);
+    EXPECT_FALSE(settings.shadows.screenSpace);
+    EXPECT_EQ(settings.shadows.directional.atlasSize, 1024u);
+    EXPECT_EQ(settings.shadows.directional.filter, ShadowFilter::PCF2x2);
+    EXPECT_EQ(settings.shadows.directional.cascadeCount, 4u);
+    EXPECT_EQ(settings.shadows.directional.cascadeRatios[1], 0.25f);
+    EXPECT_EQ(settings.shadows.directional.cascadeBlend, CascadeBlend::Hard);
+    EXPECT_EQ(settings.shadows.spot.filter, ShadowFilter::PCF5x5);
+    EXPECT_EQ(settings.render.exposure, 1.0f);
+}
+
+TEST(SettingsJson, ParsesEveryKeyOfTheDesign) {
+    const Settings settings = parseSettingsJson(R"({
+      "shadows": {"maxDistance": 30, "distanceFade": 0.2, "screenSpace": true,
+        "directional": {"atlasSize": 2048, "filter": "PCF7x7", "cascadeCount": 2,
+                        "cascadeRatios": [0.2, 0.3, 0.6], "cascadeFade": 0.5, "cascadeBlend": "dither"},
+        "spot": {"atlasSize": 512, "filter": "PCF3x3"}},
+      "render": {"exposure": 2.5, "ambient": 0.1}})",
+                                                "test.json");
+    EXPECT_EQ(settings.shadows.maxDistance, 30.0f);
+    EXPECT_EQ(settings.shadows.distanceFade, 0.2f);
+    EXPECT_TRUE(settings.shadows.screenSpace);
+    EXPECT_EQ(settings.shadows.directional.atlasSize, 2048u);
+    EXPECT_EQ(settings.shadows.directional.filter, ShadowFilter::PCF7x7);
+    EXPECT_EQ(settings.shadows.directional.cascadeCount, 2u);
+    EXPECT_EQ(settings.shadows.directional.cascadeRatios[2], 0.6f);
+    EXPECT_EQ(settings.shadows.directional.cascadeFade, 0.5f);
+    EXPECT_EQ(settings.shadows.directional.cascadeBlend, CascadeBlend::Dither);
+    EXPECT_EQ(settings.shadows.spot.atlasSize, 512u);
+    EXPECT_EQ(settings.shadows.spot.filter, ShadowFilter::PCF3x3);
+    EXPECT_EQ(settings.render.exposure, 2.5f);
+    EXPECT_EQ(settings.render.ambient, 0.1f);
+}
+
+TEST(SettingsJson, OutOfRangeMessageNamesKeyValueAndAllowedRange) {
+    EXPECT_NE(parseError(R"({"shadows": {"directional": {"cascadeCount": 7}}})")
+                  .find("settings: shadows.directional.cascadeCount = 7 is out of range (allowed 1..4)"),
+              std::string::npos);
+}
+
+TEST(SettingsJson, MessageNamesTheOrigin) {
+    EXPECT_NE(parseError(R"({"shadows": {"maxDistance": 0}})").find("test.json"), std::string::npos);
+}
+
+TEST(SettingsJson, UnknownKeyIsNamedWithItsDottedPath) {
+    EXPECT_NE(parseError(R"({"shadows": {"directional": {"cascadeCnt": 2}}})")
+                  .find("unknown key shadows.directional.cascadeCnt"),
+              std::string::npos);
+    EXPECT_NE(parseError(R"({"shadow": {}})").find("unknown key shadow"), std::string::npos);
+}
+
+TEST(SettingsJson, InvalidJsonIsAnError) {
+    EXPECT_NE(parseError("{\"shadows\": ").find("test.json is not valid JSON"), std::string::npos);
+    EXPECT_NE(parseError("[1, 2]").find("must hold a JSON object"), std::string::npos);
+}
+
+struct BadValueCase {
+    const char* json;
+    const char* expected;  // a substring of the message: key and allowed range or expected type
+};
+
+class SettingsBadValue : public testing::TestWithParam<BadValueCase> {};
+
+TEST_P(SettingsBadValue, IsRejectedWithAMessageNamingTheKey) {
+    const std::string message = parseError(GetParam().json);
+    EXPECT_NE(message.find(GetParam().expected), std::string::npos) << "message: " << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryKey, SettingsBadValue,
+    testing::Values(
+        BadValueCase{R"({"shadows": {"maxDistance": 0}})", "shadows.maxDistance = 0 is out of range (allowed >= 0.001)"},
+        BadValueCase{R"({"shadows": {"maxDistance": "far"}})", "shadows.maxDistance = \"far\" has the wrong type (expected a number)"},
+        BadValueCase{R"({"shadows": {"distanceFade": 0}})", "shadows.distanceFade = 0 is out of range (allowed 0.001..1)"},
+        BadValueCase{R"({"shadows": {"distanceFade": 1.5}})", "shadows.distanceFade = 1.5 is out of range (allowed 0.001..1)"},
+        BadValueCase{R"({"shadows": {"screenSpace": 1}})", "shadows.screenSpace = 1 has the wrong type (expected true or false)"},
+        BadValueCase{R"({"shadows": {"directional": {"atlasSize": 1000}}})",
+                     "shadows.directional.atlasSize = 1000 is out of range (allowed a power of two in 256..8192)"},
+        BadValueCase{R"({"shadows": {"directional": {"atlasSize": 128}}})", "shadows.directional.atlasSize = 128 is out of range"},
+        BadValueCase{R"({"shadows": {"directional": {"atlasSize": 16384}}})", "shadows.directional.atlasSize = 16384 is out of range"},
+        BadValueCase{R"({"shadows": {"directional": {"atlasSize": -1}}})", "shadows.directional.atlasSize = -1 is out of range"},
+        BadValueCase{R"({"shadows": {"directional": {"atlasSize": 1024.5}}})", "shadows.directional.atlasSize = 1024.5 has the wrong type (expected an integer)"},
+        BadValueCase{R"({"shadows": {"directional": {"filter": "PCF4x4"}}})",
+                     "shadows.directional.filter = \"PCF4x4\" is out of range (allowed PCF2x2, PCF3x3, PCF5x5, PCF7x7)"},
+        BadValueCase{R"({"shadows": {"directional": {"filter": 3}}})", "shadows.directional.filter = 3 has the wrong type (expected a string)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeCount": 0}}})", "shadows.directional.cascadeCount = 0 is out of range (allowed 1..4)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeRatios": [0.1, 1.5, 0.5]}}})",
+                     "shadows.directional.cascadeRatios[1] = 1.5 is out of range (allowed 0..1)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeRatios": [0.1, -0.5, 0.5]}}})",
+                     "shadows.directional.cascadeRatios[1] = -0.5 is out of range (allowed 0..1)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeRatios": [0.1, 0.2]}}})",
+                     "shadows.directional.cascadeRatios = [0.1,0.2] has the wrong type (expected an array of 3 numbers)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeFade": 0}}})", "shadows.directional.cascadeFade = 0 is out of range (allowed 0.001..1)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeBlend": "smooth"}}})",
+                     "shadows.directional.cascadeBlend = \"smooth\" is out of range (allowed hard, soft, dither)"},
+        BadValueCase{R"({"shadows": {"directional": 4}})", "shadows.directional = 4 has the wrong type (expected an object)"},
+        BadValueCase{R"({"shadows": {"spot": {"atlasSize": 300}}})", "shadows.spot.atlasSize = 300 is out of range"},
+        BadValueCase{R"({"shadows": {"spot": {"filter": "soft"}}})", "shadows.spot.filter = \"soft\" is out of range"},
+        BadValueCase{R"({"render": {"exposure": 0}})", "render.exposure = 0 is out of range (allowed > 0)"},
+        BadValueCase{R"({"render": {"ambient": 2}})", "render.ambient = 2 is out of range (allowed 0..1)"},
+        BadValueCase{R"({"render": {"gamma": 2.2}})", "unknown key render.gamma"}));
+
+TEST(SettingsValidation, DefaultsAreValid) { EXPECT_NO_THROW(validateSettings(Settings{})); }
+
+TEST(SettingsValidation, BadStructValueIsNamed) {
+    Settings settings;
+    settings.shadows.directional.cascadeCount = 5;
+    EXPECT_THROW(
+        {
+            try {
+                validateSettings(settings);
+            } catch (const Error& error) {
+                EXPECT_NE(std::string(error.what()).find("shadows.directional.cascadeCount = 5"), std::string::npos);
+                throw;
+            }
+        },
+        Error);
+}
+
+TEST(SettingsOverride, SetsANumber) {
+    Settings settings;
+    applySettingOverride(settings, "shadows.directional.cascadeCount=2");
+    EXPECT_EQ(settings.shadows.directional.cascadeCount, 2u);
+}
+
+TEST(SettingsOverride, TakesAnUnquotedNameAsAString) {
+    Settings settings;
+    applySettingOverride(settings, "shadows.directional.filter=PCF5x5");
+    EXPECT_EQ(settings.shadows.directional.filter, ShadowFilter::PCF5x5);
+}
+
+TEST(SettingsOverride, TakesAnArrayAndABool) {
+    Settings settings;
+    applySettingOverride(settings, "shadows.directional.cascadeRatios=[0.2,0.3,0.4]");
+    applySettingOverride(settings, "shadows.screenSpace = true");
+    EXPECT_EQ(settings.shadows.directional.cascadeRatios[0], 0.2f);
+    EXPECT_EQ(settings.shadows.directional.cascadeRatios[2], 0.4f);
+    EXPECT_TRUE(settings.shadows.screenSpace);
+}
+
+TEST(SettingsOverride, TakesAnObjectForABlock) {
+    Settings settings;
+    applySettingOverride(settings, R"(shadows.directional={"cascadeCount": 1, "cascadeBlend": "soft"})");
+    EXPECT_EQ(settings.shadows.directional.cascadeCount, 1u);
+    EXPECT_EQ(settings.shadows.directional.cascadeBlend, CascadeBlend::Soft);
+}
+
+TEST(SettingsOverride, OutOfRangeValueNamesTheKeyAndLeavesSettingsUnchanged) {
+    Settings settings;
+    EXPECT_THROW(applySettingOverride(settings, "shadows.directional.cascadeCount=7"), Error);
+    EXPECT_EQ(settings.shadows.directional.cascadeCount, 4u);
+    EXPECT_NE(overrideError("shadows.directional.cascadeCount=7").find("cascadeCount = 7 is out of range (allowed 1..4)"),
+              std::string::npos);
+}
+
+TEST(SettingsOverride, UnknownKeyAndMissingEqualsAreErrors) {
+    EXPECT_NE(overrideError("shadows.directional.cascades=2").find("unknown key shadows.directional.cascades"),
+              std::string::npos);
+    EXPECT_NE(overrideError("shadows.maxDistance").find("expects key=value"), std::string::npos);
+}
+
+TEST(SettingsFile, LoadsAFileAndNamesAMissingOne) {
+    const std::string path = testing::TempDir() + "penumbra_settings_test.json";
+    std::ofstream(path) << R"({"shadows": {"maxDistance": 12}})";
+    EXPECT_EQ(loadSettingsFile(path).shadows.maxDistance, 12.0f);
+    std::remove(path.c_str());
+    try {
+        loadSettingsFile(path);
+        FAIL() << "expected an Error";
+    } catch (const Error& error) {
+        EXPECT_NE(std::string(error.what()).find(path), std::string::npos);
+    }
+}

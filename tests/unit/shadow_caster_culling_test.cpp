@@ -1,0 +1,90 @@
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "shadow_test_scene.h"
+#include "shadows/caster_culling.h"
+
+using namespace penumbra;
+using namespace penumbra::shadow_test;
+
+namespace {
+
+bool contains(const std::vector<uint32_t>& list, uint32_t value) {
+    return std::find(list.begin(), list.end(), value) != list.end();
+}
+
+// Two cascades around the origin: sphere 0 of radius 5, sphere 1 of radius 20; light straight down.
+struct CullingFixture {
+    Scene scene = baseScene();
+    std::vector<CascadeSphere> spheres{{0.1f, 5.0f, glm::vec3(0.0f), 5.0f}, {5.0f, 20.0f, glm::vec3(0.0f), 20.0f}};
+    glm::mat4 rotation = lightRotationFromWorld(glm::vec3(0.0f, -1.0f, 0.0f));
+
+    TileCasters cull(uint32_t cascade, float factor) const {
+        const std::vector<uint32_t> casters = shadowCasterInstances(scene);
+        const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
+        const CascadeLightView view = fitCascadeLightView(rotation, spheres[cascade], 512);
+        return cullTileCasters(scene, casters, rsBounds, view, spheres, cascade, factor);
+    }
+};
+
+}  // namespace
+
+TEST(CasterCulling, KeepsACasterInsideTheBox) {
+    CullingFixture f;
+    const uint32_t box = addBox(f.scene, {1, 0, 1}, {2, 1, 2});
+    EXPECT_TRUE(contains(f.cull(0, 0.0f).instances, box));
+}
+
+TEST(CasterCulling, ExcludesACasterOutsideTheBox) {
+    CullingFixture f;
+    const uint32_t box = addBox(f.scene, {6, 0, 0}, {7, 1, 1});  // beyond x = 5 of cascade 0
+    EXPECT_FALSE(contains(f.cull(0, 0.0f).instances, box));
+    EXPECT_TRUE(contains(f.cull(1, 0.0f).instances, box));
+}
+
+TEST(CasterCulling, KeepsACasterFarTowardTheLight) {
+    CullingFixture f;
+    const uint32_t box = addBox(f.scene, {0, 500, 0}, {1, 501, 1});  // high above, off-screen
+    const TileCasters casters = f.cull(0, 0.0f);
+    EXPECT_TRUE(contains(casters.instances, box));
+    EXPECT_NEAR(casters.lsMaxZ, 501.0f, 0.01f);
+}
+
+TEST(CasterCulling, ExcludesACasterBeyondTheFarSideOfTheSphere) {
+    CullingFixture f;
+    const uint32_t box = addBox(f.scene, {0, -9, 0}, {1, -6, 1});  // below sphere 0 (radius 5)
+    EXPECT_FALSE(contains(f.cull(0, 0.0f).instances, box));
+}
+
+TEST(CasterCulling, ExcludesNonCastingInstancesAndShadowsOffMaterials) {
+    CullingFixture f;
+    const uint32_t noCast = addBox(f.scene, {0, 0, 0}, {1, 1, 1}, /*castShadows=*/false);
+    const uint32_t off = addBox(f.scene, {0, 0, 0}, {1, 1, 1}, true, /*mesh with shadows Off=*/1);
+    const uint32_t on = addBox(f.scene, {0, 0, 0}, {1, 1, 1});
+    const std::vector<uint32_t> kept = f.cull(0, 0.0f).instances;
+    EXPECT_FALSE(contains(kept, noCast));
+    EXPECT_FALSE(contains(kept, off));
+    EXPECT_TRUE(contains(kept, on));
+}
+
+TEST(CasterCulling, BlendCullingFactorIsPointEightMinusTheCascadeFade) {
+    EXPECT_FLOAT_EQ(cascadeBlendCullingFactor(0.1f), 0.7f);
+    EXPECT_FLOAT_EQ(cascadeBlendCullingFactor(0.9f), 0.0f);
+}
+
+TEST(CasterCulling, BlendCullingSkipsACasterInsideASmallerCascadeInBiggerOnes) {
+    CullingFixture f;
+    const uint32_t box = addBox(f.scene, {0, 0, 0}, {1, 1, 1});  // within 0.7 x sphere 0 (3.5)
+    EXPECT_TRUE(contains(f.cull(0, 0.7f).instances, box));
+    const TileCasters bigger = f.cull(1, 0.7f);
+    EXPECT_FALSE(contains(bigger.instances, box));
+    EXPECT_EQ(bigger.skippedByBlendCulling, 1u);
+}
+
+TEST(CasterCulling, BlendCullingKeepsACasterInTheSmallerCascadesFadeBand) {
+    CullingFixture f;
+    const uint32_t box = addBox(f.scene, {3.8f, 0, 0}, {4.2f, 0.2f, 0.2f});  // beyond 0.7 x 5 = 3.5
+    EXPECT_TRUE(contains(f.cull(1, 0.7f).instances, box));
+    EXPECT_TRUE(contains(f.cull(1, 0.0f).instances, box));  // factor 0 culls nothing
+}

@@ -1,0 +1,209 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "shadow_test_scene.h"
+#include "shadows/shadow_fade.h"
+#include "shadows/shadow_planner.h"
+
+using namespace penumbra;
+using namespace penumbra::shadow_test;
+
+namespace {
+
+struct PlannerFixture {
+    Scene scene = baseScene();
+    CameraView camera = cameraLookingAt({0, 6, 15}, {0, 0, 0});
+    ShadowSettings settings;
+
+    PlannerFixture() {
+        settings.maxDistance = 40.0f;
+        addBox(scene, {-20, -1, -20}, {20, 0, 20});  // ground
+        addBox(scene, {-1, 0, -1}, {1, 3, 1});       // pillar
+    }
+    ShadowFrame plan() const { return ShadowPlanner::plan(scene, camera, settings); }
+};
+
+glm::vec4 atlasPoint(const ShadowTile& tile, glm::vec3 wsPoint) { return tile.atlasFromWorld * glm::vec4(wsPoint, 1.0f); }
+
+}  // namespace
+
+TEST(ShadowPlanner, NoLightsGiveNoTilesAndZeroLightCount) {
+    PlannerFixture f;
+    const ShadowFrame frame = f.plan();
+    EXPECT_TRUE(frame.directional.tiles.empty());
+    EXPECT_EQ(frame.directional.gpu.config.w, 0u);
+    EXPECT_EQ(frame.stats.casterDraws, 0u);
+}
+
+TEST(ShadowPlanner, TwoLightsWithFourCascadesFillAFourByFourAtlas) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    addDirectionalLight(f.scene, {-0.5f, -1, 0.1f});
+    const ShadowFrame frame = f.plan();
+    ASSERT_EQ(frame.directional.tiles.size(), 8u);
+    EXPECT_EQ(frame.directional.atlas.split, 4u);
+    EXPECT_EQ(frame.directional.atlas.tileSize, 256u);
+    EXPECT_EQ(frame.directional.tiles[5].lightSlot, 1u);
+    EXPECT_EQ(frame.directional.tiles[5].cascadeIndex, 1u);
+    EXPECT_EQ(frame.directional.tiles[5].rect.offset, glm::uvec2(256, 256));
+    EXPECT_EQ(frame.directional.slotOfSceneLight, (std::vector<int32_t>{0, 1}));
+    EXPECT_EQ(frame.stats.castersPerTile.size(), 8u);
+}
+
+namespace {
+bool rendersInstance(const ShadowTile& tile, uint32_t instance) {
+    return std::find(tile.casterInstances.begin(), tile.casterInstances.end(), instance) != tile.casterInstances.end();
+}
+}  // namespace
+
+TEST(ShadowPlanner, CascadesReachingThePillarRenderItUntilBlendCullingDropsIt) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    const ShadowFrame frame = f.plan();
+    // The pillar is 16 units from the camera: inside sphere 1 (view depth 4..10, radius 8.2 around
+    // depth 10) and sphere 2 (radius 16.3 around depth 20), and wholly inside 0.7 x sphere 2, so the
+    // culling factor of seed 000 §4.9 drops it from cascade 3.
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[1], 1u));
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[2], 1u));
+    EXPECT_FALSE(rendersInstance(frame.directional.tiles[3], 1u));
+    EXPECT_GE(frame.stats.skippedByBlendCulling, 1u);
+
+    f.settings.directional.cascadeFade = 0.9f;  // culling factor 0: nothing is dropped
+    EXPECT_TRUE(rendersInstance(f.plan().directional.tiles[3], 1u));
+}
+
+TEST(ShadowPlanner, CasterIsCloserToTheLightThanTheGroundItShadows) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0, -1, 0});
+    const ShadowFrame frame = f.plan();
+    const ShadowTile& tile = frame.directional.tiles[1];  // cascade 1 covers the pillar
+    const glm::vec4 top = atlasPoint(tile, {0, 3, 0});
+    const glm::vec4 ground = atlasPoint(tile, {0, 0, 0});
+    EXPECT_NEAR(top.x, ground.x, 1e-5f);  // same texel: the light looks straight down
+    EXPECT_NEAR(top.y, ground.y, 1e-5f);
+    EXPECT_LT(top.z, ground.z);  // standard depth: smaller is closer to the light
+    EXPECT_GE(top.z, 0.0f);
+    EXPECT_LE(ground.z, 1.0f);
+}
+
+TEST(ShadowPlanner, EveryKeptCasterLiesWithinTheDepthRange) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    f.scene.lights[0].shadowNearPlane = 1.0f;
+    const ShadowFrame frame = f.plan();
+    for (const ShadowTile& tile : frame.directional.tiles) {
+        for (uint32_t instance : tile.casterInstances) {
+            const Aabb clip = f.scene.instances[instance].wsBounds.transformed(tile.clipFromWorld);
+            EXPECT_GE(clip.min.z, 0.0f - 1e-5f) << "tile " << tile.cascadeIndex;
+        }
+        EXPECT_GE(tile.nearDistance, tile.farDistance + 1.0f);  // near plane offset applied
+    }
+}
+
+TEST(ShadowPlanner, PointsInACullingSphereMapInsideTheirTile) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    addDirectionalLight(f.scene, {-0.6f, -1, -0.4f});
+    const ShadowFrame frame = f.plan();
+    const float atlasSize = float(frame.directional.atlas.atlasSize);
+    for (const ShadowTile& tile : frame.directional.tiles) {
+        const CascadeSphere& sphere = frame.directional.cascades[tile.cascadeIndex];
+        for (glm::vec3 dir : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, -1, 1))}) {
+            const glm::vec4 p = atlasPoint(tile, sphere.wsCenter + dir * (sphere.radius - 2.0f * tile.wsTexelSize));
+            EXPECT_GE(p.x * atlasSize, float(tile.rect.offset.x));
+            EXPECT_LE(p.x * atlasSize, float(tile.rect.offset.x + tile.rect.size));
+            EXPECT_GE(p.y * atlasSize, float(tile.rect.offset.y));
+            EXPECT_LE(p.y * atlasSize, float(tile.rect.offset.y + tile.rect.size));
+            EXPECT_GT(p.z, 0.0f);
+            EXPECT_LT(p.z, 1.0f);
+        }
+    }
+}
+
+TEST(ShadowPlanner, TilesCarryTheLightsSlopeBiasAndPancaking) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0, -1, 0});
+    f.scene.lights[0].shadowBias = 0.8f;
+    const ShadowFrame frame = f.plan();
+    EXPECT_EQ(frame.directional.tiles[2].slopeScaleBias, 0.8f);
+    EXPECT_TRUE(frame.directional.tiles[2].depthClamp);
+}
+
+TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAsInTheSeed) {
+    PlannerFixture f;
+    f.settings.directional.filter = ShadowFilter::PCF5x5;
+    addDirectionalLight(f.scene, {0, -1, 0});
+    const ShadowFrame frame = f.plan();
+    const gpu_data::DirectionalShadowData& gpu = frame.directional.gpu;
+    for (uint32_t i = 0; i < 4; ++i) {
+        const CascadeSphere& sphere = frame.directional.cascades[i];
+        const float texel = 2.0f * sphere.radius / 512.0f;  // 1024 atlas, 4 tiles -> 512
+        const float filterWorld = texel * 3.0f;             // PCF5x5: filter + 1 = 3 (seed 000 §4.6)
+        const float shrunk = sphere.radius - filterWorld;
+        EXPECT_NEAR(gpu.cullingSpheres[i].w, shrunk * shrunk, 1e-3f);
+        EXPECT_NEAR(gpu.cullingSpheres[i].x, sphere.wsCenter.x, 1e-5f);
+        EXPECT_NEAR(gpu.cascadeData[i].x, 1.0f / (shrunk * shrunk), 1e-6f);
+        EXPECT_NEAR(gpu.cascadeData[i].y, filterWorld * std::sqrt(2.0f), 1e-5f);
+        EXPECT_NEAR(gpu.cascadeData[i].z, frame.directional.tiles[i].wsTexelSize, 1e-6f);
+    }
+}
+
+TEST(ShadowPackedData, HoldsLightsConfigAtlasAndMatrices) {
+    PlannerFixture f;
+    f.settings.directional.cascadeCount = 2;
+    f.settings.directional.cascadeBlend = CascadeBlend::Soft;
+    addDirectionalLight(f.scene, {0, -1, 0}, 0.0f);  // skipped: strength 0
+    addDirectionalLight(f.scene, {0.2f, -1, 0}, 0.6f);
+    f.scene.lights[1].shadowNormalBias = 0.3f;
+    const ShadowFrame frame = f.plan();
+    const gpu_data::DirectionalShadowData& gpu = frame.directional.gpu;
+    EXPECT_EQ(gpu.config, glm::uvec4(2, gpu_data::kShadowFilterPcf2x2, gpu_data::kCascadeBlendSoft, 1));
+    EXPECT_EQ(gpu.lights[0], glm::vec4(0.6f, 0.0f, 0.3f, 1.0f));
+    EXPECT_EQ(gpu.lights[1], glm::vec4(0.0f));
+    EXPECT_EQ(gpu.atlasSize, glm::vec4(1024.0f, 1.0f / 1024.0f, 512.0f, 1.0f / 512.0f));
+    EXPECT_EQ(gpu.atlasFromWorld[1], frame.directional.tiles[1].atlasFromWorld);
+    EXPECT_EQ(gpu.atlasFromWorld[2], glm::mat4(0.0f));
+}
+
+TEST(ShadowPackedData, FadeHoldsReciprocalsOfDistanceAndFades) {
+    PlannerFixture f;
+    f.settings.distanceFade = 0.2f;
+    f.settings.directional.cascadeFade = 0.1f;
+    const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
+    EXPECT_FLOAT_EQ(gpu.fade.x, 1.0f / 40.0f);
+    EXPECT_FLOAT_EQ(gpu.fade.y, 5.0f);
+    EXPECT_FLOAT_EQ(gpu.fade.z, 1.0f / (1.0f - 0.81f));
+    EXPECT_FLOAT_EQ(gpu.fade.w, 40.0f);
+}
+
+TEST(ShadowFade, DistanceFadeIsOneBeforeTheBandLinearInItAndZeroAtMaxDistance) {
+    PlannerFixture f;  // maxDistance 40, distanceFade 0.1: the band is 36..40
+    const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
+    EXPECT_FLOAT_EQ(fadedShadowStrength(30.0f, gpu.fade.x, gpu.fade.y), 1.0f);
+    EXPECT_NEAR(fadedShadowStrength(38.0f, gpu.fade.x, gpu.fade.y), 0.5f, 1e-5f);
+    EXPECT_FLOAT_EQ(fadedShadowStrength(40.0f, gpu.fade.x, gpu.fade.y), 0.0f);
+}
+
+TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
+    PlannerFixture f;
+    f.settings.directional.cascadeFade = 0.2f;
+    addDirectionalLight(f.scene, {0, -1, 0});
+    const ShadowFrame frame = f.plan();
+    const gpu_data::DirectionalShadowData& gpu = frame.directional.gpu;
+    const glm::vec3 eye = f.camera.wsPosition, forward = f.camera.wsForward;
+    EXPECT_EQ(selectCascade(gpu, eye + forward * 2.0f, 2.0f).cascadeIndex, 0u);
+    EXPECT_EQ(selectCascade(gpu, eye + forward * 19.5f, 19.5f).cascadeIndex, 2u);  // sphere 1 ends near 18
+    const CascadeSelection outside = selectCascade(gpu, eye + forward * 200.0f, 200.0f);
+    EXPECT_EQ(outside.cascadeIndex, 4u);
+    EXPECT_EQ(outside.strength, 0.0f);
+    // On the last sphere at distance^2 = (1 - f') r'^2 with f' = 1 - (1 - 0.2)^2 the cascade fade is 1,
+    // halfway into the band it is 0.5 (seed 000 §3.8).
+    const glm::vec4 last = gpu.cullingSpheres[3];
+    const float band = 1.0f - 0.8f * 0.8f;
+    const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    const glm::vec3 inBand = glm::vec3(last) + side * std::sqrt((1.0f - 0.5f * band) * last.w);
+    const CascadeSelection faded = selectCascade(gpu, inBand, 1.0f);
+    ASSERT_EQ(faded.cascadeIndex, 3u);
+    EXPECT_NEAR(faded.strength, 0.5f, 1e-3f);
+}

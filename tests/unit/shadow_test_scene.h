@@ -1,0 +1,56 @@
+#pragma once
+// In-memory scenes for the shadow planner tests: boxes (bounds only, no vertices), lights, cameras.
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/camera_view.h"
+#include "scene/scene.h"
+
+namespace penumbra::shadow_test {
+
+// A scene with one default material (shadows On) and one mesh using it, plus a second material with
+// shadows Off and a mesh using that (mesh 1).
+inline Scene baseScene() {
+    Scene scene;
+    scene.materials.resize(2);
+    scene.materials[1].shadows = MaterialShadowMode::Off;
+    scene.meshes.resize(2);
+    scene.meshes[0].materialIndex = 0;
+    scene.meshes[1].materialIndex = 1;
+    return scene;
+}
+
+inline uint32_t addBox(Scene& scene, glm::vec3 wsMin, glm::vec3 wsMax, bool castShadows = true, uint32_t mesh = 0) {
+    Instance instance;
+    instance.meshIndex = mesh;
+    instance.castShadows = castShadows;
+    instance.wsBounds.extend(wsMin);
+    instance.wsBounds.extend(wsMax);
+    scene.instances.push_back(instance);
+    scene.wsBounds.extend(instance.wsBounds);
+    return uint32_t(scene.instances.size() - 1);
+}
+
+inline uint32_t addDirectionalLight(Scene& scene, glm::vec3 wsDirection, float strength = 1.0f,
+                                    LightShadows shadows = LightShadows::Soft) {
+    Light light;
+    light.type = LightType::Directional;
+    light.wsDirection = glm::normalize(wsDirection);
+    light.shadowStrength = strength;
+    light.shadows = shadows;
+    scene.lights.push_back(light);
+    return uint32_t(scene.lights.size() - 1);
+}
+
+inline CameraView cameraLookingAt(glm::vec3 eye, glm::vec3 target, float zFar = 1000.0f, uint32_t width = 64,
+                                  uint32_t height = 64) {
+    Camera camera;
+    const glm::vec3 forward = glm::normalize(target - eye);
+    const glm::vec3 up = std::abs(forward.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    camera.worldFromView = glm::inverse(glm::lookAt(eye, target, up));
+    camera.yfov = glm::radians(60.0f);
+    camera.zNear = 0.1f;
+    camera.zFar = zFar;
+    return makeCameraView(camera, width, height);
+}
+
+}  // namespace penumbra::shadow_test
