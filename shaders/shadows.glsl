@@ -21,15 +21,10 @@ float fadedShadowStrength(float distance, float scale, float fade) {
     return clamp((1.0 - distance * scale) * fade, 0.0, 1.0);
 }
 
-// seed 000 §4.7 FilterDirectionalShadow: one hardware 2x2 PCF tap or a tent of taps.
+// seed 000 §4.7 FilterDirectionalShadow: one hardware 2x2 PCF tap or a tent of taps (shadow_tent.glsl).
 float filterDirectionalShadow(vec3 atlasUvDepth) {
-    vec4 texelSize = directionalShadows.atlasSize.yyxx;
-    switch (directionalShadows.config.y) {
-        case kShadowFilterPcf3x3: return sampleShadowTent3x3(directionalShadowAtlas, atlasUvDepth, texelSize);
-        case kShadowFilterPcf5x5: return sampleShadowTent5x5(directionalShadowAtlas, atlasUvDepth, texelSize);
-        case kShadowFilterPcf7x7: return sampleShadowTent7x7(directionalShadowAtlas, atlasUvDepth, texelSize);
-        default: return texture(directionalShadowAtlas, atlasUvDepth);
-    }
+    return sampleShadowFiltered(directionalShadowAtlas, atlasUvDepth, directionalShadows.atlasSize.yyxx,
+                                directionalShadows.config.y);
 }
 
 // seed 000 §4.3 / §4.6: sample one cascade of a light, the surface pushed along its normal by the

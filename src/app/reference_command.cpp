@@ -1,0 +1,68 @@
+// `penumbra reference` and `penumbra compare`: the ray-traced yardstick for the shadow maps.
+#include <cmath>
+#include <cstdio>
+#include <unistd.h>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "gpu/device.h"
+#include "reference/compare.h"
+#include "reference/reference_tracer.h"
+#include "render/renderer.h"
+
+namespace penumbra {
+
+namespace {
+
+ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view) {
+    ReferenceOptions options;
+    // The rasterizer's shadow distance: maxDistance, or the camera's far plane when nearer (seed 000 §3.6).
+    options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
+    options.distanceFade = settings.shadows.distanceFade;
+    return options;
+}
+
+}  // namespace
+
+int runReferenceCommand(const RenderOptions& options) {
+    const Settings settings = loadSettings(options);
+    const Scene scene = loadSceneOrDemo(options.scenePath);
+    const CameraView view = resolveCameraView(scene, options.width, options.height);
+    const ReferenceImages reference =
+        traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view));
+    writePng(reference.shadow, options.outputPath);
+    if (!options.maskPath.empty()) writePng(reference.validMask, options.maskPath);
+    std::printf("reference: light %u, %llu of %llu pixels valid for comparison\n", options.light,
+                (unsigned long long)reference.validPixels, (unsigned long long)(uint64_t(view.width) * view.height));
+    return 0;
+}
+
+int runCompareCommand(const RenderOptions& options) {
+    const Settings settings = loadSettings(options);
+    const Scene scene = loadSceneOrDemo(options.scenePath);
+    const CameraView view = resolveCameraView(scene, options.width, options.height);
+    // Trace first: it validates the light (exists, casts shadows) before the GPU is touched.
+    const ReferenceImages reference =
+        traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO) && !options.json,
+                             referenceOptionsFor(settings, view));
+    gpu::Device device({options.device, options.validation, true});
+    Renderer renderer(device, scene);
+    RenderRequest request;
+    request.width = options.width;
+    request.height = options.height;
+    request.output = OutputMode::ShadowAov;
+    request.aovLight = options.light;
+    const RenderResult ours = renderer.render(request, settings, view);
+    const CompareMetrics metrics = compareShadowImages(ours.image, reference.shadow, reference.validMask);
+    if (!options.diffPath.empty()) {
+        request.output = OutputMode::Color;
+        const RenderResult colour = renderer.render(request, settings, view);
+        writePng(makeDiffImage(colour.image, ours.image, reference.shadow, reference.validMask), options.diffPath);
+    }
+    std::printf("%s\n", options.json ? toJson(metrics).c_str() : toText(metrics).c_str());
+    if (options.validation && device.validationMessageCount() > 0)
+        throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
+    return 0;
+}
+
+}  // namespace penumbra
