@@ -62,7 +62,7 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
     }
 }
 
-tinygltf::Model parseFile(const std::string& path) {
+tinygltf::Model parseFile(const std::string& path, std::string& warnings) {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw Error(path + ": cannot open file");
     char magic[4] = {};
@@ -81,6 +81,7 @@ tinygltf::Model parseFile(const std::string& path) {
         throw Error(path + ": invalid glTF (" + e.what() + ")");
     }
     if (!ok) throw Error(path + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    warnings = oneLine(warn);
     return model;
 }
 
@@ -253,9 +254,11 @@ private:
 }  // namespace
 
 Scene loadGltfScene(const std::string& path) {
-    const tinygltf::Model model = parseFile(path);
+    std::string parserWarnings;
+    const tinygltf::Model model = parseFile(path, parserWarnings);
     Scene scene;
     scene.sourcePath = path;
+    if (!parserWarnings.empty()) scene.warnings.push_back(path + ": " + parserWarnings);
     const LoadContext ctx{path, model, scene};
     gltf::convertTextures(ctx);
     gltf::convertMaterials(ctx);
