@@ -70,7 +70,7 @@ void addSpecialMaterials(SceneBuilder& builder) {
     leaf.alphaCutoff = 0.5f;
     leaf.doubleSided = true;
     leaf.shadows = MaterialShadowMode::Clip;
-    const glm::mat4 quadPose = glm::rotate(at({-1.5f, 1.5f, -1.0f}), glm::radians(20.0f), glm::vec3(0, 1, 0));
+    const glm::mat4 quadPose = glm::rotate(at({-1.5f, 1.3f, -1.0f}), glm::radians(20.0f), glm::vec3(0, 1, 0));
     builder.addInstance(builder.addMesh(makeQuadMesh({2.5f, 2.5f}, builder.addMaterial(leaf))), quadPose, true,
                         "leaf_quad");
 

@@ -42,9 +42,14 @@ Light convertLight(const LoadContext& ctx, size_t index) {
     if (light.type == LightType::Spot) {
         light.innerConeAngle = float(source.spot.innerConeAngle);
         light.outerConeAngle = float(source.spot.outerConeAngle);
-        if (!(light.innerConeAngle >= 0.0f && light.innerConeAngle < light.outerConeAngle &&
-              light.outerConeAngle <= kHalfPi))
-            ctx.fail(object + ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+        if (!(light.outerConeAngle > 0.0f && light.outerConeAngle <= kHalfPi))
+            ctx.fail(object + ": spot.outerConeAngle must be in (0, pi/2]");
+        if (!(light.innerConeAngle >= 0.0f)) ctx.fail(object + ": spot.innerConeAngle must be >= 0");
+        if (light.innerConeAngle >= light.outerConeAngle) {
+            // The spec wants inner < outer; some exporters write them equal. Keep a thin falloff band.
+            ctx.warn(object + ": spot.innerConeAngle is not below outerConeAngle, clamped");
+            light.innerConeAngle = 0.99f * light.outerConeAngle;
+        }
     }
     // DESIGN.md: the near plane defaults to 0 for directional lights, 0.1 for spot and point lights.
     light.shadowNearPlane = light.type == LightType::Directional ? 0.0f : 0.1f;

@@ -56,6 +56,9 @@ Material convertMaterial(const LoadContext& ctx, size_t index) {
             ctx.fail(object + ": baseColorTexture " + std::to_string(pbr.baseColorTexture.index) +
                      " is out of range (the file has " + std::to_string(ctx.scene.textures.size()) + " textures)");
         material.baseColorTexture = pbr.baseColorTexture.index;
+        if (pbr.baseColorTexture.texCoord != 0)
+            ctx.warn(object + ": baseColorTexture uses TEXCOORD_" + std::to_string(pbr.baseColorTexture.texCoord) +
+                     "; only TEXCOORD_0 is loaded");
     }
     material.metallic = float(pbr.metallicFactor);
     material.roughness = float(pbr.roughnessFactor);

@@ -157,3 +157,10 @@ TEST(GltfBadInput, UnknownLightType) {
     gltf.addLight({{"type", "area"}});
     expectLoadError(gltf.write(dir, "area"), "type must be");
 }
+
+TEST(GltfBadInput, SpotOuterConeBeyondNinetyDegrees) {
+    TempDir dir;
+    TestGltf gltf;
+    gltf.addLight({{"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}});
+    expectLoadError(gltf.write(dir, "cone"), "outerConeAngle must be in (0, pi/2]");
+}
