@@ -109,6 +109,7 @@ struct Scene {
     std::vector<Light> lights;  // in the order of the KHR_lights_punctual `lights` array
     std::optional<Camera> camera;
     Aabb wsBounds;
+    std::vector<std::string> warnings;  // one line each: things skipped while loading (e.g. line primitives)
 };
 
 }  // namespace penumbra

@@ -1,0 +1,277 @@
+// glTF file to Scene: parsing (tinygltf), then the node hierarchy flattened to world space.
+#include "scene/gltf_loader.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "scene/gltf_internal.h"
+#include "scene/mesh_utils.h"
+
+namespace penumbra {
+namespace gltf {
+
+void LoadContext::fail(const std::string& what) const { throw Error(path + ": " + what); }
+
+void LoadContext::warn(const std::string& what) const { scene.warnings.push_back(path + ": " + what); }
+
+std::string describe(const char* kind, size_t index, const std::string& name) {
+    std::string text = std::string(kind) + " " + std::to_string(index);
+    if (!name.empty()) text += " '" + name + "'";
+    return text;
+}
+
+}  // namespace gltf
+
+namespace {
+
+using gltf::LoadContext;
+
+// tinygltf's messages span several lines; ours are one line.
+std::string oneLine(const std::string& text) {
+    std::string line;
+    for (char c : text) {
+        if (c == '\n' || c == '\r') {
+            if (!line.empty() && line.back() != ' ') line += "; ";
+        } else {
+            line += c;
+        }
+    }
+    while (!line.empty() && (line.back() == ' ' || line.back() == ';')) line.pop_back();
+    return line;
+}
+
+// Decodes every image to RGBA8 with our own decoder so that a bad image is a clean error.
+bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void*) {
+    try {
+        Image rgba = decodeImageRgba(bytes, size_t(size), "image " + std::to_string(imageIndex));
+        image->width = int(rgba.width);
+        image->height = int(rgba.height);
+        image->component = 4;
+        image->bits = 8;
+        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        image->image = std::move(rgba.pixels);
+        return true;
+    } catch (const Error& e) {
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+}
+
+tinygltf::Model parseFile(const std::string& path, std::string& warnings) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw Error(path + ": cannot open file");
+    char magic[4] = {};
+    file.read(magic, 4);
+    const bool binary = file.gcount() == 4 && std::string(magic, 4) == "glTF";
+    file.close();
+    tinygltf::TinyGLTF parser;
+    parser.SetImageLoader(decodeImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    bool ok = false;
+    try {
+        ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
+                    : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    } catch (const std::exception& e) {
+        throw Error(path + ": invalid glTF (" + e.what() + ")");
+    }
+    if (!ok) throw Error(path + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    warnings = oneLine(warn);
+    return model;
+}
+
+glm::mat4 localFromNode(const LoadContext& ctx, size_t nodeIndex) {
+    const tinygltf::Node& node = ctx.model.nodes[nodeIndex];
+    glm::mat4 m(1.0f);
+    if (node.matrix.size() == 16) {
+        for (int i = 0; i < 16; ++i) m[i / 4][i % 4] = float(node.matrix[size_t(i)]);  // column-major
+    } else {
+        glm::vec3 t(0.0f), s(1.0f);
+        glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+        if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+        if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+        // glTF quaternions are (x, y, z, w); glm's constructor takes w first.
+        if (node.rotation.size() == 4)
+            r = glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+        m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+    }
+    for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 4; ++k)
+            if (!std::isfinite(m[c][k])) ctx.fail(gltf::describe("node", nodeIndex, node.name) + ": transform is not finite");
+    return m;
+}
+
+std::vector<int> rootNodes(const LoadContext& ctx) {
+    const tinygltf::Model& model = ctx.model;
+    if (!model.scenes.empty()) {
+        size_t sceneIndex = 0;
+        if (model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()) sceneIndex = size_t(model.defaultScene);
+        return model.scenes[sceneIndex].nodes;
+    }
+    std::vector<bool> isChild(model.nodes.size(), false);
+    for (const tinygltf::Node& node : model.nodes)
+        for (int child : node.children)
+            if (child >= 0 && size_t(child) < model.nodes.size()) isChild[size_t(child)] = true;
+    std::vector<int> roots;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+        if (!isChild[i]) roots.push_back(int(i));
+    return roots;
+}
+
+struct CameraCandidate {
+    size_t nodeIndex = 0;
+    glm::mat4 worldFromNode{1.0f};
+};
+
+class SceneFlattener {
+public:
+    explicit SceneFlattener(const LoadContext& ctx)
+        : ctx_(ctx), meshCache_(ctx.model.meshes.size()), converted_(ctx.model.meshes.size(), false),
+          visited_(ctx.model.nodes.size(), false), lightPlaced_(ctx.scene.lights.size(), false) {}
+
+    void flatten() {
+        struct Pending { int nodeIndex; glm::mat4 worldFromParent; };
+        std::vector<Pending> stack;
+        const std::vector<int> roots = rootNodes(ctx_);
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+        while (!stack.empty()) {
+            const Pending pending = stack.back();
+            stack.pop_back();
+            const size_t nodeIndex = checkedNode(pending.nodeIndex);
+            const glm::mat4 worldFromNode = pending.worldFromParent * localFromNode(ctx_, nodeIndex);
+            visitNode(nodeIndex, worldFromNode);
+            const std::vector<int>& children = ctx_.model.nodes[nodeIndex].children;
+            for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, worldFromNode});
+        }
+        chooseCamera();
+    }
+
+    bool usedDefaultMaterial() const { return usedDefaultMaterial_; }
+
+private:
+    size_t checkedNode(int nodeIndex) {
+        if (nodeIndex < 0 || size_t(nodeIndex) >= ctx_.model.nodes.size())
+            ctx_.fail("node " + std::to_string(nodeIndex) + " is out of range (the file has " +
+                      std::to_string(ctx_.model.nodes.size()) + ")");
+        if (visited_[size_t(nodeIndex)])
+            ctx_.fail(gltf::describe("node", size_t(nodeIndex), ctx_.model.nodes[size_t(nodeIndex)].name) +
+                      " is reached twice: the node hierarchy must be a tree");
+        visited_[size_t(nodeIndex)] = true;
+        return size_t(nodeIndex);
+    }
+
+    void visitNode(size_t nodeIndex, const glm::mat4& worldFromNode) {
+        const tinygltf::Node& node = ctx_.model.nodes[nodeIndex];
+        const std::string object = gltf::describe("node", nodeIndex, node.name);
+        const bool castShadows = gltf::extraBool(ctx_, node.extras, object, "castShadows").value_or(true);
+        if (node.mesh >= 0) {
+            if (size_t(node.mesh) >= ctx_.model.meshes.size())
+                ctx_.fail(object + ": mesh " + std::to_string(node.mesh) + " is out of range (the file has " +
+                          std::to_string(ctx_.model.meshes.size()) + ")");
+            for (uint32_t meshIndex : sceneMeshes(size_t(node.mesh))) {
+                Instance instance;
+                instance.meshIndex = meshIndex;
+                instance.worldFromObject = worldFromNode;
+                instance.castShadows = castShadows;
+                instance.nodeName = node.name;
+                ctx_.scene.instances.push_back(std::move(instance));
+            }
+        }
+        if (node.camera >= 0) {
+            if (size_t(node.camera) >= ctx_.model.cameras.size())
+                ctx_.fail(object + ": camera " + std::to_string(node.camera) + " is out of range (the file has " +
+                          std::to_string(ctx_.model.cameras.size()) + ")");
+            if (ctx_.model.cameras[size_t(node.camera)].type == "perspective")
+                cameras_.push_back({nodeIndex, worldFromNode});
+            else
+                ctx_.warn(object + ": camera " + std::to_string(node.camera) + " is not perspective, ignored");
+        }
+        const int lightIndex = gltf::nodeLightIndex(ctx_, nodeIndex);
+        if (lightIndex >= 0) {
+            if (lightPlaced_[size_t(lightIndex)]) {
+                ctx_.warn(object + ": light " + std::to_string(lightIndex) + " is already placed by another node, ignored");
+            } else {
+                gltf::placeLight(ctx_.scene.lights[size_t(lightIndex)], worldFromNode);
+                lightPlaced_[size_t(lightIndex)] = true;
+            }
+        }
+    }
+
+    // The scene meshes of a glTF mesh (one per triangle primitive), converted once.
+    const std::vector<uint32_t>& sceneMeshes(size_t gltfMesh) {
+        if (!converted_[gltfMesh]) {
+            converted_[gltfMesh] = true;
+            const uint32_t defaultMaterial = uint32_t(ctx_.model.materials.size());
+            for (size_t p = 0; p < ctx_.model.meshes[gltfMesh].primitives.size(); ++p) {
+                std::optional<Mesh> mesh = gltf::convertPrimitive(ctx_, gltfMesh, p, defaultMaterial);
+                if (!mesh) continue;
+                usedDefaultMaterial_ |= mesh->materialIndex == defaultMaterial;
+                meshCache_[gltfMesh].push_back(uint32_t(ctx_.scene.meshes.size()));
+                ctx_.scene.meshes.push_back(std::move(*mesh));
+            }
+        }
+        return meshCache_[gltfMesh];
+    }
+
+    void chooseCamera() {
+        if (cameras_.empty()) return;
+        const CameraCandidate* chosen = nullptr;
+        for (const CameraCandidate& c : cameras_)
+            if (ctx_.model.nodes[c.nodeIndex].name == "camera") chosen = &c;
+        if (!chosen)
+            for (const CameraCandidate& c : cameras_)
+                if (!chosen || c.nodeIndex < chosen->nodeIndex) chosen = &c;
+        const tinygltf::Node& node = ctx_.model.nodes[chosen->nodeIndex];
+        const tinygltf::PerspectiveCamera& p = ctx_.model.cameras[size_t(node.camera)].perspective;
+        const std::string object = gltf::describe("camera", size_t(node.camera), ctx_.model.cameras[size_t(node.camera)].name);
+        if (!(std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < 3.14159)) ctx_.fail(object + ": yfov must be in (0, pi)");
+        if (!(std::isfinite(p.znear) && p.znear > 0.0)) ctx_.fail(object + ": znear must be > 0");
+        if (!(p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear)))
+            ctx_.fail(object + ": zfar must be greater than znear");
+        Camera camera;
+        camera.name = node.name;
+        camera.worldFromView = chosen->worldFromNode;
+        camera.yfov = float(p.yfov);
+        camera.zNear = float(p.znear);
+        camera.zFar = p.zfar == 0.0 ? INFINITY : float(p.zfar);
+        ctx_.scene.camera = camera;
+    }
+
+    const LoadContext& ctx_;
+    std::vector<std::vector<uint32_t>> meshCache_;
+    std::vector<bool> converted_;
+    std::vector<bool> visited_;
+    std::vector<bool> lightPlaced_;
+    std::vector<CameraCandidate> cameras_;
+    bool usedDefaultMaterial_ = false;
+};
+
+}  // namespace
+
+Scene loadGltfScene(const std::string& path) {
+    std::string parserWarnings;
+    const tinygltf::Model model = parseFile(path, parserWarnings);
+    Scene scene;
+    scene.sourcePath = path;
+    if (!parserWarnings.empty()) scene.warnings.push_back(path + ": " + parserWarnings);
+    const LoadContext ctx{path, model, scene};
+    gltf::convertTextures(ctx);
+    gltf::convertMaterials(ctx);
+    gltf::convertLights(ctx);
+    SceneFlattener flattener(ctx);
+    flattener.flatten();
+    if (flattener.usedDefaultMaterial() || scene.materials.empty()) {
+        Material fallback;
+        fallback.name = "default";  // glTF's default material: white, metallic 1, roughness 1
+        scene.materials.push_back(fallback);
+    }
+    computeWorldBounds(scene);
+    return scene;
+}
+
+}  // namespace penumbra
