@@ -53,6 +53,11 @@ int runCli(int argc, char** argv) {
 
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
+    std::string diffA, diffB;
+    CLI::App* diff = app.add_subcommand("diff", "per-pixel difference of two PNGs (e.g. GPU vs lavapipe), as JSON");
+    diff->add_option("a", diffA, "first PNG")->required();
+    diff->add_option("b", diffB, "second PNG")->required();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -63,6 +68,7 @@ int runCli(int argc, char** argv) {
         if (*reference) return runReferenceCommand(referenceOptions);
         if (*compare) return runCompareCommand(compareOptions);
         if (*devices) return runDevicesCommand();
+        if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {
         std::fprintf(stderr, "penumbra: %s\n", e.what());
         return 1;

@@ -36,5 +36,6 @@ int runRenderCommand(const RenderOptions& options);
 int runReferenceCommand(const RenderOptions& options);
 int runCompareCommand(const RenderOptions& options);
 int runDevicesCommand();
+int runDiffCommand(const std::string& pathA, const std::string& pathB);
 
 }  // namespace penumbra

@@ -5,14 +5,23 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/image_diff.h"
 #include "gpu/device.h"
 #include "render/renderer.h"
+#include "scene/default_light.h"
 #include "scene/demo_scene.h"
 #include "scene/gltf_loader.h"
 
 namespace penumbra {
 
-Scene loadSceneOrDemo(const std::string& path) { return path.empty() ? makeDemoScene() : loadGltfScene(path); }
+Scene loadSceneOrDemo(const std::string& path) {
+    Scene scene = path.empty() ? makeDemoScene() : loadGltfScene(path);
+    for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    if (addDefaultSunIfUnlit(scene))
+        std::fprintf(stderr, "penumbra: warning: %s has no lights; added a default sun as light 0\n",
+                     path.empty() ? "the scene" : path.c_str());
+    return scene;
+}
 
 Settings loadSettings(const RenderOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
@@ -75,6 +84,11 @@ int runRenderCommand(const RenderOptions& options) {
     }
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
+    return 0;
+}
+
+int runDiffCommand(const std::string& pathA, const std::string& pathB) {
+    std::printf("%s\n", toJson(diffImages(readPng(pathA), readPng(pathB))).c_str());
     return 0;
 }
 
