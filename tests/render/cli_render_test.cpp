@@ -1,0 +1,127 @@
+// `penumbra render` as a user runs it: the demo scene, a real glTF sample, and every kind of bad
+// input ending in one line on stderr and a non-zero exit, never a crash.
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_test_support.h"
+#include "core/image.h"
+
+using namespace penumbra;
+using namespace penumbra::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+const std::string kBoxTextured = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+
+fs::path tempPath(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / "penumbra_cli_render";
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+// A user error: exit code 1 and exactly one line on stderr, starting with "penumbra: ".
+void expectOneLineError(const CliResult& result, const std::string& mentions) {
+    EXPECT_EQ(result.exitCode, 1) << result.err;
+    EXPECT_EQ(lineCount(result.err), 1) << result.err;
+    EXPECT_EQ(result.err.rfind("penumbra: ", 0), 0u) << result.err;
+    EXPECT_NE(result.err.find(mentions), std::string::npos) << result.err;
+}
+
+}  // namespace
+
+TEST(CliRender, DemoSceneRendersWithoutValidationMessages) {
+    const fs::path out = tempPath("demo.png");
+    const CliResult result = runCli("render -o " + out.string() + " --width 320 --height 180 --device cpu --validation");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(result.err.find("validation"), std::string::npos) << result.err;
+    const Image image = readPng(out.string());
+    EXPECT_EQ(image.width, 320u);
+    EXPECT_EQ(image.height, 180u);
+    EXPECT_EQ(image.channels, 3u);
+}
+
+TEST(CliRender, RealGltfSampleRendersAndShowsGeometry) {
+    const fs::path out = tempPath("engine.png");
+    // The sample has no lights: the CLI adds a default sun and says so.
+    const CliResult rendered = runCli("render " + kEngine + " -o " + out.string() +
+                                      " --width 160 --height 90 --device cpu --validation");
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+    EXPECT_NE(rendered.err.find("added a default sun"), std::string::npos);
+    const Image image = readPng(out.string());
+    size_t lit = 0;
+    for (uint8_t v : image.pixels) lit += v > 40;
+    EXPECT_GT(lit, image.pixels.size() / 10) << "the engine should cover a good part of the frame";
+}
+
+TEST(CliRender, StatsReportDeviceTimingsAndShadowTiles) {
+    const CliResult result = runCli("render -o " + tempPath("s.png").string() +
+                                    " --width 96 --height 64 --device cpu --stats -");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const nlohmann::json stats = nlohmann::json::parse(result.out);
+    EXPECT_TRUE(stats["device"]["cpu"].get<bool>());
+    EXPECT_TRUE(stats["gpuMs"].contains("main"));
+    EXPECT_TRUE(stats["gpuMs"].contains("shadows.directional"));
+    EXPECT_EQ(stats["shadows"]["directional"]["lightsReserved"].get<int>(), 1);
+    EXPECT_EQ(stats["shadows"]["directional"]["tiles"].get<int>(), 4);
+}
+
+TEST(CliRender, MissingSceneFileIsOneLineError) {
+    expectOneLineError(runCli("render /nonexistent/scene.gltf -o " + tempPath("x.png").string()), "/nonexistent/scene.gltf");
+}
+
+TEST(CliRender, TruncatedGlbIsOneLineError) {
+    const fs::path truncated = tempPath("truncated.glb");
+    const std::string bytes = readWholeFile(kEngine);
+    std::ofstream(truncated, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 3));
+    expectOneLineError(runCli("render " + truncated.string() + " -o " + tempPath("x.png").string()), "truncated.glb");
+}
+
+TEST(CliRender, UnwritableOutputIsOneLineErrorBeforeRendering) {
+    expectOneLineError(runCli("render -o /nonexistent/dir/out.png --device cpu"), "/nonexistent/dir/out.png");
+}
+
+TEST(CliRender, OutOfRangeSettingNamesTheKeyAndRange) {
+    expectOneLineError(runCli("render -o " + tempPath("x.png").string() + " --set shadows.directional.cascadeCount=7"),
+                       "shadows.directional.cascadeCount");
+}
+
+TEST(CliRender, UnknownSettingKeyIsOneLineError) {
+    expectOneLineError(runCli("render -o " + tempPath("x.png").string() + " --set shadows.bogus=1"), "shadows.bogus");
+}
+
+TEST(CliRender, MissingSettingsFileIsOneLineError) {
+    expectOneLineError(runCli("render -o " + tempPath("x.png").string() + " --settings /nonexistent.json"),
+                       "/nonexistent.json");
+}
+
+TEST(CliRender, NoVulkanDeviceIsOneLineError) {
+    expectOneLineError(runCli("render -o " + tempPath("x.png").string(), "VK_ICD_FILENAMES=/nonexistent.json VK_DRIVER_FILES=/nonexistent.json"),
+                       "no Vulkan device");
+}
+
+TEST(CliRender, DeviceIndexOutOfRangeIsOneLineError) {
+    expectOneLineError(runCli("render -o " + tempPath("x.png").string() + " --device 99"), "--device 99");
+}
+
+TEST(CliRender, AovOfMissingLightIsOneLineError) {
+    expectOneLineError(runCli("render -o " + tempPath("x.png").string() + " --device cpu --aov shadow --light 42"),
+                       "--light 42");
+}
+
+TEST(CliRender, TexturedSampleKeepsItsTexture) {
+    const fs::path out = tempPath("box.png");
+    const CliResult result = runCli("render " + kBoxTextured + " -o " + out.string() + " --width 64 --height 64 --device cpu");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const Image image = readPng(out.string());
+    // The Cesium logo texture is not one flat colour: many distinct values appear on the box.
+    std::set<uint32_t> colours;
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p)
+        colours.insert(uint32_t(image.pixels[p * 3]) << 16 | uint32_t(image.pixels[p * 3 + 1]) << 8 | image.pixels[p * 3 + 2]);
+    EXPECT_GT(colours.size(), 50u);
+}
