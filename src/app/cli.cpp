@@ -51,6 +51,12 @@ int runCli(int argc, char** argv) {
     compare->add_option("--diff", compareOptions.diffPath, "write a diff image: false shadow and false lit in two colours");
     compare->add_flag("--json", compareOptions.json, "print the metrics as JSON");
 
+    RenderOptions benchOptions;
+    uint32_t benchFrames = 20;
+    CLI::App* bench = app.add_subcommand("bench", "render one frame repeatedly; print GPU ms per pass and CPU plan ms");
+    addRenderOptions(*bench, benchOptions);
+    bench->add_option("--frames", benchFrames, "frames to time")->check(CLI::Range(1u, 100000u));
+
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
     std::string diffA, diffB;
@@ -67,6 +73,7 @@ int runCli(int argc, char** argv) {
         if (*render) return runRenderCommand(renderOptions);
         if (*reference) return runReferenceCommand(referenceOptions);
         if (*compare) return runCompareCommand(compareOptions);
+        if (*bench) return runBenchCommand(benchOptions, benchFrames);
         if (*devices) return runDevicesCommand();
         if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {

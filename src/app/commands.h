@@ -35,6 +35,7 @@ Settings loadSettings(const RenderOptions& options);
 int runRenderCommand(const RenderOptions& options);
 int runReferenceCommand(const RenderOptions& options);
 int runCompareCommand(const RenderOptions& options);
+int runBenchCommand(const RenderOptions& options, uint32_t frames);
 int runDevicesCommand();
 int runDiffCommand(const std::string& pathA, const std::string& pathB);
 

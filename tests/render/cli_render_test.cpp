@@ -125,3 +125,11 @@ TEST(CliRender, TexturedSampleKeepsItsTexture) {
         colours.insert(uint32_t(image.pixels[p * 3]) << 16 | uint32_t(image.pixels[p * 3 + 1]) << 8 | image.pixels[p * 3 + 2]);
     EXPECT_GT(colours.size(), 50u);
 }
+
+TEST(CliBench, PrintsGpuMillisecondsPerPassAndCpuPlanTime) {
+    const CliResult result = runCli("bench --frames 2 --width 64 --height 48 --device cpu");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.out.find("gpu main"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("gpu shadows.directional"), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find("cpu shadow plan"), std::string::npos) << result.out;
+}
