@@ -17,12 +17,6 @@ VkDescriptorType toVkDescriptorType(DescriptorType type) {
     return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
-VkCompareOp toVkCompare(CompareOp op) {
-    static const VkCompareOp ops[] = {VK_COMPARE_OP_NEVER, VK_COMPARE_OP_LESS, VK_COMPARE_OP_LESS_OR_EQUAL,
-                                      VK_COMPARE_OP_GREATER, VK_COMPARE_OP_GREATER_OR_EQUAL, VK_COMPARE_OP_ALWAYS};
-    return ops[int(op)];
-}
-
 // Specialization data outlives the create call through this holder.
 struct Specialization {
     std::vector<VkSpecializationMapEntry> entries;
@@ -66,6 +60,12 @@ void createLayout(Device::Impl& d, PipelineResource& p, const std::vector<Bindin
 }
 
 }  // namespace
+
+VkCompareOp toVkCompareOp(CompareOp op) {
+    static const VkCompareOp ops[] = {VK_COMPARE_OP_NEVER, VK_COMPARE_OP_LESS, VK_COMPARE_OP_LESS_OR_EQUAL,
+                                      VK_COMPARE_OP_GREATER, VK_COMPARE_OP_GREATER_OR_EQUAL, VK_COMPARE_OP_ALWAYS};
+    return ops[int(op)];
+}
 
 VkShaderModule Device::Impl::loadShader(const std::string& name) {
     const std::span<const uint32_t> code = embeddedShader(name);
@@ -116,7 +116,7 @@ PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) 
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     depth.depthTestEnable = desc.depthTest;
     depth.depthWriteEnable = desc.depthWrite;
-    depth.depthCompareOp = toVkCompare(desc.depthCompare);
+    depth.depthCompareOp = toVkCompareOp(desc.depthCompare);
     std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
     for (auto& b : blends) {
         b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;

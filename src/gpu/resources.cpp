@@ -213,9 +213,7 @@ SamplerHandle Device::createSampler(const SamplerDesc& desc) {
     info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     info.maxLod = desc.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
     info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
-    static const VkCompareOp ops[] = {VK_COMPARE_OP_NEVER, VK_COMPARE_OP_LESS, VK_COMPARE_OP_LESS_OR_EQUAL,
-                                      VK_COMPARE_OP_GREATER, VK_COMPARE_OP_GREATER_OR_EQUAL, VK_COMPARE_OP_ALWAYS};
-    info.compareOp = ops[int(desc.compareOp)];
+    info.compareOp = toVkCompareOp(desc.compareOp);
     VkSampler sampler = VK_NULL_HANDLE;
     VK_CHECK(vkCreateSampler(d.device, &info, nullptr, &sampler));
     d.samplers.push_back(sampler);

@@ -97,6 +97,7 @@ void Device::Impl::immediate(Record&& record) {
 }
 
 VkFormat toVkFormat(Format format);
+VkCompareOp toVkCompareOp(CompareOp op);
 bool isDepthFormat(Format format);
 uint32_t bytesPerPixel(Format format);
 void recordTransition(VkCommandBuffer commandBuffer, const TextureResource& texture, TextureState from, TextureState to);
