@@ -206,6 +206,9 @@ Device::Device(const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;
     features13.synchronization2 = VK_TRUE;
+    // Lets a fragment shader leave some of the vertex shader's outputs unread (the depth prepass and
+    // the full-screen resolve) without validation warnings; mandatory in Vulkan 1.3.
+    features13.maintenance4 = VK_TRUE;
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     features12.pNext = &features13;
     features12.scalarBlockLayout = VK_FALSE;

@@ -1,0 +1,109 @@
+// The debug views of the directional shadows: `--aov cascades` picks cascades by culling sphere, nearer
+// pixels using lower indices (seed 000 §3.4-§3.5), and the atlas dump shows the tile layout of
+// seed 000 §3.2 (split 1 / 2 / 4, tiles = lights x cascades, untouched texels at the clear depth).
+#include <array>
+
+#include "directional_shadow_scenes.h"
+
+#include "shadows/shadow_fade.h"
+#include "shadows/shadow_planner.h"
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr uint32_t kSize = 128;
+
+// A long ground, seen from low above so that view depth grows up the image; it casts on itself, which
+// is enough for the light to get shadow tiles.
+Scene longGround(uint32_t lightCount = 1) {
+    SceneBuilder builder;
+    const uint32_t material = builder.addMaterial(matteMaterial());
+    addGround(builder, 200.0f, material);
+    addBox(builder, {{-1.0f, 0.0f, -6.0f}, {1.0f, 2.0f, -4.0f}}, material);
+    const glm::vec3 directions[4] = {{0.5f, -1.0f, 0.2f}, {-0.6f, -1.0f, 0.1f}, {0.1f, -1.0f, 0.7f}, {0.3f, -1.0f, -0.6f}};
+    for (uint32_t i = 0; i < lightCount; ++i) builder.addLight(makeDirectionalLight(directions[i], 1.0f));
+    builder.setCamera(makeLookAtCamera({0.0f, 3.0f, 4.0f}, {0.0f, 0.0f, -20.0f}, glm::radians(60.0f)));
+    return builder.build();
+}
+
+// The colours of lit.frag.glsl's cascadeColor(), as 8-bit UNORM: none, cascade 0, 1, 2, 3.
+int decodeCascade(const Image& image, uint32_t x, uint32_t y) {
+    const std::array<glm::vec3, 5> colors = {glm::vec3(0, 0, 0), glm::vec3(255, 64, 64), glm::vec3(64, 255, 64),
+                                             glm::vec3(64, 102, 255), glm::vec3(255, 255, 64)};
+    const glm::vec3 pixel(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2));
+    int best = 0;
+    for (int i = 1; i < 5; ++i) {
+        if (glm::distance(pixel, colors[i]) < glm::distance(pixel, colors[best])) best = i;
+    }
+    return best - 1;
+}
+
+// Texels of the tile `tileIndex` (split x split tiles) whose depth is below the clear value.
+uint32_t writtenTexels(const Image& atlas, uint32_t split, uint32_t tileIndex) {
+    const uint32_t tileSize = atlas.width / split;
+    const uint32_t x0 = (tileIndex % split) * tileSize, y0 = (tileIndex / split) * tileSize;
+    uint32_t written = 0;
+    for (uint32_t y = y0; y < y0 + tileSize; ++y)
+        for (uint32_t x = x0; x < x0 + tileSize; ++x) written += atlas.at(x, y) < 255;
+    return written;
+}
+
+}  // namespace
+
+TEST_F(DirectionalShadowTest, CascadesAovShowsTheCascadeEachPixelSamples) {
+    const Scene scene = longGround();
+    const Settings settings = shadowSettings(40.0f, 4, 512);
+    const Image aov = renderScene(scene, RenderRequest{kSize, kSize, OutputMode::CascadesAov, 0, false}, settings).image;
+    ASSERT_EQ(aov.channels, 3u);
+    const CameraView view = resolveCameraView(scene, kSize, kSize);
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    uint32_t ground = 0, agree = 0;
+    std::array<double, 4> depthSum{};
+    std::array<uint32_t, 4> count{};
+    for (uint32_t y = 0; y < kSize; ++y) {
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const auto wsPosition = visibleGroundPoint(view, x, y, 100.0f, {{{-1.0f, 0.0f, -6.0f}, {1.0f, 2.0f, -4.0f}}});
+            if (!wsPosition) continue;
+            const float viewDepth = -(view.viewFromWorld * glm::vec4(*wsPosition, 1.0f)).z;
+            const CascadeSelection expected = selectCascade(plan.directional.gpu, *wsPosition, viewDepth);
+            const int expectedIndex = expected.cascadeIndex < 4 ? int(expected.cascadeIndex) : -1;
+            const int actual = decodeCascade(aov, x, y);
+            ++ground;
+            agree += actual == expectedIndex;
+            if (actual >= 0) {
+                depthSum[actual] += viewDepth;
+                ++count[actual];
+            }
+        }
+    }
+    ASSERT_GT(ground, kSize * kSize / 3);
+    // Disagreements only where a sphere's rim crosses a pixel.
+    EXPECT_GT(double(agree) / ground, 0.99) << agree << " of " << ground;
+    for (int i = 0; i < 4; ++i) ASSERT_GT(count[i], 20u) << "cascade " << i << " is never used";
+    for (int i = 1; i < 4; ++i)
+        EXPECT_GT(depthSum[i] / count[i], depthSum[i - 1] / count[i - 1]) << "cascade " << i << " is not farther";
+}
+
+TEST_F(DirectionalShadowTest, AtlasDumpHasOneTilePerCascadeInTheSplitLayout) {
+    struct Case {
+        uint32_t lights, cascades, split;
+    };
+    for (const Case c : {Case{1, 1, 1}, Case{1, 2, 2}, Case{1, 4, 2}, Case{2, 3, 4}, Case{4, 4, 4}}) {
+        const Scene scene = longGround(c.lights);
+        RenderRequest request{64, 64, OutputMode::Color, 0, true};
+        const RenderResult result = renderScene(scene, request, shadowSettings(40.0f, c.cascades, 512));
+        ASSERT_EQ(result.atlas.width, 512u);
+        ASSERT_EQ(result.atlas.channels, 1u);
+        const uint32_t tileTexels = (512 / c.split) * (512 / c.split);
+        for (uint32_t tile = 0; tile < c.split * c.split; ++tile) {
+            const uint32_t written = writtenTexels(result.atlas, c.split, tile);
+            if (tile < c.lights * c.cascades) {
+                EXPECT_GT(written, tileTexels / 4) << c.lights << " lights x " << c.cascades << ", tile " << tile;
+            } else {
+                EXPECT_EQ(written, 0u) << c.lights << " lights x " << c.cascades << ", tile " << tile;
+            }
+        }
+    }
+}
