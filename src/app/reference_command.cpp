@@ -59,6 +59,10 @@ int runCompareCommand(const RenderOptions& options) {
         const RenderResult colour = renderer.render(request, settings, view);
         writePng(makeDiffImage(colour.image, ours.image, reference.shadow, reference.validMask), options.diffPath);
     }
+    // An explicit empty result rather than a misleading "0 % error" (issue 3, bad input).
+    if (metrics.validPixels == 0)
+        std::fprintf(stderr, "penumbra: warning: no pixel is valid for comparison (nothing in view, or no surface "
+                             "faces light %u within the shadow distance); the metrics are empty\n", options.light);
     std::printf("%s\n", options.json ? toJson(metrics).c_str() : toText(metrics).c_str());
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");

@@ -1,0 +1,48 @@
+#pragma once
+// Runs the penumbra program (PENUMBRA_CLI_PATH) as a user would and captures its exit code, stdout
+// and stderr, for the CLI tests.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace penumbra::test {
+
+struct CliRun {
+    int exitCode = -1;  // -1 when the process did not exit normally (e.g. a crash)
+    std::string out;
+    std::string err;
+};
+
+// `arguments` is appended to the program path as-is (quote paths with spaces yourself).
+inline CliRun runPenumbra(const std::string& arguments) {
+    static int counter = 0;
+    const std::string errPath = (std::filesystem::temp_directory_path() /
+                                 ("penumbra_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
+                                    .string();
+    const std::string command = std::string(PENUMBRA_CLI_PATH) + " " + arguments + " 2>" + errPath;
+    CliRun run;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) return run;
+    char buffer[4096];
+    size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, n);
+    const int status = ::pclose(pipe);
+    if (WIFEXITED(status)) run.exitCode = WEXITSTATUS(status);
+    std::ifstream errFile(errPath);
+    std::stringstream err;
+    err << errFile.rdbuf();
+    run.err = err.str();
+    std::filesystem::remove(errPath);
+    return run;
+}
+
+// A one-line user error: exactly one line on stderr, starting with "penumbra: ".
+inline bool isOneLineError(const std::string& err) {
+    return err.rfind("penumbra: ", 0) == 0 && err.find('\n') == err.size() - 1;
+}
+
+}  // namespace penumbra::test
