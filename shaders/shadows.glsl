@@ -3,6 +3,7 @@
 // cascade blending. Every function says which seed section it implements.
 #ifndef PENUMBRA_SHADOWS_GLSL
 #define PENUMBRA_SHADOWS_GLSL
+#include "other_shadow_structs.h"
 #include "shadow_structs.h"
 #include "shadow_tent.glsl"
 
@@ -72,7 +73,67 @@ ShadowSample directionalShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, 
     return ShadowSample(mix(1.0, shadow, strength), cascade);
 }
 
+// ---- Spot and point lights: the "other" atlas (seed 001) ----
+
+// Seed 001 §6.4: the renderer specializes the lit pass by the reserved lights' shadow kinds
+// (kOtherShadowsHard | kOtherShadowsSoft bits; 0 = no spot/point shadows, otherShadow returns 1 at once),
+// and the soft filter, so a frame pays only for the sampling code it uses.
+layout(constant_id = 2) const uint kOtherShadowMode = 0u;
+layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
+layout(set = 0, binding = 7, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
+layout(set = 0, binding = 8) uniform sampler2DShadow otherShadowAtlas;
+
+// Seed 001 §4.4 HardShadowAttenuation / SoftShadowAttenuation, the soft one with spot.filter's tent.
+float filterOtherShadow(vec3 atlasUvDepth, bool soft) {
+    bool useSoft = kOtherShadowMode == kOtherShadowsSoft || (kOtherShadowMode != kOtherShadowsHard && soft);
+    if (useSoft)
+        return sampleShadowFiltered(otherShadowAtlas, atlasUvDepth, otherShadows.atlasSize.yyxx, kOtherShadowFilter);
+    return sampleShadowPcf2x2(otherShadowAtlas, atlasUvDepth);
+}
+
+// Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: pick the tile (a point light's
+// cube face by the major axis of light -> fragment), push the surface along its normal by the light's
+// normal bias times the world texel size at the fragment's distance along the tile's axis, project,
+// divide by w, keep the filter inside the tile's drawn interior (§5.5), compare, lerp by strength.
+// Fragments behind a spot light or outside its tile's frustum are not shadowed.
 ShadowSample otherShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec3 wsToLight) {
-    return ShadowSample(1.0, -1);
+    if (kOtherShadowMode == 0u) return ShadowSample(1.0, -1);
+    if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.config.x) return ShadowSample(1.0, -1);
+    vec4 light = otherShadows.lights[shadowSlot];
+    float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
+    float strength = light.x * fadedShadowStrength(viewDepth, otherShadows.fade.x, otherShadows.fade.y);
+    if (strength <= 0.0) return ShadowSample(1.0, -1);
+
+    vec4 position = otherShadows.lightPositions[shadowSlot];
+    vec4 direction = otherShadows.lightDirections[shadowSlot];
+    vec3 wsFromLight = wsPosition - position.xyz;
+    uint tile = uint(light.y);
+    float distance;
+    if (light.w > 0.5) {
+        vec3 a = abs(wsFromLight);
+        uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+        tile += 2u * axis + (wsFromLight[axis] < 0.0 ? 1u : 0u);
+        distance = a[axis];
+    } else {
+        distance = dot(wsFromLight, direction.xyz);
+    }
+    if (distance <= 0.0) return ShadowSample(1.0, -1);
+
+    vec3 wsBiased = wsPosition + wsNormal * (position.w * distance);
+    vec4 atlasClip = otherShadows.atlasFromWorld[tile] * vec4(wsBiased, 1.0);
+    atlasClip.z -= direction.w;  // constant clip-space depth bias (seed 001 §4.2), 0 by default
+    if (atlasClip.w <= 0.0) return ShadowSample(1.0, -1);
+    vec3 atlasUvDepth = atlasClip.xyz / atlasClip.w;
+
+    bool soft = light.z > 0.5;
+    vec4 bounds = otherShadows.tileBounds[tile];
+    float reach = soft ? float(kOtherShadowFilter) + 1.0 : 1.0;
+    float border = otherShadows.config.w > 1u ? 4.0 : 0.0;
+    vec2 frustumMargin = vec2((reach + border) * otherShadows.atlasSize.y);
+    if (any(lessThan(atlasUvDepth.xy, bounds.xy - frustumMargin)) || any(greaterThan(atlasUvDepth.xy, bounds.zw + frustumMargin)))
+        return ShadowSample(1.0, -1);
+    atlasUvDepth.xy = clamp(atlasUvDepth.xy, bounds.xy, bounds.zw);
+    float shadow = filterOtherShadow(atlasUvDepth, soft);
+    return ShadowSample(mix(1.0, shadow, strength), -1);
 }
 #endif

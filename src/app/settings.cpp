@@ -86,6 +86,7 @@ const LeafKey kLeafKeys[] = {
     {"shadows.spot.atlasSize", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.spot.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
     {"shadows.spot.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.filter = readFilter(k, v); }},
+    {"shadows.spot.depthBias", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.depthBias = readFloat(k, v); }},
     {"render.exposure", [](Settings& s, const std::string& k, const json& v) { s.render.exposure = readFloat(k, v); }},
     {"render.ambient", [](Settings& s, const std::string& k, const json& v) { s.render.ambient = readFloat(k, v); }},
 };

@@ -17,7 +17,9 @@ std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene
 }
 
 const MainPass::PipelineSet& MainPass::pipelines(const Target& target, const MainPassInputs& inputs) {
-    const auto key = std::make_pair(target.colorFormat, target.fragmentShader);
+    std::vector<std::pair<uint32_t, uint32_t>> constants;
+    for (const gpu::SpecConstant& c : target.specialization) constants.emplace_back(c.id, c.value);
+    const PipelineKey key{target.colorFormat, target.fragmentShader, constants};
     auto found = pipelineSets_.find(key);
     if (found != pipelineSets_.end()) return found->second;
     PipelineSet set;
@@ -35,6 +37,8 @@ const MainPass::PipelineSet& MainPass::pipelines(const Target& target, const Mai
             desc.cullMode = doubleSided ? gpu::CullMode::None : gpu::CullMode::Back;
             desc.blend = blended ? gpu::BlendMode::Alpha : gpu::BlendMode::Opaque;
             desc.specialization = {{1, uint32_t(blended)}};
+            desc.specialization.insert(desc.specialization.end(), target.specialization.begin(),
+                                       target.specialization.end());
             (blended ? set.blended : set.opaque)[doubleSided] = device_.createGraphicsPipeline(desc);
         }
     }

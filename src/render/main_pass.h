@@ -3,6 +3,7 @@
 // Unlit materials share the pipelines (the material flag selects the path in the shader).
 #include <map>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -30,6 +31,9 @@ public:
         std::string fragmentShader = "lit.frag";  // "normal_prepass.frag" for the depth prepass
         float clearColor[4] = {0, 0, 0, 1};
         bool drawBlended = true;
+        // Extra specialization constants of the fragment shader (ids >= 2; e.g. the lit pass's spot/point
+        // shadow mode and filter). Part of the pipeline cache key.
+        std::vector<gpu::SpecConstant> specialization;
     };
     // Records the pass into target.color / target.depth (both already in their target states).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,
@@ -46,7 +50,8 @@ private:
 
     gpu::Device& device_;
     const GpuScene& scene_;
-    std::map<std::pair<gpu::Format, std::string>, PipelineSet> pipelineSets_;
+    using PipelineKey = std::tuple<gpu::Format, std::string, std::vector<std::pair<uint32_t, uint32_t>>>;
+    std::map<PipelineKey, PipelineSet> pipelineSets_;
 };
 
 std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, gpu::BufferHandle frame,

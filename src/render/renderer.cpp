@@ -23,7 +23,7 @@ struct Renderer::State {
     MainPass mainPass;
     ShadowCasterPass casterPass;
     ScreenSpaceShadowPass screenSpacePass;
-    gpu::BufferHandle frameBuffer, lightBuffer, directionalShadowBuffer;
+    gpu::BufferHandle frameBuffer, lightBuffer, directionalShadowBuffer, otherShadowBuffer;
     gpu::SamplerHandle shadowSampler, pointSampler;
 
     State(gpu::Device& d, const Scene& s)
@@ -33,6 +33,8 @@ struct Renderer::State {
         lightBuffer = d.createBuffer(maxLights * sizeof(gpu_data::LightData), gpu::kBufferStorage, gpu::MemoryKind::HostVisible);
         directionalShadowBuffer = d.createBuffer(sizeof(gpu_data::DirectionalShadowData), gpu::kBufferUniform,
                                                  gpu::MemoryKind::HostVisible);
+        otherShadowBuffer = d.createBuffer(sizeof(gpu_data::OtherShadowData), gpu::kBufferUniform,
+                                           gpu::MemoryKind::HostVisible);
         // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
         shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
                                          gpu::CompareOp::LessOrEqual});
@@ -84,6 +86,19 @@ Image depthToGray(const Image& depth) {
     return gray;
 }
 
+// --dump-atlas: the directional atlas on the left, the spot/point atlas to its right (when it has
+// tiles), top-aligned; the rest is white (depth 1, empty).
+Image sideBySide(const Image& left, const Image& right) {
+    Image image(left.width + right.width, std::max(left.height, right.height), 1);
+    std::fill(image.pixels.begin(), image.pixels.end(), uint8_t(255));
+    for (uint32_t y = 0; y < left.height; ++y)
+        std::copy_n(&left.pixels[size_t(y) * left.width], left.width, &image.pixels[size_t(y) * image.width]);
+    for (uint32_t y = 0; y < right.height; ++y)
+        std::copy_n(&right.pixels[size_t(y) * right.width], right.width,
+                    &image.pixels[size_t(y) * image.width + left.width]);
+    return image;
+}
+
 }  // namespace
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
@@ -96,12 +111,14 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     const auto planStart = std::chrono::steady_clock::now();
     const ShadowFrame plan = ShadowPlanner::plan(s.scene, view, settings.shadows);
     const PackedLights lights = packLights(s.scene, [&](uint32_t i) {
-        const int32_t slot = plan.directional.slotOfSceneLight.at(i);
+        const bool directional = s.scene.lights[i].type == LightType::Directional;
+        const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
         return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
     });
     result.stats.cpuPlanMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - planStart).count();
     result.stats.warnings = lights.warnings;
+    result.stats.warnings.insert(result.stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
     result.stats.shadowStatsJson = shadowStatsJson(plan);
 
     const bool screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
@@ -110,10 +127,15 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     if (!lights.lights.empty())
         s.device.writeBuffer(s.lightBuffer, lights.lights.data(), lights.lights.size() * sizeof(lights.lights[0]));
     s.device.writeBuffer(s.directionalShadowBuffer, &plan.directional.gpu, sizeof(plan.directional.gpu));
+    s.device.writeBuffer(s.otherShadowBuffer, &plan.other.gpu, sizeof(plan.other.gpu));
 
     const uint32_t atlasSize = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
     const gpu::TextureHandle atlas = s.device.createTexture(
         {atlasSize, atlasSize, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "directional atlas"});
+    const uint32_t otherAtlasSize = plan.other.atlas.tileCount > 0 ? plan.other.atlas.atlasSize : 1u;
+    const gpu::TextureHandle otherAtlas = s.device.createTexture({otherAtlasSize, otherAtlasSize, gpu::Format::D32Float,
+                                                                  gpu::kTextureDepthTarget | gpu::kTextureSampled, 1,
+                                                                  "other atlas"});
     const gpu::Format colorFormat = request.output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
     const gpu::TextureHandle color = s.device.createTexture(
         {view.width, view.height, colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
@@ -127,6 +149,9 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     commands.beginTimer("shadows.directional");
     s.casterPass.record(commands, s.scene, plan.directional.tiles, atlas, atlasSize, s.frameBuffer, s.lightBuffer);
     commands.endTimer();
+    commands.beginTimer("shadows.other");
+    s.casterPass.record(commands, s.scene, plan.other.tiles, otherAtlas, otherAtlasSize, s.frameBuffer, s.lightBuffer);
+    commands.endTimer();
 
     MainPassInputs inputs;
     inputs.bindings = sceneBindings();
@@ -135,6 +160,10 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     inputs.writes = sceneDescriptorWrites(s.gpuScene, s.frameBuffer, s.lightBuffer);
     inputs.writes.push_back({5, s.directionalShadowBuffer, {}, {}});
     inputs.writes.push_back({6, {}, atlas, s.shadowSampler});
+    inputs.bindings.push_back({7, gpu::DescriptorType::UniformBuffer});
+    inputs.bindings.push_back({8, gpu::DescriptorType::SampledTexture});
+    inputs.writes.push_back({7, s.otherShadowBuffer, {}, {}});
+    inputs.writes.push_back({8, {}, otherAtlas, s.shadowSampler});
     gpu::TextureHandle screenShadows = noScreenShadows;
     commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
     if (screenSpace) screenShadows = s.screenSpacePass.record(commands, s.scene, view, inputs, 0);
@@ -152,15 +181,21 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     // the opaque surface, so blended draws are left out of them.
     if (request.output == OutputMode::ShadowAov) std::fill(target.clearColor, target.clearColor + 4, 1.0f);
     target.drawBlended = request.output == OutputMode::Color;
+    // Seed 001 §6.4: the lit pass is specialized to the spot/point shadow kinds this frame uses.
+    target.specialization = {{2, plan.other.specializationMode}, {3, uint32_t(settings.shadows.spot.filter)}};
     s.mainPass.record(commands, s.scene, view, inputs, target);
     commands.endTimer();
     s.device.submitAndWait(commands);
 
     result.stats.gpuTimings = s.device.lastTimings();
     result.image = toOutputImage(s.device.readTexture(color, gpu::TextureState::ColorTarget), request.output);
-    if (request.captureAtlas) result.atlas = depthToGray(s.device.readTexture(atlas, gpu::TextureState::ShaderRead));
+    if (request.captureAtlas) {
+        result.atlas = depthToGray(s.device.readTexture(atlas, gpu::TextureState::ShaderRead));
+        if (plan.other.atlas.tileCount > 0)
+            result.atlas = sideBySide(result.atlas, depthToGray(s.device.readTexture(otherAtlas, gpu::TextureState::ShaderRead)));
+    }
     s.screenSpacePass.releaseTargets();
-    for (gpu::TextureHandle t : {atlas, color, depth, noScreenShadows}) s.device.destroy(t);
+    for (gpu::TextureHandle t : {atlas, otherAtlas, color, depth, noScreenShadows}) s.device.destroy(t);
     return result;
 }
 

@@ -38,6 +38,10 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene, co
 
     for (const ShadowTile& tile : tiles) {
         const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
+        // Other-light tiles keep an empty border: casters are drawn through a smaller scissor (seed 001 §5.5).
+        const uint32_t inset = tile.scissorInset;
+        const gpu::Rect scissor{rect.x + int32_t(inset), rect.y + int32_t(inset), rect.width - 2 * inset,
+                                rect.height - 2 * inset};
         for (int alphaPass = 0; alphaPass < 2; ++alphaPass) {
             bool bound = false;
             for (uint32_t instanceIndex : tile.casterInstances) {
@@ -51,7 +55,7 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene, co
                         commands.bindTextureTable(scene_.textureTable());
                         commands.bindIndexBuffer(scene_.indexBuffer());
                         commands.setViewport(rect);
-                        commands.setScissor(rect);
+                        commands.setScissor(scissor);
                         commands.setDepthBias(0.0f, tile.slopeScaleBias);
                         commands.pushConstants(&tile.clipFromWorld, sizeof(glm::mat4));
                         bound = true;

@@ -18,6 +18,31 @@ std::string shadowStatsJson(const ShadowFrame& plan) {
     directional["casterDraws"] = stats.casterDraws;
     directional["skippedByCascadeBlendCulling"] = stats.skippedByBlendCulling;
     json["directional"] = directional;
+
+    // Spot and point lights (seed 001): a spot light takes 1 tile, a point light 6, at most 16 tiles.
+    const OtherShadowPlan& otherPlan = plan.other;
+    nlohmann::json other;
+    other["lightsConsidered"] = otherPlan.lightsConsidered;
+    other["lightsReserved"] = otherPlan.lights.size();
+    std::vector<uint32_t> reservedLights, castersPerTile;
+    for (const ReservedOtherLight& light : otherPlan.lights) reservedLights.push_back(light.sceneLightIndex);
+    uint32_t casterDraws = 0;
+    for (const ShadowTile& tile : otherPlan.tiles) {
+        castersPerTile.push_back(uint32_t(tile.casterInstances.size()));
+        casterDraws += uint32_t(tile.casterInstances.size());
+    }
+    other["reservedLights"] = reservedLights;
+    other["lightsDropped"] = otherPlan.droppedLights.size();
+    other["droppedLights"] = otherPlan.droppedLights;
+    other["atlasSize"] = otherPlan.atlas.atlasSize;
+    other["tiles"] = otherPlan.atlas.tileCount;
+    other["maxTiles"] = kMaxOtherShadowTiles;
+    other["split"] = otherPlan.atlas.split;
+    other["tileSize"] = otherPlan.atlas.tileSize;
+    other["tileBorder"] = otherPlan.atlas.border;
+    other["castersPerTile"] = castersPerTile;
+    other["casterDraws"] = casterDraws;
+    json["other"] = other;
     json["shadowCasters"] = stats.shadowCasters;
     return json.dump();
 }

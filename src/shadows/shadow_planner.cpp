@@ -4,6 +4,7 @@
 
 #include "shadows/caster_culling.h"
 #include "shadows/shadow_gpu_packing.h"
+#include "shadows/spot_shadow_planner.h"
 
 namespace penumbra {
 
@@ -83,6 +84,7 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
         stats.casterDraws += uint32_t(tile.casterInstances.size());
     }
     directional.gpu = packDirectionalShadowData(directional, settings, distance);
+    frame.other = planOtherShadows(scene, camera, settings, casters, distance);
     return frame;
 }
 

@@ -12,30 +12,35 @@
 // - slope-scale bias: depthBiasSlopeFactor = slopeScaleBias (the light's shadowBias, seed 000 §4.4),
 //   constant bias 0; the lit pass adds the normal bias instead (seed 000 §4.3).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "scene/camera_view.h"
 #include "scene/scene.h"
+#include "other_shadow_structs.h"
 #include "shadow_structs.h"
 #include "shadows/atlas_layout.h"
 #include "shadows/cascades.h"
 #include "shadows/light_reservation.h"
 #include "shadows/shadow_settings.h"
+#include "shadows/spot_atlas_layout.h"
+#include "shadows/spot_reservation.h"
 
 namespace penumbra {
 
 // One shadow map inside an atlas: what one depth pass renders.
 struct ShadowTile {
     uint32_t lightSlot = 0;     // index into ShadowFrame::directionalLights
-    uint32_t cascadeIndex = 0;  // index into ShadowFrame::cascades
-    AtlasTileRect rect;         // viewport = scissor, in atlas pixels (top-left origin)
+    uint32_t cascadeIndex = 0;  // index into ShadowFrame::cascades; a point light's cube face (other atlas)
+    AtlasTileRect rect;         // viewport, in atlas pixels (top-left origin)
+    uint32_t scissorInset = 0;  // the scissor is rect shrunk by this many texels per side (seed 001 §5.5)
     glm::mat4 lightFromWorld{1.0f};
     glm::mat4 clipFromLight{1.0f};
     glm::mat4 clipFromWorld{1.0f};   // what the caster pass's vertex shader uses
     glm::mat4 atlasFromWorld{1.0f};  // world -> (atlas u, v, depth); also packed for the lit pass
-    float wsTexelSize = 0.0f;        // world size of one texel of this tile
+    float wsTexelSize = 0.0f;        // world size of one texel of this tile (perspective: at distance 1)
     float nearDistance = 0.0f;       // light-view distance from the sphere centre to the near plane
     float farDistance = 0.0f;        // ... and to the far plane (the sphere radius)
     float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor
@@ -61,12 +66,17 @@ struct DirectionalShadowPlan {
     gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
 };
 
-// Spot and point light shadows (seed 001) are planned by a later module into their own atlas; this is
-// where their tiles go. Empty for now.
+// Spot and point light shadows (seed 001) in their own atlas, planned by shadows/spot_shadow_planner.
 struct OtherShadowPlan {
-    AtlasLayout atlas;
-    std::vector<ShadowTile> tiles;
-    std::vector<int32_t> slotOfSceneLight;
+    SpotAtlasLayout atlas;                   // tileCount 0 when no light is reserved
+    std::vector<ReservedOtherLight> lights;  // slots, in scene light order
+    std::vector<ShadowTile> tiles;           // tile i: lights[slot].firstTile + face (faces only for points)
+    std::vector<int32_t> slotOfSceneLight;   // per Scene::lights entry: slot, or -1
+    std::vector<uint32_t> droppedLights;     // scene indices that wanted shadows but did not fit
+    std::vector<std::string> warnings;       // one line per dropped light
+    uint32_t lightsConsidered = 0;           // spot and point lights in the scene
+    uint32_t specializationMode = 0;         // gpu_data::kOtherShadowsHard | kOtherShadowsSoft bits
+    gpu_data::OtherShadowData gpu{};         // packed for the lit pass
 };
 
 struct ShadowFrame {

@@ -83,6 +83,7 @@ void validateShadowSettings(const ShadowSettings& settings) {
     checkEnum("shadows.directional.cascadeBlend", int(directional.cascadeBlend), 3);
     checkAtlasSize("shadows.spot.atlasSize", settings.spot.atlasSize);
     checkEnum("shadows.spot.filter", int(settings.spot.filter), 4);
+    checkFloatRange("shadows.spot.depthBias", settings.spot.depthBias, 0.0f, 1.0f, "0..1");
 }
 
 }  // namespace penumbra

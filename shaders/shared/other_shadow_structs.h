@@ -1,0 +1,53 @@
+// GPU data of the spot and point light shadows (the "other" atlas), shared by C++
+// (shadows/spot_shadow_planner) and GLSL (shadows.glsl otherShadow). One uniform block per frame.
+//
+// Same depth convention as DirectionalShadowData (see shadow_structs.h): Vulkan clip space, standard
+// depth 0 at the near plane, atlas cleared to 1, sampled with compare op LESS_OR_EQUAL. The projections
+// are perspective: atlasFromWorld gives homogeneous (u w, v w, depth w, w); divide by w before sampling.
+#ifndef PENUMBRA_OTHER_SHADOW_STRUCTS_H
+#define PENUMBRA_OTHER_SHADOW_STRUCTS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+PENUMBRA_CONST(uint, kMaxOtherShadowTiles, 16u)
+PENUMBRA_CONST(uint, kMaxShadowedOtherLights, 16u)
+
+// Specialization constant "other shadow mode" of the lit pass (seed 001 §6.4 _SHADOWS_HARD /
+// _SHADOWS_SOFT): bit 0 = some reserved light is hard, bit 1 = some is soft; 0 = no spot/point shadows.
+PENUMBRA_CONST(uint, kOtherShadowsHard, 1u)
+PENUMBRA_CONST(uint, kOtherShadowsSoft, 2u)
+
+struct OtherShadowData {
+    // Per tile: world -> homogeneous (atlas u, atlas v, depth, w). A point light's face f is tile
+    // lights[slot].y + f, faces ordered +X, -X, +Y, -Y, +Z, -Z.
+    mat4 atlasFromWorld[16];
+    // Per tile: (min u, min v, max u, max v) where a filter may be centred without reading outside the
+    // tile's drawn interior (the 4-texel border of seed 001 §5.5 and the filter's reach excluded).
+    vec4 tileBounds[16];
+    // Per shadowed light slot: x = strength, y = first tile, z = 1 soft / 0 hard, w = 1 point / 0 spot.
+    vec4 lights[16];
+    // Per slot: xyz = light position; w = normal bias in world units per unit of distance along the
+    // tile's axis (normalBias x filter texels x sqrt(2) x world texel size at distance 1).
+    vec4 lightPositions[16];
+    // Per slot: xyz = spot axis (unit, the direction the light travels; unused for points), w = constant
+    // clip-space depth bias subtracted from the receiver's clip z before the divide (seed 001 §4.2).
+    vec4 lightDirections[16];
+    // x = 1 / shadow distance, y = 1 / distanceFade: the directional lights' distance fade (seed 000 §3.7).
+    vec4 fade;
+    // x = shadowed light count, y = soft filter (kShadowFilter*), z = tiles used, w = split.
+    uvec4 config;
+    // x = atlas size in texels, y = 1 / atlas size, z = tile size, w = 1 / tile size.
+    vec4 atlasSize;
+};
+PENUMBRA_CHECK_SIZE(OtherShadowData, 2096)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, tileBounds, 1024)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, lights, 1280)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightPositions, 1536)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightDirections, 1792)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, fade, 2048)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, config, 2064)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, atlasSize, 2080)
+
+PENUMBRA_GPU_NAMESPACE_END
+#endif

@@ -1,0 +1,56 @@
+#include "shadows/spot_atlas_layout.h"
+
+#include "core/error.h"
+
+namespace penumbra {
+
+SpotAtlasLayout makeSpotAtlasLayout(uint32_t atlasSize, uint32_t tileCount) {
+    PENUMBRA_ASSERT(tileCount <= kMaxOtherShadowTiles);
+    SpotAtlasLayout layout;
+    layout.atlasSize = atlasSize;
+    layout.tileCount = tileCount;
+    layout.split = tileCount <= 1 ? 1u : tileCount <= 4 ? 2u : tileCount <= 9 ? 3u : 4u;  // seed 001 §6.2
+    layout.tileSize = atlasSize / layout.split;
+    layout.border = layout.split > 1 ? kOtherTileBorder : 0u;  // seed 001 §6.3
+    return layout;
+}
+
+AtlasTileRect spotTileViewport(const SpotAtlasLayout& layout, uint32_t tileIndex) {
+    AtlasTileRect rect;
+    rect.offset = glm::uvec2(tileIndex % layout.split, tileIndex / layout.split) * layout.tileSize;
+    rect.size = layout.tileSize;
+    return rect;
+}
+
+AtlasTileRect spotTileScissor(const SpotAtlasLayout& layout, uint32_t tileIndex) {
+    AtlasTileRect rect = spotTileViewport(layout, tileIndex);
+    rect.offset += glm::uvec2(layout.border);
+    rect.size -= 2 * layout.border;
+    return rect;
+}
+
+glm::mat4 spotAtlasFromClip(const SpotAtlasLayout& layout, uint32_t tileIndex) {
+    const AtlasTileRect rect = spotTileViewport(layout, tileIndex);
+    const float atlas = float(layout.atlasSize);
+    const float scale = float(rect.size) / atlas;
+    // Column-major m[column][row]. u = (x / w) * 0.5 * scale + offset, so the homogeneous u is
+    // 0.5 * scale * x + offset * w: the offset sits in the column that multiplies the clip w, and the
+    // divide by w happens after this matrix (seed 001 §3.1 divides shadowPos by w).
+    const glm::vec2 offset = glm::vec2(rect.offset) / atlas + 0.5f * scale;
+    glm::mat4 m(1.0f);
+    m[0][0] = 0.5f * scale;
+    m[1][1] = 0.5f * scale;
+    m[3][0] = offset.x;
+    m[3][1] = offset.y;
+    return m;
+}
+
+glm::vec4 spotTileSampleBounds(const SpotAtlasLayout& layout, uint32_t tileIndex, float reachTexels) {
+    const AtlasTileRect scissor = spotTileScissor(layout, tileIndex);
+    const float atlas = float(layout.atlasSize);
+    const glm::vec2 min = (glm::vec2(scissor.offset) + reachTexels) / atlas;
+    const glm::vec2 max = (glm::vec2(scissor.offset) + float(scissor.size) - reachTexels) / atlas;
+    return glm::vec4(min, max);
+}
+
+}  // namespace penumbra

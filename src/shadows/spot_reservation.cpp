@@ -1,0 +1,129 @@
+#include "shadows/spot_reservation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "shadows/spot_atlas_layout.h"
+#include "shadows/spot_culling.h"
+#include "shadows/spot_projection.h"
+
+namespace penumbra {
+
+float otherShadowFarDistance(const Light& light, const Aabb& wsSceneBounds) {
+    const float near = std::max(light.shadowNearPlane, kMinOtherNearPlane);
+    float far = light.range;
+    if (!(far > 0.0f)) {
+        far = 0.0f;
+        if (wsSceneBounds.valid()) {
+            const glm::vec3 offset = glm::max(glm::abs(wsSceneBounds.min - light.wsPosition),
+                                              glm::abs(wsSceneBounds.max - light.wsPosition));
+            far = glm::length(offset);
+        }
+    }
+    return std::max(far, 2.0f * near);
+}
+
+float screenInfluence(const glm::vec3& wsCenter, float radius, const CameraView& camera) {
+    const glm::vec3 c = glm::vec3(camera.viewFromWorld * glm::vec4(wsCenter, 1.0f));
+    const float tanY = std::tan(0.5f * camera.yfov);
+    const float tanX = tanY * camera.aspect;
+    // Side planes through the eye (view looks along -Z): outward normals, the sphere is outside when its
+    // centre is farther than the radius beyond any of them, or wholly behind the near plane.
+    const glm::vec3 normals[4] = {glm::normalize(glm::vec3(1, 0, tanX)), glm::normalize(glm::vec3(-1, 0, tanX)),
+                                  glm::normalize(glm::vec3(0, 1, tanY)), glm::normalize(glm::vec3(0, -1, tanY))};
+    for (const glm::vec3& n : normals)
+        if (glm::dot(n, c) > radius) return 0.0f;
+    const float depth = -c.z;
+    if (depth + radius < camera.zNear) return 0.0f;
+    if (depth - radius < camera.zNear) return 1.0f;  // reaches the camera: treat as covering the view
+    glm::vec2 lo(INFINITY), hi(-INFINITY);
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p = c + radius * glm::vec3(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1);
+        const glm::vec2 ndc(p.x / (-p.z * tanX), p.y / (-p.z * tanY));
+        lo = glm::min(lo, ndc);
+        hi = glm::max(hi, ndc);
+    }
+    const glm::vec2 size = glm::max(glm::min(hi, glm::vec2(1.0f)) - glm::max(lo, glm::vec2(-1.0f)), glm::vec2(0.0f));
+    return size.x * size.y / 4.0f;
+}
+
+namespace {
+
+bool anyCasterInShadowFrustum(const Scene& scene, const std::vector<uint32_t>& casters, const Light& light,
+                              float near, float far) {
+    if (light.type == LightType::Point) {
+        // The six faces together cover every direction: casters meeting the range cube.
+        const Aabb cube{light.wsPosition - glm::vec3(far), light.wsPosition + glm::vec3(far)};
+        for (uint32_t index : casters) {
+            const Aabb& b = scene.instances[index].wsBounds;
+            if (glm::all(glm::lessThanEqual(b.min, cube.max)) && glm::all(glm::greaterThanEqual(b.max, cube.min)))
+                return true;
+        }
+        return false;
+    }
+    const float tanHalf = std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
+    const glm::mat4 clipFromWorld = perspectiveClipFromLight(tanHalf, near, far) *
+                                    perspectiveLightFromWorld(light.wsPosition, light.wsDirection);
+    return !frustumCasters(scene, casters, clipFromWorld, light.wsPosition).empty();
+}
+
+std::string lightName(const Scene& scene, uint32_t index) {
+    return "light " + std::to_string(index) + " '" + scene.lights[index].name + "'";
+}
+
+}  // namespace
+
+OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& camera,
+                                          const std::vector<uint32_t>& casters) {
+    OtherLightReservation result;
+    std::vector<ReservedOtherLight> candidates;
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        if (light.type == LightType::Directional) continue;
+        ++result.considered;
+        if (light.shadows == LightShadows::None || !(light.shadowStrength > 0.0f)) continue;
+        ReservedOtherLight entry;
+        entry.sceneLightIndex = i;
+        entry.point = light.type == LightType::Point;
+        entry.soft = light.shadows == LightShadows::Soft;
+        entry.strength = std::min(light.shadowStrength, 1.0f);
+        entry.normalBias = light.shadowNormalBias;
+        entry.slopeScaleBias = light.shadowBias;
+        entry.nearDistance = std::max(light.shadowNearPlane, kMinOtherNearPlane);
+        entry.farDistance = otherShadowFarDistance(light, scene.wsBounds);
+        if (!anyCasterInShadowFrustum(scene, casters, light, entry.nearDistance, entry.farDistance)) continue;
+        entry.influence = screenInfluence(light.wsPosition, entry.farDistance, camera);
+        if (entry.influence <= 0.0f) continue;  // lights nothing in view
+        candidates.push_back(entry);
+    }
+
+    std::vector<size_t> order(candidates.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return candidates[a].influence > candidates[b].influence; });
+    std::vector<bool> kept(candidates.size(), false);
+    for (size_t index : order) {
+        const uint32_t tiles = candidates[index].tileCount();
+        if (result.tilesUsed + tiles > kMaxOtherShadowTiles) continue;
+        result.tilesUsed += tiles;
+        kept[index] = true;
+    }
+    uint32_t nextTile = 0;
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        if (!kept[i]) {
+            const uint32_t index = candidates[i].sceneLightIndex;
+            result.droppedLights.push_back(index);
+            result.warnings.push_back(lightName(scene, index) + " casts no shadow: more than " +
+                                      std::to_string(kMaxOtherShadowTiles) +
+                                      " spot/point shadow tiles wanted (a spot light takes 1, a point light 6)");
+            continue;
+        }
+        candidates[i].firstTile = nextTile;
+        nextTile += candidates[i].tileCount();
+        result.lights.push_back(candidates[i]);
+    }
+    return result;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,108 @@
+#include "shadows/spot_shadow_planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shadows/spot_culling.h"
+#include "shadows/spot_projection.h"
+
+namespace penumbra {
+
+float otherShadowFilterReach(bool soft, ShadowFilter filter) { return soft ? filterSize(filter) + 1.0f : 1.0f; }
+
+namespace {
+
+struct LightTiles {
+    float tanHalfFov = 1.0f;
+    float reach = 1.0f;  // filter reach in texels
+};
+
+// The frustum's half-angle: the cone (spot) or 45° (point face) plus a margin of the tile border and
+// twice the filter reach (the second reach covers the normal-bias offset), so every texel a filter at
+// the cone's edge reads was rendered.
+LightTiles lightTileShape(const Light& light, const ReservedOtherLight& reserved, const SpotAtlasLayout& layout,
+                          ShadowFilter filter) {
+    LightTiles shape;
+    shape.reach = otherShadowFilterReach(reserved.soft, filter);
+    const float coneTangent =
+        reserved.point ? 1.0f : std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
+    shape.tanHalfFov = tanHalfFovWithMargin(coneTangent, layout.tileSize, float(layout.border) + 2.0f * shape.reach);
+    return shape;
+}
+
+ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& casters, const SpotAtlasLayout& layout,
+                         const ReservedOtherLight& reserved, const LightTiles& shape, uint32_t slot, uint32_t face,
+                         const glm::vec3& wsDirection) {
+    const Light& light = scene.lights[reserved.sceneLightIndex];
+    const uint32_t tileIndex = reserved.firstTile + face;
+    ShadowTile tile;
+    tile.lightSlot = slot;
+    tile.cascadeIndex = face;
+    tile.rect = spotTileViewport(layout, tileIndex);
+    tile.scissorInset = layout.border;
+    tile.lightFromWorld = perspectiveLightFromWorld(light.wsPosition, wsDirection);
+    tile.nearDistance = reserved.nearDistance;
+    tile.farDistance = reserved.farDistance;
+    tile.clipFromLight = perspectiveClipFromLight(shape.tanHalfFov, tile.nearDistance, tile.farDistance);
+    tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
+    tile.atlasFromWorld = spotAtlasFromClip(layout, tileIndex) * tile.clipFromWorld;
+    tile.wsTexelSize = 2.0f * shape.tanHalfFov / float(layout.tileSize);
+    tile.slopeScaleBias = reserved.slopeScaleBias;
+    tile.depthClamp = true;  // pancaking onto the near plane, as for directional tiles
+    tile.casterInstances = frustumCasters(scene, casters, tile.clipFromWorld, light.wsPosition);
+    return tile;
+}
+
+void packLight(gpu_data::OtherShadowData& data, const Light& light, const ReservedOtherLight& reserved,
+               const LightTiles& shape, const SpotAtlasLayout& layout, float depthBias, uint32_t slot) {
+    data.lights[slot] = glm::vec4(reserved.strength, float(reserved.firstTile), reserved.soft ? 1.0f : 0.0f,
+                                  reserved.point ? 1.0f : 0.0f);
+    // World texel size grows linearly with the distance d along the tile's axis: 2 d tan(fov/2) / tileSize.
+    // The normal bias pushes the surface by normalBias filter texels along the diagonal (seed 000 §4.3,
+    // §4.6 scale it the same way for cascades).
+    const float texelPerDistance = 2.0f * shape.tanHalfFov / float(layout.tileSize);
+    const float normalBiasPerDistance = reserved.normalBias * shape.reach * 1.4142136f * texelPerDistance;
+    data.lightPositions[slot] = glm::vec4(light.wsPosition, normalBiasPerDistance);
+    data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), depthBias);
+}
+
+}  // namespace
+
+OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                                 const std::vector<uint32_t>& casters, float shadowDistance) {
+    OtherShadowPlan plan;
+    OtherLightReservation reservation = reserveOtherShadows(scene, camera, casters);
+    plan.lights = std::move(reservation.lights);
+    plan.droppedLights = std::move(reservation.droppedLights);
+    plan.warnings = std::move(reservation.warnings);
+    plan.lightsConsidered = reservation.considered;
+    plan.slotOfSceneLight.assign(scene.lights.size(), -1);
+    plan.atlas = makeSpotAtlasLayout(settings.spot.atlasSize, reservation.tilesUsed);
+
+    gpu_data::OtherShadowData& data = plan.gpu;
+    for (uint32_t slot = 0; slot < plan.lights.size(); ++slot) {
+        const ReservedOtherLight& reserved = plan.lights[slot];
+        const Light& light = scene.lights[reserved.sceneLightIndex];
+        plan.slotOfSceneLight[reserved.sceneLightIndex] = int32_t(slot);
+        plan.specializationMode |= reserved.soft ? gpu_data::kOtherShadowsSoft : gpu_data::kOtherShadowsHard;
+        const LightTiles shape = lightTileShape(light, reserved, plan.atlas, settings.spot.filter);
+        for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
+            const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
+            ShadowTile tile = planOtherTile(scene, casters, plan.atlas, reserved, shape, slot, face, direction);
+            const uint32_t tileIndex = reserved.firstTile + face;
+            data.atlasFromWorld[tileIndex] = tile.atlasFromWorld;
+            data.tileBounds[tileIndex] = spotTileSampleBounds(plan.atlas, tileIndex, shape.reach);
+            plan.tiles.push_back(std::move(tile));
+        }
+        packLight(data, light, reserved, shape, plan.atlas, settings.spot.depthBias, slot);
+    }
+    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, 0.0f, shadowDistance);
+    data.config = glm::uvec4(uint32_t(plan.lights.size()), uint32_t(settings.spot.filter), plan.atlas.tileCount,
+                             plan.atlas.split);
+    const float atlasSize = float(std::max(plan.atlas.atlasSize, 1u));
+    const float tileSize = float(std::max(plan.atlas.tileSize, 1u));
+    data.atlasSize = glm::vec4(atlasSize, 1.0f / atlasSize, tileSize, 1.0f / tileSize);
+    return plan;
+}
+
+}  // namespace penumbra

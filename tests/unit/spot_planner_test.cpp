@@ -1,0 +1,114 @@
+// The spot/point part of the shadow plan: tiles, matrices into the right tile, packed GPU data.
+#include <gtest/gtest.h>
+
+#include "shadows/shadow_planner.h"
+#include "shadows/spot_projection.h"
+#include "spot_test_scenes.h"
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+ShadowFrame planFor(const Scene& scene, const ShadowSettings& settings = {}) {
+    return ShadowPlanner::plan(scene, resolveCameraView(scene, 128, 128), settings);
+}
+
+glm::vec3 toAtlas(const glm::mat4& atlasFromWorld, const glm::vec3& wsPoint) {
+    const glm::vec4 h = atlasFromWorld * glm::vec4(wsPoint, 1.0f);
+    return glm::vec3(h) / h.w;
+}
+
+bool insideScissor(const OtherShadowPlan& plan, uint32_t tileIndex, const glm::vec2& uv) {
+    const AtlasTileRect scissor = spotTileScissor(plan.atlas, tileIndex);
+    const glm::vec2 texel = uv * float(plan.atlas.atlasSize);
+    return texel.x > float(scissor.offset.x) && texel.y > float(scissor.offset.y) &&
+           texel.x < float(scissor.offset.x + scissor.size) && texel.y < float(scissor.offset.y + scissor.size);
+}
+
+}  // namespace
+
+TEST(SpotShadowPlan, EveryLightCountFromOneToSixteenMapsEachConeIntoItsOwnTile) {
+    for (uint32_t count = 1; count <= 16; ++count) {
+        const Scene scene = spotGridScene(count);
+        const OtherShadowPlan plan = planFor(scene).other;
+        ASSERT_EQ(plan.tiles.size(), count);
+        ASSERT_EQ(plan.atlas.tileCount, count);
+        for (uint32_t i = 0; i < count; ++i) {
+            const ShadowTile& tile = plan.tiles[i];
+            const Light& light = scene.lights[plan.lights[tile.lightSlot].sceneLightIndex];
+            EXPECT_EQ(tile.rect.offset, spotTileViewport(plan.atlas, i).offset);
+            EXPECT_EQ(tile.scissorInset, count > 1 ? 4u : 0u);
+            // The light's axis lands in the tile's centre; a point on the cone's edge stays inside the
+            // scissored interior.
+            const glm::vec3 axisPoint = light.wsPosition + 3.0f * light.wsDirection;
+            const glm::vec3 centre = toAtlas(tile.atlasFromWorld, axisPoint);
+            const AtlasTileRect rect = spotTileViewport(plan.atlas, i);
+            const glm::vec2 expected = (glm::vec2(rect.offset) + 0.5f * float(rect.size)) / float(plan.atlas.atlasSize);
+            EXPECT_NEAR(centre.x, expected.x, 1e-4f) << count << " lights, tile " << i;
+            EXPECT_NEAR(centre.y, expected.y, 1e-4f) << count << " lights, tile " << i;
+            EXPECT_GT(centre.z, 0.0f);
+            EXPECT_LT(centre.z, 1.0f);
+            const glm::vec3 edge = light.wsPosition + 3.0f * glm::vec3(std::sin(light.outerConeAngle), -std::cos(light.outerConeAngle), 0.0f);
+            EXPECT_TRUE(insideScissor(plan, i, glm::vec2(toAtlas(tile.atlasFromWorld, edge))))
+                << count << " lights, tile " << i;
+            EXPECT_EQ(plan.gpu.atlasFromWorld[i], tile.atlasFromWorld);
+        }
+    }
+}
+
+TEST(SpotShadowPlan, TileCastersAreThoseInsideTheLightsFrustum) {
+    const Scene scene = spotGridScene(2);  // instances: ground, box0, box1
+    const OtherShadowPlan plan = planFor(scene).other;
+    ASSERT_EQ(plan.tiles.size(), 2u);
+    EXPECT_EQ(plan.tiles[0].casterInstances, (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(plan.tiles[1].casterInstances, (std::vector<uint32_t>{0, 2}));
+}
+
+TEST(SpotShadowPlan, PackedLightDataCarriesStrengthKindAndBias) {
+    Scene scene = spotGridScene(2);
+    scene.lights[0].shadows = LightShadows::Hard;
+    scene.lights[1].shadowStrength = 0.5f;
+    scene.lights[1].shadowNormalBias = 2.0f;
+    ShadowSettings settings;
+    settings.spot.filter = ShadowFilter::PCF3x3;
+    const OtherShadowPlan plan = planFor(scene, settings).other;
+    EXPECT_EQ(plan.gpu.lights[0], glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+    EXPECT_EQ(plan.gpu.lights[1], glm::vec4(0.5f, 1.0f, 1.0f, 0.0f));
+    EXPECT_EQ(plan.specializationMode, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft);
+    EXPECT_EQ(plan.gpu.config, glm::uvec4(2u, uint32_t(ShadowFilter::PCF3x3), 2u, 2u));
+    // Normal bias per unit distance = normalBias x reach x sqrt(2) x 2 tan(fov/2) / tileSize.
+    const float texel = plan.tiles[1].wsTexelSize;
+    EXPECT_NEAR(plan.gpu.lightPositions[1].w, 2.0f * 2.0f * 1.4142136f * texel, 1e-6f);
+    EXPECT_NEAR(plan.gpu.lightPositions[0].w, 1.0f * 1.0f * 1.4142136f * plan.tiles[0].wsTexelSize, 1e-6f);
+    EXPECT_EQ(plan.slotOfSceneLight, (std::vector<int32_t>{0, 1}));
+}
+
+TEST(SpotShadowPlan, NoShadowedOtherLightGivesNoTilesAndModeZero) {
+    const OtherShadowPlan plan = planFor(spotGridScene(3, LightShadows::None)).other;
+    EXPECT_TRUE(plan.tiles.empty());
+    EXPECT_EQ(plan.atlas.tileCount, 0u);
+    EXPECT_EQ(plan.specializationMode, 0u);
+    EXPECT_EQ(plan.gpu.config.x, 0u);
+}
+
+TEST(SpotShadowPlan, PointLightHasSixFaceTilesEachSeeingItsOwnDirection) {
+    Scene scene = spotGridScene(1);
+    scene.lights.push_back(makePointLight({0.0f, 3.0f, 0.0f}, 50.0f, 10.0f));
+    const OtherShadowPlan plan = planFor(scene).other;
+    ASSERT_EQ(plan.tiles.size(), 7u);
+    EXPECT_EQ(plan.atlas.split, 3u);
+    const auto& faces = pointLightFaceDirections();
+    for (uint32_t face = 0; face < 6; ++face) {
+        const ShadowTile& tile = plan.tiles[1 + face];
+        EXPECT_EQ(tile.cascadeIndex, face);
+        const glm::vec3 point = glm::vec3(0.0f, 3.0f, 0.0f) + 2.0f * faces[face];
+        const glm::vec2 uv(toAtlas(tile.atlasFromWorld, point));
+        const AtlasTileRect rect = spotTileViewport(plan.atlas, 1 + face);
+        const glm::vec2 expected = (glm::vec2(rect.offset) + 0.5f * float(rect.size)) / float(plan.atlas.atlasSize);
+        EXPECT_NEAR(uv.x, expected.x, 1e-4f) << "face " << face;
+        EXPECT_NEAR(uv.y, expected.y, 1e-4f) << "face " << face;
+    }
+    EXPECT_EQ(plan.gpu.lights[1].w, 1.0f);
+    EXPECT_EQ(plan.gpu.lights[1].y, 1.0f);
+}
