@@ -2,6 +2,7 @@
 // pixels using lower indices (seed 000 §3.4-§3.5), and the atlas dump shows the tile layout of
 // seed 000 §3.2 (split 1 / 2 / 4, tiles = lights x cascades, untouched texels at the clear depth).
 #include <array>
+#include <cstdio>
 
 #include "directional_shadow_scenes.h"
 
@@ -106,4 +107,67 @@ TEST_F(DirectionalShadowTest, AtlasDumpHasOneTilePerCascadeInTheSplitLayout) {
             }
         }
     }
+}
+
+TEST_F(DirectionalShadowTest, DitherBlendMixesNeighbouringCascadesInTheBlendBands) {
+    // seed 000 §4.8: in cascade i's fade band a pixel samples cascade i + 1 when the interleaved gradient
+    // noise exceeds the blend weight, so a fraction 1 - blend of the band's pixels shows i + 1.
+    const Scene scene = longGround();
+    Settings settings = shadowSettings(40.0f, 4, 512, ShadowFilter::PCF2x2, CascadeBlend::Dither);
+    settings.shadows.directional.cascadeFade = 0.5f;
+    const Image aov = renderScene(scene, RenderRequest{kSize, kSize, OutputMode::CascadesAov, 0, false}, settings).image;
+    const CameraView view = resolveCameraView(scene, kSize, kSize);
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    uint32_t bandPixels = 0, outsideBand = 0, outsideAgree = 0, bandUnexpected = 0;
+    double expectedNext = 0.0, actualNext = 0.0;
+    for (uint32_t y = 0; y < kSize; ++y) {
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const auto wsPosition = visibleGroundPoint(view, x, y, 100.0f, {{{-1.0f, 0.0f, -6.0f}, {1.0f, 2.0f, -4.0f}}});
+            if (!wsPosition) continue;
+            const float viewDepth = -(view.viewFromWorld * glm::vec4(*wsPosition, 1.0f)).z;
+            const CascadeSelection expected = selectCascade(plan.directional.gpu, *wsPosition, viewDepth);
+            const int actual = decodeCascade(aov, x, y);
+            const int index = expected.cascadeIndex < 4 ? int(expected.cascadeIndex) : -1;
+            if (expected.cascadeBlend < 1.0f) {
+                ++bandPixels;
+                expectedNext += 1.0 - expected.cascadeBlend;
+                actualNext += actual == index + 1;
+                bandUnexpected += actual != index && actual != index + 1;
+            } else {
+                ++outsideBand;
+                outsideAgree += actual == index;
+            }
+        }
+    }
+    std::printf("[dither blend] %u band pixels: %.3f show the next cascade, %.3f expected\n", bandPixels,
+                actualNext / bandPixels, expectedNext / bandPixels);
+    ASSERT_GT(bandPixels, 1000u);
+    EXPECT_LT(bandUnexpected, bandPixels / 100);
+    EXPECT_NEAR(actualNext / bandPixels, expectedNext / bandPixels, 0.05) << "share of band pixels in the next cascade";
+    EXPECT_GT(double(outsideAgree) / outsideBand, 0.99);
+}
+
+TEST_F(DirectionalShadowTest, SoftBlendChangesTheShadowOnlyInsideCascadeBlendBands) {
+    const Scene scene = boxesInDepthScene();
+    Settings settings = shadowSettings(40.0f, 4, 1024, ShadowFilter::PCF2x2, CascadeBlend::Hard);
+    settings.shadows.directional.cascadeFade = 0.5f;
+    const Image hard = renderShadowAov(scene, settings, kSize);
+    settings.shadows.directional.cascadeBlend = CascadeBlend::Soft;
+    const Image soft = renderShadowAov(scene, settings, kSize);
+    const CameraView view = resolveCameraView(scene, kSize, kSize);
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    uint32_t changedInBand = 0, changedOutside = 0;
+    for (uint32_t y = 0; y < kSize; ++y) {
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const auto wsPosition = visibleGroundPoint(view, x, y, 40.0f, boxesInDepth());
+            if (!wsPosition || std::abs(int(hard.at(x, y)) - int(soft.at(x, y))) <= 1) continue;
+            const float viewDepth = -(view.viewFromWorld * glm::vec4(*wsPosition, 1.0f)).z;
+            const bool inBand = selectCascade(plan.directional.gpu, *wsPosition, viewDepth).cascadeBlend < 1.0f;
+            (inBand ? changedInBand : changedOutside) += 1;
+        }
+    }
+    std::printf("[soft blend] pixels changed from hard: %u inside blend bands, %u outside\n", changedInBand,
+                changedOutside);
+    EXPECT_GT(changedInBand, 20u);
+    EXPECT_EQ(changedOutside, 0u);
 }

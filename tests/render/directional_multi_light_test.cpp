@@ -55,3 +55,23 @@ TEST_F(DirectionalShadowTest, FifthShadowedDirectionalLightGetsNoShadow) {
     const Image fourth = renderShadowAov(scene, settings, kSize, 3);
     EXPECT_GT(std::count_if(fourth.pixels.begin(), fourth.pixels.end(), [](uint8_t v) { return v < 128; }), 100);
 }
+
+TEST_F(DirectionalShadowTest, SunListedAfterASpotLightCastsItsShadowUnderItsOwnIndex) {
+    // Scene light indices, shadow slots and the lit pass's light order differ: the AOV follows the index.
+    SceneBuilder builder;
+    const uint32_t material = builder.addMaterial(matteMaterial());
+    addGround(builder, 2.0f * kGroundHalf, material);
+    addBox(builder, kBox, material);
+    Light spot = makeSpotLight({0.0f, 5.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 10.0f, 20.0f, 0.5f, 0.4f);
+    spot.shadows = LightShadows::None;
+    builder.addLight(spot);
+    builder.addLight(makeDirectionalLight(kDirections[0], 1.0f));
+    builder.setCamera(makeLookAtCamera({0.0f, 12.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, glm::radians(50.0f)));
+    const Scene scene = builder.build();
+    const Image aov = renderShadowAov(scene, shadowSettings(20.0f, 1, 1024), kSize, 1);
+    const AnalyticShadow expected =
+        analyticGroundShadow(resolveCameraView(scene, kSize, kSize), kGroundHalf, {kBox}, kDirections[0]);
+    const CompareMetrics metrics = compareShadowImages(aov, expected.shadow, expected.validMask);
+    EXPECT_LT(metrics.interiorMisclassifiedPercent, 0.05) << toText(metrics);
+    EXPECT_LT(metrics.misclassifiedPercent, 1.0) << toText(metrics);
+}

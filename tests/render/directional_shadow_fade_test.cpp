@@ -92,3 +92,24 @@ TEST_F(DirectionalShadowTest, ShadowStrengthFollowsTheDistanceFadeInTheFadeBand)
     EXPECT_GT(inBand, 300u);
     EXPECT_GT(partial, 200u);
 }
+
+TEST_F(DirectionalShadowTest, LastCascadeFadesOutTowardItsSphereRim) {
+    // seed 000 §3.8: in the last cascade the strength also falls with the squared distance from the culling
+    // sphere's centre; a wide cascadeFade makes that band cover much of the view.
+    const Scene scene = groundUnderRoof();
+    Settings settings = fadeSettings();
+    settings.shadows.directional.cascadeCount = 2;
+    settings.shadows.directional.cascadeFade = 0.5f;
+    const Image aov = renderShadowAov(scene, settings, kSize);
+    const CameraView view = resolveCameraView(scene, kSize, kSize);
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    uint32_t cascadeFaded = 0;
+    for (const GroundPixel& p : groundPixels(view)) {
+        const CascadeSelection selection = selectCascade(plan.directional.gpu, p.wsPosition, p.viewDepth);
+        const float distanceFade = std::clamp((1.0f - p.viewDepth / kMaxDistance) / kDistanceFade, 0.0f, 1.0f);
+        if (distanceFade < 1.0f || selection.strength <= 0.05f || selection.strength >= 0.95f) continue;
+        ++cascadeFaded;
+        EXPECT_NEAR(float(aov.at(p.x, p.y)), 255.0f * (1.0f - selection.strength), 1.5f) << "view depth " << p.viewDepth;
+    }
+    EXPECT_GT(cascadeFaded, 300u);
+}

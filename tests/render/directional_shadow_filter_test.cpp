@@ -20,9 +20,11 @@ void report(const char* what, const CompareMetrics& m) {
                 static_cast<unsigned long long>(m.validPixels));
 }
 
-// Thresholds set from measurement on lavapipe (see the report printed by each test): errors stay on
-// the shadow edges, a few pixels wide where a far cascade's texels are large.
-constexpr double kMaxMisclassifiedPercent = 2.0;
+// Thresholds set from measurement on lavapipe (see the report printed by each test), with headroom.
+// Measured misclassified / interior: 1-4 cascades 0.28 / 0.73 / 0.15 / 0.13 % and 0 / 0.07 / 0 / 0 %;
+// PCF2x2-7x7 0.13 / 0.27 / 0.42 / 0.57 % and 0 / 0 / 0 / 0.03 %; blends hard / soft / dither 0.27 / 0.30 /
+// 0.30 % and 0 %. The errors stay on the shadow edges, wider where a far cascade's texels are large.
+constexpr double kMaxMisclassifiedPercent = 1.5;
 constexpr double kMaxInteriorMisclassifiedPercent = 0.2;
 
 }  // namespace

@@ -122,14 +122,20 @@ inline AnalyticShadow analyticGroundShadow(const CameraView& view, float groundH
 
 // Boxes spread in depth on an 80 m ground, so that every cascade of a 4-cascade split (maxDistance 40)
 // holds some shadow.
+inline std::vector<Box> boxesInDepth() {
+    std::vector<Box> boxes;
+    for (float z : {3.0f, -2.0f, -8.0f, -16.0f, -26.0f}) {
+        const float half = 0.5f + 0.08f * std::abs(z);
+        boxes.push_back({{-2.5f - half, 0.0f, z - half}, {-2.5f + half, 2.0f * half, z + half}});
+    }
+    return boxes;
+}
+
 inline Scene boxesInDepthScene() {
     SceneBuilder builder;
     const uint32_t material = builder.addMaterial(matteMaterial());
     addGround(builder, 80.0f, material);
-    for (float z : {3.0f, -2.0f, -8.0f, -16.0f, -26.0f}) {
-        const float half = 0.5f + 0.08f * std::abs(z);
-        addBox(builder, {{-2.5f - half, 0.0f, z - half}, {-2.5f + half, 2.0f * half, z + half}}, material);
-    }
+    for (const Box& box : boxesInDepth()) addBox(builder, box, material);
     builder.addLight(makeDirectionalLight({0.8f, -1.0f, 0.35f}, 3.0f));
     builder.setCamera(makeLookAtCamera({0.0f, 5.0f, 9.0f}, {0.0f, 0.0f, -10.0f}, glm::radians(55.0f)));
     return builder.build();
