@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_process.h"
+#include "app/settings.h"
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
 #include "scene/camera_view.h"
@@ -72,7 +73,7 @@ TEST(CliCompare, ReferenceImageComparedWithItselfIsExact) {
     const Scene scene = loadGltfScene(scenePath("thin_wall"));
     const CameraView view = resolveCameraView(scene, 96, 54);
     ReferenceOptions options;
-    options.maxShadowDistance = 100.0f;  // the default settings' shadow distance
+    options.maxShadowDistance = Settings{}.shadows.maxDistance;  // the CLI ran with the default settings
     const ReferenceImages library = traceReferenceShadow(scene, view, 0, false, options);
     EXPECT_EQ(cliMask.pixels, library.validMask.pixels);
     const CompareMetrics self = compareShadowImages(cliShadow, library.shadow, library.validMask);
