@@ -124,15 +124,15 @@ ShadowSample otherShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec3 w
     atlasClip.z -= direction.w;  // constant clip-space depth bias (seed 001 §4.2), 0 by default
     if (atlasClip.w <= 0.0) return ShadowSample(1.0, -1);
     vec3 atlasUvDepth = atlasClip.xyz / atlasClip.w;
+    if (atlasUvDepth.z >= 1.0) return ShadowSample(1.0, -1);  // beyond the far plane (range): no caster drawn there
 
     bool soft = light.z > 0.5;
     vec4 bounds = otherShadows.tileBounds[tile];
-    float reach = soft ? float(kOtherShadowFilter) + 1.0 : 1.0;
-    float border = otherShadows.config.w > 1u ? 4.0 : 0.0;
-    vec2 frustumMargin = vec2((reach + border) * otherShadows.atlasSize.y);
-    if (any(lessThan(atlasUvDepth.xy, bounds.xy - frustumMargin)) || any(greaterThan(atlasUvDepth.xy, bounds.zw + frustumMargin)))
+    // The cone (or a point light's 90° face) lies inside `bounds`, the drawn interior less the filter
+    // reach: a fragment outside it gets no light from this tile, and clamping it onto the tile's edge
+    // would smear edge texels into streaks across the AOV.
+    if (any(lessThan(atlasUvDepth.xy, bounds.xy)) || any(greaterThan(atlasUvDepth.xy, bounds.zw)))
         return ShadowSample(1.0, -1);
-    atlasUvDepth.xy = clamp(atlasUvDepth.xy, bounds.xy, bounds.zw);
     float shadow = filterOtherShadow(atlasUvDepth, soft);
     return ShadowSample(mix(1.0, shadow, strength), -1);
 }

@@ -17,13 +17,14 @@ struct CliRun {
     std::string err;
 };
 
-// `arguments` is appended to the program path as-is (quote paths with spaces yourself).
-inline CliRun runPenumbra(const std::string& arguments) {
+// `arguments` is appended to the program path as-is (quote paths with spaces yourself);
+// `environment` is a prefix such as "VK_DRIVER_FILES=/nonexistent.json".
+inline CliRun runPenumbra(const std::string& arguments, const std::string& environment = "") {
     static int counter = 0;
     const std::string errPath = (std::filesystem::temp_directory_path() /
                                  ("penumbra_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
                                     .string();
-    const std::string command = std::string(PENUMBRA_CLI_PATH) + " " + arguments + " 2>" + errPath;
+    const std::string command = environment + " " + std::string(PENUMBRA_CLI_PATH) + " " + arguments + " 2>" + errPath;
     CliRun run;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) return run;
