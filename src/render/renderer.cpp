@@ -101,6 +101,73 @@ Image sideBySide(const Image& left, const Image& right) {
 
 }  // namespace
 
+namespace {
+
+// The textures one frame renders into; made per frame since sizes follow the plan and the request.
+struct FrameTargets {
+    gpu::TextureHandle atlas, otherAtlas, color, depth, noScreenShadows;
+    uint32_t atlasSize = 1, otherAtlasSize = 1;
+    gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+
+    FrameTargets(gpu::Device& device, const ShadowFrame& plan, const CameraView& view, OutputMode output) : device_(device) {
+        const uint32_t depthUsage = gpu::kTextureDepthTarget | gpu::kTextureSampled;
+        atlasSize = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
+        atlas = device.createTexture({atlasSize, atlasSize, gpu::Format::D32Float, depthUsage, 1, "directional atlas"});
+        otherAtlasSize = plan.other.atlas.tileCount > 0 ? plan.other.atlas.atlasSize : 1u;
+        otherAtlas = device.createTexture({otherAtlasSize, otherAtlasSize, gpu::Format::D32Float, depthUsage, 1, "other atlas"});
+        colorFormat = output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
+        color = device.createTexture(
+            {view.width, view.height, colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
+        depth = device.createTexture({view.width, view.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
+        // Bound when the screen-space resolve is off, so binding 9 always holds something valid.
+        noScreenShadows = device.createTexture(
+            {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
+    }
+    ~FrameTargets() {
+        for (gpu::TextureHandle t : {atlas, otherAtlas, color, depth, noScreenShadows}) device_.destroy(t);
+    }
+    FrameTargets(const FrameTargets&) = delete;
+    FrameTargets& operator=(const FrameTargets&) = delete;
+
+private:
+    gpu::Device& device_;
+};
+
+// Bindings 0-8 of the scene passes: scene buffers, both shadow blocks and both atlases.
+MainPassInputs shadowedSceneInputs(const GpuScene& gpuScene, gpu::BufferHandle frame, gpu::BufferHandle lights,
+                                   gpu::BufferHandle directionalShadows, gpu::BufferHandle otherShadows,
+                                   const FrameTargets& targets, gpu::SamplerHandle shadowSampler) {
+    MainPassInputs inputs;
+    inputs.bindings = sceneBindings();
+    inputs.writes = sceneDescriptorWrites(gpuScene, frame, lights);
+    inputs.bindings.push_back({5, gpu::DescriptorType::UniformBuffer});
+    inputs.bindings.push_back({6, gpu::DescriptorType::SampledTexture});
+    inputs.bindings.push_back({7, gpu::DescriptorType::UniformBuffer});
+    inputs.bindings.push_back({8, gpu::DescriptorType::SampledTexture});
+    inputs.writes.push_back({5, directionalShadows, {}, {}});
+    inputs.writes.push_back({6, {}, targets.atlas, shadowSampler});
+    inputs.writes.push_back({7, otherShadows, {}, {}});
+    inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
+    return inputs;
+}
+
+MainPass::Target mainTarget(const FrameTargets& targets, const RenderRequest& request, const ShadowFrame& plan,
+                            const Settings& settings) {
+    MainPass::Target target;
+    target.color = targets.color;
+    target.colorFormat = targets.colorFormat;
+    target.depth = targets.depth;
+    // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background. The AOVs show
+    // the opaque surface, so blended draws are left out of them.
+    if (request.output == OutputMode::ShadowAov) std::fill(target.clearColor, target.clearColor + 4, 1.0f);
+    target.drawBlended = request.output == OutputMode::Color;
+    // Seed 001 §6.4: the lit pass is specialized to the spot/point shadow kinds this frame uses.
+    target.specialization = {{2, plan.other.specializationMode}, {3, uint32_t(settings.shadows.spot.filter)}};
+    return target;
+}
+
+}  // namespace
+
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
     State& s = *state_;
     validateSettings(settings);
@@ -128,74 +195,42 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
         s.device.writeBuffer(s.lightBuffer, lights.lights.data(), lights.lights.size() * sizeof(lights.lights[0]));
     s.device.writeBuffer(s.directionalShadowBuffer, &plan.directional.gpu, sizeof(plan.directional.gpu));
     s.device.writeBuffer(s.otherShadowBuffer, &plan.other.gpu, sizeof(plan.other.gpu));
-
-    const uint32_t atlasSize = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
-    const gpu::TextureHandle atlas = s.device.createTexture(
-        {atlasSize, atlasSize, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "directional atlas"});
-    const uint32_t otherAtlasSize = plan.other.atlas.tileCount > 0 ? plan.other.atlas.atlasSize : 1u;
-    const gpu::TextureHandle otherAtlas = s.device.createTexture({otherAtlasSize, otherAtlasSize, gpu::Format::D32Float,
-                                                                  gpu::kTextureDepthTarget | gpu::kTextureSampled, 1,
-                                                                  "other atlas"});
-    const gpu::Format colorFormat = request.output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
-    const gpu::TextureHandle color = s.device.createTexture(
-        {view.width, view.height, colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
-    const gpu::TextureHandle depth = s.device.createTexture(
-        {view.width, view.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
-    // Bound when the screen-space resolve is off, so binding 9 always holds something valid.
-    const gpu::TextureHandle noScreenShadows =
-        s.device.createTexture({1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "none"});
+    const FrameTargets targets(s.device, plan, view, request.output);
 
     gpu::CommandList commands = s.device.beginCommands();
     commands.beginTimer("shadows.directional");
-    s.casterPass.record(commands, s.scene, plan.directional.tiles, atlas, atlasSize, s.frameBuffer, s.lightBuffer);
+    s.casterPass.record(commands, s.scene, plan.directional.tiles, targets.atlas, targets.atlasSize, s.frameBuffer,
+                        s.lightBuffer);
     commands.endTimer();
     commands.beginTimer("shadows.other");
-    s.casterPass.record(commands, s.scene, plan.other.tiles, otherAtlas, otherAtlasSize, s.frameBuffer, s.lightBuffer);
+    s.casterPass.record(commands, s.scene, plan.other.tiles, targets.otherAtlas, targets.otherAtlasSize, s.frameBuffer,
+                        s.lightBuffer);
     commands.endTimer();
 
-    MainPassInputs inputs;
-    inputs.bindings = sceneBindings();
-    inputs.bindings.push_back({5, gpu::DescriptorType::UniformBuffer});
-    inputs.bindings.push_back({6, gpu::DescriptorType::SampledTexture});
-    inputs.writes = sceneDescriptorWrites(s.gpuScene, s.frameBuffer, s.lightBuffer);
-    inputs.writes.push_back({5, s.directionalShadowBuffer, {}, {}});
-    inputs.writes.push_back({6, {}, atlas, s.shadowSampler});
-    inputs.bindings.push_back({7, gpu::DescriptorType::UniformBuffer});
-    inputs.bindings.push_back({8, gpu::DescriptorType::SampledTexture});
-    inputs.writes.push_back({7, s.otherShadowBuffer, {}, {}});
-    inputs.writes.push_back({8, {}, otherAtlas, s.shadowSampler});
-    gpu::TextureHandle screenShadows = noScreenShadows;
-    commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
+    MainPassInputs inputs = shadowedSceneInputs(s.gpuScene, s.frameBuffer, s.lightBuffer, s.directionalShadowBuffer,
+                                                s.otherShadowBuffer, targets, s.shadowSampler);
+    gpu::TextureHandle screenShadows = targets.noScreenShadows;
+    commands.transition(targets.noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
     if (screenSpace) screenShadows = s.screenSpacePass.record(commands, s.scene, view, inputs, 0);
     inputs.bindings.push_back({9, gpu::DescriptorType::SampledTexture});
     inputs.writes.push_back({9, {}, screenShadows, s.pointSampler});
 
     commands.beginTimer("main");
-    commands.transition(color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-    commands.transition(depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
-    MainPass::Target target;
-    target.color = color;
-    target.colorFormat = colorFormat;
-    target.depth = depth;
-    // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background. The AOVs show
-    // the opaque surface, so blended draws are left out of them.
-    if (request.output == OutputMode::ShadowAov) std::fill(target.clearColor, target.clearColor + 4, 1.0f);
-    target.drawBlended = request.output == OutputMode::Color;
-    // Seed 001 §6.4: the lit pass is specialized to the spot/point shadow kinds this frame uses.
-    target.specialization = {{2, plan.other.specializationMode}, {3, uint32_t(settings.shadows.spot.filter)}};
-    s.mainPass.record(commands, s.scene, view, inputs, target);
+    commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+    commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    s.mainPass.record(commands, s.scene, view, inputs, mainTarget(targets, request, plan, settings));
     commands.endTimer();
     s.device.submitAndWait(commands);
 
     result.stats.gpuTimings = s.device.lastTimings();
-    result.image = toOutputImage(s.device.readTexture(color, gpu::TextureState::ColorTarget), request.output);
+    result.image = toOutputImage(s.device.readTexture(targets.color, gpu::TextureState::ColorTarget), request.output);
     if (request.captureAtlas) {
-        result.atlas = depthToGray(s.device.readTexture(atlas, gpu::TextureState::ShaderRead));
+        result.atlas = depthToGray(s.device.readTexture(targets.atlas, gpu::TextureState::ShaderRead));
         if (plan.other.atlas.tileCount > 0)
-            result.atlas = sideBySide(result.atlas, depthToGray(s.device.readTexture(otherAtlas, gpu::TextureState::ShaderRead)));
+            result.atlas = sideBySide(result.atlas,
+                                      depthToGray(s.device.readTexture(targets.otherAtlas, gpu::TextureState::ShaderRead)));
     }
     s.screenSpacePass.releaseTargets();
-    for (gpu::TextureHandle t : {atlas, otherAtlas, color, depth, noScreenShadows}) s.device.destroy(t);
     return result;
 }
 
