@@ -29,7 +29,7 @@ float filterDirectionalShadow(vec3 atlasUvDepth) {
 }
 
 // seed 000 §4.3 / §4.6: sample one cascade of a light, the surface pushed along its normal by the
-// cascade's filter-texel diagonal times the light's normal bias.
+// light's normal bias times the cascade's unit, texel diagonal * (1 + filter / 2) (shadow_structs.h).
 float sampleDirectionalCascade(uint slot, int cascade, vec3 wsPosition, vec3 wsNormal) {
     vec4 light = directionalShadows.lights[slot];
     vec3 wsBiased = wsPosition + wsNormal * (light.z * directionalShadows.cascadeData[cascade].y);

@@ -38,32 +38,35 @@ Settings settingsFor(const Limits& limits) {
 // clang-format off
 const Limits kLimits[] = {
     // limits = measured x 1.25 + 0.05 (misclassified %), x 1.5 + 0.02 (interior %), x 1.25 + 0.001 (MAE);
-    // measured on lavapipe (Mesa llvmpipe), 256x144, default settings but the filter (and settingsFor).
+    // measured on lavapipe (Mesa llvmpipe), 256x144, default settings but the filter (and settingsFor),
+    // with the normal-bias unit texel diagonal * (1 + filter / 2) (shadow_gpu_packing.cpp). The seed's
+    // (filter + 1) unit measured e.g. thin_wall PCF7x7 2.251 0.275 0.0249, near_far_casters PCF7x7
+    // 2.048 0.486 0.0213.
     // scene                filter               mis %  int. %   MAE      measured: mis %, interior %, MAE
     {"near_far_casters", ShadowFilter::PCF2x2,  0.47, 0.020, 0.0068},  // measured 0.331 0.000 0.0046
-    {"near_far_casters", ShadowFilter::PCF3x3,  1.26, 0.133, 0.0145},  // measured 0.966 0.075 0.0108
-    {"near_far_casters", ShadowFilter::PCF5x5,  1.84, 0.458, 0.0220},  // measured 1.432 0.292 0.0168
-    {"near_far_casters", ShadowFilter::PCF7x7,  2.61, 0.749, 0.0277},  // measured 2.048 0.486 0.0213
+    {"near_far_casters", ShadowFilter::PCF3x3,  0.98, 0.020, 0.0120},  // measured 0.740 0.000 0.0088
+    {"near_far_casters", ShadowFilter::PCF5x5,  1.40, 0.181, 0.0173},  // measured 1.079 0.107 0.0130
+    {"near_far_casters", ShadowFilter::PCF7x7,  1.64, 0.346, 0.0222},  // measured 1.266 0.217 0.0169
     {"thin_wall",        ShadowFilter::PCF2x2,  0.83, 0.020, 0.0092},  // measured 0.617 0.000 0.0065
-    {"thin_wall",        ShadowFilter::PCF3x3,  1.53, 0.020, 0.0168},  // measured 1.182 0.000 0.0126
-    {"thin_wall",        ShadowFilter::PCF5x5,  2.19, 0.044, 0.0245},  // measured 1.705 0.016 0.0188
-    {"thin_wall",        ShadowFilter::PCF7x7,  2.87, 0.433, 0.0322},  // measured 2.251 0.275 0.0249
+    {"thin_wall",        ShadowFilter::PCF3x3,  1.18, 0.020, 0.0134},  // measured 0.897 0.000 0.0099
+    {"thin_wall",        ShadowFilter::PCF5x5,  1.57, 0.020, 0.0182},  // measured 1.211 0.000 0.0137
+    {"thin_wall",        ShadowFilter::PCF7x7,  1.89, 0.020, 0.0229},  // measured 1.467 0.000 0.0175
     {"poles",            ShadowFilter::PCF2x2,  0.37, 0.020, 0.0049},  // measured 0.252 0.000 0.0031
-    {"poles",            ShadowFilter::PCF3x3,  0.38, 0.020, 0.0072},  // measured 0.262 0.000 0.0049
-    {"poles",            ShadowFilter::PCF5x5,  0.56, 0.020, 0.0103},  // measured 0.405 0.000 0.0074
-    {"poles",            ShadowFilter::PCF7x7,  0.84, 0.020, 0.0119},  // measured 0.628 0.000 0.0087
+    {"poles",            ShadowFilter::PCF3x3,  0.37, 0.020, 0.0069},  // measured 0.252 0.000 0.0047
+    {"poles",            ShadowFilter::PCF5x5,  0.54, 0.020, 0.0097},  // measured 0.386 0.000 0.0069
+    {"poles",            ShadowFilter::PCF7x7,  0.81, 0.020, 0.0117},  // measured 0.608 0.000 0.0085
     {"grazing",          ShadowFilter::PCF2x2,  0.34, 0.020, 0.0040},  // measured 0.225 0.000 0.0024
-    {"grazing",          ShadowFilter::PCF3x3,  0.63, 0.062, 0.0074},  // measured 0.461 0.028 0.0051
-    {"grazing",          ShadowFilter::PCF5x5,  0.92, 0.116, 0.0109},  // measured 0.690 0.064 0.0079
-    {"grazing",          ShadowFilter::PCF7x7,  1.19, 0.157, 0.0144},  // measured 0.911 0.091 0.0107
+    {"grazing",          ShadowFilter::PCF3x3,  0.49, 0.050, 0.0060},  // measured 0.349 0.020 0.0040
+    {"grazing",          ShadowFilter::PCF5x5,  0.64, 0.062, 0.0083},  // measured 0.472 0.028 0.0058
+    {"grazing",          ShadowFilter::PCF7x7,  0.77, 0.080, 0.0105},  // measured 0.574 0.040 0.0076
     {"foliage",          ShadowFilter::PCF2x2,  0.50, 0.020, 0.0057},  // measured 0.354 0.000 0.0037
-    {"foliage",          ShadowFilter::PCF3x3,  0.91, 0.020, 0.0100},  // measured 0.686 0.000 0.0072
-    {"foliage",          ShadowFilter::PCF5x5,  1.31, 0.020, 0.0144},  // measured 1.001 0.000 0.0107
-    {"foliage",          ShadowFilter::PCF7x7,  1.64, 0.028, 0.0183},  // measured 1.266 0.005 0.0138
+    {"foliage",          ShadowFilter::PCF3x3,  0.69, 0.020, 0.0082},  // measured 0.511 0.000 0.0057
+    {"foliage",          ShadowFilter::PCF5x5,  0.90, 0.020, 0.0110},  // measured 0.673 0.000 0.0080
+    {"foliage",          ShadowFilter::PCF7x7,  1.05, 0.020, 0.0137},  // measured 0.793 0.000 0.0101
     {"low_sun",          ShadowFilter::PCF2x2,  0.29, 0.020, 0.0037},  // measured 0.187 0.000 0.0021
-    {"low_sun",          ShadowFilter::PCF3x3,  0.40, 0.020, 0.0057},  // measured 0.279 0.000 0.0037
-    {"low_sun",          ShadowFilter::PCF5x5,  0.55, 0.028, 0.0082},  // measured 0.393 0.005 0.0057
-    {"low_sun",          ShadowFilter::PCF7x7,  0.79, 0.035, 0.0108},  // measured 0.590 0.010 0.0078
+    {"low_sun",          ShadowFilter::PCF3x3,  0.33, 0.020, 0.0050},  // measured 0.224 0.000 0.0032
+    {"low_sun",          ShadowFilter::PCF5x5,  0.40, 0.020, 0.0067},  // measured 0.279 0.000 0.0045
+    {"low_sun",          ShadowFilter::PCF7x7,  0.50, 0.020, 0.0097},  // measured 0.357 0.000 0.0069
 };
 // clang-format on
 
@@ -116,8 +119,10 @@ TEST_F(CompareTest, ReferenceComparedWithItselfHasNoError) {
     EXPECT_EQ(m.meanAbsoluteError, 0.0);
 }
 
-// Spot lights (issue 5). The limits are provisional, NOT measured: the rasterizer has no spot shadows
-// yet, so the test skips until it has; the issue-5 work measures and tightens them.
+// Spot lights (issue 5), light 0 soft (PCF5x5), light 1 hard; limits = measured with the margins of kLimits.
+// Measured on lavapipe, 256x144, default settings (shadowNormalBias 1, spot.depthBias 0):
+//   soft: misclassified 0.344 %, interior 0.000 %, MAE 0.0064; hard: 0.156 %, 0.000 %, 0.0025.
+// Reproduce: ./build/penumbra compare tests/scenes/spot_lights.gltf --light N --width 256 --height 144
 TEST_F(CompareTest, SpotLightShadowsStayWithinTheErrorOfTheReference) {
     const char* names[2] = {"soft", "hard"};
     for (uint32_t light : {0u, 1u}) {
@@ -128,7 +133,10 @@ TEST_F(CompareTest, SpotLightShadowsStayWithinTheErrorOfTheReference) {
                             "stats report no spot shadows";
         std::cout << "spot_lights light " << light << " " << toJson(result.metrics) << "\n";
         EXPECT_GT(result.metrics.validPixels, kCompareWidth * kCompareHeight / 10);
-        EXPECT_LE(result.metrics.misclassifiedPercent, 10.0);
-        EXPECT_LE(result.metrics.interiorMisclassifiedPercent, 3.0);
+        const double misclassifiedLimit[2] = {0.48, 0.25};
+        const double maeLimit[2] = {0.0090, 0.0041};
+        EXPECT_LE(result.metrics.misclassifiedPercent, misclassifiedLimit[light]);
+        EXPECT_LE(result.metrics.interiorMisclassifiedPercent, 0.020);
+        EXPECT_LE(result.metrics.meanAbsoluteError, maeLimit[light]);
     }
 }

@@ -57,7 +57,10 @@ BiasResult measure(float normalBias, float depthBias, LightShadows shadows) {
 //   depth bias 0.0005       0.02 / 0.03    0.03 / 0.02
 //   depth bias 0.002        0.02 / 0.03    0.02 / 0.03
 //   depth bias 0.005        0.02 / 0.27    0.02 / 0.25
-// Both remove the acne; here the constant clip-space bias keeps contact shadows slightly better.
+// Both remove the acne; here the constant clip-space bias keeps contact shadows slightly better, but the
+// point light of tests/scenes/point_light.gltf keeps faint acne up to depth bias 0.003 (MAE 0.031 vs
+// 0.0067 with normal bias 1), and at 0.005 this scene peter-pans more than with the normal bias. So the
+// normal bias stays the default (numbers and reasons: SpotShadowSettings::depthBias).
 
 TEST_F(RenderTest, SpotShadowsWithoutBiasShowAcneOnGrazingGround) {
     EXPECT_GT(measure(0.0f, 0.0f, LightShadows::Hard).acnePercent, 10.0);

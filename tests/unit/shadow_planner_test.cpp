@@ -4,6 +4,7 @@
 
 #include "shadow_test_scene.h"
 #include "shadows/shadow_fade.h"
+#include "shadows/shadow_gpu_packing.h"
 #include "shadows/shadow_planner.h"
 
 using namespace penumbra;
@@ -130,7 +131,7 @@ TEST(ShadowPlanner, TilesCarryTheLightsSlopeBiasAndPancaking) {
     EXPECT_TRUE(frame.directional.tiles[2].depthClamp);
 }
 
-TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAsInTheSeed) {
+TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
     PlannerFixture f;
     f.settings.directional.filter = ShadowFilter::PCF5x5;
     addDirectionalLight(f.scene, {0, -1, 0});
@@ -144,9 +145,17 @@ TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAsInTheSeed) {
         EXPECT_NEAR(gpu.cullingSpheres[i].w, shrunk * shrunk, 1e-3f);
         EXPECT_NEAR(gpu.cullingSpheres[i].x, sphere.wsCenter.x, 1e-5f);
         EXPECT_NEAR(gpu.cascadeData[i].x, 1.0f / (shrunk * shrunk), 1e-6f);
-        EXPECT_NEAR(gpu.cascadeData[i].y, filterWorld * std::sqrt(2.0f), 1e-5f);
+        // The normal-bias unit: PCF5x5 -> 1 + 2 / 2 = 2 texel diagonals, not the seed's 3.
+        EXPECT_NEAR(gpu.cascadeData[i].y, texel * 2.0f * std::sqrt(2.0f), 1e-5f);
         EXPECT_NEAR(gpu.cascadeData[i].z, frame.directional.tiles[i].wsTexelSize, 1e-6f);
     }
+}
+
+TEST(ShadowPackedData, NormalBiasUnitGrowsByHalfATexelPerFilterStep) {
+    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF2x2), 1.0f);
+    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF3x3), 1.5f);
+    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF5x5), 2.0f);
+    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF7x7), 2.5f);
 }
 
 TEST(ShadowPackedData, HoldsLightsConfigAtlasAndMatrices) {
