@@ -91,6 +91,13 @@ float filterOtherShadow(vec3 atlasUvDepth, bool soft) {
     return sampleShadowPcf2x2(otherShadowAtlas, atlasUvDepth);
 }
 
+// Cube face (+X, -X, +Y, -Y, +Z, -Z order) holding a direction from a point light: its major axis.
+uint pointLightFace(vec3 wsFromLight) {
+    vec3 a = abs(wsFromLight);
+    uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
+    return 2u * axis + (wsFromLight[axis] < 0.0 ? 1u : 0u);
+}
+
 // Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: pick the tile (a point light's
 // cube face by the major axis of light -> fragment), push the surface along its normal by the light's
 // normal bias times the world texel size at the fragment's distance along the tile's axis, project,
@@ -107,19 +114,13 @@ ShadowSample otherShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec3 w
     vec4 position = otherShadows.lightPositions[shadowSlot];
     vec4 direction = otherShadows.lightDirections[shadowSlot];
     vec3 wsFromLight = wsPosition - position.xyz;
-    uint tile = uint(light.y);
-    float distance;
-    if (light.w > 0.5) {
-        vec3 a = abs(wsFromLight);
-        uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
-        tile += 2u * axis + (wsFromLight[axis] < 0.0 ? 1u : 0u);
-        distance = a[axis];
-    } else {
-        distance = dot(wsFromLight, direction.xyz);
-    }
+    bool pointLight = light.w > 0.5;
+    float distance = pointLight ? max(max(abs(wsFromLight.x), abs(wsFromLight.y)), abs(wsFromLight.z))
+                                : dot(wsFromLight, direction.xyz);
     if (distance <= 0.0) return ShadowSample(1.0, -1);
-
     vec3 wsBiased = wsPosition + wsNormal * (position.w * distance);
+    uint tile = uint(light.y);
+    if (pointLight) tile += pointLightFace(wsBiased - position.xyz);  // the face that holds the biased point
     vec4 atlasClip = otherShadows.atlasFromWorld[tile] * vec4(wsBiased, 1.0);
     atlasClip.z -= direction.w;  // constant clip-space depth bias (seed 001 §4.2), 0 by default
     if (atlasClip.w <= 0.0) return ShadowSample(1.0, -1);
