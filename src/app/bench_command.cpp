@@ -29,9 +29,7 @@ int runBenchCommand(const RenderOptions& options, uint32_t frames) {
     const Scene scene = loadSceneOrDemo(options.scenePath);
     gpu::Device device({options.device, options.validation, true});
     Renderer renderer(device, scene);
-    RenderRequest request;
-    request.width = options.width;
-    request.height = options.height;
+    const RenderRequest request = makeRenderRequest(options);
     std::map<std::string, Series> gpuMs;
     Series planMs;
     renderer.render(request, settings);  // warm-up: pipelines, caches

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/settings.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace penumbra {
@@ -30,6 +31,8 @@ struct RenderOptions {
 };
 
 Scene loadSceneOrDemo(const std::string& path);
+// The render request the options describe: size, AOV (--aov, --light) and atlas capture.
+RenderRequest makeRenderRequest(const RenderOptions& options);
 Settings loadSettings(const RenderOptions& options);
 
 int runRenderCommand(const RenderOptions& options);

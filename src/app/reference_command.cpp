@@ -47,11 +47,8 @@ int runCompareCommand(const RenderOptions& options) {
                              referenceOptionsFor(settings, view));
     gpu::Device device({options.device, options.validation, true});
     Renderer renderer(device, scene);
-    RenderRequest request;
-    request.width = options.width;
-    request.height = options.height;
+    RenderRequest request = makeRenderRequest(options);
     request.output = OutputMode::ShadowAov;
-    request.aovLight = options.light;
     const RenderResult ours = renderer.render(request, settings, view);
     const CompareMetrics metrics = compareShadowImages(ours.image, reference.shadow, reference.validMask);
     if (!options.diffPath.empty()) {

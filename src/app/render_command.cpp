@@ -23,6 +23,17 @@ Scene loadSceneOrDemo(const std::string& path) {
     return scene;
 }
 
+RenderRequest makeRenderRequest(const RenderOptions& options) {
+    RenderRequest request;
+    request.width = options.width;
+    request.height = options.height;
+    request.aovLight = options.light;
+    if (options.aov == "shadow") request.output = OutputMode::ShadowAov;
+    if (options.aov == "cascades") request.output = OutputMode::CascadesAov;
+    request.captureAtlas = !options.dumpAtlasPath.empty();
+    return request;
+}
+
 Settings loadSettings(const RenderOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
     for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
@@ -63,13 +74,7 @@ int runRenderCommand(const RenderOptions& options) {
     const Scene scene = loadSceneOrDemo(options.scenePath);
     gpu::Device device({options.device, options.validation, true});
     Renderer renderer(device, scene);
-    RenderRequest request;
-    request.width = options.width;
-    request.height = options.height;
-    request.aovLight = options.light;
-    if (options.aov == "shadow") request.output = OutputMode::ShadowAov;
-    if (options.aov == "cascades") request.output = OutputMode::CascadesAov;
-    request.captureAtlas = !options.dumpAtlasPath.empty();
+    const RenderRequest request = makeRenderRequest(options);
     const RenderResult result = renderer.render(request, settings);
     for (const std::string& warning : result.stats.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     writePng(result.image, options.outputPath);
