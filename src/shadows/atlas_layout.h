@@ -23,8 +23,8 @@ AtlasLayout makeAtlasLayout(uint32_t atlasSize, uint32_t tileCount);
 AtlasTileRect tileRect(const AtlasLayout& layout, uint32_t tileIndex);
 
 // Maps shadow clip space (Vulkan: y down, z in [0, 1]) to atlas (u, v, depth): uv = ndc * 0.5 + 0.5
-// inside the tile, then scaled by 1/split and offset to the tile (seed 000 §2.1 ConvertToAtlasMatrix,
-// as one matrix product instead of the seed's per-element edit). Depth passes through unchanged.
+// inside the tile, then scaled by tileSize / atlasSize and offset to the tile (seed 000 §2.1 ConvertToAtlasMatrix,
+// as one matrix product instead of the seed's per-element edit). Depth and w pass through unchanged.
 glm::mat4 atlasFromClip(const AtlasLayout& layout, uint32_t tileIndex);
 
 }  // namespace penumbra

@@ -16,10 +16,7 @@ SpotAtlasLayout makeSpotAtlasLayout(uint32_t atlasSize, uint32_t tileCount) {
 }
 
 AtlasTileRect spotTileViewport(const SpotAtlasLayout& layout, uint32_t tileIndex) {
-    AtlasTileRect rect;
-    rect.offset = glm::uvec2(tileIndex % layout.split, tileIndex / layout.split) * layout.tileSize;
-    rect.size = layout.tileSize;
-    return rect;
+    return tileRect(layout.asAtlasLayout(), tileIndex);
 }
 
 AtlasTileRect spotTileScissor(const SpotAtlasLayout& layout, uint32_t tileIndex) {
@@ -30,19 +27,7 @@ AtlasTileRect spotTileScissor(const SpotAtlasLayout& layout, uint32_t tileIndex)
 }
 
 glm::mat4 spotAtlasFromClip(const SpotAtlasLayout& layout, uint32_t tileIndex) {
-    const AtlasTileRect rect = spotTileViewport(layout, tileIndex);
-    const float atlas = float(layout.atlasSize);
-    const float scale = float(rect.size) / atlas;
-    // Column-major m[column][row]. u = (x / w) * 0.5 * scale + offset, so the homogeneous u is
-    // 0.5 * scale * x + offset * w: the offset sits in the column that multiplies the clip w, and the
-    // divide by w happens after this matrix (seed 001 §3.1 divides shadowPos by w).
-    const glm::vec2 offset = glm::vec2(rect.offset) / atlas + 0.5f * scale;
-    glm::mat4 m(1.0f);
-    m[0][0] = 0.5f * scale;
-    m[1][1] = 0.5f * scale;
-    m[3][0] = offset.x;
-    m[3][1] = offset.y;
-    return m;
+    return atlasFromClip(layout.asAtlasLayout(), tileIndex);  // seed 001 §3.1: divide by w afterwards
 }
 
 glm::vec4 spotTileSampleBounds(const SpotAtlasLayout& layout, uint32_t tileIndex, float reachTexels) {
