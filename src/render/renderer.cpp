@@ -25,6 +25,7 @@ struct Renderer::State {
     ScreenSpaceShadowPass screenSpacePass;
     gpu::BufferHandle frameBuffer, lightBuffer, directionalShadowBuffer, otherShadowBuffer;
     gpu::SamplerHandle shadowSampler, pointSampler;
+    gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
 
     State(gpu::Device& d, const Scene& s)
         : device(d), scene(s), gpuScene(d, s), mainPass(d, gpuScene), casterPass(d, gpuScene), screenSpacePass(d, mainPass) {
@@ -39,6 +40,11 @@ struct Renderer::State {
         shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
                                          gpu::CompareOp::LessOrEqual});
         pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
+        noScreenShadows = d.createTexture(
+            {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
+        gpu::CommandList commands = d.beginCommands();
+        commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
+        d.submitAndWait(commands);
     }
 };
 
@@ -105,7 +111,7 @@ namespace {
 
 // The textures one frame renders into; made per frame since sizes follow the plan and the request.
 struct FrameTargets {
-    gpu::TextureHandle atlas, otherAtlas, color, depth, noScreenShadows;
+    gpu::TextureHandle atlas, otherAtlas, color, depth;
     uint32_t atlasSize = 1, otherAtlasSize = 1;
     gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
 
@@ -119,12 +125,9 @@ struct FrameTargets {
         color = device.createTexture(
             {view.width, view.height, colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
         depth = device.createTexture({view.width, view.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
-        // Bound when the screen-space resolve is off, so binding 9 always holds something valid.
-        noScreenShadows = device.createTexture(
-            {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
     }
     ~FrameTargets() {
-        for (gpu::TextureHandle t : {atlas, otherAtlas, color, depth, noScreenShadows}) device_.destroy(t);
+        for (gpu::TextureHandle t : {atlas, otherAtlas, color, depth}) device_.destroy(t);
     }
     FrameTargets(const FrameTargets&) = delete;
     FrameTargets& operator=(const FrameTargets&) = delete;
@@ -209,8 +212,7 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
 
     MainPassInputs inputs = shadowedSceneInputs(s.gpuScene, s.frameBuffer, s.lightBuffer, s.directionalShadowBuffer,
                                                 s.otherShadowBuffer, targets, s.shadowSampler);
-    gpu::TextureHandle screenShadows = targets.noScreenShadows;
-    commands.transition(targets.noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
+    gpu::TextureHandle screenShadows = s.noScreenShadows;
     if (screenSpace) screenShadows = s.screenSpacePass.record(commands, s.scene, view, inputs, 0);
     inputs.bindings.push_back({9, gpu::DescriptorType::SampledTexture});
     inputs.writes.push_back({9, {}, screenShadows, s.pointSampler});
