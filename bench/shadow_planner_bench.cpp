@@ -5,7 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 #include "shadows/shadow_planner.h"
 
 namespace {

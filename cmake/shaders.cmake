@@ -41,6 +41,6 @@ extern const size_t kEmbeddedShaderCount = sizeof(kEmbeddedShaders) / sizeof(kEm
 }
 " @ONLY)
   configure_file(${registry}.in ${registry} COPYONLY)
-  add_library(${target} STATIC ${registry} ${generated})
+  add_library(${target} OBJECT ${registry} ${generated})
   target_include_directories(${target} PRIVATE ${out_dir})
 endfunction()

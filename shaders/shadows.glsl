@@ -77,7 +77,9 @@ ShadowSample directionalShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, 
 
 // Seed 001 §6.4: the renderer specializes the lit pass by the reserved lights' shadow kinds
 // (kOtherShadowsHard | kOtherShadowsSoft bits; 0 = no spot/point shadows, otherShadow returns 1 at once),
-// and the soft filter, so a frame pays only for the sampling code it uses.
+// and the soft filter, so a frame pays only for the sampling code it uses. The generic variant (mode
+// hard | soft, filter kShadowFilterFromData) gives the same result for every frame; the renderer draws
+// with it while the specialized one is still being built.
 layout(constant_id = 2) const uint kOtherShadowMode = 0u;
 layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
 layout(set = 0, binding = 7, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
@@ -86,8 +88,8 @@ layout(set = 0, binding = 8) uniform sampler2DShadow otherShadowAtlas;
 // Seed 001 §4.4 HardShadowAttenuation / SoftShadowAttenuation, the soft one with spot.filter's tent.
 float filterOtherShadow(vec3 atlasUvDepth, bool soft) {
     bool useSoft = kOtherShadowMode == kOtherShadowsSoft || (kOtherShadowMode != kOtherShadowsHard && soft);
-    if (useSoft)
-        return sampleShadowFiltered(otherShadowAtlas, atlasUvDepth, otherShadows.atlasSize.yyxx, kOtherShadowFilter);
+    uint filterMode = kOtherShadowFilter == kShadowFilterFromData ? otherShadows.config.y : kOtherShadowFilter;
+    if (useSoft) return sampleShadowFiltered(otherShadowAtlas, atlasUvDepth, otherShadows.atlasSize.yyxx, filterMode);
     return sampleShadowPcf2x2(otherShadowAtlas, atlasUvDepth);
 }
 

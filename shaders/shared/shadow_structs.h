@@ -24,6 +24,9 @@ PENUMBRA_CONST(uint, kShadowFilterPcf2x2, 0u)
 PENUMBRA_CONST(uint, kShadowFilterPcf3x3, 1u)
 PENUMBRA_CONST(uint, kShadowFilterPcf5x5, 2u)
 PENUMBRA_CONST(uint, kShadowFilterPcf7x7, 3u)
+// Value of the lit pass's spot-filter specialization constant that reads the filter from
+// OtherShadowData.config.y instead: the generic variant used while a specialized one is built.
+PENUMBRA_CONST(uint, kShadowFilterFromData, 4u)
 PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
 PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
 PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)

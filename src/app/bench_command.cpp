@@ -1,13 +1,24 @@
-// `penumbra bench`: renders the same frame repeatedly and prints GPU time per pass (timestamps) and
-// CPU planning time, as median and minimum over the frames. Numbers, not pass/fail.
+// `penumbra bench`: renders frame after frame through the persistent frame (frames in flight, no
+// readback) and reports GPU time per pass (timestamps), CPU time per phase, the submit-to-fence frame
+// time, what each shadow atlas drew, host and device memory at the first and last timed frame, and
+// the GPU objects made after warm-up. Numbers, not pass/fail: the instrument behind docs/performance.md.
+#include <unistd.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
 #include "app/commands.h"
-#include "gpu/device.h"
-#include "render/renderer.h"
+#include "core/files.h"
+#include "core/error.h"
+#include "penumbra/device.h"
+#include "penumbra/renderer.h"
 
 namespace penumbra {
 
@@ -15,40 +26,176 @@ namespace {
 
 struct Series {
     std::vector<double> values;
-    double median() {
-        std::sort(values.begin(), values.end());
-        return values.empty() ? 0.0 : values[values.size() / 2];
+    double percentile(double p) const {
+        if (values.empty()) return 0.0;
+        std::vector<double> sorted = values;
+        std::sort(sorted.begin(), sorted.end());
+        const size_t index = size_t(std::ceil(p * double(sorted.size()))) - (p > 0.0 ? 1 : 0);
+        return sorted[std::min(index, sorted.size() - 1)];
     }
+    double median() const { return percentile(0.5); }
+    double p95() const { return percentile(0.95); }
     double minimum() const { return values.empty() ? 0.0 : *std::min_element(values.begin(), values.end()); }
+};
+
+double hostRssMegabytes() {
+    std::ifstream statm("/proc/self/statm");
+    uint64_t size = 0, resident = 0;
+    statm >> size >> resident;
+    return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
+}
+
+// --camera orbit: the scene's camera turned about the vertical axis through the scene's centre, a
+// quarter degree more every frame, so the shadow plan (cascade spheres, culling) changes every frame.
+CameraView benchCamera(const Scene& scene, const CameraView& start, const std::string& mode, uint64_t frame) {
+    if (mode != "orbit") return start;
+    const glm::vec3 pivot = scene.wsBounds.valid() ? scene.wsBounds.center() : glm::vec3(0.0f);
+    const glm::mat4 turn = glm::translate(glm::mat4(1.0f), pivot) *
+                           glm::rotate(glm::mat4(1.0f), glm::radians(0.25f * float(frame)), glm::vec3(0, 1, 0)) *
+                           glm::translate(glm::mat4(1.0f), -pivot);
+    Camera camera;
+    camera.worldFromView = turn * start.worldFromView;
+    camera.yfov = start.yfov;
+    camera.zNear = start.zNear;
+    camera.zFar = start.zFar;
+    return makeCameraView(camera, start.width, start.height);
+}
+
+struct SceneTotals {
+    uint64_t triangles = 0;
+};
+
+SceneTotals sceneTotals(const Scene& scene) {
+    SceneTotals totals;
+    for (const Instance& instance : scene.instances) totals.triangles += scene.meshes[instance.meshIndex].indices.size() / 3;
+    return totals;
+}
+
+void printProgress(uint32_t done, uint32_t total) {
+    const int width = 40;
+    const int filled = int(double(done) / double(std::max(total, 1u)) * width);
+    std::printf("\r[%s%s] %u/%u frames", std::string(size_t(filled), '#').c_str(),
+                std::string(size_t(width - filled), ' ').c_str(), done, total);
+    if (done == total) std::printf("\r%*s\r", width + 32, "");
+    std::fflush(stdout);
+}
+
+struct Measurements {
+    std::map<std::string, Series> passes;
+    std::map<std::string, Series> cpu;
+    Series frame;
+    std::vector<AtlasDrawStats> atlases;  // of the last timed frame
+    void add(const FrameStats& stats) {
+        for (const PassTiming& t : stats.gpuTimings) passes[t.name].values.push_back(t.milliseconds);
+        cpu["plan"].values.push_back(stats.cpu.plan);
+        cpu["culling"].values.push_back(stats.cpu.culling);
+        cpu["upload"].values.push_back(stats.cpu.upload);
+        cpu["record"].values.push_back(stats.cpu.record);
+        cpu["submit"].values.push_back(stats.cpu.submit);
+        frame.values.push_back(stats.submitToFenceMilliseconds);
+        atlases = stats.atlases;
+    }
 };
 
 }  // namespace
 
-int runBenchCommand(const RenderOptions& options, uint32_t frames) {
+int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
+    if (bench.camera != "orbit" && bench.camera != "static")
+        throw Error("--camera must be orbit or static, not '" + bench.camera + "'");
     const Settings settings = loadSettings(options);
-    const Scene scene = loadSceneOrDemo(options.scenePath);
-    gpu::Device device({options.device, options.validation, true});
-    Renderer renderer(device, scene);
-    const RenderRequest request = makeRenderRequest(options);
-    std::map<std::string, Series> gpuMs;
-    Series planMs;
-    renderer.render(request, settings);  // warm-up: pipelines, caches
-    for (uint32_t i = 0; i < frames; ++i) {
-        const RenderResult result = renderer.render(request, settings);
-        for (const auto& timing : result.stats.gpuTimings) gpuMs[timing.name].values.push_back(timing.milliseconds);
-        planMs.values.push_back(result.stats.cpuPlanMilliseconds);
+    Device device(deviceOptionsFor(options));
+    RendererOptions rendererOptions;
+    rendererOptions.warmup = PipelineWarmup::Background;
+    Renderer renderer(device, loadSceneFor(options), rendererOptions);
+    const Scene& scene = renderer.scene();
+    RenderRequest request = makeRenderRequest(options);
+    request.readback = false;
+    const CameraView start = resolveCameraView(scene, request.width, request.height);
+    const bool progress = isatty(STDOUT_FILENO);
+
+    uint64_t frame = 0;
+    for (uint32_t i = 0; i < bench.warmup; ++i)
+        renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
+    renderer.buildAllPipelines();  // the timed frames use the specialized variants
+    renderer.waitIdle();
+    renderer.takeCompletedFrames();
+    const DeviceObjectCounts before = device.liveObjects();
+    const double rssFirst = hostRssMegabytes();
+    const double deviceFirst = double(device.deviceMemoryBytes()) / (1024.0 * 1024.0);
+
+    Measurements measured;
+    std::vector<std::string> warnings;
+    for (uint32_t i = 0; i < bench.frames; ++i) {
+        renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
+        for (const FrameStats& stats : renderer.takeCompletedFrames()) {
+            measured.add(stats);
+            warnings = stats.warnings;
+        }
+        if (progress && (i % 8 == 0 || i + 1 == bench.frames)) printProgress(i + 1, bench.frames);
     }
-    std::printf("device: %s (%s)\nframe: %ux%u, %u frames after 1 warm-up\n", device.info().name.c_str(),
-                device.info().driver.c_str(), request.width, request.height, frames);
-    std::printf("%-24s %12s %12s\n", "pass", "median ms", "min ms");
-    double total = 0.0;
-    for (auto& [name, series] : gpuMs) {
-        const double median = series.median();
-        total += median;
-        std::printf("gpu %-20s %12.4f %12.4f\n", name.c_str(), median, series.minimum());
+    renderer.waitIdle();
+    for (const FrameStats& stats : renderer.takeCompletedFrames()) measured.add(stats);
+    const double rssLast = hostRssMegabytes();
+    const double deviceLast = double(device.deviceMemoryBytes()) / (1024.0 * 1024.0);
+    const DeviceObjectCounts after = device.liveObjects();
+    const uint64_t objectsMade = after.objectsCreated - before.objectsCreated;
+    const uint64_t memoryAllocations = after.memoryAllocations - before.memoryAllocations;
+    for (const std::string& warning : warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+
+    nlohmann::json json;
+    json["device"] = device.info().name;
+    json["driver"] = device.info().driver;
+    json["width"] = request.width;
+    json["height"] = request.height;
+    json["frames"] = bench.frames;
+    json["warmup"] = bench.warmup;
+    json["camera"] = bench.camera;
+    json["scene"] = {{"source", options.scenePath.empty() ? "demo" : options.scenePath},
+                     {"triangles", sceneTotals(scene).triangles},
+                     {"instances", scene.instances.size()},
+                     {"lights", scene.lights.size()}};
+    json["passes"] = nlohmann::json::object();
+    for (const auto& [name, series] : measured.passes)
+        json["passes"][name] = {{"median_ms", series.median()}, {"p95_ms", series.p95()}, {"min_ms", series.minimum()}};
+    json["cpu"] = nlohmann::json::object();
+    for (const auto& [name, series] : measured.cpu)
+        json["cpu"][name] = {{"median_ms", series.median()}, {"p95_ms", series.p95()}};
+    json["frame"] = {{"median_ms", measured.frame.median()}, {"p95_ms", measured.frame.p95()}};
+    json["atlases"] = nlohmann::json::object();
+    for (const AtlasDrawStats& atlas : measured.atlases)
+        json["atlases"][atlas.pass] = {{"tiles", atlas.tiles}, {"draws", atlas.draws}, {"triangles", atlas.triangles}};
+    json["memory"] = {{"host_rss_mb", {{"first", rssFirst}, {"last", rssLast}}},
+                      {"device_mb", {{"first", deviceFirst}, {"last", deviceLast}}}};
+    json["allocationsAfterWarmup"] = {{"gpuObjects", objectsMade}, {"vkAllocateMemory", memoryAllocations}};
+    json["validationMessages"] = device.validationMessageCount();
+
+    std::printf("device: %s (%s)\n", device.info().name.c_str(), device.info().driver.c_str());
+    std::printf("scene: %s, %llu triangles, %zu instances, %zu lights; %ux%u, %u frames after %u warm-up, camera %s\n",
+                options.scenePath.empty() ? "demo" : options.scenePath.c_str(),
+                (unsigned long long)sceneTotals(scene).triangles, scene.instances.size(), scene.lights.size(),
+                request.width, request.height, bench.frames, bench.warmup, bench.camera.c_str());
+    std::printf("%-28s %10s %10s %10s\n", "", "median ms", "p95 ms", "min ms");
+    double gpuTotal = 0.0;
+    for (const auto& [name, series] : measured.passes) {
+        gpuTotal += series.median();
+        std::printf("gpu %-24s %10.4f %10.4f %10.4f\n", name.c_str(), series.median(), series.p95(), series.minimum());
     }
-    std::printf("gpu %-20s %12.4f\n", "total (sum of medians)", total);
-    std::printf("cpu %-20s %12.4f %12.4f\n", "shadow plan", planMs.median(), planMs.minimum());
+    std::printf("gpu %-24s %10.4f\n", "sum of medians", gpuTotal);
+    for (const auto& [name, series] : measured.cpu)
+        std::printf("cpu %-24s %10.4f %10.4f\n", name.c_str(), series.median(), series.p95());
+    std::printf("frame (submit to fence)      %10.4f %10.4f\n", measured.frame.median(), measured.frame.p95());
+    for (const AtlasDrawStats& atlas : measured.atlases)
+        std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
+                    (unsigned long long)atlas.triangles);
+    std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", rssFirst, rssLast, deviceFirst, deviceLast);
+    std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n", (unsigned long long)objectsMade,
+                (unsigned long long)memoryAllocations);
+    if (!bench.jsonPath.empty()) {
+        if (bench.jsonPath == "-") std::printf("%s\n", json.dump(2).c_str());
+        else writeTextFile(bench.jsonPath, json.dump(2) + "\n");
+    }
+    if (options.validation && device.validationMessageCount() > 0)
+        throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
     return 0;
 }
 

@@ -1,5 +1,6 @@
 #include "app/cli.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 
@@ -14,7 +15,9 @@ namespace {
 
 // Options every command that renders shares.
 void addRenderOptions(CLI::App& command, RenderOptions& options) {
-    command.add_option("scene", options.scenePath, "glTF 2.0 scene (.gltf or .glb); the built-in demo scene if omitted");
+    command.add_option("scene", options.scenePath,
+                       "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S] or gen:boxes:N; the built-in demo scene if omitted");
+    command.add_option("--model", options.model, "the glTF that gen:field copies (default: assimp's 2CylinderEngine)");
     command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--settings", options.settingsPath, "settings JSON file (DESIGN.md: the pipeline asset)");
@@ -52,10 +55,14 @@ int runCli(int argc, char** argv) {
     compare->add_flag("--json", compareOptions.json, "print the metrics as JSON");
 
     RenderOptions benchOptions;
-    uint32_t benchFrames = 20;
-    CLI::App* bench = app.add_subcommand("bench", "render one frame repeatedly; print GPU ms per pass and CPU plan ms");
+    BenchOptions benchSettings;
+    CLI::App* bench = app.add_subcommand("bench", "render frames in flight; GPU ms per pass, CPU ms per phase, memory");
     addRenderOptions(*bench, benchOptions);
-    bench->add_option("--frames", benchFrames, "frames to time")->check(CLI::Range(1u, 100000u));
+    bench->add_option("--frames", benchSettings.frames, "frames to time")->check(CLI::Range(1u, 1000000u));
+    bench->add_option("--warmup", benchSettings.warmup, "frames before timing")->check(CLI::Range(0u, 100000u));
+    bench->add_option("--camera", benchSettings.camera, "orbit (moves every frame) | static")
+        ->check(CLI::IsMember({"orbit", "static"}));
+    bench->add_option("--json", benchSettings.jsonPath, "write the results as JSON to FILE ('-' = stdout)");
 
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
@@ -66,14 +73,22 @@ int runCli(int argc, char** argv) {
 
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // A user error like any other: one line, exit code 1 (CLI11's own exit codes are not ours).
+        std::string message = e.what();
+        std::replace(message.begin(), message.end(), '\n', ' ');
+        std::fprintf(stderr, "penumbra: %s (see penumbra --help)\n", message.c_str());
+        return 1;
     }
     try {
         if (*render) return runRenderCommand(renderOptions);
         if (*reference) return runReferenceCommand(referenceOptions);
         if (*compare) return runCompareCommand(compareOptions);
-        if (*bench) return runBenchCommand(benchOptions, benchFrames);
+        if (*bench) return runBenchCommand(benchOptions, benchSettings);
         if (*devices) return runDevicesCommand();
         if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {

@@ -6,14 +6,15 @@
 #include <string>
 #include <vector>
 
-#include "app/settings.h"
-#include "render/renderer.h"
-#include "scene/scene.h"
+#include "penumbra/renderer.h"
+#include "penumbra/scene.h"
+#include "penumbra/settings.h"
 
 namespace penumbra {
 
 struct RenderOptions {
-    std::string scenePath;  // empty: built-in demo scene
+    std::string scenePath;  // empty: built-in demo scene; gen:field:N[:S], gen:boxes:N: built-in scale scenes
+    std::string model;      // the glTF gen:field copies (empty: the default engine model)
     uint32_t width = 1280;
     uint32_t height = 720;
     std::string settingsPath;
@@ -30,7 +31,17 @@ struct RenderOptions {
     bool json = false;
 };
 
-Scene loadSceneOrDemo(const std::string& path);
+// `penumbra bench` only.
+struct BenchOptions {
+    uint32_t frames = 100;
+    uint32_t warmup = 10;
+    std::string camera = "static";  // static | orbit
+    std::string jsonPath;           // "" = none, "-" = stdout
+};
+
+// The scene the options name (file, demo or gen:), its warnings printed on stderr.
+Scene loadSceneFor(const RenderOptions& options);
+DeviceOptions deviceOptionsFor(const RenderOptions& options);
 // The render request the options describe: size, AOV (--aov, --light) and atlas capture.
 RenderRequest makeRenderRequest(const RenderOptions& options);
 Settings loadSettings(const RenderOptions& options);
@@ -38,7 +49,7 @@ Settings loadSettings(const RenderOptions& options);
 int runRenderCommand(const RenderOptions& options);
 int runReferenceCommand(const RenderOptions& options);
 int runCompareCommand(const RenderOptions& options);
-int runBenchCommand(const RenderOptions& options, uint32_t frames);
+int runBenchCommand(const RenderOptions& options, const BenchOptions& bench);
 int runDevicesCommand();
 int runDiffCommand(const std::string& pathA, const std::string& pathB);
 

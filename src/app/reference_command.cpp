@@ -5,10 +5,10 @@
 
 #include "app/commands.h"
 #include "core/error.h"
-#include "gpu/device.h"
+#include "penumbra/device.h"
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
-#include "render/renderer.h"
+#include "penumbra/renderer.h"
 
 namespace penumbra {
 
@@ -26,7 +26,7 @@ ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView&
 
 int runReferenceCommand(const RenderOptions& options) {
     const Settings settings = loadSettings(options);
-    const Scene scene = loadSceneOrDemo(options.scenePath);
+    const Scene scene = loadSceneFor(options);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view));
@@ -39,14 +39,14 @@ int runReferenceCommand(const RenderOptions& options) {
 
 int runCompareCommand(const RenderOptions& options) {
     const Settings settings = loadSettings(options);
-    const Scene scene = loadSceneOrDemo(options.scenePath);
+    Scene scene = loadSceneFor(options);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
     // Trace first: it validates the light (exists, casts shadows) before the GPU is touched.
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO) && !options.json,
                              referenceOptionsFor(settings, view));
-    gpu::Device device({options.device, options.validation, true});
-    Renderer renderer(device, scene);
+    Device device(deviceOptionsFor(options));
+    Renderer renderer(device, std::move(scene));
     RenderRequest request = makeRenderRequest(options);
     request.output = OutputMode::ShadowAov;
     const RenderResult ours = renderer.render(request, settings, view);

@@ -5,22 +5,27 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_diff.h"
-#include "gpu/device.h"
-#include "render/renderer.h"
-#include "scene/default_light.h"
-#include "scene/demo_scene.h"
-#include "scene/gltf_loader.h"
+#include "penumbra/device.h"
+#include "penumbra/renderer.h"
+#include "penumbra/scene_loading.h"
 
 namespace penumbra {
 
-Scene loadSceneOrDemo(const std::string& path) {
-    Scene scene = path.empty() ? makeDemoScene() : loadGltfScene(path);
+Scene loadSceneFor(const RenderOptions& options) {
+    SceneSourceOptions source;
+    if (!options.model.empty()) source.model = options.model;
+    Scene scene = loadScene(options.scenePath, source);
     for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
-    if (addDefaultSunIfUnlit(scene))
-        std::fprintf(stderr, "penumbra: warning: %s has no lights; added a default sun as light 0\n",
-                     path.empty() ? "the scene" : path.c_str());
     return scene;
+}
+
+DeviceOptions deviceOptionsFor(const RenderOptions& options) {
+    DeviceOptions device;
+    device.device = options.device;
+    device.validation = options.validation;
+    return device;
 }
 
 RenderRequest makeRenderRequest(const RenderOptions& options) {
@@ -50,7 +55,7 @@ void checkWritable(const std::string& path) {
     if (!probe) throw Error("cannot write " + path + ": the file could not be created");
 }
 
-std::string statsJson(const RenderResult& result, const gpu::Device& device, const RenderOptions& options) {
+std::string statsJson(const RenderResult& result, const Device& device, const RenderOptions& options) {
     nlohmann::json stats;
     stats["device"] = {{"name", device.info().name}, {"driver", device.info().driver}, {"cpu", device.info().isCpu}};
     stats["width"] = options.width;
@@ -58,7 +63,10 @@ std::string statsJson(const RenderResult& result, const gpu::Device& device, con
     nlohmann::json gpuMs = nlohmann::json::object();
     for (const auto& timing : result.stats.gpuTimings) gpuMs[timing.name] = timing.milliseconds;
     stats["gpuMs"] = gpuMs;
-    stats["cpuPlanMs"] = result.stats.cpuPlanMilliseconds;
+    stats["cpuPlanMs"] = result.stats.cpu.plan + result.stats.cpu.culling;
+    stats["cpuMs"] = {{"plan", result.stats.cpu.plan}, {"culling", result.stats.cpu.culling},
+                      {"upload", result.stats.cpu.upload}, {"record", result.stats.cpu.record},
+                      {"submit", result.stats.cpu.submit}};
     stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
     stats["warnings"] = result.stats.warnings;
     return stats.dump(2);
@@ -71,9 +79,8 @@ int runRenderCommand(const RenderOptions& options) {
     checkWritable(options.dumpAtlasPath);
     checkWritable(options.statsPath);
     const Settings settings = loadSettings(options);
-    const Scene scene = loadSceneOrDemo(options.scenePath);
-    gpu::Device device({options.device, options.validation, true});
-    Renderer renderer(device, scene);
+    Device device(deviceOptionsFor(options));
+    Renderer renderer(device, loadSceneFor(options));
     const RenderRequest request = makeRenderRequest(options);
     const RenderResult result = renderer.render(request, settings);
     for (const std::string& warning : result.stats.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
@@ -84,7 +91,7 @@ int runRenderCommand(const RenderOptions& options) {
         if (options.statsPath == "-") {
             std::printf("%s\n", json.c_str());
         } else {
-            std::ofstream(options.statsPath) << json << "\n";
+            writeTextFile(options.statsPath, json + "\n");
         }
     }
     if (options.validation && device.validationMessageCount() > 0)
@@ -98,7 +105,7 @@ int runDiffCommand(const std::string& pathA, const std::string& pathB) {
 }
 
 int runDevicesCommand() {
-    for (const gpu::DeviceInfo& info : gpu::Device::listDevices())
+    for (const DeviceInfo& info : Device::list())
         std::printf("%u: %s (%s)%s\n", info.index, info.name.c_str(), info.driver.c_str(), info.isCpu ? " [cpu]" : "");
     return 0;
 }

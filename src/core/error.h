@@ -1,18 +1,13 @@
 #pragma once
-// User-facing errors: bad files, bad settings, no Vulkan device. Library code throws these; the CLI
-// catches them and prints the one-line message with a non-zero exit. Never exit() in library code.
-#include <stdexcept>
-#include <string>
+// penumbra::Error (the public error type) plus the internal invariant check. Library code throws
+// Error for user mistakes; the CLI catches it and prints the one-line message with exit code 1.
+#include "penumbra/error.h"
 
 namespace penumbra {
 
-class Error : public std::runtime_error {
-public:
-    explicit Error(const std::string& message) : std::runtime_error(message) {}
-};
-
-// Invariant checks that are programming errors, not user errors: active in debug builds only.
-#ifdef NDEBUG
+// Invariant checks that are programming errors, not user errors: active unless NDEBUG, or always
+// when PENUMBRA_ENABLE_ASSERTS is defined (the CI build that runs the suite with assertions on).
+#if defined(NDEBUG) && !defined(PENUMBRA_ENABLE_ASSERTS)
 #define PENUMBRA_ASSERT(cond) ((void)0)
 #else
 #define PENUMBRA_ASSERT(cond) \

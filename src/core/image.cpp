@@ -1,4 +1,4 @@
-#include "core/image.h"
+#include "penumbra/image.h"
 
 #include "core/error.h"
 

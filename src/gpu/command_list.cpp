@@ -118,7 +118,7 @@ void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
         write.dstBinding = w.binding;
         write.descriptorCount = 1;
         if (type == DescriptorType::UniformBuffer || type == DescriptorType::StorageBuffer) {
-            bufferInfos[i] = {d.buffers.at(w.buffer.id).buffer, 0, VK_WHOLE_SIZE};
+            bufferInfos[i] = {d.buffers.at(w.buffer.id).buffer, w.offset, w.size ? w.size : VK_WHOLE_SIZE};
             write.descriptorType = type == DescriptorType::UniformBuffer ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                                                          : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
             write.pBufferInfo = &bufferInfos[i];
@@ -197,16 +197,86 @@ void CommandList::memoryBarrier() {
 void CommandList::beginTimer(const std::string& name) {
     Device::Impl& d = impl(*this);
     PENUMBRA_ASSERT(openTimer == ~0u);
-    if (!d.timestampsSupported || (timerNames.size() + 1) * 2 > d.timestampCapacity) return;
+    if (queryBase == ~0u || (timerNames.size() + 1) * 2 > queryCapacity) return;
     openTimer = uint32_t(timerNames.size());
     timerNames.push_back(name);
-    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool, openTimer * 2);
+    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool, queryBase + openTimer * 2);
 }
 
 void CommandList::endTimer() {
     if (openTimer == ~0u) return;
-    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, impl(*this).timestampPool, openTimer * 2 + 1);
+    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, impl(*this).timestampPool,
+                         queryBase + openTimer * 2 + 1);
     openTimer = ~0u;
+}
+
+void CommandList::copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset) {
+    Device::Impl& d = impl(*this);
+    const VkBufferCopy copy{source.offset, destinationOffset, source.size};
+    vkCmdCopyBuffer(native(*this), d.buffers.at(source.buffer.id).buffer, d.buffers.at(destination.id).buffer, 1, &copy);
+}
+
+void CommandList::copyTextureToBuffer(TextureHandle texture, TextureState state, BufferHandle destination) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& t = d.textures.at(texture.id);
+    recordTransition(native(*this), t, state, TextureState::TransferSrc);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+    copy.imageExtent = {t.desc.width, t.desc.height, 1};
+    vkCmdCopyImageToBuffer(native(*this), t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers.at(destination.id).buffer,
+                           1, &copy);
+    recordTransition(native(*this), t, TextureState::TransferSrc, state);
+    // Make the copy visible to the host once the frame's fence signals.
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(native(*this), &dependency);
+}
+
+namespace {
+
+void externalBarrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
+                     VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = srcStage;
+    barrier.srcAccessMask = srcAccess;
+    barrier.dstStageMask = dstStage;
+    barrier.dstAccessMask = dstAccess;
+    barrier.oldLayout = from;
+    barrier.newLayout = to;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image;
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.imageMemoryBarrierCount = 1;
+    dependency.pImageMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cb, &dependency);
+}
+
+}  // namespace
+
+void CommandList::blitToExternal(TextureHandle source, TextureHandle external, const ExternalTarget& target) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& src = d.textures.at(source.id);
+    const VkImage dst = d.textures.at(external.id).image;
+    recordTransition(native(*this), src, TextureState::ColorTarget, TextureState::TransferSrc);
+    externalBarrier(native(*this), dst, VkImageLayout(target.initialLayout), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {int32_t(src.desc.width), int32_t(src.desc.height), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {int32_t(target.width), int32_t(target.height), 1};
+    vkCmdBlitImage(native(*this), src.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   1, &blit, VK_FILTER_NEAREST);
+    externalBarrier(native(*this), dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VkImageLayout(target.finalLayout),
+                    VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                    VK_ACCESS_2_MEMORY_READ_BIT);
 }
 
 }  // namespace penumbra::gpu

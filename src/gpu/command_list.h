@@ -28,9 +28,16 @@ public:
     void draw(uint32_t vertexCount, uint32_t instanceCount = 1);
     void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1);
     void clearBuffer(BufferHandle buffer, uint32_t value);
+    void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
+    // Copies level 0 of `texture` (in `state`, left there) tightly packed into `destination`.
+    void copyTextureToBuffer(TextureHandle texture, TextureState state, BufferHandle destination);
+    // Blits `source` (ColorTarget, left TransferSrc) onto an imported external image, converting the
+    // format, and leaves that image in target.finalLayout.
+    void blitToExternal(TextureHandle source, TextureHandle external, const ExternalTarget& target);
     // A full memory barrier between compute/graphics writes and later reads (buffers and storage images).
     void memoryBarrier();
-    // GPU timestamps around a named pass; results in Device::lastTimings() after submitAndWait.
+    // GPU timestamps around a named pass; results in Device::takeCompletedFrames() once the frame is
+    // done. One-off command lists (Device::beginCommands) record none.
     void beginTimer(const std::string& name);
     void endTimer();
 
@@ -40,6 +47,8 @@ public:
     PipelineHandle boundPipeline;
     std::vector<std::string> timerNames;
     uint32_t openTimer = ~0u;
+    uint32_t queryBase = ~0u;  // first timestamp query of this list's range, ~0u = no timers
+    uint32_t queryCapacity = 0;
 };
 
 }  // namespace penumbra::gpu

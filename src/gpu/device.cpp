@@ -61,6 +61,17 @@ bool hasDeviceExtension(VkPhysicalDevice physicalDevice, const char* name) {
                        [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
+bool hasInstanceExtension(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateInstanceExtensionProperties(nullptr, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(),
+                       [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+// VK_EXT_debug_utils is enabled whenever the loader offers it, so object names reach RenderDoc and
+// Nsight captures; the validation layer is only loaded on request.
 VkInstance createInstance(bool validation) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "penumbra";
@@ -73,8 +84,9 @@ VkInstance createInstance(bool validation) {
             throw Error("Vulkan validation requested but VK_LAYER_KHRONOS_validation is not installed "
                         "(Debian package vulkan-validationlayers)");
         layers.push_back("VK_LAYER_KHRONOS_validation");
-        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    if (validation || hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME))
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     info.pApplicationInfo = &app;
     info.enabledLayerCount = uint32_t(layers.size());
@@ -157,6 +169,76 @@ uint32_t choosePhysicalDevice(const std::vector<VkPhysicalDevice>& devices, cons
 
 }  // namespace
 
+
+namespace {
+
+void installMessenger(Device::Impl& d) {
+    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = onDebugMessage;
+    info.pUserData = &d;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(d.instance, "vkCreateDebugUtilsMessengerEXT"));
+    if (create) VK_CHECK(create(d.instance, &info, nullptr, &d.messenger));
+}
+
+uint32_t findQueueFamily(VkPhysicalDevice physicalDevice, const std::string& name) {
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
+    for (uint32_t i = 0; i < familyCount; ++i) {
+        const auto need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        if ((families[i].queueFlags & need) == need) return i;
+    }
+    throw Error("no Vulkan device: " + name + " has no graphics+compute queue");
+}
+
+VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
+                             bool memoryBudget) {
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.dynamicRendering = VK_TRUE;
+    features13.synchronization2 = VK_TRUE;
+    // Lets a fragment shader leave some of the vertex shader's outputs unread (the depth prepass and
+    // the full-screen resolve) without validation warnings; mandatory in Vulkan 1.3.
+    features13.maintenance4 = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    features12.pNext = &features13;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &features12;
+    if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
+    features.features.depthClamp = VK_TRUE;
+    features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = queueFamily;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    std::vector<const char*> extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (memoryBudget) extensions.push_back(VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.pNext = &features;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    deviceInfo.enabledExtensionCount = uint32_t(extensions.size());
+    deviceInfo.ppEnabledExtensionNames = extensions.data();
+    VkDevice device = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device));
+    return device;
+}
+
+void nameMemory(void* user, VkDeviceMemory memory, const std::string& name) {
+    static_cast<Device::Impl*>(user)->setDebugName(VK_OBJECT_TYPE_DEVICE_MEMORY, uint64_t(memory), name);
+}
+
+}  // namespace
+
 std::vector<DeviceInfo> Device::listDevices() {
     VkInstance instance = createInstance(false);
     std::vector<DeviceInfo> result;
@@ -170,105 +252,98 @@ Device::Device(const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
     Impl& d = *impl_;
     d.options = options;
     d.instance = createInstance(options.validation);
-    if (options.validation) {
-        VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-        info.pfnUserCallback = onDebugMessage;
-        info.pUserData = &d;
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(d.instance, "vkCreateDebugUtilsMessengerEXT"));
-        if (create) VK_CHECK(create(d.instance, &info, nullptr, &d.messenger));
-    }
+    if (options.validation) installMessenger(d);
     const auto devices = enumerateUsable(d.instance);
     const uint32_t chosen = choosePhysicalDevice(devices, options.device);
     d.physicalDevice = devices[chosen];
     d.info = describe(d.physicalDevice, chosen);
+    d.queueFamily = findQueueFamily(d.physicalDevice, d.info.name);
+    d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget);
+    vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
+    initialize();
+}
+
+Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
+    Impl& d = *impl_;
+    d.options = options;
+    d.ownsDevice = false;
+    d.instance = reinterpret_cast<VkInstance>(external.instance);
+    d.physicalDevice = reinterpret_cast<VkPhysicalDevice>(external.physicalDevice);
+    d.device = reinterpret_cast<VkDevice>(external.device);
+    d.queue = reinterpret_cast<VkQueue>(external.queue);
+    d.queueFamily = external.queueFamily;
+    if (!d.instance || !d.physicalDevice || !d.device || !d.queue)
+        throw Error("external Vulkan device: instance, physical device, device and queue are all required");
+    d.info = describe(d.physicalDevice, 0);
+    if (!hasDeviceExtension(d.physicalDevice, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+        throw Error("external Vulkan device: " + d.info.name + " lacks VK_KHR_push_descriptor");
+    initialize();
+}
+
+void Device::initialize() {
+    Impl& d = *impl_;
+    if (d.options.framesInFlight < 1 || d.options.framesInFlight > 4)
+        throw Error("framesInFlight = " + std::to_string(d.options.framesInFlight) + " is out of range (allowed 1..4)");
     vkGetPhysicalDeviceProperties(d.physicalDevice, &d.properties);
     vkGetPhysicalDeviceMemoryProperties(d.physicalDevice, &d.memoryProperties);
-
     uint32_t familyCount = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(d.physicalDevice, &familyCount, nullptr);
     std::vector<VkQueueFamilyProperties> families(familyCount);
     vkGetPhysicalDeviceQueueFamilyProperties(d.physicalDevice, &familyCount, families.data());
-    bool found = false;
-    for (uint32_t i = 0; i < familyCount && !found; ++i) {
-        const auto need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((families[i].queueFlags & need) == need) { d.queueFamily = i; found = true; }
-    }
-    if (!found) throw Error("no Vulkan device: " + d.info.name + " has no graphics+compute queue");
-    d.timestampsSupported = options.timestamps && families[d.queueFamily].timestampValidBits > 0 &&
+    d.timestampsSupported = d.options.timestamps && d.queueFamily < familyCount &&
+                            families[d.queueFamily].timestampValidBits > 0 &&
                             d.properties.limits.timestampComputeAndGraphics;
-
-    VkPhysicalDeviceFeatures supported{};
-    vkGetPhysicalDeviceFeatures(d.physicalDevice, &supported);
-    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    features13.dynamicRendering = VK_TRUE;
-    features13.synchronization2 = VK_TRUE;
-    // Lets a fragment shader leave some of the vertex shader's outputs unread (the depth prepass and
-    // the full-screen resolve) without validation warnings; mandatory in Vulkan 1.3.
-    features13.maintenance4 = VK_TRUE;
-    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    features12.pNext = &features13;
-    features12.scalarBlockLayout = VK_FALSE;
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    features.pNext = &features12;
-    if (!supported.depthClamp) throw Error("no Vulkan device: " + d.info.name + " lacks depthClamp (needed for shadow pancaking)");
-    features.features.depthClamp = VK_TRUE;
-    features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-    features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
-
-    const float priority = 1.0f;
-    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queueInfo.queueFamilyIndex = d.queueFamily;
-    queueInfo.queueCount = 1;
-    queueInfo.pQueuePriorities = &priority;
-    const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    deviceInfo.pNext = &features;
-    deviceInfo.queueCreateInfoCount = 1;
-    deviceInfo.pQueueCreateInfos = &queueInfo;
-    deviceInfo.enabledExtensionCount = 1;
-    deviceInfo.ppEnabledExtensionNames = extensions;
-    VK_CHECK(vkCreateDevice(d.physicalDevice, &deviceInfo, nullptr, &d.device));
-    vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
     d.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(d.device, "vkCmdPushDescriptorSetKHR"));
+    d.setObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(d.instance, "vkSetDebugUtilsObjectNameEXT"));
+    d.memory = std::make_unique<MemoryAllocator>(d.device, d.memoryProperties);
+    d.memory->setOnNewMemory(nameMemory, &d);
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
     poolInfo.queueFamilyIndex = d.queueFamily;
-    VK_CHECK(vkCreateCommandPool(d.device, &poolInfo, nullptr, &d.commandPool));
+    VK_CHECK(vkCreateCommandPool(d.device, &poolInfo, nullptr, &d.immediatePool));
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(d.device, &fenceInfo, nullptr, &d.immediateFence));
     if (d.timestampsSupported) {
         VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        queryInfo.queryCount = d.timestampCapacity;
+        queryInfo.queryCount = d.timestampsPerFrame * (d.options.framesInFlight + 1);  // + immediate lists
         VK_CHECK(vkCreateQueryPool(d.device, &queryInfo, nullptr, &d.timestampPool));
     }
+    d.loadPipelineCache();
+    d.createFrames(d.options.framesInFlight);
+    d.createUploadRings(*this);
+    d.startWorker();
 }
 
 Device::~Device() {
     Impl& d = *impl_;
     if (d.device) {
-        vkDeviceWaitIdle(d.device);
-        for (auto& p : d.pipelines) {
-            if (p.pipeline) vkDestroyPipeline(d.device, p.pipeline, nullptr);
-            if (p.layout) vkDestroyPipelineLayout(d.device, p.layout, nullptr);
-            if (p.pushSetLayout) vkDestroyDescriptorSetLayout(d.device, p.pushSetLayout, nullptr);
+        d.stopWorkerThread();
+        try {
+            waitIdle();
+        } catch (const Error&) {
+            // Device lost at shutdown: the objects are destroyed regardless.
         }
-        for (auto& t : d.tables) {
-            if (t.pool) vkDestroyDescriptorPool(d.device, t.pool, nullptr);
-            if (t.layout) vkDestroyDescriptorSetLayout(d.device, t.layout, nullptr);
-        }
-        for (VkSampler s : d.samplers)
-            if (s) vkDestroySampler(d.device, s, nullptr);
-        for (uint32_t i = 1; i < d.textures.size(); ++i) destroy(TextureHandle{i});
-        for (uint32_t i = 1; i < d.buffers.size(); ++i) destroy(BufferHandle{i});
+        d.destroyFrames();
+        d.destroyGarbage(d.pendingGarbage);
+        d.pipelines.forEachLive([&](uint32_t, PipelineResource& p) { d.destroyNow(p); });
+        d.tables.forEachLive([&](uint32_t, TextureTableResource& t) { d.destroyNow(t); });
+        d.samplers.forEachLive([&](uint32_t, VkSampler& s) { vkDestroySampler(d.device, s, nullptr); });
+        d.textures.forEachLive([&](uint32_t, TextureResource& t) { d.destroyNow(t); });
+        d.buffers.forEachLive([&](uint32_t, BufferResource& b) { d.destroyNow(b); });
+        d.savePipelineCache();
+        if (d.pipelineCache) vkDestroyPipelineCache(d.device, d.pipelineCache, nullptr);
         if (d.timestampPool) vkDestroyQueryPool(d.device, d.timestampPool, nullptr);
-        if (d.commandPool) vkDestroyCommandPool(d.device, d.commandPool, nullptr);
-        vkDestroyDevice(d.device, nullptr);
+        if (d.immediateFence) vkDestroyFence(d.device, d.immediateFence, nullptr);
+        if (d.immediatePool) vkDestroyCommandPool(d.device, d.immediatePool, nullptr);
+        d.memory.reset();
+        if (d.ownsDevice) vkDestroyDevice(d.device, nullptr);
     }
+    if (!d.ownsDevice) return;
     if (d.messenger) {
         auto destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(d.instance, "vkDestroyDebugUtilsMessengerEXT"));
@@ -278,6 +353,7 @@ Device::~Device() {
 }
 
 const DeviceInfo& Device::info() const { return impl_->info; }
+uint32_t Device::maxImageSize() const { return impl_->properties.limits.maxImageDimension2D; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);
@@ -289,54 +365,47 @@ std::vector<std::string> Device::validationMessages() const {
     return impl_->validationMessages;
 }
 
-const std::vector<PassTiming>& Device::lastTimings() const { return impl_->timings; }
-
-VkCommandBuffer Device::Impl::beginImmediate() {
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = commandPool;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
-    VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &commandBuffer));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(commandBuffer, &begin));
-    return commandBuffer;
+void Device::Impl::setDebugName(VkObjectType type, uint64_t handle, const std::string& name) {
+    if (!setObjectName || !handle || name.empty()) return;
+    VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+    info.objectType = type;
+    info.objectHandle = handle;
+    info.pObjectName = name.c_str();
+    setObjectName(device, &info);
 }
 
-void Device::Impl::endImmediate(VkCommandBuffer commandBuffer) {
-    VK_CHECK(vkEndCommandBuffer(commandBuffer));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &commandBuffer;
-    VK_CHECK(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE));
-    VK_CHECK(vkQueueWaitIdle(queue));
-    vkFreeCommandBuffers(device, commandPool, 1, &commandBuffer);
+ObjectCounts Device::objectCounts() const {
+    const Impl& d = *impl_;
+    ObjectCounts counts;
+    counts.buffers = d.buffers.liveCount();
+    counts.textures = d.textures.liveCount();
+    counts.samplers = d.samplers.liveCount();
+    counts.pipelines = d.pipelines.liveCount();
+    counts.textureTables = d.tables.liveCount();
+    counts.memoryBlocks = d.memory->blockCount();
+    counts.memoryBlockBytes = d.memory->blockBytes();
+    counts.memoryUsedBytes = d.memory->usedBytes();
+    counts.memoryAllocations = d.memory->allocationCalls();
+    counts.pendingDestroys = d.pendingGarbage.count();
+    for (const FrameContext& frame : d.frames) counts.pendingDestroys += frame.garbage.count();
+    counts.objectsCreated = d.objectsCreated;
+    counts.submits = d.submits;
+    counts.deviceWaits = d.deviceWaits;
+    return counts;
 }
 
-CommandList Device::beginCommands() {
-    CommandList commands;
-    commands.device = this;
-    VkCommandBuffer commandBuffer = impl_->beginImmediate();
-    commands.nativeCommandBuffer = commandBuffer;
-    if (impl_->timestampsSupported) vkCmdResetQueryPool(commandBuffer, impl_->timestampPool, 0, impl_->timestampCapacity);
-    return commands;
-}
-
-void Device::submitAndWait(CommandList& commands) {
-    Impl& d = *impl_;
-    PENUMBRA_ASSERT(commands.openTimer == ~0u);
-    d.endImmediate(static_cast<VkCommandBuffer>(commands.nativeCommandBuffer));
-    commands.nativeCommandBuffer = nullptr;
-    d.timings.clear();
-    if (!d.timestampsSupported || commands.timerNames.empty()) return;
-    const uint32_t queryCount = uint32_t(commands.timerNames.size()) * 2;
-    std::vector<uint64_t> ticks(queryCount);
-    VK_CHECK(vkGetQueryPoolResults(d.device, d.timestampPool, 0, queryCount, ticks.size() * sizeof(uint64_t),
-                                   ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const double msPerTick = double(d.properties.limits.timestampPeriod) * 1e-6;
-    for (size_t i = 0; i < commands.timerNames.size(); ++i)
-        d.timings.push_back({commands.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
+uint64_t Device::deviceMemoryBytes() const {
+    const Impl& d = *impl_;
+    if (!d.memoryBudget) return d.memory->blockBytes();
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    VkPhysicalDeviceMemoryProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+    properties.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(d.physicalDevice, &properties);
+    uint64_t total = 0;
+    for (uint32_t heap = 0; heap < properties.memoryProperties.memoryHeapCount; ++heap)
+        if (properties.memoryProperties.memoryHeaps[heap].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            total += budget.heapUsage[heap];
+    return total;
 }
 
 }  // namespace penumbra::gpu

@@ -1,64 +1,91 @@
 #pragma once
-// The GPU device: instance and physical-device selection, resource pools, submission, readback,
-// timestamps and validation. The only entry point render/ has to the GPU. Vulkan stays inside
-// src/gpu/*.cpp.
+// The GPU device: instance and physical-device selection (or a caller's VkDevice), memory blocks,
+// object pools with reused slots, the ring of frames in flight with deferred destruction, the
+// pipeline cache and asynchronous pipeline builds, timestamps and validation. The only entry point
+// render/ has to the GPU. Vulkan stays inside src/gpu/*.cpp.
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "core/image.h"
 #include "gpu/command_list.h"
 #include "gpu/types.h"
+#include "penumbra/device.h"
+#include "penumbra/image.h"
 
 namespace penumbra::gpu {
 
-struct DeviceOptions {
-    std::string device = "auto";  // auto | gpu | cpu | N (index in the enumeration order)
-    bool validation = false;      // Khronos validation layer + debug messenger
-    bool timestamps = true;
-};
-
-struct DeviceInfo {
-    std::string name;
-    std::string driver;
-    bool isCpu = false;
-    uint32_t index = 0;
-};
+using DeviceOptions = penumbra::DeviceOptions;
+using DeviceInfo = penumbra::DeviceInfo;
 
 class Device {
 public:
     // Throws penumbra::Error("no Vulkan device ...") with one line when none fits the choice.
     explicit Device(const DeviceOptions& options);
+    // On a VkDevice the caller made and keeps (penumbra/vulkan.h lists what it must enable).
+    Device(const ExternalVulkanDevice& external, const DeviceOptions& options);
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
 
     const DeviceInfo& info() const;
     static std::vector<DeviceInfo> listDevices();
+    uint32_t maxImageSize() const;
 
+    // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,
                               const std::string& debugName = "");
     void writeBuffer(BufferHandle buffer, const void* data, size_t size, size_t offset = 0);  // HostVisible only
     void* mappedPointer(BufferHandle buffer);
+    uint64_t bufferSize(BufferHandle buffer) const;
     TextureHandle createTexture(const TextureDesc& desc);
+    const TextureDesc& textureDesc(TextureHandle texture) const;
     // Uploads level 0 (tightly packed RGBA8 / R8 ...) and builds the mip chain; leaves it ShaderRead.
     void uploadTexture(TextureHandle texture, std::span<const uint8_t> pixels);
+    // Wraps a caller's VkImage (ExternalTarget::image) as a transfer destination; owns nothing.
+    TextureHandle importTexture(const ExternalTarget& target, const std::string& debugName);
     SamplerHandle createSampler(const SamplerDesc& desc);
     TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, SamplerHandle sampler);
     PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc);
+    // The same, built on the device's worker thread; bind it only once pipelineReady() says so.
+    PipelineHandle createGraphicsPipelineAsync(const GraphicsPipelineDesc& desc);
+    bool pipelineReady(PipelineHandle pipeline);
+    void waitForPipeline(PipelineHandle pipeline);
+    uint32_t pipelineBuildsPending();
+    void waitForPipelineBuilds();  // every asynchronous build requested so far
     PipelineHandle createComputePipeline(const ComputePipelineDesc& desc);
     void destroy(BufferHandle handle);
     void destroy(TextureHandle handle);
+    void destroy(SamplerHandle handle);
+    void destroy(PipelineHandle handle);
+    void destroy(TextureTableHandle handle);
 
+    // ---- frames in flight (DeviceOptions::framesInFlight slots, each with its fence, command pool,
+    // timestamp range and upload ring). beginFrame waits only for the frame that last used the slot.
+    uint32_t framesInFlight() const;
+    CommandList beginFrame();
+    // Host-visible memory for this frame's data (uniforms, lights, staging), valid while it is in
+    // flight; only between beginFrame and submitFrame.
+    FrameAllocation allocateFrameData(uint64_t size, uint64_t alignment = 256);
+    // Ends and submits the frame with its fence (one vkQueueSubmit); `sync` adds the caller's
+    // semaphores. Returns the frame's index.
+    uint64_t submitFrame(CommandList& commands, const ExternalTarget* sync = nullptr);
+    void waitFrame(uint64_t frameIndex);  // returns once that frame has finished on the GPU
+    void waitIdle();                      // every submitted frame (fence waits, no vkDeviceWaitIdle)
+    // Frames finished since the last call, oldest first (timestamps per pass, submit-to-fence time).
+    std::vector<CompletedFrame> takeCompletedFrames();
+
+    // ---- one-off work outside the frame ring (load time, debugging): waits for completion.
     CommandList beginCommands();
-    // Submits, waits, and collects the command list's timers (see lastTimings()).
     void submitAndWait(CommandList& commands);
-    const std::vector<PassTiming>& lastTimings() const;
-
     // Copies a texture (RGBA8 / R8 / R32Float / D32Float) to host memory; the texture must be in
     // `state` and is left there. Float formats come back as 4 bytes per pixel.
     Image readTexture(TextureHandle texture, TextureState state);
+
+    ObjectCounts objectCounts() const;
+    // Device memory this process uses: VK_EXT_memory_budget's heap usage where the driver has it,
+    // else the bytes held in the allocator's blocks.
+    uint64_t deviceMemoryBytes() const;
 
     // Validation messages (warnings and errors) seen so far; tests fail on any.
     uint32_t validationMessageCount() const;
@@ -68,6 +95,7 @@ public:
     Impl& impl() { return *impl_; }
 
 private:
+    void initialize();
     std::unique_ptr<Impl> impl_;
 };
 

@@ -77,18 +77,14 @@ VkShaderModule Device::Impl::loadShader(const std::string& name) {
     return module;
 }
 
-PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) {
-    Impl& d = *impl_;
-    PipelineResource p;
-    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
-    const uint32_t textureCount = desc.textureTable ? d.tables.at(desc.textureTable.id).count : 0;
+VkPipeline Device::Impl::buildGraphicsPipeline(const GraphicsPipelineDesc& desc, VkPipelineLayout layout,
+                                               uint32_t textureCount) {
     Specialization specialization(desc.specialization, textureCount);
-
     std::vector<VkPipelineShaderStageCreateInfo> stages;
     auto addStage = [&](VkShaderStageFlagBits stage, const std::string& name) {
         VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
         s.stage = stage;
-        s.module = d.loadShader(name);
+        s.module = loadShader(name);
         s.pName = "main";
         s.pSpecializationInfo = &specialization.info;
         stages.push_back(s);
@@ -158,13 +154,158 @@ PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) 
     info.pDepthStencilState = &depth;
     info.pColorBlendState = &blend;
     info.pDynamicState = &dynamic;
-    info.layout = p.layout;
-    const VkResult result = vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
-    for (auto& s : stages) vkDestroyShaderModule(d.device, s.module, nullptr);
-    VK_CHECK(result);
+    info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    const VkResult result = vkCreateGraphicsPipelines(device, pipelineCache, 1, &info, nullptr, &pipeline);
+    for (auto& stage : stages) vkDestroyShaderModule(device, stage.module, nullptr);
+    if (result != VK_SUCCESS)
+        throw Error("Vulkan call failed: vkCreateGraphicsPipelines (" + desc.debugName + ") returned " + vkResultName(result));
+    setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(pipeline), desc.debugName.empty() ? desc.fragmentShader : desc.debugName);
+    return pipeline;
+}
+
+namespace {
+
+uint32_t tableSize(Device::Impl& d, TextureTableHandle table) { return table ? d.tables.at(table.id).count : 0; }
+
+}  // namespace
+
+PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) {
+    Impl& d = *impl_;
+    PipelineResource p;
+    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+    try {
+        p.pipeline = d.buildGraphicsPipeline(desc, p.layout, tableSize(d, desc.textureTable));
+    } catch (...) {
+        d.destroyNow(p);
+        throw;
+    }
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    d.pipelines.push_back(p);
-    return PipelineHandle{uint32_t(d.pipelines.size() - 1)};
+    ++d.objectsCreated;
+    return PipelineHandle{d.pipelines.insert(std::move(p))};
+}
+
+PipelineHandle Device::createGraphicsPipelineAsync(const GraphicsPipelineDesc& desc) {
+    Impl& d = *impl_;
+    PipelineResource p;
+    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+    p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    const VkPipelineLayout layout = p.layout;
+    ++d.objectsCreated;
+    const uint32_t id = d.pipelines.insert(std::move(p));
+    {
+        std::lock_guard lock(d.jobsMutex);
+        d.jobs.push_back({id, desc, layout, tableSize(d, desc.textureTable)});
+    }
+    d.jobsChanged.notify_all();
+    return PipelineHandle{id};
+}
+
+bool Device::pipelineReady(PipelineHandle pipeline) {
+    impl_->collectPipelineBuilds();
+    return impl_->pipelines.at(pipeline.id).pipeline != VK_NULL_HANDLE;
+}
+
+void Device::waitForPipeline(PipelineHandle pipeline) {
+    Impl& d = *impl_;
+    while (!pipelineReady(pipeline)) {
+        std::unique_lock lock(d.jobsMutex);
+        if (!d.buildErrors.empty()) break;
+        d.jobsChanged.wait_for(lock, std::chrono::milliseconds(50));
+    }
+    d.collectPipelineBuilds();
+}
+
+uint32_t Device::pipelineBuildsPending() {
+    Impl& d = *impl_;
+    d.collectPipelineBuilds();
+    std::lock_guard lock(d.jobsMutex);
+    return uint32_t(d.jobs.size()) + d.buildsRunning;
+}
+
+void Device::waitForPipelineBuilds() {
+    Impl& d = *impl_;
+    {
+        std::unique_lock lock(d.jobsMutex);
+        d.jobsChanged.wait(lock, [&] { return (d.jobs.empty() && d.buildsRunning == 0) || !d.buildErrors.empty(); });
+    }
+    d.collectPipelineBuilds();
+}
+
+void Device::Impl::collectPipelineBuilds() {
+    std::vector<std::pair<uint32_t, VkPipeline>> finished;
+    std::vector<std::string> errors;
+    {
+        std::lock_guard lock(jobsMutex);
+        finished.swap(finishedBuilds);
+        errors.swap(buildErrors);
+    }
+    for (auto [id, pipeline] : finished) {
+        if (pipelines.contains(id) && !pipelines.at(id).pipeline) pipelines.at(id).pipeline = pipeline;
+        else vkDestroyPipeline(device, pipeline, nullptr);  // destroyed before its build finished
+    }
+    if (!errors.empty()) throw Error(errors.front());
+}
+
+void Device::Impl::startWorker() {
+    worker = std::thread([this] {
+        std::unique_lock lock(jobsMutex);
+        while (true) {
+            jobsChanged.wait(lock, [&] { return stopWorker || !jobs.empty(); });
+            if (stopWorker) return;
+            PipelineJob job = std::move(jobs.front());
+            jobs.pop_front();
+            ++buildsRunning;
+            lock.unlock();
+            VkPipeline pipeline = VK_NULL_HANDLE;
+            std::string error;
+            try {
+                pipeline = buildGraphicsPipeline(job.desc, job.layout, job.textureCount);
+            } catch (const std::exception& e) {
+                error = e.what();
+            }
+            lock.lock();
+            --buildsRunning;
+            if (pipeline) finishedBuilds.emplace_back(job.id, pipeline);
+            else buildErrors.push_back(error);
+            jobsChanged.notify_all();
+        }
+    });
+}
+
+void Device::Impl::stopWorkerThread() {
+    {
+        std::lock_guard lock(jobsMutex);
+        stopWorker = true;
+        jobs.clear();
+    }
+    jobsChanged.notify_all();
+    if (worker.joinable()) worker.join();
+    for (auto [id, pipeline] : finishedBuilds) {
+        if (pipelines.contains(id) && !pipelines.at(id).pipeline) pipelines.at(id).pipeline = pipeline;
+        else vkDestroyPipeline(device, pipeline, nullptr);
+    }
+    finishedBuilds.clear();
+}
+
+void Device::Impl::destroyNow(PipelineResource& p) {
+    if (p.pipeline) vkDestroyPipeline(device, p.pipeline, nullptr);
+    if (p.layout) vkDestroyPipelineLayout(device, p.layout, nullptr);
+    if (p.pushSetLayout) vkDestroyDescriptorSetLayout(device, p.pushSetLayout, nullptr);
+    p = PipelineResource{};
+}
+
+void Device::destroy(PipelineHandle handle) {
+    Impl& d = *impl_;
+    if (!handle) return;
+    d.collectPipelineBuilds();
+    // A build still running delivers its pipeline to a dead slot: collectPipelineBuilds destroys it.
+    PipelineResource p = d.pipelines.remove(handle.id);
+    {
+        std::lock_guard lock(d.jobsMutex);
+        std::erase_if(d.jobs, [&](const PipelineJob& job) { return job.id == handle.id; });
+    }
+    d.garbageList().pipelines.push_back(std::move(p));
 }
 
 PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
@@ -179,12 +320,16 @@ PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     info.stage.pName = "main";
     info.stage.pSpecializationInfo = &specialization.info;
     info.layout = p.layout;
-    const VkResult result = vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline);
+    const VkResult result = vkCreateComputePipelines(d.device, d.pipelineCache, 1, &info, nullptr, &p.pipeline);
     vkDestroyShaderModule(d.device, info.stage.module, nullptr);
-    VK_CHECK(result);
+    if (result != VK_SUCCESS) {
+        d.destroyNow(p);
+        VK_CHECK(result);
+    }
+    d.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), desc.debugName.empty() ? desc.shader : desc.debugName);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
-    d.pipelines.push_back(p);
-    return PipelineHandle{uint32_t(d.pipelines.size() - 1)};
+    ++d.objectsCreated;
+    return PipelineHandle{d.pipelines.insert(std::move(p))};
 }
 
 }  // namespace penumbra::gpu

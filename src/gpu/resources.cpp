@@ -32,23 +32,8 @@ uint32_t bytesPerPixel(Format format) {
     }
 }
 
-uint32_t Device::Impl::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const {
-    for (uint32_t i = 0; i < memoryProperties.memoryTypeCount; ++i)
-        if ((typeBits & (1u << i)) && (memoryProperties.memoryTypes[i].propertyFlags & flags) == flags) return i;
-    throw Error("GPU memory: no memory type with the required properties");
-}
-
-VkDeviceMemory Device::Impl::allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags flags) {
-    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    info.allocationSize = requirements.size;
-    info.memoryTypeIndex = findMemoryType(requirements.memoryTypeBits, flags);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    VK_CHECK(vkAllocateMemory(device, &info, nullptr, &memory));
-    return memory;
-}
-
 BufferHandle Device::createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData,
-                                  const std::string&) {
+                                  const std::string& debugName) {
     Impl& d = *impl_;
     BufferResource resource;
     resource.size = std::max<size_t>(size, 16);
@@ -57,6 +42,7 @@ BufferHandle Device::createBuffer(size_t size, uint32_t usage, MemoryKind memory
     if (usage & kBufferStorage) info.usage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     if (usage & kBufferUniform) info.usage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
     if (usage & kBufferIndex) info.usage |= VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+    if (usage & kBufferIndirect) info.usage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     info.usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     VK_CHECK(vkCreateBuffer(d.device, &info, nullptr, &resource.buffer));
     VkMemoryRequirements requirements;
@@ -64,21 +50,29 @@ BufferHandle Device::createBuffer(size_t size, uint32_t usage, MemoryKind memory
     const VkMemoryPropertyFlags flags = memory == MemoryKind::HostVisible
                                             ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
                                             : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-    resource.memory = d.allocate(requirements, flags);
-    VK_CHECK(vkBindBufferMemory(d.device, resource.buffer, resource.memory, 0));
-    if (memory == MemoryKind::HostVisible) VK_CHECK(vkMapMemory(d.device, resource.memory, 0, VK_WHOLE_SIZE, 0, &resource.mapped));
-    d.buffers.push_back(resource);
-    const BufferHandle handle{uint32_t(d.buffers.size() - 1)};
+    try {
+        resource.memory = d.memory->allocate(requirements, flags, true, debugName);
+        VK_CHECK(vkBindBufferMemory(d.device, resource.buffer, resource.memory.memory, resource.memory.offset));
+    } catch (...) {
+        d.destroyNow(resource);
+        throw;
+    }
+    resource.mapped = resource.memory.mapped;
+    d.setDebugName(VK_OBJECT_TYPE_BUFFER, uint64_t(resource.buffer), debugName);
+    ++d.objectsCreated;
+    const BufferHandle handle{d.buffers.insert(resource)};
     if (initialData && size > 0) {
         if (resource.mapped) {
             std::memcpy(resource.mapped, initialData, size);
         } else {
-            const BufferHandle staging = createBuffer(size, kBufferTransferSrc, MemoryKind::HostVisible, initialData);
+            const BufferHandle staging =
+                createBuffer(size, kBufferTransferSrc, MemoryKind::HostVisible, initialData, "staging");
             d.immediate([&](VkCommandBuffer cb) {
                 VkBufferCopy copy{0, 0, size};
-                vkCmdCopyBuffer(cb, d.buffers[staging.id].buffer, d.buffers[handle.id].buffer, 1, &copy);
+                vkCmdCopyBuffer(cb, d.buffers.at(staging.id).buffer, d.buffers.at(handle.id).buffer, 1, &copy);
             });
-            destroy(staging);
+            BufferResource stagingResource = d.buffers.remove(staging.id);
+            d.destroyNow(stagingResource);  // the copy has finished
         }
     }
     return handle;
@@ -91,13 +85,17 @@ void Device::writeBuffer(BufferHandle buffer, const void* data, size_t size, siz
 }
 
 void* Device::mappedPointer(BufferHandle buffer) { return impl_->buffers.at(buffer.id).mapped; }
+uint64_t Device::bufferSize(BufferHandle buffer) const { return impl_->buffers.at(buffer.id).size; }
+
+void Device::Impl::destroyNow(BufferResource& resource) {
+    if (resource.buffer) vkDestroyBuffer(device, resource.buffer, nullptr);
+    memory->free(resource.memory);
+    resource = BufferResource{};
+}
 
 void Device::destroy(BufferHandle handle) {
-    Impl& d = *impl_;
-    BufferResource& resource = d.buffers.at(handle.id);
-    if (resource.buffer) vkDestroyBuffer(d.device, resource.buffer, nullptr);
-    if (resource.memory) vkFreeMemory(d.device, resource.memory, nullptr);
-    resource = BufferResource{};
+    if (!handle) return;
+    impl_->garbageList().buffers.push_back(impl_->buffers.remove(handle.id));
 }
 
 TextureHandle Device::createTexture(const TextureDesc& desc) {
@@ -121,29 +119,59 @@ TextureHandle Device::createTexture(const TextureDesc& desc) {
     if (desc.usage & kTextureDepthTarget) info.usage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     if (desc.usage & kTextureStorage) info.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (desc.width == 0 || desc.height == 0 || desc.width > d.properties.limits.maxImageDimension2D ||
+        desc.height > d.properties.limits.maxImageDimension2D)
+        throw Error("texture '" + desc.debugName + "' of " + std::to_string(desc.width) + "x" +
+                    std::to_string(desc.height) + " exceeds the device's limit of " +
+                    std::to_string(d.properties.limits.maxImageDimension2D) + " texels");
     VK_CHECK(vkCreateImage(d.device, &info, nullptr, &resource.image));
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(d.device, resource.image, &requirements);
-    resource.memory = d.allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VK_CHECK(vkBindImageMemory(d.device, resource.image, resource.memory, 0));
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = resource.image;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = resource.format;
-    viewInfo.subresourceRange = {VkImageAspectFlags(isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
-                                 0, resource.desc.mipLevels, 0, 1};
-    VK_CHECK(vkCreateImageView(d.device, &viewInfo, nullptr, &resource.view));
-    d.textures.push_back(resource);
-    return TextureHandle{uint32_t(d.textures.size() - 1)};
+    try {
+        resource.memory = d.memory->allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, false, desc.debugName);
+        VK_CHECK(vkBindImageMemory(d.device, resource.image, resource.memory.memory, resource.memory.offset));
+        VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        viewInfo.image = resource.image;
+        viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        viewInfo.format = resource.format;
+        viewInfo.subresourceRange = {VkImageAspectFlags(isDepthFormat(desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
+                                     0, resource.desc.mipLevels, 0, 1};
+        VK_CHECK(vkCreateImageView(d.device, &viewInfo, nullptr, &resource.view));
+    } catch (...) {
+        d.destroyNow(resource);
+        throw;
+    }
+    d.setDebugName(VK_OBJECT_TYPE_IMAGE, uint64_t(resource.image), desc.debugName);
+    d.setDebugName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(resource.view), desc.debugName);
+    ++d.objectsCreated;
+    return TextureHandle{d.textures.insert(resource)};
+}
+
+TextureHandle Device::importTexture(const ExternalTarget& target, const std::string& debugName) {
+    Impl& d = *impl_;
+    if (!target.image || target.width == 0 || target.height == 0)
+        throw Error("external image: a VkImage and its size are required");
+    TextureResource resource;
+    resource.image = reinterpret_cast<VkImage>(target.image);
+    resource.format = VkFormat(target.format);
+    resource.desc = {target.width, target.height, Format::Undefined, kTextureTransferDst, 1, debugName};
+    ++d.objectsCreated;
+    return TextureHandle{d.textures.insert(resource)};
+}
+
+const TextureDesc& Device::textureDesc(TextureHandle texture) const { return impl_->textures.at(texture.id).desc; }
+
+void Device::Impl::destroyNow(TextureResource& resource) {
+    if (resource.view) vkDestroyImageView(device, resource.view, nullptr);
+    // An imported image (no memory of ours) belongs to the caller.
+    if (resource.image && resource.memory.memory) vkDestroyImage(device, resource.image, nullptr);
+    memory->free(resource.memory);
+    resource = TextureResource{};
 }
 
 void Device::destroy(TextureHandle handle) {
-    Impl& d = *impl_;
-    TextureResource& resource = d.textures.at(handle.id);
-    if (resource.view) vkDestroyImageView(d.device, resource.view, nullptr);
-    if (resource.image) vkDestroyImage(d.device, resource.image, nullptr);
-    if (resource.memory) vkFreeMemory(d.device, resource.memory, nullptr);
-    resource = TextureResource{};
+    if (!handle) return;
+    impl_->garbageList().textures.push_back(impl_->textures.remove(handle.id));
 }
 
 namespace {
@@ -170,7 +198,8 @@ void Device::uploadTexture(TextureHandle handle, std::span<const uint8_t> pixels
     Impl& d = *impl_;
     const TextureResource& t = d.textures.at(handle.id);
     PENUMBRA_ASSERT(pixels.size() == size_t(t.desc.width) * t.desc.height * bytesPerPixel(t.desc.format));
-    const BufferHandle staging = createBuffer(pixels.size(), kBufferTransferSrc, MemoryKind::HostVisible, pixels.data());
+    const BufferHandle staging =
+        createBuffer(pixels.size(), kBufferTransferSrc, MemoryKind::HostVisible, pixels.data(), "texture staging");
     d.immediate([&](VkCommandBuffer cb) {
         const VkAccessFlags2 write = VK_ACCESS_2_TRANSFER_WRITE_BIT, read = VK_ACCESS_2_TRANSFER_READ_BIT;
         for (uint32_t level = 0; level < t.desc.mipLevels; ++level)
@@ -178,7 +207,7 @@ void Device::uploadTexture(TextureHandle handle, std::span<const uint8_t> pixels
         VkBufferImageCopy copy{};
         copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         copy.imageExtent = {t.desc.width, t.desc.height, 1};
-        vkCmdCopyBufferToImage(cb, d.buffers[staging.id].buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        vkCmdCopyBufferToImage(cb, d.buffers.at(staging.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
         // Box-filtered mip chain by successive linear blits.
         int32_t w = int32_t(t.desc.width), h = int32_t(t.desc.height);
         for (uint32_t level = 1; level < t.desc.mipLevels; ++level) {
@@ -198,7 +227,8 @@ void Device::uploadTexture(TextureHandle handle, std::span<const uint8_t> pixels
         mipBarrier(cb, t.image, t.desc.mipLevels - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, write, VK_ACCESS_2_SHADER_READ_BIT);
     });
-    destroy(staging);
+    BufferResource stagingResource = d.buffers.remove(staging.id);
+    d.destroyNow(stagingResource);  // the upload has finished
 }
 
 SamplerHandle Device::createSampler(const SamplerDesc& desc) {
@@ -216,8 +246,24 @@ SamplerHandle Device::createSampler(const SamplerDesc& desc) {
     info.compareOp = toVkCompareOp(desc.compareOp);
     VkSampler sampler = VK_NULL_HANDLE;
     VK_CHECK(vkCreateSampler(d.device, &info, nullptr, &sampler));
-    d.samplers.push_back(sampler);
-    return SamplerHandle{uint32_t(d.samplers.size() - 1)};
+    ++d.objectsCreated;
+    return SamplerHandle{d.samplers.insert(sampler)};
+}
+
+void Device::destroy(SamplerHandle handle) {
+    if (!handle) return;
+    impl_->garbageList().samplers.push_back(impl_->samplers.remove(handle.id));
+}
+
+void Device::Impl::destroyNow(TextureTableResource& table) {
+    if (table.pool) vkDestroyDescriptorPool(device, table.pool, nullptr);
+    if (table.layout) vkDestroyDescriptorSetLayout(device, table.layout, nullptr);
+    table = TextureTableResource{};
+}
+
+void Device::destroy(TextureTableHandle handle) {
+    if (!handle) return;
+    impl_->garbageList().tables.push_back(impl_->tables.remove(handle.id));
 }
 
 TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> textures, SamplerHandle sampler) {
@@ -250,8 +296,8 @@ TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> tex
     write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     write.pImageInfo = images.data();
     vkUpdateDescriptorSets(d.device, 1, &write, 0, nullptr);
-    d.tables.push_back(table);
-    return TextureTableHandle{uint32_t(d.tables.size() - 1)};
+    ++d.objectsCreated;
+    return TextureTableHandle{d.tables.insert(table)};
 }
 
 Image Device::readTexture(TextureHandle handle, TextureState state) {
@@ -259,18 +305,19 @@ Image Device::readTexture(TextureHandle handle, TextureState state) {
     const TextureResource& t = d.textures.at(handle.id);
     const uint32_t bpp = bytesPerPixel(t.desc.format);
     const size_t size = size_t(t.desc.width) * t.desc.height * bpp;
-    const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible);
+    const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible, nullptr, "readback");
     d.immediate([&](VkCommandBuffer cb) {
         recordTransition(cb, t, state, TextureState::TransferSrc);
         VkBufferImageCopy copy{};
         copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
         copy.imageExtent = {t.desc.width, t.desc.height, 1};
-        vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers[readback.id].buffer, 1, &copy);
+        vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers.at(readback.id).buffer, 1, &copy);
         recordTransition(cb, t, TextureState::TransferSrc, state);
     });
     Image image(t.desc.width, t.desc.height, bpp);
-    std::memcpy(image.pixels.data(), d.buffers[readback.id].mapped, size);
-    destroy(readback);
+    std::memcpy(image.pixels.data(), d.buffers.at(readback.id).mapped, size);
+    BufferResource readbackResource = d.buffers.remove(readback.id);
+    d.destroyNow(readbackResource);
     return image;
 }
 

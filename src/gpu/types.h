@@ -19,6 +19,7 @@ enum class Format { Undefined, RGBA8Unorm, RGBA8Srgb, R8Unorm, R32Float, R32Uint
 
 enum BufferUsage : uint32_t {
     kBufferStorage = 1, kBufferUniform = 2, kBufferIndex = 4, kBufferTransferSrc = 8, kBufferTransferDst = 16,
+    kBufferIndirect = 32,
 };
 enum class MemoryKind { DeviceLocal, HostVisible };
 
@@ -92,11 +93,32 @@ struct ComputePipelineDesc {
     std::string debugName;
 };
 
+// A range of a buffer: what a descriptor binds and what a copy reads. size 0 = to the end.
+struct BufferSlice {
+    BufferHandle buffer;
+    uint64_t offset = 0;
+    uint64_t size = 0;
+};
+
+// Per-frame memory from the frame's upload ring: host-visible, valid until the frame's fence signals.
+struct FrameAllocation {
+    BufferSlice slice;
+    void* mapped = nullptr;
+};
+
 struct DescriptorWrite {
     uint32_t binding = 0;
     BufferHandle buffer;
     TextureHandle texture;
     SamplerHandle sampler;
+    uint64_t offset = 0;  // buffer range bound (size 0 = whole buffer from offset)
+    uint64_t size = 0;
+
+    DescriptorWrite() = default;
+    DescriptorWrite(uint32_t b, BufferHandle buf, TextureHandle tex, SamplerHandle smp)
+        : binding(b), buffer(buf), texture(tex), sampler(smp) {}
+    DescriptorWrite(uint32_t b, const BufferSlice& slice)
+        : binding(b), buffer(slice.buffer), offset(slice.offset), size(slice.size) {}
 };
 
 struct ColorAttachment {
@@ -125,6 +147,41 @@ struct Rect {
 struct PassTiming {
     std::string name;
     double milliseconds = 0.0;
+};
+
+// GPU objects alive on a Device (what a renderer must give back), and cumulative creation counts
+// (what a steady-state frame must not raise).
+struct ObjectCounts {
+    uint32_t buffers = 0, textures = 0, samplers = 0, pipelines = 0, textureTables = 0;
+    uint32_t memoryBlocks = 0;       // VkDeviceMemory objects alive (blocks and dedicated allocations)
+    uint32_t pendingDestroys = 0;    // objects waiting for the GPU to finish with them
+    uint64_t memoryBlockBytes = 0;   // bytes held in those blocks
+    uint64_t memoryUsedBytes = 0;    // bytes suballocated from them
+    uint64_t memoryAllocations = 0;  // vkAllocateMemory calls so far
+    uint64_t objectsCreated = 0;     // buffers, textures, samplers, pipelines, tables created so far
+    uint64_t submits = 0;            // vkQueueSubmit calls so far
+    uint64_t deviceWaits = 0;        // device- or queue-wide waits so far (not per-frame fence waits)
+    uint32_t total() const { return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys; }
+};
+
+// A finished frame as the GPU reports it: timestamps per pass and the submit-to-fence time.
+struct CompletedFrame {
+    uint64_t frameIndex = 0;
+    std::vector<PassTiming> timings;
+    double submitToFenceMilliseconds = 0.0;
+};
+
+// An image the caller owns on the caller's VkDevice (penumbra/vulkan.h fills this from Vulkan types;
+// the values are Vulkan handles and enums as integers so this header stays free of Vulkan).
+struct ExternalTarget {
+    uint64_t image = 0;            // VkImage
+    uint32_t format = 0;           // VkFormat
+    uint32_t width = 0, height = 0;
+    uint32_t initialLayout = 0;    // VkImageLayout the image is in when the frame starts
+    uint32_t finalLayout = 0;      // VkImageLayout to leave it in
+    uint64_t waitSemaphore = 0;    // VkSemaphore (binary) the frame waits on before writing, or 0
+    uint64_t waitStageMask = 0;    // VkPipelineStageFlags2 of that wait
+    uint64_t signalSemaphore = 0;  // VkSemaphore (binary) signalled when the image is written, or 0
 };
 
 }  // namespace penumbra::gpu

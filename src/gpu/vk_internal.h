@@ -1,13 +1,20 @@
 #pragma once
 // Internal to src/gpu/: the Vulkan side of the Device. Nothing outside src/gpu/ includes this.
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include "core/error.h"
 #include "gpu/device.h"
+#include "gpu/handle_pool.h"
+#include "gpu/memory_allocator.h"
 
 namespace penumbra::gpu {
 
@@ -24,21 +31,21 @@ const char* vkResultName(VkResult result);
 
 struct BufferResource {
     VkBuffer buffer = VK_NULL_HANDLE;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
+    MemoryAllocation memory;
     VkDeviceSize size = 0;
     void* mapped = nullptr;
 };
 
 struct TextureResource {
     VkImage image = VK_NULL_HANDLE;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
+    MemoryAllocation memory;
     VkImageView view = VK_NULL_HANDLE;
     TextureDesc desc;
     VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
 struct PipelineResource {
-    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;  // VK_NULL_HANDLE while an asynchronous build runs
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkDescriptorSetLayout pushSetLayout = VK_NULL_HANDLE;
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -52,9 +59,47 @@ struct TextureTableResource {
     uint32_t count = 0;
 };
 
+// Vulkan objects whose handle was destroyed but which a frame in flight may still use: destroyed
+// when the frame they are attached to has finished on the GPU (Granite / Filament style).
+struct Garbage {
+    std::vector<BufferResource> buffers;
+    std::vector<TextureResource> textures;
+    std::vector<PipelineResource> pipelines;
+    std::vector<VkSampler> samplers;
+    std::vector<TextureTableResource> tables;
+    uint32_t count() const {
+        return uint32_t(buffers.size() + textures.size() + pipelines.size() + samplers.size() + tables.size());
+    }
+};
+
+// One slot of the ring of frames in flight.
+struct FrameContext {
+    VkCommandPool commandPool = VK_NULL_HANDLE;
+    VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    bool inFlight = false;
+    uint64_t frameIndex = 0;
+    std::chrono::steady_clock::time_point submitTime;
+    std::vector<std::string> timerNames;
+    Garbage garbage;
+    // Upload ring: one host-visible buffer per slot, bump-allocated, reset when the slot is reused.
+    BufferHandle uploadBuffer;
+    uint64_t uploadCapacity = 0;
+    uint64_t uploadUsed = 0;
+};
+
+// A graphics pipeline built on the Device's worker thread.
+struct PipelineJob {
+    uint32_t id = 0;
+    GraphicsPipelineDesc desc;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    uint32_t textureCount = 0;
+};
+
 struct Device::Impl {
     DeviceOptions options;
     DeviceInfo info;
+    bool ownsDevice = true;  // false when built on a caller's VkDevice (penumbra/vulkan.h)
     VkInstance instance = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
@@ -63,30 +108,74 @@ struct Device::Impl {
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queueFamily = 0;
-    VkCommandPool commandPool = VK_NULL_HANDLE;
+    bool memoryBudget = false;  // VK_EXT_memory_budget enabled
     VkQueryPool timestampPool = VK_NULL_HANDLE;
-    uint32_t timestampCapacity = 128;
+    uint32_t timestampsPerFrame = 128;
     bool timestampsSupported = false;
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
+    VkPipelineCache pipelineCache = VK_NULL_HANDLE;
+    std::string pipelineCacheFile;  // "" = not persisted
 
-    std::vector<BufferResource> buffers{1};   // index 0 = invalid handle
-    std::vector<TextureResource> textures{1};
-    std::vector<VkSampler> samplers{VK_NULL_HANDLE};
-    std::vector<PipelineResource> pipelines{1};
-    std::vector<TextureTableResource> tables{1};
-    std::vector<PassTiming> timings;
+    std::unique_ptr<MemoryAllocator> memory;
+    HandlePool<BufferResource> buffers;
+    HandlePool<TextureResource> textures;
+    HandlePool<VkSampler> samplers;
+    HandlePool<PipelineResource> pipelines;
+    HandlePool<TextureTableResource> tables;
+    uint64_t objectsCreated = 0;
+    uint64_t submits = 0;
+    uint64_t deviceWaits = 0;
+
+    // Frames in flight.
+    std::vector<FrameContext> frames;
+    uint64_t nextFrameIndex = 0;  // index of the next frame beginFrame() starts
+    int32_t recordingSlot = -1;   // slot between beginFrame and submitFrame, else -1
+    Garbage pendingGarbage;       // destroyed since the last submit: attached to the next one
+    std::vector<CompletedFrame> completed;
+
+    // One-off submissions (uploads at load time, readbacks outside a frame).
+    VkCommandPool immediatePool = VK_NULL_HANDLE;
+    VkFence immediateFence = VK_NULL_HANDLE;
+
+    // Asynchronous pipeline builds: the worker only calls vkCreateGraphicsPipelines; finished
+    // pipelines are moved into the pool on the calling thread (collectPipelineBuilds).
+    std::thread worker;
+    std::mutex jobsMutex;
+    std::condition_variable jobsChanged;
+    std::deque<PipelineJob> jobs;
+    std::vector<std::pair<uint32_t, VkPipeline>> finishedBuilds;
+    std::vector<std::string> buildErrors;
+    uint32_t buildsRunning = 0;
+    bool stopWorker = false;
 
     mutable std::mutex messagesMutex;
     std::vector<std::string> validationMessages;
 
-    uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
-    VkDeviceMemory allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags flags);
-    // Records and runs a one-off command buffer (uploads, readbacks).
+    // Records and runs a one-off command buffer and waits for it (load-time work).
     template <typename Record>
     void immediate(Record&& record);
     VkCommandBuffer beginImmediate();
     void endImmediate(VkCommandBuffer commandBuffer);
     VkShaderModule loadShader(const std::string& name);
+    void setDebugName(VkObjectType type, uint64_t handle, const std::string& name);
+    Garbage& garbageList() { return recordingSlot >= 0 ? frames[recordingSlot].garbage : pendingGarbage; }
+    void destroyGarbage(Garbage& garbage);
+    void destroyNow(BufferResource& resource);
+    void destroyNow(TextureResource& resource);
+    void destroyNow(PipelineResource& resource);
+    void destroyNow(TextureTableResource& resource);
+    // Waits for the slot's frame (if in flight), reads its timestamps, frees its garbage.
+    void retireFrame(FrameContext& frame);
+    void createFrames(uint32_t count);
+    void createUploadRings(Device& owner);  // each slot's upload ring, made up front
+    void destroyFrames();
+    void startWorker();
+    void stopWorkerThread();
+    VkPipeline buildGraphicsPipeline(const GraphicsPipelineDesc& desc, VkPipelineLayout layout, uint32_t textureCount);
+    void collectPipelineBuilds();
+    void loadPipelineCache();
+    void savePipelineCache();
 };
 
 template <typename Record>

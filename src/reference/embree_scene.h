@@ -18,7 +18,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

@@ -3,7 +3,7 @@
 // colour alpha (texture alpha × factor alpha) and the per-hit dither value used for dithered shadows.
 #include <glm/glm.hpp>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

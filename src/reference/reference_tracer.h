@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/image.h"
-#include "scene/camera_view.h"
-#include "scene/scene.h"
+#include "penumbra/image.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

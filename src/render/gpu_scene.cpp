@@ -1,5 +1,8 @@
 #include "render/gpu_scene.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "scene_structs.h"
@@ -21,9 +24,31 @@ gpu_data::MaterialData packMaterial(const Material& m) {
     return data;
 }
 
+gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance) {
+    gpu_data::InstanceData data{};
+    data.worldFromObject = instance.worldFromObject;
+    data.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject)));
+    data.info = glm::uvec4(scene.meshes.at(instance.meshIndex).materialIndex, 0, 0, 0);
+    return data;
+}
+
+// Sorted, deduplicated indices grouped into runs of consecutive entries: one copy per run.
+template <typename Visit>
+void forEachRun(std::vector<uint32_t>& indices, Visit&& visit) {
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    for (size_t begin = 0; begin < indices.size();) {
+        size_t end = begin + 1;
+        while (end < indices.size() && indices[end] == indices[end - 1] + 1) ++end;
+        visit(indices[begin], uint32_t(end - begin));
+        begin = end;
+    }
+    indices.clear();
+}
+
 }  // namespace
 
-GpuScene::GpuScene(gpu::Device& device, const Scene& scene) {
+GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     std::vector<gpu_data::VertexData> vertices;
     std::vector<uint32_t> indices;
     struct MeshRange { uint32_t firstIndex, indexCount; int32_t vertexOffset; };
@@ -37,14 +62,11 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) {
     std::vector<gpu_data::InstanceData> instances;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
-        const Mesh& mesh = scene.meshes.at(instance.meshIndex);
-        gpu_data::InstanceData data{};
-        data.worldFromObject = instance.worldFromObject;
-        data.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject)));
-        data.info = glm::uvec4(mesh.materialIndex, 0, 0, 0);
-        instances.push_back(data);
+        instances.push_back(packInstance(scene, instance));
         const MeshRange& r = ranges[instance.meshIndex];
-        if (r.indexCount > 0) draws_.push_back({i, r.firstIndex, r.indexCount, r.vertexOffset, mesh.materialIndex});
+        if (r.indexCount == 0) continue;
+        draws_.push_back({i, r.firstIndex, r.indexCount, r.vertexOffset, scene.meshes[instance.meshIndex].materialIndex});
+        triangles_ += r.indexCount / 3;
     }
     std::vector<gpu_data::MaterialData> materials;
     for (const Material& m : scene.materials) materials.push_back(packMaterial(m));
@@ -62,17 +84,49 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) {
 
     // Base-colour textures (sRGB, mipmapped). An empty scene still gets one white texel so the
     // table is never empty.
-    std::vector<gpu::TextureHandle> textures;
-    auto upload = [&](const Image& rgba) {
-        gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0, "baseColor"};
+    auto upload = [&](const Image& rgba, const std::string& name) {
+        gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0,
+                              "baseColor " + name};
         const gpu::TextureHandle texture = device.createTexture(desc);
         device.uploadTexture(texture, rgba.pixels);
-        textures.push_back(texture);
+        textures_.push_back(texture);
     };
-    for (const Texture& t : scene.textures) upload(t.rgba);
-    if (textures.empty()) upload(Image(1, 1, 4, 255));
-    const gpu::SamplerHandle sampler = device.createSampler({gpu::Filter::Linear, true, gpu::AddressMode::Repeat});
-    textureTable_ = device.createTextureTable(textures, sampler);
+    for (const Texture& t : scene.textures) upload(t.rgba, t.name);
+    if (textures_.empty()) upload(Image(1, 1, 4, 255), "white");
+    sampler_ = device.createSampler({gpu::Filter::Linear, true, gpu::AddressMode::Repeat});
+    textureTable_ = device.createTextureTable(textures_, sampler_);
+}
+
+GpuScene::~GpuScene() {
+    device_.destroy(textureTable_);
+    device_.destroy(sampler_);
+    for (gpu::TextureHandle t : textures_) device_.destroy(t);
+    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_}) device_.destroy(b);
+}
+
+uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene) {
+    if (dirtyInstances_.empty() && dirtyMaterials_.empty()) return 0;
+    uint64_t bytes = 0;
+    // Earlier frames may still read these buffers: order the copies after them, and the draws after the copies.
+    commands.memoryBarrier();
+    forEachRun(dirtyInstances_, [&](uint32_t first, uint32_t count) {
+        const uint64_t size = uint64_t(count) * sizeof(gpu_data::InstanceData);
+        const gpu::FrameAllocation staging = device_.allocateFrameData(size, 16);
+        auto* out = static_cast<gpu_data::InstanceData*>(staging.mapped);
+        for (uint32_t i = 0; i < count; ++i) out[i] = packInstance(scene, scene.instances[first + i]);
+        commands.copyBuffer(staging.slice, instances_, uint64_t(first) * sizeof(gpu_data::InstanceData));
+        bytes += size;
+    });
+    forEachRun(dirtyMaterials_, [&](uint32_t first, uint32_t count) {
+        const uint64_t size = uint64_t(count) * sizeof(gpu_data::MaterialData);
+        const gpu::FrameAllocation staging = device_.allocateFrameData(size, 16);
+        auto* out = static_cast<gpu_data::MaterialData*>(staging.mapped);
+        for (uint32_t i = 0; i < count; ++i) out[i] = packMaterial(scene.materials[first + i]);
+        commands.copyBuffer(staging.slice, materials_, uint64_t(first) * sizeof(gpu_data::MaterialData));
+        bytes += size;
+    });
+    commands.memoryBarrier();
+    return bytes;
 }
 
 }  // namespace penumbra

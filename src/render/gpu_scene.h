@@ -1,11 +1,13 @@
 #pragma once
 // The scene on the GPU: one vertex storage buffer, one index buffer, the instance and material
 // buffers and the base-colour texture table. Draws are recorded from DrawItems (one per Instance),
-// which any pass (main view, shadow tiles, a future compute rasterizer) can filter.
+// which any pass (main view, shadow tiles, a future compute rasterizer) can filter. Instances and
+// materials may change between frames: only the changed entries are copied, through the frame's
+// upload ring, at the start of the next frame.
 #include <vector>
 
 #include "gpu/device.h"
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 
@@ -20,6 +22,9 @@ struct DrawItem {
 class GpuScene {
 public:
     GpuScene(gpu::Device& device, const Scene& scene);
+    ~GpuScene();
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
 
     const std::vector<DrawItem>& draws() const { return draws_; }
     gpu::BufferHandle vertexBuffer() const { return vertices_; }
@@ -27,11 +32,23 @@ public:
     gpu::BufferHandle instanceBuffer() const { return instances_; }
     gpu::BufferHandle materialBuffer() const { return materials_; }
     gpu::TextureTableHandle textureTable() const { return textureTable_; }
+    uint64_t triangleCount() const { return triangles_; }
+
+    // Marks an instance or material as changed; recordUpdates uploads it.
+    void instanceChanged(uint32_t instance) { dirtyInstances_.push_back(instance); }
+    void materialChanged(uint32_t material) { dirtyMaterials_.push_back(material); }
+    // Copies the changed entries of `scene` (between beginFrame and submitFrame); returns the bytes copied.
+    uint64_t recordUpdates(gpu::CommandList& commands, const Scene& scene);
 
 private:
+    gpu::Device& device_;
     std::vector<DrawItem> draws_;
+    uint64_t triangles_ = 0;
     gpu::BufferHandle vertices_, indices_, instances_, materials_;
+    std::vector<gpu::TextureHandle> textures_;
+    gpu::SamplerHandle sampler_;
     gpu::TextureTableHandle textureTable_;
+    std::vector<uint32_t> dirtyInstances_, dirtyMaterials_;
 };
 
 }  // namespace penumbra

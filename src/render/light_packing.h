@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 #include "scene_structs.h"
 
 namespace penumbra {

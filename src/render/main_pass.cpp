@@ -10,39 +10,94 @@ std::vector<gpu::BindingDesc> sceneBindings() {
             {3, DescriptorType::StorageBuffer}, {4, DescriptorType::StorageBuffer}};
 }
 
-std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, gpu::BufferHandle frame,
-                                                        gpu::BufferHandle lights) {
-    return {{0, frame, {}, {}}, {1, gpuScene.vertexBuffer(), {}, {}}, {2, gpuScene.instanceBuffer(), {}, {}},
-            {3, gpuScene.materialBuffer(), {}, {}}, {4, lights, {}, {}}};
+std::vector<gpu::BindingDesc> shadedSceneBindings() {
+    using gpu::DescriptorType;
+    std::vector<gpu::BindingDesc> bindings = sceneBindings();
+    bindings.push_back({5, DescriptorType::UniformBuffer});
+    bindings.push_back({6, DescriptorType::SampledTexture});
+    bindings.push_back({7, DescriptorType::UniformBuffer});
+    bindings.push_back({8, DescriptorType::SampledTexture});
+    bindings.push_back({9, DescriptorType::SampledTexture});
+    return bindings;
 }
 
-const MainPass::PipelineSet& MainPass::pipelines(const Target& target, const MainPassInputs& inputs) {
+std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
+                                                        const gpu::BufferSlice& lights) {
+    return {{0, frame}, {1, gpuScene.vertexBuffer(), {}, {}}, {2, gpuScene.instanceBuffer(), {}, {}},
+            {3, gpuScene.materialBuffer(), {}, {}}, {4, lights}};
+}
+
+MainPass::~MainPass() {
+    for (auto& [key, set] : pipelineSets_)
+        for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]}) device_.destroy(p);
+}
+
+MainPass::PipelineKey MainPass::keyOf(const MainPassVariant& variant) {
     std::vector<std::pair<uint32_t, uint32_t>> constants;
-    for (const gpu::SpecConstant& c : target.specialization) constants.emplace_back(c.id, c.value);
-    const PipelineKey key{target.colorFormat, target.fragmentShader, constants};
-    auto found = pipelineSets_.find(key);
-    if (found != pipelineSets_.end()) return found->second;
+    for (const gpu::SpecConstant& c : variant.specialization) constants.emplace_back(c.id, c.value);
+    return {variant.colorFormat, variant.fragmentShader, variant.drawBlended, constants};
+}
+
+MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool async) {
     PipelineSet set;
     for (int doubleSided = 0; doubleSided < 2; ++doubleSided) {
-        for (int blended = 0; blended < 2; ++blended) {
+        for (int blended = 0; blended < (variant.drawBlended ? 2 : 1); ++blended) {
             gpu::GraphicsPipelineDesc desc;
             desc.vertexShader = "mesh.vert";
-            desc.fragmentShader = target.fragmentShader;
-            desc.bindings = inputs.bindings;
+            desc.fragmentShader = variant.fragmentShader;
+            desc.bindings = shadedSceneBindings();
             desc.textureTable = scene_.textureTable();
-            desc.colorFormats = {target.colorFormat};
+            desc.colorFormats = {variant.colorFormat};
             desc.depthFormat = gpu::Format::D32Float;
             desc.depthCompare = gpu::CompareOp::GreaterOrEqual;  // reversed Z
             desc.depthWrite = !blended;
             desc.cullMode = doubleSided ? gpu::CullMode::None : gpu::CullMode::Back;
             desc.blend = blended ? gpu::BlendMode::Alpha : gpu::BlendMode::Opaque;
             desc.specialization = {{1, uint32_t(blended)}};
-            desc.specialization.insert(desc.specialization.end(), target.specialization.begin(),
-                                       target.specialization.end());
-            (blended ? set.blended : set.opaque)[doubleSided] = device_.createGraphicsPipeline(desc);
+            desc.specialization.insert(desc.specialization.end(), variant.specialization.begin(),
+                                       variant.specialization.end());
+            desc.debugName = variant.fragmentShader + (blended ? " blended" : "") + (doubleSided ? " double-sided" : "");
+            (blended ? set.blended : set.opaque)[doubleSided] =
+                async ? device_.createGraphicsPipelineAsync(desc) : device_.createGraphicsPipeline(desc);
         }
     }
-    return pipelineSets_.emplace(key, set).first->second;
+    return pipelineSets_.emplace(keyOf(variant), set).first->second;
+}
+
+bool MainPass::setReady(const PipelineSet& set) {
+    for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]})
+        if (p && !device_.pipelineReady(p)) return false;
+    return true;
+}
+
+void MainPass::waitFor(const PipelineSet& set) {
+    for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]})
+        if (p) device_.waitForPipeline(p);
+}
+
+void MainPass::request(const MainPassVariant& variant) {
+    if (pipelineSets_.count(keyOf(variant)) == 0) create(variant, warmup_ == PipelineWarmup::Background);
+}
+
+bool MainPass::ready(const MainPassVariant& variant) {
+    const auto found = pipelineSets_.find(keyOf(variant));
+    return found != pipelineSets_.end() && setReady(found->second);
+}
+
+const MainPass::PipelineSet& MainPass::pipelinesFor(const Target& target) {
+    request(target.variant);
+    PipelineSet& wanted = pipelineSets_.at(keyOf(target.variant));
+    if (setReady(wanted)) return wanted;
+    if (!target.genericSpecialization.empty()) {
+        MainPassVariant generic = target.variant;
+        generic.specialization = target.genericSpecialization;
+        request(generic);
+        PipelineSet& fallback = pipelineSets_.at(keyOf(generic));
+        waitFor(fallback);  // only before the generic set's first build has finished
+        return fallback;
+    }
+    waitFor(wanted);
+    return wanted;
 }
 
 void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const DrawItem*>& items, const PipelineSet& set,
@@ -63,14 +118,12 @@ void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const Dra
 
 void MainPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                       const MainPassInputs& inputs, const Target& target) {
-    const PipelineSet& set = pipelines(target, inputs);
-    const std::vector<gpu::DescriptorWrite>& writes = inputs.writes;
-
+    const PipelineSet& set = pipelinesFor(target);
     std::vector<const DrawItem*> opaque, blended;
     for (const DrawItem& item : scene_.draws()) {
         const bool isBlend = scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend;
         if (!isBlend) opaque.push_back(&item);
-        else if (target.drawBlended) blended.push_back(&item);
+        else if (target.variant.drawBlended) blended.push_back(&item);
     }
     // Transparent draws back to front by the distance of their bounds' centre to the camera.
     auto distance = [&](const DrawItem* item) {
@@ -79,16 +132,16 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     std::stable_sort(blended.begin(), blended.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
 
     gpu::RenderingDesc rendering;
-    rendering.width = view.width;
-    rendering.height = view.height;
+    rendering.width = target.width;
+    rendering.height = target.height;
     gpu::ColorAttachment color;
     color.texture = target.color;
     std::copy(target.clearColor, target.clearColor + 4, color.clearColor);
     rendering.colors = {color};
     rendering.depth = {target.depth, true, 0.0f};
     commands.beginRendering(rendering);
-    drawItems(commands, opaque, set, false, scene, writes);
-    drawItems(commands, blended, set, true, scene, writes);
+    drawItems(commands, opaque, set, false, scene, inputs.writes);
+    drawItems(commands, blended, set, true, scene, inputs.writes);
     commands.endRendering();
 }
 

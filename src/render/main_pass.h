@@ -1,6 +1,12 @@
 #pragma once
 // The forward main pass: opaque and alpha-tested draws, then alpha-blended draws back to front.
-// Unlit materials share the pipelines (the material flag selects the path in the shader).
+// Unlit materials share the pipelines (the material flag selects the path in the shader). The same
+// pass draws the depth + normal prepass of the screen-space resolve with another fragment shader.
+//
+// Pipeline variants: each target names its specialization constants (the lit pass's spot/point
+// shadow kinds and filter) and, optionally, a generic set that gives the same image for every frame.
+// PipelineWarmup::OnDemand builds a variant the first time a frame needs it; Background builds them
+// on the device's worker thread and draws with the generic set until the specialized one is ready.
 #include <map>
 #include <string>
 #include <tuple>
@@ -8,54 +14,71 @@
 #include <vector>
 
 #include "gpu/device.h"
+#include "penumbra/camera.h"
+#include "penumbra/renderer.h"
 #include "render/gpu_scene.h"
-#include "scene/camera_view.h"
 
 namespace penumbra {
 
-// Everything set 0 of the scene passes binds: the scene buffers (0-4, sceneBindings()) plus the
-// shadow data, atlases and screen-space shadow texture (5-9).
+// Everything set 0 of the scene passes binds: the scene buffers (0-4), the shadow data and atlases
+// (5-8) and the screen-space shadow texture (9); shadedSceneBindings() lists them.
 struct MainPassInputs {
-    std::vector<gpu::BindingDesc> bindings;
     std::vector<gpu::DescriptorWrite> writes;
+};
+
+std::vector<gpu::BindingDesc> shadedSceneBindings();
+std::vector<gpu::BindingDesc> sceneBindings();  // 0-4 only (shadow casters)
+std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
+                                                        const gpu::BufferSlice& lights);
+
+struct MainPassVariant {
+    gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+    std::string fragmentShader = "lit.frag";  // "normal_prepass.frag" for the depth prepass
+    bool drawBlended = true;                  // the set has the alpha-blended pipelines too
+    std::vector<gpu::SpecConstant> specialization;  // ids >= 2
 };
 
 class MainPass {
 public:
-    MainPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {}
+    MainPass(gpu::Device& device, const GpuScene& gpuScene, PipelineWarmup warmup)
+        : device_(device), scene_(gpuScene), warmup_(warmup) {}
+    ~MainPass();
+    MainPass(const MainPass&) = delete;
+    MainPass& operator=(const MainPass&) = delete;
 
     struct Target {
         gpu::TextureHandle color;
-        gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
         gpu::TextureHandle depth;
-        std::string fragmentShader = "lit.frag";  // "normal_prepass.frag" for the depth prepass
+        MainPassVariant variant;
+        std::vector<gpu::SpecConstant> genericSpecialization;  // empty: the variant has no generic stand-in
         float clearColor[4] = {0, 0, 0, 1};
-        bool drawBlended = true;
-        // Extra specialization constants of the fragment shader (ids >= 2; e.g. the lit pass's spot/point
-        // shadow mode and filter). Part of the pipeline cache key.
-        std::vector<gpu::SpecConstant> specialization;
+        uint32_t width = 0, height = 0;
     };
     // Records the pass into target.color / target.depth (both already in their target states).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,
                 const Target& target);
+    // Starts building a variant (Background: on the worker thread; OnDemand: now) unless it exists.
+    void request(const MainPassVariant& variant);
+    bool ready(const MainPassVariant& variant);
 
 private:
     struct PipelineSet {
         gpu::PipelineHandle opaque[2];   // [doubleSided]
         gpu::PipelineHandle blended[2];
     };
-    const PipelineSet& pipelines(const Target& target, const MainPassInputs& inputs);
+    using PipelineKey = std::tuple<gpu::Format, std::string, bool, std::vector<std::pair<uint32_t, uint32_t>>>;
+    static PipelineKey keyOf(const MainPassVariant& variant);
+    PipelineSet& create(const MainPassVariant& variant, bool async);
+    bool setReady(const PipelineSet& set);
+    void waitFor(const PipelineSet& set);
+    const PipelineSet& pipelinesFor(const Target& target);
     void drawItems(gpu::CommandList& commands, const std::vector<const DrawItem*>& items, const PipelineSet& set,
                    bool blended, const Scene& scene, const std::vector<gpu::DescriptorWrite>& writes);
 
     gpu::Device& device_;
     const GpuScene& scene_;
-    using PipelineKey = std::tuple<gpu::Format, std::string, std::vector<std::pair<uint32_t, uint32_t>>>;
+    PipelineWarmup warmup_;
     std::map<PipelineKey, PipelineSet> pipelineSets_;
 };
-
-std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, gpu::BufferHandle frame,
-                                                        gpu::BufferHandle lights);
-std::vector<gpu::BindingDesc> sceneBindings();
 
 }  // namespace penumbra

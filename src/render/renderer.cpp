@@ -1,61 +1,46 @@
-#include "render/renderer.h"
+#include "penumbra/renderer.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
+#include <deque>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
+#include "render/frame_targets.h"
 #include "render/gpu_scene.h"
 #include "render/light_packing.h"
 #include "render/main_pass.h"
+#include "render/readback_images.h"
 #include "render/screen_space_shadow_pass.h"
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_stats_json.h"
+#include "scene/scene_edits.h"
 #include "scene_structs.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
 
-struct Renderer::State {
-    gpu::Device& device;
-    const Scene& scene;
-    GpuScene gpuScene;
-    MainPass mainPass;
-    ShadowCasterPass casterPass;
-    ScreenSpaceShadowPass screenSpacePass;
-    gpu::BufferHandle frameBuffer, lightBuffer, directionalShadowBuffer, otherShadowBuffer;
-    gpu::SamplerHandle shadowSampler, pointSampler;
-    gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
+namespace {
 
-    State(gpu::Device& d, const Scene& s)
-        : device(d), scene(s), gpuScene(d, s), mainPass(d, gpuScene), casterPass(d, gpuScene), screenSpacePass(d, mainPass) {
-        frameBuffer = d.createBuffer(sizeof(gpu_data::FrameData), gpu::kBufferUniform, gpu::MemoryKind::HostVisible);
-        const size_t maxLights = gpu_data::kMaxDirectionalLights + gpu_data::kMaxOtherLights;
-        lightBuffer = d.createBuffer(maxLights * sizeof(gpu_data::LightData), gpu::kBufferStorage, gpu::MemoryKind::HostVisible);
-        directionalShadowBuffer = d.createBuffer(sizeof(gpu_data::DirectionalShadowData), gpu::kBufferUniform,
-                                                 gpu::MemoryKind::HostVisible);
-        otherShadowBuffer = d.createBuffer(sizeof(gpu_data::OtherShadowData), gpu::kBufferUniform,
-                                           gpu::MemoryKind::HostVisible);
-        // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
-        shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
-                                         gpu::CompareOp::LessOrEqual});
-        pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
-        noScreenShadows = d.createTexture(
-            {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
-        gpu::CommandList commands = d.beginCommands();
-        commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
-        d.submitAndWait(commands);
-    }
-};
+constexpr size_t kMaxLights = gpu_data::kMaxDirectionalLights + gpu_data::kMaxOtherLights;
 
-Renderer::Renderer(gpu::Device& device, const Scene& scene) : state_(std::make_unique<State>(device, scene)) {}
-Renderer::~Renderer() = default;
-
-RenderResult Renderer::render(const RenderRequest& request, const Settings& settings) {
-    return render(request, settings, resolveCameraView(state_->scene, request.width, request.height));
+gpu::Format colorFormatOf(OutputMode output) {
+    return output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
 }
 
-namespace {
+// The lit pass variant for a colour format and the frame's spot/point shadow kinds and filter
+// (seed 001 §6.4). The filter only matters when some light is soft, so the others share one variant.
+MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter) {
+    MainPassVariant variant;
+    variant.colorFormat = format;
+    variant.drawBlended = format == gpu::Format::RGBA8Srgb;  // the AOVs show the opaque surface only
+    const bool soft = (otherShadowMode & gpu_data::kOtherShadowsSoft) != 0;
+    variant.specialization = {{2, otherShadowMode}, {3, soft ? spotFilter : gpu_data::kShadowFilterPcf5x5}};
+    return variant;
+}
+
+const std::vector<gpu::SpecConstant> kGenericLitSpecialization = {
+    {2, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft}, {3, gpu_data::kShadowFilterFromData}};
 
 gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
                                   const Settings& settings, bool screenSpaceShadows) {
@@ -73,167 +58,298 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
     return frame;
 }
 
-Image toOutputImage(const Image& rgba, OutputMode output) {
-    const uint32_t channels = output == OutputMode::ShadowAov ? 1 : 3;
-    Image image(rgba.width, rgba.height, channels);
-    for (size_t p = 0; p < size_t(rgba.width) * rgba.height; ++p)
-        for (uint32_t c = 0; c < channels; ++c) image.pixels[p * channels + c] = rgba.pixels[p * 4 + c];
-    return image;
+// Copies `size` bytes into this frame's upload ring and returns where they are.
+gpu::BufferSlice uploadFrameData(gpu::Device& device, const void* data, size_t size) {
+    const gpu::FrameAllocation allocation = device.allocateFrameData(std::max<size_t>(size, 16));
+    std::memcpy(allocation.mapped, data, size);
+    return allocation.slice;
 }
 
-// 32-bit float depth (0 = near the light, 1 = empty) to 8-bit gray.
-Image depthToGray(const Image& depth) {
-    Image gray(depth.width, depth.height, 1);
-    for (size_t p = 0; p < size_t(depth.width) * depth.height; ++p) {
-        float value = 0.0f;
-        std::memcpy(&value, &depth.pixels[p * 4], sizeof(float));
-        gray.pixels[p] = uint8_t(std::clamp(value, 0.0f, 1.0f) * 255.0f + 0.5f);
-    }
-    return gray;
-}
+// An imported caller image, remembered so a swapchain's images are imported once each.
+struct ImportedImage {
+    uint64_t vkImage = 0;
+    uint32_t width = 0, height = 0, format = 0;
+    gpu::TextureHandle texture;
+};
+constexpr size_t kMaxImportedImages = 8;
 
-// --dump-atlas: the directional atlas on the left, the spot/point atlas to its right (when it has
-// tiles), top-aligned; the rest is white (depth 1, empty).
-Image sideBySide(const Image& left, const Image& right) {
-    Image image(left.width + right.width, std::max(left.height, right.height), 1);
-    std::fill(image.pixels.begin(), image.pixels.end(), uint8_t(255));
-    for (uint32_t y = 0; y < left.height; ++y)
-        std::copy_n(&left.pixels[size_t(y) * left.width], left.width, &image.pixels[size_t(y) * image.width]);
-    for (uint32_t y = 0; y < right.height; ++y)
-        std::copy_n(&right.pixels[size_t(y) * right.width], right.width,
-                    &image.pixels[size_t(y) * image.width + left.width]);
-    return image;
-}
-
-}  // namespace
-
-namespace {
-
-// The textures one frame renders into; made per frame since sizes follow the plan and the request.
-struct FrameTargets {
-    gpu::TextureHandle atlas, otherAtlas, color, depth;
-    uint32_t atlasSize = 1, otherAtlasSize = 1;
-    gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
-
-    FrameTargets(gpu::Device& device, const ShadowFrame& plan, const CameraView& view, OutputMode output) : device_(device) {
-        const uint32_t depthUsage = gpu::kTextureDepthTarget | gpu::kTextureSampled;
-        atlasSize = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
-        atlas = device.createTexture({atlasSize, atlasSize, gpu::Format::D32Float, depthUsage, 1, "directional atlas"});
-        otherAtlasSize = plan.other.atlas.tileCount > 0 ? plan.other.atlas.atlasSize : 1u;
-        otherAtlas = device.createTexture({otherAtlasSize, otherAtlasSize, gpu::Format::D32Float, depthUsage, 1, "other atlas"});
-        colorFormat = output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
-        color = device.createTexture(
-            {view.width, view.height, colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
-        depth = device.createTexture({view.width, view.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
-    }
-    ~FrameTargets() {
-        for (gpu::TextureHandle t : {atlas, otherAtlas, color, depth}) device_.destroy(t);
-    }
-    FrameTargets(const FrameTargets&) = delete;
-    FrameTargets& operator=(const FrameTargets&) = delete;
-
-private:
-    gpu::Device& device_;
+// What a submitted frame still owes its caller once the GPU is done.
+struct PendingFrame {
+    uint64_t frameIndex = 0;
+    FrameStats stats;
 };
 
-// Bindings 0-8 of the scene passes: scene buffers, both shadow blocks and both atlases.
-MainPassInputs shadowedSceneInputs(const GpuScene& gpuScene, gpu::BufferHandle frame, gpu::BufferHandle lights,
-                                   gpu::BufferHandle directionalShadows, gpu::BufferHandle otherShadows,
-                                   const FrameTargets& targets, gpu::SamplerHandle shadowSampler) {
-    MainPassInputs inputs;
-    inputs.bindings = sceneBindings();
-    inputs.writes = sceneDescriptorWrites(gpuScene, frame, lights);
-    inputs.bindings.push_back({5, gpu::DescriptorType::UniformBuffer});
-    inputs.bindings.push_back({6, gpu::DescriptorType::SampledTexture});
-    inputs.bindings.push_back({7, gpu::DescriptorType::UniformBuffer});
-    inputs.bindings.push_back({8, gpu::DescriptorType::SampledTexture});
-    inputs.writes.push_back({5, directionalShadows, {}, {}});
-    inputs.writes.push_back({6, {}, targets.atlas, shadowSampler});
-    inputs.writes.push_back({7, otherShadows, {}, {}});
-    inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
-    return inputs;
-}
-
-MainPass::Target mainTarget(const FrameTargets& targets, const RenderRequest& request, const ShadowFrame& plan,
-                            const Settings& settings) {
-    MainPass::Target target;
-    target.color = targets.color;
-    target.colorFormat = targets.colorFormat;
-    target.depth = targets.depth;
-    // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background. The AOVs show
-    // the opaque surface, so blended draws are left out of them.
-    if (request.output == OutputMode::ShadowAov) std::fill(target.clearColor, target.clearColor + 4, 1.0f);
-    target.drawBlended = request.output == OutputMode::Color;
-    // Seed 001 §6.4: the lit pass is specialized to the spot/point shadow kinds this frame uses.
-    target.specialization = {{2, plan.other.specializationMode}, {3, uint32_t(settings.shadows.spot.filter)}};
-    return target;
-}
-
 }  // namespace
 
-RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
-    State& s = *state_;
+struct Renderer::State {
+    gpu::Device& device;
+    Scene scene;
+    RendererOptions options;
+    GpuScene gpuScene;
+    MainPass mainPass;
+    ShadowCasterPass casterPass;
+    ScreenSpaceShadowPass screenSpacePass;
+    FrameTargets targets;
+    gpu::SamplerHandle shadowSampler, pointSampler;
+    gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
+    std::vector<ImportedImage> imported;
+    std::deque<PendingFrame> pending;
+    std::vector<FrameStats> completed;
+
+    State(gpu::Device& d, Scene s, const RendererOptions& o)
+        : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), mainPass(d, gpuScene, o.warmup),
+          casterPass(d, gpuScene, scene), screenSpacePass(d, mainPass), targets(d) {
+        // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
+        shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
+                                         gpu::CompareOp::LessOrEqual});
+        pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
+        noScreenShadows = d.createTexture(
+            {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
+        gpu::CommandList commands = d.beginCommands();
+        commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
+        d.submitAndWait(commands);
+        if (o.warmup == PipelineWarmup::Background) requestAllVariants();
+    }
+
+    ~State() {
+        // The passes and targets destroy their objects (deferred); wait so nothing is left pending.
+        try {
+            device.waitIdle();
+        } catch (const Error&) {
+        }
+        for (const ImportedImage& image : imported) device.destroy(image.texture);
+        device.destroy(noScreenShadows);
+        device.destroy(shadowSampler);
+        device.destroy(pointSampler);
+    }
+
+    // Every variant a setting can reach: the generic sets first (what frames fall back on), then the
+    // specialized ones.
+    void requestAllVariants() {
+        for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm}) {
+            MainPassVariant generic = litVariant(format, 0, 0);
+            generic.specialization = kGenericLitSpecialization;
+            mainPass.request(generic);
+        }
+        mainPass.request(ScreenSpaceShadowPass::prepassVariant());
+        for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm})
+            for (uint32_t mode = 0; mode < 4; ++mode)
+                for (uint32_t filter = 0; filter < 4; ++filter) mainPass.request(litVariant(format, mode, filter));
+    }
+
+    gpu::TextureHandle importedTexture(const ExternalImage& target) {
+        for (const ImportedImage& image : imported)
+            if (image.vkImage == target.vkImage && image.width == target.width && image.height == target.height &&
+                image.format == target.vkFormat)
+                return image.texture;
+        if (imported.size() >= kMaxImportedImages) {
+            device.destroy(imported.front().texture);
+            imported.erase(imported.begin());
+        }
+        gpu::ExternalTarget external{target.vkImage, target.vkFormat, target.width, target.height};
+        imported.push_back({target.vkImage, target.width, target.height, target.vkFormat,
+                            device.importTexture(external, "external target")});
+        return imported.back().texture;
+    }
+
+    uint64_t submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
+                    const ExternalImage* target, bool readback, bool captureAtlas);
+    void collectCompleted();
+};
+
+uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
+                                 const ExternalImage* target, bool readback, bool captureAtlas) {
     validateSettings(settings);
-    if (request.output != OutputMode::Color && request.aovLight >= s.scene.lights.size() && !s.scene.lights.empty())
+    if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
         throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
-                    std::to_string(s.scene.lights.size()) + " lights)");
-    RenderResult result;
-    const auto planStart = std::chrono::steady_clock::now();
-    const ShadowFrame plan = ShadowPlanner::plan(s.scene, view, settings.shadows);
-    const PackedLights lights = packLights(s.scene, [&](uint32_t i) {
-        const bool directional = s.scene.lights[i].type == LightType::Directional;
+                    std::to_string(scene.lights.size()) + " lights)");
+    if (view.width != request.width || view.height != request.height)
+        throw Error("internal: the camera view is " + std::to_string(view.width) + "x" + std::to_string(view.height) +
+                    " but the request " + std::to_string(request.width) + "x" + std::to_string(request.height));
+    PendingFrame frame;
+    FrameStats& stats = frame.stats;
+
+    Stopwatch phase;
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    const PackedLights lights = packLights(scene, [&](uint32_t i) {
+        const bool directional = scene.lights[i].type == LightType::Directional;
         const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
         return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
     });
-    result.stats.cpuPlanMilliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - planStart).count();
-    result.stats.warnings = lights.warnings;
-    result.stats.warnings.insert(result.stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
-    result.stats.shadowStatsJson = shadowStatsJson(plan);
+    stats.cpu.culling = plan.stats.cullingMilliseconds;
+    stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
+    stats.warnings = lights.warnings;
+    stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
+    stats.shadowStatsJson = shadowStatsJson(plan);
 
+    FrameTargetSizes sizes;
+    sizes.directionalAtlas = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
+    sizes.otherAtlas = plan.other.atlas.tileCount > 0 ? plan.other.atlas.atlasSize : 1u;
+    sizes.width = view.width;
+    sizes.height = view.height;
+    sizes.colorFormat = colorFormatOf(request.output);
+    targets.ensure(sizes);
+
+    phase.restart();
+    gpu::CommandList commands = device.beginFrame();
+    phase.restart();  // the wait for the slot's previous frame is not CPU work
+    gpuScene.recordUpdates(commands, scene);
     const bool screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
-    const gpu_data::FrameData frame = makeFrameData(view, lights, request, settings, screenSpace);
-    s.device.writeBuffer(s.frameBuffer, &frame, sizeof(frame));
-    if (!lights.lights.empty())
-        s.device.writeBuffer(s.lightBuffer, lights.lights.data(), lights.lights.size() * sizeof(lights.lights[0]));
-    s.device.writeBuffer(s.directionalShadowBuffer, &plan.directional.gpu, sizeof(plan.directional.gpu));
-    s.device.writeBuffer(s.otherShadowBuffer, &plan.other.gpu, sizeof(plan.other.gpu));
-    const FrameTargets targets(s.device, plan, view, request.output);
+    const gpu_data::FrameData frameData = makeFrameData(view, lights, request, settings, screenSpace);
+    const gpu::BufferSlice frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
+    const gpu::BufferSlice lightSlice =
+        uploadFrameData(device, lights.lights.data(), lights.lights.size() * sizeof(gpu_data::LightData));
+    const gpu::BufferSlice directionalSlice =
+        uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
+    const gpu::BufferSlice otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
+    stats.cpu.upload = phase.milliseconds();
+    static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
 
-    gpu::CommandList commands = s.device.beginCommands();
+    phase.restart();
+    const std::vector<gpu::DescriptorWrite> casterWrites = sceneDescriptorWrites(gpuScene, frameSlice, lightSlice);
     commands.beginTimer("shadows.directional");
-    s.casterPass.record(commands, s.scene, plan.directional.tiles, targets.atlas, targets.atlasSize, s.frameBuffer,
-                        s.lightBuffer);
+    stats.atlases.push_back(casterPass.record(commands, scene, plan.directional.tiles, targets.directionalAtlas,
+                                              sizes.directionalAtlas, casterWrites, "shadows.directional"));
     commands.endTimer();
     commands.beginTimer("shadows.other");
-    s.casterPass.record(commands, s.scene, plan.other.tiles, targets.otherAtlas, targets.otherAtlasSize, s.frameBuffer,
-                        s.lightBuffer);
+    stats.atlases.push_back(casterPass.record(commands, scene, plan.other.tiles, targets.otherAtlas, sizes.otherAtlas,
+                                              casterWrites, "shadows.other"));
     commands.endTimer();
 
-    MainPassInputs inputs = shadowedSceneInputs(s.gpuScene, s.frameBuffer, s.lightBuffer, s.directionalShadowBuffer,
-                                                s.otherShadowBuffer, targets, s.shadowSampler);
-    gpu::TextureHandle screenShadows = s.noScreenShadows;
-    if (screenSpace) screenShadows = s.screenSpacePass.record(commands, s.scene, view, inputs, 0);
-    inputs.bindings.push_back({9, gpu::DescriptorType::SampledTexture});
-    inputs.writes.push_back({9, {}, screenShadows, s.pointSampler});
+    MainPassInputs inputs;
+    inputs.writes = casterWrites;
+    inputs.writes.push_back({5, directionalSlice});
+    inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
+    inputs.writes.push_back({7, otherSlice});
+    inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
+    inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});
+    if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, view, inputs, 0);
 
     commands.beginTimer("main");
     commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
     commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
-    s.mainPass.record(commands, s.scene, view, inputs, mainTarget(targets, request, plan, settings));
+    MainPass::Target main;
+    main.color = targets.color;
+    main.depth = targets.depth;
+    main.width = view.width;
+    main.height = view.height;
+    main.variant = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+    main.genericSpecialization = kGenericLitSpecialization;
+    // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
+    if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+    mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
-    s.device.submitAndWait(commands);
 
-    result.stats.gpuTimings = s.device.lastTimings();
-    result.image = toOutputImage(s.device.readTexture(targets.color, gpu::TextureState::ColorTarget), request.output);
-    if (request.captureAtlas) {
-        result.atlas = depthToGray(s.device.readTexture(targets.atlas, gpu::TextureState::ShaderRead));
-        if (plan.other.atlas.tileCount > 0)
-            result.atlas = sideBySide(result.atlas,
-                                      depthToGray(s.device.readTexture(targets.otherAtlas, gpu::TextureState::ShaderRead)));
+    if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
+    if (captureAtlas) {
+        commands.copyTextureToBuffer(targets.directionalAtlas, gpu::TextureState::ShaderRead, targets.directionalReadback());
+        commands.copyTextureToBuffer(targets.otherAtlas, gpu::TextureState::ShaderRead, targets.otherReadback());
     }
-    s.screenSpacePass.releaseTargets();
+    gpu::ExternalTarget sync;
+    if (target) {
+        sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
+                target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
+        commands.blitToExternal(targets.color, importedTexture(*target), sync);
+    }
+    stats.cpu.record = phase.milliseconds();
+
+    phase.restart();
+    frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);
+    stats.cpu.submit = phase.milliseconds();
+    stats.frameIndex = frame.frameIndex;
+    pending.push_back(std::move(frame));
+    collectCompleted();
+    return pending.back().frameIndex;
+}
+
+void Renderer::State::collectCompleted() {
+    for (gpu::CompletedFrame& done : device.takeCompletedFrames()) {
+        while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.pop_front();  // not ours
+        if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
+        FrameStats stats = std::move(pending.front().stats);
+        pending.pop_front();
+        for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
+        stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
+        completed.push_back(std::move(stats));
+    }
+}
+
+Renderer::Renderer(Device& device, Scene scene, const RendererOptions& options)
+    : state_(std::make_unique<State>(device.backend(), std::move(scene), options)) {}
+Renderer::~Renderer() = default;
+
+const Scene& Renderer::scene() const { return state_->scene; }
+
+void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
+    setInstanceWorldTransform(state_->scene, instance, worldFromObject);
+    state_->gpuScene.instanceChanged(instance);
+}
+
+void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
+    if (instance >= state_->scene.instances.size())
+        throw Error("instance " + std::to_string(instance) + " does not exist (the scene has " +
+                    std::to_string(state_->scene.instances.size()) + ")");
+    state_->scene.instances[instance].castShadows = castShadows;  // read by the planner only
+}
+
+void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state_->scene, light, value); }
+
+void Renderer::setMaterial(uint32_t material, const Material& value) {
+    replaceMaterial(state_->scene, material, value);
+    state_->gpuScene.materialChanged(material);
+}
+
+RenderResult Renderer::render(const RenderRequest& request, const Settings& settings) {
+    return render(request, settings, resolveCameraView(state_->scene, request.width, request.height));
+}
+
+RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
+    State& s = *state_;
+    const uint64_t frameIndex = s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas);
+    s.device.waitFrame(frameIndex);
+    s.collectCompleted();
+    RenderResult result;
+    const auto found = std::find_if(s.completed.begin(), s.completed.end(),
+                                    [&](const FrameStats& f) { return f.frameIndex == frameIndex; });
+    if (found != s.completed.end()) {
+        result.stats = std::move(*found);
+        s.completed.erase(found);
+    }
+    const FrameTargetSizes& sizes = s.targets.sizes();
+    if (request.readback)
+        result.image = outputImageFromRgba(s.device.mappedPointer(s.targets.colorReadback()), sizes.width, sizes.height,
+                                           request.output == OutputMode::ShadowAov ? 1 : 3);
+    if (request.captureAtlas) {
+        result.atlas = depthToGray(s.device.mappedPointer(s.targets.directionalReadback()), sizes.directionalAtlas);
+        if (sizes.otherAtlas > 1)
+            result.atlas = sideBySide(result.atlas,
+                                      depthToGray(s.device.mappedPointer(s.targets.otherReadback()), sizes.otherAtlas));
+    }
     return result;
+}
+
+uint64_t Renderer::submitFrame(const RenderRequest& request, const Settings& settings, const CameraView& view,
+                               const ExternalImage* target) {
+    return state_->submit(request, settings, view, target, false, false);
+}
+
+std::vector<FrameStats> Renderer::takeCompletedFrames() {
+    state_->collectCompleted();
+    std::vector<FrameStats> frames;
+    frames.swap(state_->completed);
+    return frames;
+}
+
+void Renderer::waitIdle() {
+    state_->device.waitIdle();
+    state_->collectCompleted();
+}
+
+uint32_t Renderer::pipelineBuildsPending() const { return state_->device.pipelineBuildsPending(); }
+
+void Renderer::buildAllPipelines() {
+    state_->requestAllVariants();
+    state_->device.waitForPipelineBuilds();
 }
 
 }  // namespace penumbra

@@ -2,68 +2,92 @@
 
 namespace penumbra {
 
+ScreenSpaceShadowPass::ScreenSpaceShadowPass(gpu::Device& device, MainPass& mainPass)
+    : device_(device), mainPass_(mainPass) {
+    gpu::GraphicsPipelineDesc desc;
+    desc.vertexShader = "fullscreen.vert";
+    desc.fragmentShader = "screen_space_shadows.frag";
+    desc.bindings = shadedSceneBindings();
+    desc.bindings.push_back({10, gpu::DescriptorType::SampledTexture});
+    desc.bindings.push_back({11, gpu::DescriptorType::SampledTexture});
+    desc.pushConstantSize = sizeof(glm::uvec4);
+    desc.colorFormats = {gpu::Format::R32Float};
+    desc.depthTest = desc.depthWrite = false;
+    desc.cullMode = gpu::CullMode::None;
+    desc.debugName = "screen-space shadow resolve";
+    resolve_ = device_.createGraphicsPipeline(desc);
+    pointSampler_ = device_.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
+}
+
+ScreenSpaceShadowPass::~ScreenSpaceShadowPass() {
+    releaseTargets();
+    device_.destroy(resolve_);
+    device_.destroy(pointSampler_);
+}
+
+MainPassVariant ScreenSpaceShadowPass::prepassVariant() {
+    MainPassVariant variant;
+    variant.colorFormat = gpu::Format::RGBA16Float;
+    variant.fragmentShader = "normal_prepass.frag";
+    variant.drawBlended = false;
+    return variant;
+}
+
+void ScreenSpaceShadowPass::ensureTargets(uint32_t width, uint32_t height) {
+    if (width == width_ && height == height_ && shadows_) return;
+    releaseTargets();
+    auto make = [&](gpu::Format format, uint32_t usage, const char* name) {
+        return device_.createTexture({width, height, format, usage | gpu::kTextureSampled, 1, name});
+    };
+    depth_ = make(gpu::Format::D32Float, gpu::kTextureDepthTarget, "prepass depth");
+    normals_ = make(gpu::Format::RGBA16Float, gpu::kTextureColorTarget, "prepass normals");
+    shadows_ = make(gpu::Format::R32Float, gpu::kTextureColorTarget, "screen-space shadows");
+    width_ = width;
+    height_ = height;
+}
+
+void ScreenSpaceShadowPass::releaseTargets() {
+    for (gpu::TextureHandle t : {depth_, normals_, shadows_}) device_.destroy(t);
+    depth_ = normals_ = shadows_ = {};
+    width_ = height_ = 0;
+}
+
 gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                                                  const MainPassInputs& inputs, uint32_t mainLightSlot) {
-    if (!resolve_) {
-        gpu::GraphicsPipelineDesc desc;
-        desc.vertexShader = "fullscreen.vert";
-        desc.fragmentShader = "screen_space_shadows.frag";
-        desc.bindings = inputs.bindings;
-        desc.bindings.push_back({10, gpu::DescriptorType::SampledTexture});
-        desc.bindings.push_back({11, gpu::DescriptorType::SampledTexture});
-        desc.pushConstantSize = sizeof(glm::uvec4);
-        desc.colorFormats = {gpu::Format::R32Float};
-        desc.depthTest = desc.depthWrite = false;
-        desc.cullMode = gpu::CullMode::None;
-        resolve_ = device_.createGraphicsPipeline(desc);
-        pointSampler_ = device_.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
-    }
-    auto makeTarget = [&](gpu::Format format, uint32_t usage) {
-        targets_.push_back(device_.createTexture({view.width, view.height, format, usage | gpu::kTextureSampled, 1, "ss"}));
-        return targets_.back();
-    };
-    const gpu::TextureHandle depth = makeTarget(gpu::Format::D32Float, gpu::kTextureDepthTarget);
-    const gpu::TextureHandle normals = makeTarget(gpu::Format::RGBA16Float, gpu::kTextureColorTarget);
-    const gpu::TextureHandle shadows = makeTarget(gpu::Format::R32Float, gpu::kTextureColorTarget);
-
+    ensureTargets(view.width, view.height);
     commands.beginTimer("depthPrepass");
-    commands.transition(depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
-    commands.transition(normals, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+    commands.transition(depth_, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    commands.transition(normals_, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
     MainPass::Target prepass;
-    prepass.color = normals;
-    prepass.colorFormat = gpu::Format::RGBA16Float;
-    prepass.depth = depth;
-    prepass.fragmentShader = "normal_prepass.frag";
-    prepass.drawBlended = false;
+    prepass.color = normals_;
+    prepass.depth = depth_;
+    prepass.variant = prepassVariant();
+    prepass.width = view.width;
+    prepass.height = view.height;
     mainPass_.record(commands, scene, view, inputs, prepass);
-    commands.transition(depth, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
-    commands.transition(normals, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);
+    commands.transition(depth_, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
+    commands.transition(normals_, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);
     commands.endTimer();
 
     commands.beginTimer("screenSpaceShadows");
-    commands.transition(shadows, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+    commands.transition(shadows_, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
     gpu::RenderingDesc rendering;
     rendering.width = view.width;
     rendering.height = view.height;
-    rendering.colors = {gpu::ColorAttachment{shadows, true, {1, 1, 1, 1}}};
+    rendering.colors = {gpu::ColorAttachment{shadows_, true, {1, 1, 1, 1}}};
     commands.beginRendering(rendering);
     commands.bindPipeline(resolve_);
     std::vector<gpu::DescriptorWrite> writes = inputs.writes;
-    writes.push_back({10, {}, depth, pointSampler_});
-    writes.push_back({11, {}, normals, pointSampler_});
+    writes.push_back({10, {}, depth_, pointSampler_});
+    writes.push_back({11, {}, normals_, pointSampler_});
     commands.pushDescriptors(writes);
     const glm::uvec4 slot(mainLightSlot, 0, 0, 0);
     commands.pushConstants(&slot, sizeof(slot));
     commands.draw(3);
     commands.endRendering();
-    commands.transition(shadows, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);
+    commands.transition(shadows_, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);
     commands.endTimer();
-    return shadows;
-}
-
-void ScreenSpaceShadowPass::releaseTargets() {
-    for (gpu::TextureHandle t : targets_) device_.destroy(t);
-    targets_.clear();
+    return shadows_;
 }
 
 }  // namespace penumbra

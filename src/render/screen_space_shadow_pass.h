@@ -1,6 +1,7 @@
 #pragma once
 // URP's screen-space shadow resolve (seed 004): a depth + normal prepass, then a full-screen pass that
 // writes the main directional light's shadow term into a screen-sized R32F texture for the lit pass.
+// Its three targets live across frames and are re-made only when the output size changes.
 #include "gpu/device.h"
 #include "render/main_pass.h"
 
@@ -8,19 +9,27 @@ namespace penumbra {
 
 class ScreenSpaceShadowPass {
 public:
-    ScreenSpaceShadowPass(gpu::Device& device, MainPass& mainPass) : device_(device), mainPass_(mainPass) {}
+    ScreenSpaceShadowPass(gpu::Device& device, MainPass& mainPass);
+    ~ScreenSpaceShadowPass();
+    ScreenSpaceShadowPass(const ScreenSpaceShadowPass&) = delete;
+    ScreenSpaceShadowPass& operator=(const ScreenSpaceShadowPass&) = delete;
 
-    // Records prepass + resolve; returns the R32F shadow texture in ShaderRead state (caller destroys).
+    static MainPassVariant prepassVariant();
+    // Records prepass + resolve (inputs: bindings 0-9, 9 a placeholder); returns the R32F shadow
+    // texture in ShaderRead state, owned by this pass.
     gpu::TextureHandle record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                               const MainPassInputs& inputs, uint32_t mainLightSlot);
-    void releaseTargets();
 
 private:
+    void ensureTargets(uint32_t width, uint32_t height);
+    void releaseTargets();
+
     gpu::Device& device_;
     MainPass& mainPass_;
     gpu::PipelineHandle resolve_;
     gpu::SamplerHandle pointSampler_;
-    std::vector<gpu::TextureHandle> targets_;
+    gpu::TextureHandle depth_, normals_, shadows_;
+    uint32_t width_ = 0, height_ = 0;
 };
 
 }  // namespace penumbra

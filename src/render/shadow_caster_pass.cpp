@@ -4,7 +4,8 @@
 
 namespace penumbra {
 
-ShadowCasterPass::ShadowCasterPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {
+ShadowCasterPass::ShadowCasterPass(gpu::Device& device, const GpuScene& gpuScene, const Scene& scene)
+    : device_(device), scene_(gpuScene), drawsOfInstance_(scene.instances.size()) {
     gpu::GraphicsPipelineDesc desc;
     desc.vertexShader = "shadow_caster.vert";
     desc.bindings = sceneBindings();
@@ -19,23 +20,28 @@ ShadowCasterPass::ShadowCasterPass(gpu::Device& device, const GpuScene& gpuScene
     desc.debugName = "shadow caster";
     depthOnly_ = device.createGraphicsPipeline(desc);
     desc.fragmentShader = "shadow_caster.frag";
+    desc.debugName = "shadow caster alpha-tested";
     alphaTested_ = device.createGraphicsPipeline(desc);
+    for (const DrawItem& item : gpuScene.draws()) drawsOfInstance_[item.instanceIndex].push_back(&item);
 }
 
-void ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene, const std::vector<ShadowTile>& tiles,
-                              gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle frameBuffer,
-                              gpu::BufferHandle lightBuffer) {
+ShadowCasterPass::~ShadowCasterPass() {
+    device_.destroy(depthOnly_);
+    device_.destroy(alphaTested_);
+}
+
+AtlasDrawStats ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene,
+                                        const std::vector<ShadowTile>& tiles, gpu::TextureHandle atlas,
+                                        uint32_t atlasSize, const std::vector<gpu::DescriptorWrite>& writes,
+                                        const std::string& passName) {
+    AtlasDrawStats stats;
+    stats.pass = passName;
+    stats.tiles = uint32_t(tiles.size());
     commands.transition(atlas, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
     gpu::RenderingDesc rendering;
     rendering.width = rendering.height = atlasSize;
     rendering.depth = {atlas, true, 1.0f};
     commands.beginRendering(rendering);
-    const std::vector<gpu::DescriptorWrite> writes = sceneDescriptorWrites(scene_, frameBuffer, lightBuffer);
-
-    // Draw items by instance, so the planner's instance lists select them directly.
-    std::vector<std::vector<const DrawItem*>> drawsOfInstance(scene.instances.size());
-    for (const DrawItem& item : scene_.draws()) drawsOfInstance[item.instanceIndex].push_back(&item);
-
     for (const ShadowTile& tile : tiles) {
         const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
         // Other-light tiles keep an empty border: casters are drawn through a smaller scissor (seed 001 §5.5).
@@ -45,7 +51,7 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene, co
         for (int alphaPass = 0; alphaPass < 2; ++alphaPass) {
             bool bound = false;
             for (uint32_t instanceIndex : tile.casterInstances) {
-                for (const DrawItem* item : drawsOfInstance[instanceIndex]) {
+                for (const DrawItem* item : drawsOfInstance_[instanceIndex]) {
                     const MaterialShadowMode mode = scene.materials.at(item->materialIndex).shadows;
                     if (mode == MaterialShadowMode::Off) continue;
                     if ((mode != MaterialShadowMode::On) != bool(alphaPass)) continue;
@@ -61,12 +67,15 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const Scene& scene, co
                         bound = true;
                     }
                     commands.drawIndexed(item->indexCount, 1, item->firstIndex, item->vertexOffset, item->instanceIndex);
+                    ++stats.draws;
+                    stats.triangles += item->indexCount / 3;
                 }
             }
         }
     }
     commands.endRendering();
     commands.transition(atlas, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
+    return stats;
 }
 
 }  // namespace penumbra

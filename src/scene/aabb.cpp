@@ -1,4 +1,4 @@
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

@@ -1,4 +1,4 @@
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 
 #include <algorithm>
 #include <cmath>

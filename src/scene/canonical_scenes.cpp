@@ -6,7 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 namespace penumbra {
 namespace {

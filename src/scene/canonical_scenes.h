@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Scenes without any light (common among glTF samples) would render in ambient light only. The CLI
 // adds one shadowed sun to them, as glTF viewers add a default light, and says so on stderr.
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

@@ -2,7 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 namespace penumbra {
 namespace {

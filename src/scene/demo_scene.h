@@ -4,10 +4,10 @@
 // matter, an alpha-clipped quad, a transparent (dithered shadows) sphere, an unlit box, a sun and two
 // coloured shadowed spot lights. Exposure: Lambert = baseColor/pi x intensity x N.L, so pi lux is
 // full white; the sun gives ~3 lux and the spots ~1-2 lux at the spots they aim at.
-#include "scene/scene.h"
+#include "penumbra/scene_loading.h"
 
 namespace penumbra {
 
-Scene makeDemoScene();
+// Declared in penumbra/scene_loading.h.
 
 }  // namespace penumbra

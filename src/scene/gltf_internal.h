@@ -10,7 +10,7 @@
 #endif
 #include <tiny_gltf.h>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra::gltf {
 

@@ -7,7 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
-#include "core/image.h"
+#include "penumbra/image.h"
 #include "scene/gltf_internal.h"
 #include "scene/mesh_utils.h"
 

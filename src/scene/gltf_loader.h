@@ -17,10 +17,10 @@
 // Any bad input throws penumbra::Error with one line naming the file and the problem.
 #include <string>
 
-#include "scene/scene.h"
+#include "penumbra/scene_loading.h"
 
 namespace penumbra {
 
-Scene loadGltfScene(const std::string& path);
+// Declared in penumbra/scene_loading.h.
 
 }  // namespace penumbra

@@ -2,7 +2,7 @@
 // their vertex normals point to (glTF's front face).
 #include <cmath>
 
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 namespace penumbra {
 namespace {

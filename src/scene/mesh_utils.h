@@ -2,7 +2,7 @@
 // Small operations on meshes shared by the glTF loader and the scene builder.
 #include <vector>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

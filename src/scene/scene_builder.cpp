@@ -1,4 +1,4 @@
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 

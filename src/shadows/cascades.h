@@ -11,8 +11,8 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/camera_view.h"
-#include "shadows/shadow_settings.h"
+#include "penumbra/camera.h"
+#include "penumbra/shadow_settings.h"
 
 namespace penumbra {
 

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 #include "shadows/cascades.h"
 
 namespace penumbra {

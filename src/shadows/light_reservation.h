@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/scene.h"
+#include "penumbra/scene.h"
 #include "shadow_structs.h"
 #include "shadows/cascades.h"
 

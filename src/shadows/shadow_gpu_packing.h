@@ -3,7 +3,7 @@
 // §3.8, §4.2, §4.3, §4.6).
 #include "shadow_structs.h"
 #include "shadows/cascades.h"
-#include "shadows/shadow_settings.h"
+#include "penumbra/shadow_settings.h"
 
 namespace penumbra {
 

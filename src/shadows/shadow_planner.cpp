@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/stopwatch.h"
 #include "shadows/caster_culling.h"
 #include "shadows/shadow_gpu_packing.h"
 #include "shadows/spot_shadow_planner.h"
@@ -20,12 +21,14 @@ struct TileInputs {
 };
 
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
-                    uint32_t slot, uint32_t cascadeIndex, uint32_t& skippedByBlendCulling) {
+                    uint32_t slot, uint32_t cascadeIndex, ShadowStats& stats) {
     const CascadeSphere& sphere = in.spheres[cascadeIndex];
     const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
+    const Stopwatch cullingTime;
     TileCasters casters =
         cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.cullingFactor);
-    skippedByBlendCulling += casters.skippedByBlendCulling;
+    stats.cullingMilliseconds += cullingTime.milliseconds();
+    stats.skippedByBlendCulling += casters.skippedByBlendCulling;
 
     ShadowTile tile;
     tile.lightSlot = slot;
@@ -71,7 +74,7 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
         const TileInputs inputs{scene, casters, rsBounds, directional.cascades, directional.atlas, cullingFactor};
         for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
             directional.tiles.push_back(
-                planTile(inputs, light, rotation, slot, cascade, frame.stats.skippedByBlendCulling));
+                planTile(inputs, light, rotation, slot, cascade, frame.stats));
         }
     }
 
@@ -85,6 +88,7 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
     }
     directional.gpu = packDirectionalShadowData(directional, settings, distance);
     frame.other = planOtherShadows(scene, camera, settings, casters, distance);
+    stats.cullingMilliseconds += frame.other.cullingMilliseconds;
     return frame;
 }
 

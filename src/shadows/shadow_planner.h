@@ -17,14 +17,14 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/camera_view.h"
-#include "scene/scene.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene.h"
 #include "other_shadow_structs.h"
 #include "shadow_structs.h"
 #include "shadows/atlas_layout.h"
 #include "shadows/cascades.h"
 #include "shadows/light_reservation.h"
-#include "shadows/shadow_settings.h"
+#include "penumbra/shadow_settings.h"
 #include "shadows/spot_atlas_layout.h"
 #include "shadows/spot_reservation.h"
 
@@ -55,6 +55,7 @@ struct ShadowStats {
     std::vector<uint32_t> castersPerTile;    // = tiles[i].casterInstances.size()
     uint32_t casterDraws = 0;                // sum over tiles
     uint32_t skippedByBlendCulling = 0;      // caster/tile pairs removed by the culling factor (seed 000 §4.9)
+    double cullingMilliseconds = 0.0;        // CPU time spent culling casters per tile (both atlases)
 };
 
 struct DirectionalShadowPlan {
@@ -76,6 +77,7 @@ struct OtherShadowPlan {
     std::vector<std::string> warnings;       // one line per dropped light
     uint32_t lightsConsidered = 0;           // spot and point lights in the scene
     uint32_t specializationMode = 0;         // gpu_data::kOtherShadowsHard | kOtherShadowsSoft bits
+    double cullingMilliseconds = 0.0;        // CPU time of the per-tile caster culling
     gpu_data::OtherShadowData gpu{};         // packed for the lit pass
 };
 

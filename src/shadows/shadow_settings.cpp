@@ -1,4 +1,4 @@
-#include "shadows/shadow_settings.h"
+#include "penumbra/shadow_settings.h"
 
 #include <cmath>
 #include <sstream>

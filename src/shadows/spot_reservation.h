@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "scene/camera_view.h"
-#include "scene/scene.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene.h"
 
 namespace penumbra {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/stopwatch.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
 
@@ -32,7 +33,7 @@ LightTiles lightTileShape(const Light& light, const ReservedOtherLight& reserved
 
 ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& casters, const SpotAtlasLayout& layout,
                          const ReservedOtherLight& reserved, const LightTiles& shape, uint32_t slot, uint32_t face,
-                         const glm::vec3& wsDirection) {
+                         const glm::vec3& wsDirection, double& cullingMilliseconds) {
     const Light& light = scene.lights[reserved.sceneLightIndex];
     const uint32_t tileIndex = reserved.firstTile + face;
     ShadowTile tile;
@@ -49,7 +50,9 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
     tile.wsTexelSize = 2.0f * shape.tanHalfFov / float(layout.tileSize);
     tile.slopeScaleBias = reserved.slopeScaleBias;
     tile.depthClamp = true;  // pancaking onto the near plane, as for directional tiles
+    const Stopwatch cullingTime;
     tile.casterInstances = frustumCasters(scene, casters, tile.clipFromWorld, light.wsPosition);
+    cullingMilliseconds += cullingTime.milliseconds();
     return tile;
 }
 
@@ -88,7 +91,8 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
         const LightTiles shape = lightTileShape(light, reserved, plan.atlas, settings.spot.filter);
         for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
             const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
-            ShadowTile tile = planOtherTile(scene, casters, plan.atlas, reserved, shape, slot, face, direction);
+            ShadowTile tile = planOtherTile(scene, casters, plan.atlas, reserved, shape, slot, face, direction,
+                                            plan.cullingMilliseconds);
             const uint32_t tileIndex = reserved.firstTile + face;
             data.atlasFromWorld[tileIndex] = tile.atlasFromWorld;
             data.tileBounds[tileIndex] = spotTileSampleBounds(plan.atlas, tileIndex, shape.reach);

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "shadows/shadow_settings.h"
+#include "penumbra/shadow_settings.h"
 
 namespace penumbra {
 

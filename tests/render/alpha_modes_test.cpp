@@ -2,7 +2,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render_test_support.h"
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 using namespace penumbra;
 using namespace penumbra::test;

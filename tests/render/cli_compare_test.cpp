@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_process.h"
-#include "app/settings.h"
+#include "penumbra/settings.h"
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 #include "scene/gltf_loader.h"
 
 using namespace penumbra;

@@ -10,7 +10,7 @@
 #include "cli_process.h"
 #include "scene/gltf_loader.h"
 #include "scene/gltf_writer.h"
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 using namespace penumbra;
 using namespace penumbra::test;

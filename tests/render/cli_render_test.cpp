@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_process.h"
-#include "core/image.h"
+#include "penumbra/image.h"
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -126,10 +126,3 @@ TEST(CliRender, TexturedSampleKeepsItsTexture) {
     EXPECT_GT(colours.size(), 50u);
 }
 
-TEST(CliBench, PrintsGpuMillisecondsPerPassAndCpuPlanTime) {
-    const CliRun result = runPenumbra("bench --frames 2 --width 64 --height 48 --device cpu");
-    ASSERT_EQ(result.exitCode, 0) << result.err;
-    EXPECT_NE(result.out.find("gpu main"), std::string::npos) << result.out;
-    EXPECT_NE(result.out.find("gpu shadows.directional"), std::string::npos) << result.out;
-    EXPECT_NE(result.out.find("cpu shadow plan"), std::string::npos) << result.out;
-}

@@ -10,7 +10,7 @@
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
 #include "render_test_support.h"
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 #include "scene/gltf_loader.h"
 
 namespace penumbra::test {

@@ -13,8 +13,8 @@
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
 #include "render_test_support.h"
-#include "scene/camera_view.h"
-#include "scene/scene_builder.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene_builder.h"
 
 namespace penumbra::test {
 

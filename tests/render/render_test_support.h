@@ -7,19 +7,22 @@
 
 #include <gtest/gtest.h>
 
-#include "gpu/device.h"
-#include "render/renderer.h"
+#include "penumbra/device.h"
+#include "penumbra/renderer.h"
 
 namespace penumbra::test {
 
-inline gpu::Device& sharedDevice() {
-    static std::unique_ptr<gpu::Device> device = [] {
-        gpu::DeviceOptions options;
-        const char* choice = std::getenv("PENUMBRA_DEVICE");
-        options.device = choice ? choice : "cpu";
-        options.validation = true;
-        return std::make_unique<gpu::Device>(options);
-    }();
+// The options of the shared device: lavapipe (or PENUMBRA_DEVICE), validation on.
+inline DeviceOptions testDeviceOptions() {
+    DeviceOptions options;
+    const char* choice = std::getenv("PENUMBRA_DEVICE");
+    options.device = choice ? choice : "cpu";
+    options.validation = true;
+    return options;
+}
+
+inline Device& sharedDevice() {
+    static std::unique_ptr<Device> device = std::make_unique<Device>(testDeviceOptions());
     return *device;
 }
 
@@ -29,7 +32,7 @@ protected:
     void TearDown() override {
         EXPECT_EQ(sharedDevice().validationMessageCount(), messagesBefore_) << "Vulkan validation messages appeared";
     }
-    gpu::Device& device() { return sharedDevice(); }
+    Device& device() { return sharedDevice(); }
 
     RenderResult renderScene(const Scene& scene, const RenderRequest& request, const Settings& settings = {}) {
         Renderer renderer(device(), scene);

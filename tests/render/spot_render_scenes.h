@@ -6,7 +6,7 @@
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
 #include "render_test_support.h"
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 #include "../unit/spot_test_scenes.h"
 
 namespace penumbra::test {

@@ -3,7 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 
 using namespace penumbra;
 

@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "gltf_test_files.h"
 #include "scene/canonical_scenes.h"
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/gltf_writer.h"
 

@@ -9,7 +9,7 @@
 #include "scene/demo_scene.h"
 #include "scene/gltf_loader.h"
 #include "scene/gltf_writer.h"
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 using namespace penumbra;
 using penumbra::testing::TempDir;

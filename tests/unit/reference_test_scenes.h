@@ -8,8 +8,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/camera_view.h"
-#include "scene/scene.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene.h"
 
 namespace penumbra::test {
 

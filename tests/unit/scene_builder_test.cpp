@@ -4,7 +4,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 using namespace penumbra;
 

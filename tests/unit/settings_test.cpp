@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/settings.h"
+#include "penumbra/settings.h"
 #include "core/error.h"
 
 using namespace penumbra;

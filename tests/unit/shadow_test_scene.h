@@ -2,8 +2,8 @@
 // In-memory scenes for the shadow planner tests: boxes (bounds only, no vertices), lights, cameras.
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/camera_view.h"
-#include "scene/scene.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene.h"
 
 namespace penumbra::shadow_test {
 

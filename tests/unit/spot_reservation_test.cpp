@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "scene/camera_view.h"
+#include "penumbra/camera.h"
 #include "shadows/caster_culling.h"
 #include "shadows/spot_reservation.h"
 #include "spot_test_scenes.h"

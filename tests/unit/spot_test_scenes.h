@@ -3,7 +3,7 @@
 // lights in a grid, each above its own box, seen from straight above.
 #include <cmath>
 
-#include "scene/scene_builder.h"
+#include "penumbra/scene_builder.h"
 
 namespace penumbra::test {
 

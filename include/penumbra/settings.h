@@ -2,8 +2,8 @@
 // All settings of one render: the pipeline asset of DESIGN.md ("shadows") plus "render".
 #include <string>
 
-#include "render/render_settings.h"
-#include "shadows/shadow_settings.h"
+#include <penumbra/render_settings.h>
+#include <penumbra/shadow_settings.h>
 
 namespace penumbra {
 

@@ -1,4 +1,4 @@
-#include "app/settings.h"
+#include "penumbra/settings.h"
 
 #include <cmath>
 #include <cstdint>

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "core/image.h"
+#include <penumbra/image.h>
 
 namespace penumbra {
 

@@ -1,0 +1,78 @@
+#pragma once
+// A Vulkan device for Penumbra: one of the machine's (a GPU, or lavapipe on a machine without one),
+// or the caller's own VkDevice (see <penumbra/vulkan.h>). Renderers render on it. No Vulkan header
+// is needed to use this one.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+namespace gpu {
+class Device;
+}
+
+struct DeviceOptions {
+    std::string device = "auto";  // auto | gpu | cpu | N (index in `penumbra devices` order)
+    bool validation = false;      // Khronos validation layer + debug messenger; messages are counted
+    bool timestamps = true;       // GPU timestamps per pass
+    uint32_t framesInFlight = 2;  // frames the CPU may record ahead of the GPU (1..4)
+    // Folder of the persistent VkPipelineCache: "auto" = $XDG_CACHE_HOME/penumbra (else
+    // ~/.cache/penumbra), "off" = none, else the folder to use.
+    std::string pipelineCache = "auto";
+};
+
+struct DeviceInfo {
+    std::string name;
+    std::string driver;
+    bool isCpu = false;
+    uint32_t index = 0;
+};
+
+// A caller's Vulkan objects as integers (VkInstance, VkPhysicalDevice, VkDevice, VkQueue);
+// <penumbra/vulkan.h> builds this from the Vulkan types.
+struct ExternalVulkanDevice {
+    uint64_t instance = 0, physicalDevice = 0, device = 0, queue = 0;
+    uint32_t queueFamily = 0;
+};
+
+// What is alive on a device, and what it has done so far (see Device::liveObjects).
+struct DeviceObjectCounts {
+    uint32_t buffers = 0, textures = 0, samplers = 0, pipelines = 0, textureTables = 0;
+    uint32_t memoryBlocks = 0;      // VkDeviceMemory objects alive
+    uint32_t pendingDestroys = 0;   // destroyed objects the GPU may still be using
+    uint64_t memoryAllocations = 0; // vkAllocateMemory calls so far
+    uint64_t objectsCreated = 0;    // buffers, textures, samplers, pipelines and texture tables so far
+    uint64_t submits = 0;           // queue submissions so far
+    uint64_t deviceWaits = 0;       // queue- or device-wide waits so far
+    uint32_t total() const {
+        return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys;
+    }
+};
+
+class Device {
+public:
+    // Throws penumbra::Error with one line when no device fits the choice.
+    explicit Device(const DeviceOptions& options = {});
+    Device(const ExternalVulkanDevice& external, const DeviceOptions& options = {});
+    ~Device();
+    Device(Device&&) noexcept;
+    Device& operator=(Device&&) noexcept;
+
+    const DeviceInfo& info() const;
+    static std::vector<DeviceInfo> list();
+
+    uint32_t validationMessageCount() const;
+    std::vector<std::string> validationMessages() const;
+    DeviceObjectCounts liveObjects() const;
+    uint64_t deviceMemoryBytes() const;  // VK_EXT_memory_budget usage, else the allocator's blocks
+    void waitIdle();
+
+    gpu::Device& backend() { return *device_; }  // Penumbra's internal GPU layer
+
+private:
+    std::unique_ptr<gpu::Device> device_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,137 @@
+#pragma once
+// The real-time renderer: it owns a scene's GPU data, its render targets and shadow atlases, and
+// renders frame after frame. Each frame plans the shadows on the CPU (lights, cascades, atlas tiles,
+// caster lists), then records the shadow atlas passes, the optional depth prepass and screen-space
+// shadow resolve, the opaque + unlit pass, the transparent pass, and reads back the colour image or
+// a debug AOV only when asked. Frames in flight run in a ring (DeviceOptions::framesInFlight): a
+// steady-state frame allocates nothing, builds no pipeline, waits for no more than the frame that
+// used its ring slot before, and makes one queue submission.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <penumbra/camera.h>
+#include <penumbra/device.h>
+#include <penumbra/image.h>
+#include <penumbra/scene.h>
+#include <penumbra/settings.h>
+
+namespace penumbra {
+
+enum class OutputMode { Color, ShadowAov, CascadesAov };
+
+struct RenderRequest {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    OutputMode output = OutputMode::Color;
+    uint32_t aovLight = 0;      // index into Scene::lights for --aov shadow / cascades
+    bool captureAtlas = false;  // render(): also the shadow atlases' depth (RenderResult::atlas)
+    bool readback = true;       // render(): copy the image to host memory (RenderResult::image)
+};
+
+struct PassTiming {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+// CPU time of one frame, per phase, in milliseconds.
+struct CpuPhaseTimes {
+    double plan = 0.0;     // shadow planning without caster culling (lights, cascades, tiles, packing)
+    double culling = 0.0;  // caster culling per tile
+    double upload = 0.0;   // frame data and scene changes into the upload ring
+    double record = 0.0;   // command recording
+    double submit = 0.0;   // vkQueueSubmit
+};
+
+// What one shadow atlas pass drew.
+struct AtlasDrawStats {
+    std::string pass;  // "shadows.directional", "shadows.other"
+    uint32_t tiles = 0;
+    uint32_t draws = 0;
+    uint64_t triangles = 0;
+};
+
+struct FrameStats {
+    uint64_t frameIndex = 0;
+    std::vector<PassTiming> gpuTimings;  // per pass, from timestamps (empty where the device has none)
+    CpuPhaseTimes cpu;
+    double submitToFenceMilliseconds = 0.0;  // from the submission to the fence seen signalled
+    std::vector<AtlasDrawStats> atlases;
+    std::vector<std::string> warnings;
+    std::string shadowStatsJson = "{}";  // the shadow planner's stats (lights reserved, tiles, casters per tile)
+};
+
+struct RenderResult {
+    Image image;  // RGB colour (sRGB) or 1-channel AOV; empty when request.readback is false
+    Image atlas;  // 1-channel depth of the shadow atlases when requested
+    FrameStats stats;
+};
+
+// How the renderer gets the pipeline variants a setting can reach (the spot/point shadow kinds and
+// filter of the lit pass, the colour formats of the outputs).
+enum class PipelineWarmup {
+    OnDemand,    // build a variant when a frame first needs it (one-shot renders: builds only what is used)
+    Background,  // build every reachable variant on the device's worker thread from the start; until a
+                 // variant is ready, frames use the generic variant (same image), so no frame stalls
+};
+
+struct RendererOptions {
+    PipelineWarmup warmup = PipelineWarmup::OnDemand;
+};
+
+// A caller-owned image to render into (see <penumbra/vulkan.h>, which fills it from Vulkan types).
+struct ExternalImage {
+    uint64_t vkImage = 0;          // VkImage on the Device's VkDevice, with TRANSFER_DST usage
+    uint32_t vkFormat = 0;         // VkFormat (a blit destination format)
+    uint32_t width = 0, height = 0;
+    uint32_t vkInitialLayout = 0;  // VkImageLayout at the start of the frame (UNDEFINED discards it)
+    uint32_t vkFinalLayout = 0;    // VkImageLayout the frame leaves it in
+    uint64_t vkWaitSemaphore = 0;  // binary VkSemaphore to wait on before writing it, or 0
+    uint64_t vkWaitStageMask = 0;  // VkPipelineStageFlags2 of that wait (0 = all commands)
+    uint64_t vkSignalSemaphore = 0;  // binary VkSemaphore signalled once it is written, or 0
+};
+
+class Renderer {
+public:
+    Renderer(Device& device, Scene scene, const RendererOptions& options = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    const Scene& scene() const;
+
+    // ---- scene changes between frames: the next frame uploads only what changed.
+    void setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject);
+    void setInstanceCastShadows(uint32_t instance, bool castShadows);
+    void setLight(uint32_t light, const Light& value);
+    // Everything but the base-colour texture index may change (colour, alpha mode and cutoff, shadow
+    // mode, receive shadows, unlit, double-sided).
+    void setMaterial(uint32_t material, const Material& value);
+
+    // ---- one frame, waited for: the CLI's render, the tests.
+    RenderResult render(const RenderRequest& request, const Settings& settings);
+    RenderResult render(const RenderRequest& request, const Settings& settings, const CameraView& view);
+
+    // ---- real time: records and submits a frame and returns its index without waiting for it
+    // (only for the frame that last used the same ring slot). With `target`, the frame's colour or AOV
+    // is blitted into that caller-owned image. request.readback and captureAtlas are ignored here.
+    uint64_t submitFrame(const RenderRequest& request, const Settings& settings, const CameraView& view,
+                         const ExternalImage* target = nullptr);
+    // Stats of the frames the GPU has finished since the last call, oldest first.
+    std::vector<FrameStats> takeCompletedFrames();
+    void waitIdle();
+
+    // Pipeline variants still building on the worker thread (PipelineWarmup::Background).
+    uint32_t pipelineBuildsPending() const;
+    // Blocks until every variant a setting can reach is built.
+    void buildAllPipelines();
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,262 @@
+// The ring of frames in flight: per slot a command pool, a fence, a timestamp range, an upload ring
+// and the garbage destroyed while it was recorded. Also the one-off (load-time) submissions.
+#include <algorithm>
+#include <cstring>
+
+#include "gpu/vk_internal.h"
+
+namespace penumbra::gpu {
+
+namespace {
+
+constexpr uint64_t kInitialUploadBytes = 1ull << 20;
+constexpr uint32_t kNoQueries = ~0u;
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void Device::Impl::createFrames(uint32_t count) {
+    frames.resize(count);
+    for (FrameContext& frame : frames) {
+        VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        poolInfo.queueFamilyIndex = queueFamily;
+        VK_CHECK(vkCreateCommandPool(device, &poolInfo, nullptr, &frame.commandPool));
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = frame.commandPool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &frame.commandBuffer));
+        setDebugName(VK_OBJECT_TYPE_COMMAND_BUFFER, uint64_t(frame.commandBuffer), "penumbra frame");
+        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &frame.fence));
+    }
+}
+
+void Device::Impl::createUploadRings(Device& owner) {
+    for (FrameContext& frame : frames) {
+        frame.uploadBuffer = owner.createBuffer(kInitialUploadBytes, kBufferUniform | kBufferStorage | kBufferTransferSrc,
+                                                MemoryKind::HostVisible, nullptr, "frame upload ring");
+        frame.uploadCapacity = kInitialUploadBytes;
+    }
+}
+
+void Device::Impl::destroyFrames() {
+    for (FrameContext& frame : frames) {
+        destroyGarbage(frame.garbage);
+        if (frame.uploadBuffer) {
+            BufferResource upload = buffers.remove(frame.uploadBuffer.id);
+            destroyNow(upload);
+        }
+        if (frame.fence) vkDestroyFence(device, frame.fence, nullptr);
+        if (frame.commandPool) vkDestroyCommandPool(device, frame.commandPool, nullptr);
+    }
+    frames.clear();
+}
+
+void Device::Impl::retireFrame(FrameContext& frame) {
+    if (!frame.inFlight) return;
+    VK_CHECK(vkWaitForFences(device, 1, &frame.fence, VK_TRUE, UINT64_MAX));
+    CompletedFrame done;
+    done.frameIndex = frame.frameIndex;
+    done.submitToFenceMilliseconds = millisecondsSince(frame.submitTime);
+    if (timestampsSupported && !frame.timerNames.empty()) {
+        const uint32_t slot = uint32_t(&frame - frames.data());
+        const uint32_t queryCount = uint32_t(frame.timerNames.size()) * 2;
+        std::vector<uint64_t> ticks(queryCount);
+        VK_CHECK(vkGetQueryPoolResults(device, timestampPool, slot * timestampsPerFrame, queryCount,
+                                       ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+        const double msPerTick = double(properties.limits.timestampPeriod) * 1e-6;
+        for (size_t i = 0; i < frame.timerNames.size(); ++i)
+            done.timings.push_back({frame.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
+    }
+    completed.push_back(std::move(done));
+    frame.inFlight = false;
+    frame.timerNames.clear();
+    destroyGarbage(frame.garbage);
+}
+
+uint32_t Device::framesInFlight() const { return uint32_t(impl_->frames.size()); }
+
+CommandList Device::beginFrame() {
+    Impl& d = *impl_;
+    PENUMBRA_ASSERT(d.recordingSlot < 0);
+    d.collectPipelineBuilds();
+    const uint32_t slot = uint32_t(d.nextFrameIndex % d.frames.size());
+    FrameContext& frame = d.frames[slot];
+    d.retireFrame(frame);
+    VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));
+    frame.frameIndex = d.nextFrameIndex++;
+    frame.uploadUsed = 0;
+    d.recordingSlot = int32_t(slot);
+
+    CommandList commands;
+    commands.device = this;
+    commands.nativeCommandBuffer = frame.commandBuffer;
+    if (d.timestampsSupported) {
+        commands.queryBase = slot * d.timestampsPerFrame;
+        commands.queryCapacity = d.timestampsPerFrame;
+        vkCmdResetQueryPool(frame.commandBuffer, d.timestampPool, commands.queryBase, d.timestampsPerFrame);
+    } else {
+        commands.queryBase = kNoQueries;
+    }
+    return commands;
+}
+
+FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
+    Impl& d = *impl_;
+    if (d.recordingSlot < 0) throw Error("internal: allocateFrameData outside beginFrame/submitFrame");
+    FrameContext& frame = d.frames[d.recordingSlot];
+    alignment = std::max<uint64_t>(alignment, d.properties.limits.minUniformBufferOffsetAlignment);
+    alignment = std::max<uint64_t>(alignment, d.properties.limits.minStorageBufferOffsetAlignment);
+    uint64_t offset = (frame.uploadUsed + alignment - 1) & ~(alignment - 1);
+    if (!frame.uploadBuffer || offset + size > frame.uploadCapacity) {
+        // Grow the ring (the old buffer stays alive until this frame is done): only when a frame needs
+        // more than any frame before it, so the steady state allocates nothing.
+        uint64_t capacity = std::max(kInitialUploadBytes, frame.uploadCapacity * 2);
+        while (capacity < offset + size) capacity *= 2;
+        if (frame.uploadBuffer) {
+            // Data written earlier in this frame lives in the old buffer; keep it until the frame is done.
+            frame.garbage.buffers.push_back(d.buffers.remove(frame.uploadBuffer.id));
+        }
+        frame.uploadBuffer = createBuffer(capacity, kBufferUniform | kBufferStorage | kBufferTransferSrc,
+                                          MemoryKind::HostVisible, nullptr, "frame upload ring");
+        frame.uploadCapacity = capacity;
+        offset = 0;
+    }
+    frame.uploadUsed = offset + size;
+    FrameAllocation allocation;
+    allocation.slice = {frame.uploadBuffer, offset, size};
+    allocation.mapped = static_cast<uint8_t*>(d.buffers.at(frame.uploadBuffer.id).mapped) + offset;
+    return allocation;
+}
+
+uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) {
+    Impl& d = *impl_;
+    PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimer == ~0u);
+    FrameContext& frame = d.frames[d.recordingSlot];
+    VK_CHECK(vkEndCommandBuffer(frame.commandBuffer));
+    VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    commandInfo.commandBuffer = frame.commandBuffer;
+    VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &commandInfo;
+    if (sync && sync->waitSemaphore) {
+        wait.semaphore = reinterpret_cast<VkSemaphore>(sync->waitSemaphore);
+        wait.stageMask = sync->waitStageMask ? VkPipelineStageFlags2(sync->waitStageMask) : VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        submit.waitSemaphoreInfoCount = 1;
+        submit.pWaitSemaphoreInfos = &wait;
+    }
+    if (sync && sync->signalSemaphore) {
+        signal.semaphore = reinterpret_cast<VkSemaphore>(sync->signalSemaphore);
+        signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        submit.signalSemaphoreInfoCount = 1;
+        submit.pSignalSemaphoreInfos = &signal;
+    }
+    VK_CHECK(vkResetFences(d.device, 1, &frame.fence));
+    frame.submitTime = std::chrono::steady_clock::now();
+    VK_CHECK(vkQueueSubmit2(d.queue, 1, &submit, frame.fence));
+    ++d.submits;
+    frame.inFlight = true;
+    frame.timerNames = std::move(commands.timerNames);
+    // Objects destroyed since the last submit may be used by frames before this one: they go when
+    // this frame (the latest on the queue) is done.
+    Garbage& garbage = frame.garbage;
+    auto append = [](auto& to, auto& from) {
+        to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+        from.clear();
+    };
+    append(garbage.buffers, d.pendingGarbage.buffers);
+    append(garbage.textures, d.pendingGarbage.textures);
+    append(garbage.pipelines, d.pendingGarbage.pipelines);
+    append(garbage.samplers, d.pendingGarbage.samplers);
+    append(garbage.tables, d.pendingGarbage.tables);
+    d.recordingSlot = -1;
+    commands.nativeCommandBuffer = nullptr;
+    return frame.frameIndex;
+}
+
+void Device::waitFrame(uint64_t frameIndex) {
+    Impl& d = *impl_;
+    for (FrameContext& frame : d.frames)
+        if (frame.inFlight && frame.frameIndex <= frameIndex) d.retireFrame(frame);
+}
+
+void Device::waitIdle() {
+    Impl& d = *impl_;
+    // Oldest first, so completed frames stay in order.
+    std::vector<FrameContext*> inFlight;
+    for (FrameContext& frame : d.frames)
+        if (frame.inFlight) inFlight.push_back(&frame);
+    std::sort(inFlight.begin(), inFlight.end(), [](auto* a, auto* b) { return a->frameIndex < b->frameIndex; });
+    for (FrameContext* frame : inFlight) d.retireFrame(*frame);
+    if (d.recordingSlot < 0) d.destroyGarbage(d.pendingGarbage);
+}
+
+std::vector<CompletedFrame> Device::takeCompletedFrames() {
+    std::vector<CompletedFrame> frames;
+    frames.swap(impl_->completed);
+    return frames;
+}
+
+void Device::Impl::destroyGarbage(Garbage& garbage) {
+    for (auto& b : garbage.buffers) destroyNow(b);
+    for (auto& t : garbage.textures) destroyNow(t);
+    for (auto& p : garbage.pipelines) destroyNow(p);
+    for (VkSampler s : garbage.samplers) vkDestroySampler(device, s, nullptr);
+    for (auto& t : garbage.tables) destroyNow(t);
+    garbage = Garbage{};
+}
+
+// ---- one-off submissions
+
+VkCommandBuffer Device::Impl::beginImmediate() {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = immediatePool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &commandBuffer));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(commandBuffer, &begin));
+    return commandBuffer;
+}
+
+void Device::Impl::endImmediate(VkCommandBuffer commandBuffer) {
+    VK_CHECK(vkEndCommandBuffer(commandBuffer));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &commandBuffer;
+    VK_CHECK(vkResetFences(device, 1, &immediateFence));
+    VK_CHECK(vkQueueSubmit(queue, 1, &submit, immediateFence));
+    ++submits;
+    ++deviceWaits;
+    VK_CHECK(vkWaitForFences(device, 1, &immediateFence, VK_TRUE, UINT64_MAX));
+    vkFreeCommandBuffers(device, immediatePool, 1, &commandBuffer);
+}
+
+CommandList Device::beginCommands() {
+    CommandList commands;
+    commands.device = this;
+    commands.nativeCommandBuffer = impl_->beginImmediate();
+    commands.queryBase = kNoQueries;  // timers are per frame; a one-off list records none
+    return commands;
+}
+
+void Device::submitAndWait(CommandList& commands) {
+    PENUMBRA_ASSERT(commands.openTimer == ~0u);
+    impl_->endImmediate(static_cast<VkCommandBuffer>(commands.nativeCommandBuffer));
+    commands.nativeCommandBuffer = nullptr;
+}
+
+}  // namespace penumbra::gpu

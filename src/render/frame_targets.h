@@ -1,0 +1,43 @@
+#pragma once
+// The textures a frame renders into (both shadow atlases, colour, depth) and the host buffers it
+// reads back through. They live across frames; ensure() re-makes only those whose size or format
+// changed (the old ones are destroyed once no frame in flight uses them).
+#include "gpu/device.h"
+
+namespace penumbra {
+
+struct FrameTargetSizes {
+    uint32_t directionalAtlas = 1;  // 1 when no directional light is reserved
+    uint32_t otherAtlas = 1;        // 1 when no spot/point light is reserved
+    uint32_t width = 1, height = 1;
+    gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+    bool operator==(const FrameTargetSizes&) const = default;
+};
+
+class FrameTargets {
+public:
+    explicit FrameTargets(gpu::Device& device) : device_(device) {}
+    ~FrameTargets();
+    FrameTargets(const FrameTargets&) = delete;
+    FrameTargets& operator=(const FrameTargets&) = delete;
+
+    void ensure(const FrameTargetSizes& sizes);
+    // Host-visible buffers the size of the colour target / the atlases (made on first use).
+    gpu::BufferHandle colorReadback();
+    gpu::BufferHandle directionalReadback();
+    gpu::BufferHandle otherReadback();
+
+    const FrameTargetSizes& sizes() const { return sizes_; }
+    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;
+
+private:
+    gpu::BufferHandle readbackBuffer(gpu::BufferHandle& buffer, uint64_t size, const char* name);
+    void replace(gpu::TextureHandle& texture, const gpu::TextureDesc& desc);
+
+    gpu::Device& device_;
+    FrameTargetSizes sizes_;
+    bool made_ = false;
+    gpu::BufferHandle colorReadback_, directionalReadback_, otherReadback_;
+};
+
+}  // namespace penumbra

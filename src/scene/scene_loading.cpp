@@ -1,0 +1,30 @@
+#include "penumbra/scene_loading.h"
+
+#include "scene/default_light.h"
+#include "scene/generated_scenes.h"
+
+namespace penumbra {
+
+Scene loadScene(const std::string& source, const SceneSourceOptions& options) {
+    Scene scene;
+    if (source.empty()) {
+        scene = makeDemoScene();
+    } else if (const auto spec = parseGeneratedSceneSpec(source)) {
+        if (spec->kind == GeneratedSceneSpec::Kind::Field) {
+            const Scene model = loadGltfScene(options.model);
+            scene = makeFieldScene(model, spec->count, spec->spotLights);
+            for (const std::string& warning : model.warnings) scene.warnings.push_back(options.model + ": " + warning);
+        } else {
+            scene = makeBoxesScene(spec->count);
+        }
+        scene.sourcePath = source;
+    } else {
+        scene = loadGltfScene(source);
+    }
+    if (options.addDefaultSun && addDefaultSunIfUnlit(scene))
+        scene.warnings.push_back((source.empty() ? std::string("the scene") : source) +
+                                 " has no lights; added a default sun as light 0");
+    return scene;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,92 @@
+// `penumbra bench`, the instrument of docs/performance.md: its JSON carries every documented key,
+// and a steady-state frame makes no GPU object.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_process.h"
+
+namespace penumbra::test {
+namespace {
+
+nlohmann::json runBenchJson(const std::string& arguments) {
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("penumbra_bench_" + std::to_string(::getpid()) + ".json")).string();
+    const CliRun run = runPenumbra("bench --device cpu --validation --width 64 --height 48 --json " + path + " " + arguments);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    std::ifstream file(path);
+    EXPECT_TRUE(file.good()) << "no JSON written: " << run.out << run.err;
+    if (!file) return {};
+    nlohmann::json json = nlohmann::json::parse(file, nullptr, false);
+    std::filesystem::remove(path);
+    return json;
+}
+
+void expectStatistics(const nlohmann::json& entry, const std::vector<std::string>& keys, const std::string& where) {
+    for (const std::string& key : keys) {
+        ASSERT_TRUE(entry.contains(key)) << where << " lacks " << key;
+        EXPECT_TRUE(entry[key].is_number()) << where << "." << key;
+        EXPECT_GE(entry[key].get<double>(), 0.0) << where << "." << key;
+    }
+}
+
+TEST(CliBench, JsonHasEveryDocumentedKey) {
+    const nlohmann::json json = runBenchJson("--frames 4 --warmup 1 --camera orbit");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_TRUE(json["device"].is_string());
+    EXPECT_EQ(json["width"], 64);
+    EXPECT_EQ(json["height"], 48);
+    EXPECT_EQ(json["frames"], 4);
+    EXPECT_GT(json["scene"]["triangles"].get<uint64_t>(), 1000u);
+    EXPECT_EQ(json["scene"]["instances"], 13);
+    EXPECT_EQ(json["scene"]["lights"], 3);
+    for (const char* pass : {"shadows.directional", "shadows.other", "main"}) {
+        ASSERT_TRUE(json["passes"].contains(pass)) << pass;
+        expectStatistics(json["passes"][pass], {"median_ms", "p95_ms", "min_ms"}, pass);
+        EXPECT_LE(json["passes"][pass]["min_ms"].get<double>(), json["passes"][pass]["median_ms"].get<double>());
+    }
+    for (const char* phase : {"plan", "culling", "upload", "record", "submit"}) {
+        ASSERT_TRUE(json["cpu"].contains(phase)) << phase;
+        expectStatistics(json["cpu"][phase], {"median_ms", "p95_ms"}, phase);
+    }
+    expectStatistics(json["frame"], {"median_ms", "p95_ms"}, "frame");
+    EXPECT_GT(json["frame"]["median_ms"].get<double>(), 0.0);
+    for (const char* memory : {"host_rss_mb", "device_mb"}) expectStatistics(json["memory"][memory], {"first", "last"}, memory);
+    EXPECT_GT(json["memory"]["host_rss_mb"]["first"].get<double>(), 1.0);
+    EXPECT_GT(json["atlases"]["shadows.directional"]["draws"].get<uint32_t>(), 0u);
+    EXPECT_EQ(json["validationMessages"], 0);
+}
+
+TEST(CliBench, SteadyStateFramesMakeNoGpuObject) {
+    const nlohmann::json json = runBenchJson("--frames 6 --warmup 2 --camera orbit");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_EQ(json["allocationsAfterWarmup"]["gpuObjects"], 0);
+    EXPECT_EQ(json["allocationsAfterWarmup"]["vkAllocateMemory"], 0);
+}
+
+TEST(CliBench, PrintsATableOfPassesPhasesAndMemory) {
+    const CliRun run = runPenumbra("bench --frames 2 --warmup 1 --width 64 --height 48 --device cpu");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    for (const char* line : {"gpu main", "gpu shadows.directional", "cpu plan", "cpu culling", "frame (submit to fence)",
+                             "host RSS", "after warm-up: 0 GPU objects made"})
+        EXPECT_NE(run.out.find(line), std::string::npos) << line << " missing from:\n" << run.out;
+    // Not a terminal: no progress bar.
+    EXPECT_EQ(run.out.find('\r'), std::string::npos);
+}
+
+TEST(CliBench, MeasuresTheBuiltInBoxesScene) {
+    const nlohmann::json json = runBenchJson("gen:boxes:300 --frames 2 --warmup 1");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_EQ(json["scene"]["instances"], 301);  // 300 boxes and the ground
+    EXPECT_EQ(json["scene"]["triangles"], 300 * 12 + 2);
+}
+
+TEST(CliBench, RejectsAnUnknownCameraMode) {
+    const CliRun run = runPenumbra("bench --camera sideways --device cpu");
+    EXPECT_EQ(run.exitCode, 1);
+}
+
+}  // namespace
+}  // namespace penumbra::test
