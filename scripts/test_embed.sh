@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs the built library into a temporary prefix, builds examples/embed against that copy (as a
+# program outside the tree would, through find_package(penumbra)), runs it, and checks that its
+# image equals `penumbra render` of the same scene and size. Run after scripts/build.sh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+prefix=$(mktemp -d)
+work=$(mktemp -d)
+trap 'rm -rf "$prefix" "$work"' EXIT
+cmake --install build --prefix "$prefix" >/dev/null
+test -f "$prefix/lib/pkgconfig/penumbra.pc"
+cmake -S examples/embed -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/build" -j "$(nproc)" >/dev/null
+device=${PENUMBRA_DEVICE:-cpu}
+"$work/build/penumbra_embed" "$work/embed.png" "$device" 320 180
+./build/penumbra render --device "$device" --width 320 --height 180 -o "$work/cli.png"
+./build/penumbra diff "$work/embed.png" "$work/cli.png" | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+assert d["maxAbsDifference"] == 0, "the embedded render differs from penumbra render: %s" % d
+print("embed example: installed library renders the same image as penumbra render")'
