@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build, run and test dependency of Penumbra from Debian 12 packages.
+# clang, its runtime (libFuzzer, ASan, UBSan) and llvm (llvm-symbolizer for readable sanitizer
+# reports) serve the asan preset of CMakePresets.json: sanitizer tests and fuzzing.
 # Idempotent: packages already present are left alone. This is the only way dependencies arrive.
 set -euo pipefail
 
@@ -7,8 +9,9 @@ packages=(
   build-essential cmake pkg-config git
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
-  libembree-dev libtbb-dev libglfw3-dev libimgui-dev
+  libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev llvm
   assimp-testmodels
 )
 

@@ -13,6 +13,18 @@ namespace gpu {
 class Device;
 }
 
+// Test-only fault injection (docs/robustness.md): the device fails as a driver can, so tests can check
+// that each failure ends in one penumbra::Error naming where it happened, with nothing left half-done.
+// Counts are 1-based from the device's creation; 0 = never. The CLI reads PENUMBRA_FAULT_INJECTION
+// (e.g. "allocation=3", "submit=2,max-image-size=512").
+struct DeviceFaultInjection {
+    uint64_t failAllocation = 0;      // the Nth memory allocation (of a buffer or texture) fails as if its
+                                      // vkAllocateMemory returned VK_ERROR_OUT_OF_DEVICE_MEMORY
+    uint64_t loseDeviceAtSubmit = 0;  // the Nth queue submission returns VK_ERROR_DEVICE_LOST (not submitted)
+    uint64_t loseDeviceAtWait = 0;    // the Nth wait for a submission returns VK_ERROR_DEVICE_LOST
+    uint32_t maxImageSize = 0;        // the device's maxImageDimension2D seems to be this (if smaller)
+};
+
 struct DeviceOptions {
     std::string device = "auto";  // auto | gpu | cpu | N (index in `penumbra devices` order)
     bool validation = false;      // Khronos validation layer + debug messenger; messages are counted
@@ -21,6 +33,7 @@ struct DeviceOptions {
     // Folder of the persistent VkPipelineCache: "auto" = $XDG_CACHE_HOME/penumbra (else
     // ~/.cache/penumbra), "off" = none, else the folder to use.
     std::string pipelineCache = "auto";
+    DeviceFaultInjection faults;  // test-only
 };
 
 struct DeviceInfo {
@@ -67,6 +80,10 @@ public:
     std::vector<std::string> validationMessages() const;
     DeviceObjectCounts liveObjects() const;
     uint64_t deviceMemoryBytes() const;  // VK_EXT_memory_budget usage, else the allocator's blocks
+    uint32_t maxImageSize() const;       // maxImageDimension2D: the largest texture, atlas or output side
+    // True once a submission or a wait returned VK_ERROR_DEVICE_LOST: every later frame throws
+    // penumbra::Error; destroy the renderers and this device, then make a new one.
+    bool lost() const;
     void waitIdle();
 
     gpu::Device& backend() { return *device_; }  // Penumbra's internal GPU layer

@@ -23,7 +23,11 @@ struct Image {
 // Throws penumbra::Error naming the path when the file can't be written or read.
 void writePng(const Image& image, const std::string& path);
 Image readPng(const std::string& path, uint32_t desiredChannels = 0);
-// Decodes an image held in memory (PNG, JPEG, ...) to RGBA8; throws Error naming `what` on failure.
+// Decodes a PNG or JPEG held in memory to RGBA8; throws Error naming `what` on failure, for any other
+// format, and for images over 16384 pixels a side (checked from the header, before decoding).
 Image decodeImageRgba(const uint8_t* data, size_t size, const std::string& what);
+// The image scaled down (area average, aspect kept) so that neither side exceeds maxSide; the image
+// itself when it fits.
+Image downscaleToFit(const Image& image, uint32_t maxSide);
 
 }  // namespace penumbra

@@ -102,7 +102,8 @@ struct Measurements {
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     if (bench.camera != "orbit" && bench.camera != "static")
         throw Error("--camera must be orbit or static, not '" + bench.camera + "'");
-    const Settings settings = loadSettings(options);
+    checkWritable(bench.jsonPath);
+    const Settings userSettings = loadSettings(options);
     Device device(deviceOptionsFor(options));
     RendererOptions rendererOptions;
     rendererOptions.warmup = PipelineWarmup::Background;
@@ -111,6 +112,7 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     RenderRequest request = makeRenderRequest(options);
     request.readback = false;
     const CameraView start = resolveCameraView(scene, request.width, request.height);
+    const Settings settings = withSceneDefaults(userSettings, scene, start);
     const bool progress = isatty(STDOUT_FILENO);
 
     uint64_t frame = 0;

@@ -13,6 +13,15 @@ namespace penumbra {
 
 namespace {
 
+// The one line a failure prints, whatever the message holds (a path or a driver's text may contain
+// a line break).
+void printError(const std::string& prefix, const char* message) {
+    std::string line = message;
+    for (char& c : line)
+        if (c == '\n' || c == '\r') c = ' ';
+    std::fprintf(stderr, "penumbra: %s%s\n", prefix.c_str(), line.c_str());
+}
+
 // Options every command that renders shares.
 void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("scene", options.scenePath,
@@ -79,9 +88,7 @@ int runCli(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // A user error like any other: one line, exit code 1 (CLI11's own exit codes are not ours).
-        std::string message = e.what();
-        std::replace(message.begin(), message.end(), '\n', ' ');
-        std::fprintf(stderr, "penumbra: %s (see penumbra --help)\n", message.c_str());
+        printError("", (std::string(e.what()) + " (see penumbra --help)").c_str());
         return 1;
     }
     try {
@@ -92,10 +99,13 @@ int runCli(int argc, char** argv) {
         if (*devices) return runDevicesCommand();
         if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {
-        std::fprintf(stderr, "penumbra: %s\n", e.what());
+        printError("", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        printError("", "out of memory");
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "penumbra: unexpected error: %s\n", e.what());
+        printError("unexpected error: ", e.what());
         return 1;
     }
     return 0;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/camera.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
@@ -45,6 +46,9 @@ DeviceOptions deviceOptionsFor(const RenderOptions& options);
 // The render request the options describe: size, AOV (--aov, --light) and atlas capture.
 RenderRequest makeRenderRequest(const RenderOptions& options);
 Settings loadSettings(const RenderOptions& options);
+// `settings` with the scene-dependent defaults for the keys the user left out (applySceneDefaults:
+// shadows.maxDistance from the scene's extent), each change as a warning on stderr.
+Settings withSceneDefaults(Settings settings, const Scene& scene, const CameraView& view);
 
 int runRenderCommand(const RenderOptions& options);
 int runReferenceCommand(const RenderOptions& options);

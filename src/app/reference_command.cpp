@@ -5,6 +5,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "penumbra/device.h"
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
@@ -25,9 +26,12 @@ ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView&
 }  // namespace
 
 int runReferenceCommand(const RenderOptions& options) {
-    const Settings settings = loadSettings(options);
+    checkWritable(options.outputPath);
+    checkWritable(options.maskPath);
+    const Settings userSettings = loadSettings(options);
     const Scene scene = loadSceneFor(options);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
+    const Settings settings = withSceneDefaults(userSettings, scene, view);
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view));
     writePng(reference.shadow, options.outputPath);
@@ -38,9 +42,11 @@ int runReferenceCommand(const RenderOptions& options) {
 }
 
 int runCompareCommand(const RenderOptions& options) {
-    const Settings settings = loadSettings(options);
+    checkWritable(options.diffPath);
+    const Settings userSettings = loadSettings(options);
     Scene scene = loadSceneFor(options);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
+    const Settings settings = withSceneDefaults(userSettings, scene, view);
     // Trace first: it validates the light (exists, casts shadows) before the GPU is touched.
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO) && !options.json,

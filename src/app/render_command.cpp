@@ -1,5 +1,6 @@
 #include <cstdio>
-#include <fstream>
+#include <cstdlib>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -21,10 +22,33 @@ Scene loadSceneFor(const RenderOptions& options) {
     return scene;
 }
 
+DeviceFaultInjection faultInjectionFromEnvironment() {
+    DeviceFaultInjection faults;
+    const char* text = std::getenv("PENUMBRA_FAULT_INJECTION");
+    if (!text || !*text) return faults;
+    std::stringstream list(text);
+    for (std::string item; std::getline(list, item, ',');) {
+        const size_t equals = item.find('=');
+        const std::string key = item.substr(0, equals);
+        char* end = nullptr;
+        const unsigned long long value = equals == std::string::npos ? 0 : std::strtoull(item.c_str() + equals + 1, &end, 10);
+        const bool number = equals != std::string::npos && end && *end == '\0' && end != item.c_str() + equals + 1;
+        if (number && key == "allocation") faults.failAllocation = value;
+        else if (number && key == "submit") faults.loseDeviceAtSubmit = value;
+        else if (number && key == "wait") faults.loseDeviceAtWait = value;
+        else if (number && key == "max-image-size" && value <= UINT32_MAX) faults.maxImageSize = uint32_t(value);
+        else
+            throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
+                        "' is not allocation=N, submit=N, wait=N or max-image-size=N");
+    }
+    return faults;
+}
+
 DeviceOptions deviceOptionsFor(const RenderOptions& options) {
     DeviceOptions device;
     device.device = options.device;
     device.validation = options.validation;
+    device.faults = faultInjectionFromEnvironment();
     return device;
 }
 
@@ -46,14 +70,13 @@ Settings loadSettings(const RenderOptions& options) {
     return settings;
 }
 
-namespace {
-
-// Fails before any rendering when the output can't be written (one line, no half-done work).
-void checkWritable(const std::string& path) {
-    if (path.empty() || path == "-") return;
-    std::ofstream probe(path, std::ios::binary | std::ios::app);
-    if (!probe) throw Error("cannot write " + path + ": the file could not be created");
+Settings withSceneDefaults(Settings settings, const Scene& scene, const CameraView& view) {
+    for (const std::string& warning : applySceneDefaults(settings, scene, view))
+        std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    return settings;
 }
+
+namespace {
 
 std::string statsJson(const RenderResult& result, const Device& device, const RenderOptions& options) {
     nlohmann::json stats;
@@ -78,11 +101,13 @@ int runRenderCommand(const RenderOptions& options) {
     checkWritable(options.outputPath);
     checkWritable(options.dumpAtlasPath);
     checkWritable(options.statsPath);
-    const Settings settings = loadSettings(options);
+    const Settings userSettings = loadSettings(options);
     Device device(deviceOptionsFor(options));
     Renderer renderer(device, loadSceneFor(options));
     const RenderRequest request = makeRenderRequest(options);
-    const RenderResult result = renderer.render(request, settings);
+    const CameraView view = resolveCameraView(renderer.scene(), request.width, request.height);
+    const Settings settings = withSceneDefaults(userSettings, renderer.scene(), view);
+    const RenderResult result = renderer.render(request, settings, view);
     for (const std::string& warning : result.stats.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     writePng(result.image, options.outputPath);
     if (request.captureAtlas) writePng(result.atlas, options.dumpAtlasPath);
@@ -100,7 +125,9 @@ int runRenderCommand(const RenderOptions& options) {
 }
 
 int runDiffCommand(const std::string& pathA, const std::string& pathB) {
-    std::printf("%s\n", toJson(diffImages(readPng(pathA), readPng(pathB))).c_str());
+    const Image a = readPng(pathA);  // A first, so a bad A is the one reported
+    const Image b = readPng(pathB);
+    std::printf("%s\n", toJson(diffImages(a, b)).c_str());
     return 0;
 }
 

@@ -249,6 +249,16 @@ std::vector<DeviceInfo> Device::listDevices() {
 }
 
 Device::Device(const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
+    try {
+        createOwnDevice(options);
+        initialize();
+    } catch (...) {
+        release();  // no destructor runs for a half-made object: free what was made, then report
+        throw;
+    }
+}
+
+void Device::createOwnDevice(const DeviceOptions& options) {
     Impl& d = *impl_;
     d.options = options;
     d.instance = createInstance(options.validation);
@@ -261,7 +271,6 @@ Device::Device(const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
     d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
     d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget);
     vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
-    initialize();
 }
 
 Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -276,9 +285,14 @@ Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& option
     if (!d.instance || !d.physicalDevice || !d.device || !d.queue)
         throw Error("external Vulkan device: instance, physical device, device and queue are all required");
     d.info = describe(d.physicalDevice, 0);
-    if (!hasDeviceExtension(d.physicalDevice, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
-        throw Error("external Vulkan device: " + d.info.name + " lacks VK_KHR_push_descriptor");
-    initialize();
+    try {
+        if (!hasDeviceExtension(d.physicalDevice, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
+            throw Error("external Vulkan device: " + d.info.name + " lacks VK_KHR_push_descriptor");
+        initialize();
+    } catch (...) {
+        release();
+        throw;
+    }
 }
 
 void Device::initialize() {
@@ -300,6 +314,7 @@ void Device::initialize() {
         vkGetInstanceProcAddr(d.instance, "vkSetDebugUtilsObjectNameEXT"));
     d.memory = std::make_unique<MemoryAllocator>(d.device, d.memoryProperties);
     d.memory->setOnNewMemory(nameMemory, &d);
+    d.memory->failRequestAt(d.options.faults.failAllocation);
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -319,7 +334,9 @@ void Device::initialize() {
     d.startWorker();
 }
 
-Device::~Device() {
+Device::~Device() { release(); }
+
+void Device::release() {
     Impl& d = *impl_;
     if (d.device) {
         d.stopWorkerThread();
@@ -335,25 +352,35 @@ Device::~Device() {
         d.samplers.forEachLive([&](uint32_t, VkSampler& s) { vkDestroySampler(d.device, s, nullptr); });
         d.textures.forEachLive([&](uint32_t, TextureResource& t) { d.destroyNow(t); });
         d.buffers.forEachLive([&](uint32_t, BufferResource& b) { d.destroyNow(b); });
-        d.savePipelineCache();
+        if (!d.lost) d.savePipelineCache();
         if (d.pipelineCache) vkDestroyPipelineCache(d.device, d.pipelineCache, nullptr);
         if (d.timestampPool) vkDestroyQueryPool(d.device, d.timestampPool, nullptr);
         if (d.immediateFence) vkDestroyFence(d.device, d.immediateFence, nullptr);
         if (d.immediatePool) vkDestroyCommandPool(d.device, d.immediatePool, nullptr);
         d.memory.reset();
         if (d.ownsDevice) vkDestroyDevice(d.device, nullptr);
+        d.device = VK_NULL_HANDLE;
     }
     if (!d.ownsDevice) return;
     if (d.messenger) {
         auto destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(d.instance, "vkDestroyDebugUtilsMessengerEXT"));
         if (destroyMessenger) destroyMessenger(d.instance, d.messenger, nullptr);
+        d.messenger = VK_NULL_HANDLE;
     }
     if (d.instance) vkDestroyInstance(d.instance, nullptr);
+    d.instance = VK_NULL_HANDLE;
 }
 
 const DeviceInfo& Device::info() const { return impl_->info; }
-uint32_t Device::maxImageSize() const { return impl_->properties.limits.maxImageDimension2D; }
+uint32_t Device::maxImageSize() const {
+    const uint32_t real = impl_->properties.limits.maxImageDimension2D;
+    const uint32_t injected = impl_->options.faults.maxImageSize;
+    return injected > 0 ? std::min(real, injected) : real;
+}
+
+uint64_t Device::maxStorageBufferRange() const { return impl_->properties.limits.maxStorageBufferRange; }
+bool Device::lost() const { return impl_->lost; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);

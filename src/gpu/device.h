@@ -30,7 +30,9 @@ public:
 
     const DeviceInfo& info() const;
     static std::vector<DeviceInfo> listDevices();
-    uint32_t maxImageSize() const;
+    uint32_t maxImageSize() const;            // maxImageDimension2D (or the fault injection's smaller one)
+    uint64_t maxStorageBufferRange() const;   // the largest storage buffer a shader may bind
+    bool lost() const;                        // a submission or wait returned VK_ERROR_DEVICE_LOST
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,
@@ -63,6 +65,7 @@ public:
     // ---- frames in flight (DeviceOptions::framesInFlight slots, each with its fence, command pool,
     // timestamp range and upload ring). beginFrame waits only for the frame that last used the slot.
     uint32_t framesInFlight() const;
+    uint64_t nextFrameIndex() const;  // the index the next beginFrame gives its frame
     CommandList beginFrame();
     // Host-visible memory for this frame's data (uniforms, lights, staging), valid while it is in
     // flight; only between beginFrame and submitFrame.
@@ -70,6 +73,9 @@ public:
     // Ends and submits the frame with its fence (one vkQueueSubmit); `sync` adds the caller's
     // semaphores. Returns the frame's index.
     uint64_t submitFrame(CommandList& commands, const ExternalTarget* sync = nullptr);
+    // Drops the frame being recorded (after an error while recording it): nothing is submitted, the
+    // slot is free for the next beginFrame, objects destroyed meanwhile go with the next submission.
+    void abandonFrame(CommandList& commands);
     void waitFrame(uint64_t frameIndex);  // returns once that frame has finished on the GPU
     void waitIdle();                      // every submitted frame (fence waits, no vkDeviceWaitIdle)
     // Frames finished since the last call, oldest first (timestamps per pass, submit-to-fence time).
@@ -95,7 +101,9 @@ public:
     Impl& impl() { return *impl_; }
 
 private:
+    void createOwnDevice(const DeviceOptions& options);
     void initialize();
+    void release();  // the destructor's work; also undoes a constructor that failed half-way
     std::unique_ptr<Impl> impl_;
 };
 

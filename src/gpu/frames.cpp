@@ -16,7 +16,56 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// "frame 3 (passes shadows.directional, main)": what a submission held, for error messages.
+std::string describeFrame(uint64_t frameIndex, const std::vector<std::string>& passes) {
+    std::string text = "frame " + std::to_string(frameIndex);
+    if (passes.empty()) return text;
+    text += " (passes ";
+    for (size_t i = 0; i < passes.size(); ++i) text += (i ? ", " : "") + passes[i];
+    return text + ")";
+}
+
 }  // namespace
+
+// ---- device loss
+
+void Device::Impl::throwLost(const std::string& where, VkResult result) {
+    if (!lost) {
+        lost = true;
+        lostAt = where;
+        // Waits on a lost device end in finite time (Vulkan spec, "Lost Device"); after this one no
+        // earlier submission can still use an object, so every object may be destroyed safely.
+        vkDeviceWaitIdle(device);
+    }
+    throw Error(std::string("GPU device lost (") + vkResultName(result) + ") " + where +
+                "; the device can't be used any more");
+}
+
+void Device::Impl::throwIfLost() const {
+    if (lost) throw Error("GPU device lost earlier (" + lostAt + "); the device can't be used any more");
+}
+
+void Device::Impl::queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const std::string& what) {
+    throwIfLost();
+    ++submissionCalls;
+    const uint64_t injected = options.faults.loseDeviceAtSubmit;
+    const VkResult result = submissionCalls == injected ? VK_ERROR_DEVICE_LOST : vkQueueSubmit2(queue, 1, &submit, fence);
+    if (result == VK_ERROR_DEVICE_LOST) throwLost("submitting " + what, result);
+    if (result != VK_SUCCESS)
+        throw Error("Vulkan call failed: vkQueueSubmit2 (" + what + ") returned " + vkResultName(result));
+    ++submits;
+}
+
+void Device::Impl::waitForFence(VkFence fence, const std::string& what) {
+    throwIfLost();
+    ++fenceWaits;
+    const uint64_t injected = options.faults.loseDeviceAtWait;
+    const VkResult result =
+        fenceWaits == injected ? VK_ERROR_DEVICE_LOST : vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+    if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what, result);
+    if (result != VK_SUCCESS)
+        throw Error("Vulkan call failed: vkWaitForFences (" + what + ") returned " + vkResultName(result));
+}
 
 void Device::Impl::createFrames(uint32_t count) {
     frames.resize(count);
@@ -59,7 +108,20 @@ void Device::Impl::destroyFrames() {
 
 void Device::Impl::retireFrame(FrameContext& frame) {
     if (!frame.inFlight) return;
-    VK_CHECK(vkWaitForFences(device, 1, &frame.fence, VK_TRUE, UINT64_MAX));
+    if (lost) {
+        // Nothing of a lost device is waited for (throwLost waited once for all): the frame is
+        // dropped, its objects freed.
+        frame.inFlight = false;
+        frame.timerNames.clear();
+        destroyGarbage(frame.garbage);
+        return;
+    }
+    try {
+        waitForFence(frame.fence, describeFrame(frame.frameIndex, frame.timerNames));
+    } catch (const Error&) {
+        retireFrame(frame);  // lost now: drop it as above
+        throw;
+    }
     CompletedFrame done;
     done.frameIndex = frame.frameIndex;
     done.submitToFenceMilliseconds = millisecondsSince(frame.submitTime);
@@ -81,10 +143,14 @@ void Device::Impl::retireFrame(FrameContext& frame) {
 }
 
 uint32_t Device::framesInFlight() const { return uint32_t(impl_->frames.size()); }
+uint64_t Device::nextFrameIndex() const { return impl_->nextFrameIndex; }
 
 CommandList Device::beginFrame() {
     Impl& d = *impl_;
-    PENUMBRA_ASSERT(d.recordingSlot < 0);
+    // Always checked: a frame left recording (not submitted, not abandoned) would be lost silently.
+    if (d.recordingSlot >= 0) throw Error("internal: beginFrame while frame " +
+                                          std::to_string(d.frames[d.recordingSlot].frameIndex) + " is still recording");
+    d.throwIfLost();
     d.collectPipelineBuilds();
     const uint32_t slot = uint32_t(d.nextFrameIndex % d.frames.size());
     FrameContext& frame = d.frames[slot];
@@ -164,8 +230,7 @@ uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) 
     }
     VK_CHECK(vkResetFences(d.device, 1, &frame.fence));
     frame.submitTime = std::chrono::steady_clock::now();
-    VK_CHECK(vkQueueSubmit2(d.queue, 1, &submit, frame.fence));
-    ++d.submits;
+    d.queueSubmit(submit, frame.fence, describeFrame(frame.frameIndex, commands.timerNames));
     frame.inFlight = true;
     frame.timerNames = std::move(commands.timerNames);
     // Objects destroyed since the last submit may be used by frames before this one: they go when
@@ -183,6 +248,29 @@ uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) 
     d.recordingSlot = -1;
     commands.nativeCommandBuffer = nullptr;
     return frame.frameIndex;
+}
+
+void Device::abandonFrame(CommandList& commands) {
+    Impl& d = *impl_;
+    if (d.recordingSlot < 0) return;
+    FrameContext& frame = d.frames[d.recordingSlot];
+    // Resetting the pool returns the command buffer to the initial state, recording or not (even
+    // inside a render pass instance).
+    vkResetCommandPool(d.device, frame.commandPool, 0);
+    Garbage& garbage = frame.garbage;
+    auto append = [](auto& to, auto& from) {
+        to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+        from.clear();
+    };
+    append(d.pendingGarbage.buffers, garbage.buffers);
+    append(d.pendingGarbage.textures, garbage.textures);
+    append(d.pendingGarbage.pipelines, garbage.pipelines);
+    append(d.pendingGarbage.samplers, garbage.samplers);
+    append(d.pendingGarbage.tables, garbage.tables);
+    d.recordingSlot = -1;
+    commands.nativeCommandBuffer = nullptr;
+    commands.timerNames.clear();
+    commands.openTimer = ~0u;
 }
 
 void Device::waitFrame(uint64_t frameIndex) {
@@ -220,6 +308,7 @@ void Device::Impl::destroyGarbage(Garbage& garbage) {
 // ---- one-off submissions
 
 VkCommandBuffer Device::Impl::beginImmediate() {
+    throwIfLost();
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = immediatePool;
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -233,16 +322,21 @@ VkCommandBuffer Device::Impl::beginImmediate() {
 }
 
 void Device::Impl::endImmediate(VkCommandBuffer commandBuffer) {
+    struct FreeOnExit {  // also when the submission or the wait fails
+        Impl& d;
+        VkCommandBuffer commandBuffer;
+        ~FreeOnExit() { vkFreeCommandBuffers(d.device, d.immediatePool, 1, &commandBuffer); }
+    } freeOnExit{*this, commandBuffer};
     VK_CHECK(vkEndCommandBuffer(commandBuffer));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &commandBuffer;
+    VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    commandInfo.commandBuffer = commandBuffer;
+    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &commandInfo;
     VK_CHECK(vkResetFences(device, 1, &immediateFence));
-    VK_CHECK(vkQueueSubmit(queue, 1, &submit, immediateFence));
-    ++submits;
+    queueSubmit(submit, immediateFence, "a one-off submission (uploads or readback)");
     ++deviceWaits;
-    VK_CHECK(vkWaitForFences(device, 1, &immediateFence, VK_TRUE, UINT64_MAX));
-    vkFreeCommandBuffers(device, immediatePool, 1, &commandBuffer);
+    waitForFence(immediateFence, "a one-off submission (uploads or readback)");
 }
 
 CommandList Device::beginCommands() {

@@ -33,11 +33,9 @@ int32_t MemoryAllocator::newBlock(uint32_t memoryType, VkDeviceSize size, bool l
     block.memoryType = memoryType;
     block.linear = linear;
     block.dedicated = dedicated;
-    const VkResult result = vkAllocateMemory(device_, &info, nullptr, &block.memory);
     ++allocationCalls_;
-    if (result != VK_SUCCESS)
-        throw Error("GPU memory: vkAllocateMemory of " + std::to_string(size >> 20) + " MiB for " + name +
-                    " returned " + vkResultName(result));
+    const VkResult result = vkAllocateMemory(device_, &info, nullptr, &block.memory);
+    if (result != VK_SUCCESS) throwOutOfMemory(size, name, result);
     if (properties_.memoryTypes[memoryType].propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
         void* mapped = nullptr;
         const VkResult mapResult = vkMapMemory(device_, block.memory, 0, VK_WHOLE_SIZE, 0, &mapped);
@@ -59,8 +57,16 @@ int32_t MemoryAllocator::newBlock(uint32_t memoryType, VkDeviceSize size, bool l
     return int32_t(blocks_.size() - 1);
 }
 
+void MemoryAllocator::throwOutOfMemory(VkDeviceSize size, const std::string& name, VkResult result) {
+    throw Error("out of GPU memory: vkAllocateMemory of " + std::to_string((size + (1 << 20) - 1) >> 20) + " MiB for " +
+                (name.empty() ? std::string("an unnamed object") : name) + " returned " + vkResultName(result));
+}
+
 MemoryAllocation MemoryAllocator::allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags flags,
                                            bool linear, const std::string& name) {
+    // Fault injection fails a request, whether or not it would have needed a new block, so that every
+    // object's creation can be made to fail.
+    if (++requests_ == failRequestAt_) throwOutOfMemory(requirements.size, name, VK_ERROR_OUT_OF_DEVICE_MEMORY);
     const uint32_t memoryType = findMemoryType(requirements.memoryTypeBits, flags);
     MemoryAllocation allocation;
     allocation.size = requirements.size;

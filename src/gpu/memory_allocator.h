@@ -41,6 +41,9 @@ public:
     VkDeviceSize blockBytes() const;
     VkDeviceSize usedBytes() const;
     uint64_t allocationCalls() const { return allocationCalls_; }
+    // Test-only (DeviceFaultInjection::failAllocation): the Nth allocate() fails as out of device
+    // memory, as if its vkAllocateMemory had.
+    void failRequestAt(uint64_t request) { failRequestAt_ = request; }
     // Called with every new VkDeviceMemory (for debug names).
     void setOnNewMemory(void (*callback)(void* user, VkDeviceMemory memory, const std::string& name), void* user) {
         onNewMemory_ = callback;
@@ -60,12 +63,15 @@ private:
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
     int32_t newBlock(uint32_t memoryType, VkDeviceSize size, bool linear, bool dedicated, const std::string& name);
     void releaseBlock(int32_t index);
+    [[noreturn]] static void throwOutOfMemory(VkDeviceSize size, const std::string& name, VkResult result);
 
     VkDevice device_;
     VkPhysicalDeviceMemoryProperties properties_;
     VkDeviceSize blockSize_;
     std::vector<Block> blocks_;  // released blocks keep memory == VK_NULL_HANDLE
     uint64_t allocationCalls_ = 0;
+    uint64_t requests_ = 0;
+    uint64_t failRequestAt_ = 0;
     void (*onNewMemory_)(void*, VkDeviceMemory, const std::string&) = nullptr;
     void* onNewMemoryUser_ = nullptr;
 };

@@ -16,6 +16,8 @@ uint32_t Device::validationMessageCount() const { return device_->validationMess
 std::vector<std::string> Device::validationMessages() const { return device_->validationMessages(); }
 uint64_t Device::deviceMemoryBytes() const { return device_->deviceMemoryBytes(); }
 void Device::waitIdle() { device_->waitIdle(); }
+uint32_t Device::maxImageSize() const { return device_->maxImageSize(); }
+bool Device::lost() const { return device_->lost(); }
 
 DeviceObjectCounts Device::liveObjects() const {
     const gpu::ObjectCounts counts = device_->objectCounts();

@@ -65,12 +65,23 @@ BufferHandle Device::createBuffer(size_t size, uint32_t usage, MemoryKind memory
         if (resource.mapped) {
             std::memcpy(resource.mapped, initialData, size);
         } else {
-            const BufferHandle staging =
-                createBuffer(size, kBufferTransferSrc, MemoryKind::HostVisible, initialData, "staging");
-            d.immediate([&](VkCommandBuffer cb) {
-                VkBufferCopy copy{0, 0, size};
-                vkCmdCopyBuffer(cb, d.buffers.at(staging.id).buffer, d.buffers.at(handle.id).buffer, 1, &copy);
-            });
+            BufferHandle staging;
+            try {
+                staging = createBuffer(size, kBufferTransferSrc, MemoryKind::HostVisible, initialData, "staging");
+                d.immediate([&](VkCommandBuffer cb) {
+                    VkBufferCopy copy{0, 0, size};
+                    vkCmdCopyBuffer(cb, d.buffers.at(staging.id).buffer, d.buffers.at(handle.id).buffer, 1, &copy);
+                });
+            } catch (...) {
+                // The submission failed or never ran (a lost device has been waited for): free both now.
+                if (staging) {
+                    BufferResource stagingResource = d.buffers.remove(staging.id);
+                    d.destroyNow(stagingResource);
+                }
+                BufferResource failed = d.buffers.remove(handle.id);
+                d.destroyNow(failed);
+                throw;
+            }
             BufferResource stagingResource = d.buffers.remove(staging.id);
             d.destroyNow(stagingResource);  // the copy has finished
         }
@@ -119,11 +130,10 @@ TextureHandle Device::createTexture(const TextureDesc& desc) {
     if (desc.usage & kTextureDepthTarget) info.usage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     if (desc.usage & kTextureStorage) info.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    if (desc.width == 0 || desc.height == 0 || desc.width > d.properties.limits.maxImageDimension2D ||
-        desc.height > d.properties.limits.maxImageDimension2D)
+    if (desc.width == 0 || desc.height == 0 || desc.width > maxImageSize() || desc.height > maxImageSize())
         throw Error("texture '" + desc.debugName + "' of " + std::to_string(desc.width) + "x" +
-                    std::to_string(desc.height) + " exceeds the device's limit of " +
-                    std::to_string(d.properties.limits.maxImageDimension2D) + " texels");
+                    std::to_string(desc.height) + " exceeds the device's limit of " + std::to_string(maxImageSize()) +
+                    " texels");
     VK_CHECK(vkCreateImage(d.device, &info, nullptr, &resource.image));
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(d.device, resource.image, &requirements);
@@ -153,6 +163,7 @@ TextureHandle Device::importTexture(const ExternalTarget& target, const std::str
         throw Error("external image: a VkImage and its size are required");
     TextureResource resource;
     resource.image = reinterpret_cast<VkImage>(target.image);
+    resource.imported = true;
     resource.format = VkFormat(target.format);
     resource.desc = {target.width, target.height, Format::Undefined, kTextureTransferDst, 1, debugName};
     ++d.objectsCreated;
@@ -163,8 +174,9 @@ const TextureDesc& Device::textureDesc(TextureHandle texture) const { return imp
 
 void Device::Impl::destroyNow(TextureResource& resource) {
     if (resource.view) vkDestroyImageView(device, resource.view, nullptr);
-    // An imported image (no memory of ours) belongs to the caller.
-    if (resource.image && resource.memory.memory) vkDestroyImage(device, resource.image, nullptr);
+    // An imported image belongs to the caller. (Not "has no memory": an image whose allocation
+    // failed has none either, and must still go.)
+    if (resource.image && !resource.imported) vkDestroyImage(device, resource.image, nullptr);
     memory->free(resource.memory);
     resource = TextureResource{};
 }
@@ -200,6 +212,14 @@ void Device::uploadTexture(TextureHandle handle, std::span<const uint8_t> pixels
     PENUMBRA_ASSERT(pixels.size() == size_t(t.desc.width) * t.desc.height * bytesPerPixel(t.desc.format));
     const BufferHandle staging =
         createBuffer(pixels.size(), kBufferTransferSrc, MemoryKind::HostVisible, pixels.data(), "texture staging");
+    struct FreeStaging {  // also when the submission fails
+        Impl& d;
+        BufferHandle staging;
+        ~FreeStaging() {
+            BufferResource resource = d.buffers.remove(staging.id);
+            d.destroyNow(resource);  // the upload has finished, or never ran
+        }
+    } freeStaging{d, staging};
     d.immediate([&](VkCommandBuffer cb) {
         const VkAccessFlags2 write = VK_ACCESS_2_TRANSFER_WRITE_BIT, read = VK_ACCESS_2_TRANSFER_READ_BIT;
         for (uint32_t level = 0; level < t.desc.mipLevels; ++level)
@@ -227,8 +247,6 @@ void Device::uploadTexture(TextureHandle handle, std::span<const uint8_t> pixels
         mipBarrier(cb, t.image, t.desc.mipLevels - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, write, VK_ACCESS_2_SHADER_READ_BIT);
     });
-    BufferResource stagingResource = d.buffers.remove(staging.id);
-    d.destroyNow(stagingResource);  // the upload has finished
 }
 
 SamplerHandle Device::createSampler(const SamplerDesc& desc) {
@@ -306,6 +324,14 @@ Image Device::readTexture(TextureHandle handle, TextureState state) {
     const uint32_t bpp = bytesPerPixel(t.desc.format);
     const size_t size = size_t(t.desc.width) * t.desc.height * bpp;
     const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible, nullptr, "readback");
+    struct FreeReadback {
+        Impl& d;
+        BufferHandle readback;
+        ~FreeReadback() {
+            BufferResource resource = d.buffers.remove(readback.id);
+            d.destroyNow(resource);
+        }
+    } freeReadback{d, readback};
     d.immediate([&](VkCommandBuffer cb) {
         recordTransition(cb, t, state, TextureState::TransferSrc);
         VkBufferImageCopy copy{};
@@ -316,8 +342,6 @@ Image Device::readTexture(TextureHandle handle, TextureState state) {
     });
     Image image(t.desc.width, t.desc.height, bpp);
     std::memcpy(image.pixels.data(), d.buffers.at(readback.id).mapped, size);
-    BufferResource readbackResource = d.buffers.remove(readback.id);
-    d.destroyNow(readbackResource);
     return image;
 }
 

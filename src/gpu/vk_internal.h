@@ -38,6 +38,7 @@ struct BufferResource {
 
 struct TextureResource {
     VkImage image = VK_NULL_HANDLE;
+    bool imported = false;  // a caller's VkImage (importTexture): never destroyed here
     MemoryAllocation memory;
     VkImageView view = VK_NULL_HANDLE;
     TextureDesc desc;
@@ -148,6 +149,19 @@ struct Device::Impl {
     std::vector<std::string> buildErrors;
     uint32_t buildsRunning = 0;
     bool stopWorker = false;
+
+    // Device loss (real, or injected by options.faults): once lost, no wait is made again and every
+    // frame or one-off submission throws at once.
+    bool lost = false;
+    std::string lostAt;           // "submitting frame 3 (passes a, b)"
+    uint64_t submissionCalls = 0;  // queue submissions attempted (fault injection counts these)
+    uint64_t fenceWaits = 0;       // waits for a submission (fault injection counts these)
+    [[noreturn]] void throwLost(const std::string& where, VkResult result);
+    void throwIfLost() const;
+    // vkQueueSubmit2 / vkWaitForFences through the loss checks and the fault injection; `what`
+    // names the work in the error ("frame 3 (passes shadows.directional, main)").
+    void queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const std::string& what);
+    void waitForFence(VkFence fence, const std::string& what);
 
     mutable std::mutex messagesMutex;
     std::vector<std::string> validationMessages;

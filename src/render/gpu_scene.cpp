@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cstring>
 
-#include <glm/gtc/matrix_inverse.hpp>
 
+#include "core/error.h"
+#include "penumbra/image.h"
 #include "scene_structs.h"
 
 namespace penumbra {
@@ -24,10 +25,19 @@ gpu_data::MaterialData packMaterial(const Material& m) {
     return data;
 }
 
+// The cofactor matrix is the inverse transpose times the determinant: the same normal directions (the
+// shader normalizes) for every invertible transform, with the sign kept for mirrored ones, and still
+// finite for a singular one (a zero scale), where the inverse would divide by zero.
+glm::mat3 normalMatrix(const glm::mat4& worldFromObject) {
+    const glm::mat3 m(worldFromObject);
+    const glm::mat3 cofactor(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+    return glm::determinant(m) < 0.0f ? -cofactor : cofactor;
+}
+
 gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance) {
     gpu_data::InstanceData data{};
     data.worldFromObject = instance.worldFromObject;
-    data.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject)));
+    data.normalFromObject = glm::mat4(normalMatrix(instance.worldFromObject));
     data.info = glm::uvec4(scene.meshes.at(instance.meshIndex).materialIndex, 0, 0, 0);
     return data;
 }
@@ -43,12 +53,50 @@ void forEachRun(std::vector<uint32_t>& indices, Visit&& visit) {
         visit(indices[begin], uint32_t(end - begin));
         begin = end;
     }
-    indices.clear();
+}
+
+std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+
+void checkBufferSize(const char* what, uint64_t bytes, uint64_t maxStorageBufferRange) {
+    if (bytes > maxStorageBufferRange)
+        throw Error(std::string("the scene does not fit on this GPU: its ") + what + " take " + mib(bytes) +
+                    ", more than the device's largest storage buffer (" + mib(maxStorageBufferRange) + ")");
 }
 
 }  // namespace
 
+void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange) {
+    if (totals.indices > UINT32_MAX)
+        throw Error("the scene does not fit on the GPU: it has " + std::to_string(totals.indices) +
+                    " triangle indices, more than the 2^32 - 1 that 32-bit indices address");
+    if (totals.vertices > uint64_t(INT32_MAX))
+        throw Error("the scene does not fit on the GPU: it has " + std::to_string(totals.vertices) +
+                    " vertices, more than the 2^31 - 1 that a draw's vertex offset addresses");
+    checkBufferSize("vertices", totals.vertices * sizeof(gpu_data::VertexData), maxStorageBufferRange);
+    checkBufferSize("indices", totals.indices * sizeof(uint32_t), maxStorageBufferRange);
+    checkBufferSize("instances", totals.instances * sizeof(gpu_data::InstanceData), maxStorageBufferRange);
+    checkBufferSize("materials", totals.materials * sizeof(gpu_data::MaterialData), maxStorageBufferRange);
+}
+
 GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
+    try {
+        create(scene);
+    } catch (...) {
+        destroyAll();  // no destructor runs for a half-made object
+        throw;
+    }
+}
+
+void GpuScene::create(const Scene& scene) {
+    GpuSceneTotals totals;
+    for (const Mesh& mesh : scene.meshes) {
+        totals.vertices += mesh.vertices.size();
+        totals.indices += mesh.indices.size();
+    }
+    totals.instances = scene.instances.size();
+    totals.materials = std::max<size_t>(scene.materials.size(), 1);
+    checkGpuSceneLimits(totals, device_.maxStorageBufferRange());
+
     std::vector<gpu_data::VertexData> vertices;
     std::vector<uint32_t> indices;
     struct MeshRange { uint32_t firstIndex, indexCount; int32_t vertexOffset; };
@@ -73,6 +121,7 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     if (materials.empty()) materials.push_back(packMaterial(Material{}));
 
     using gpu::MemoryKind;
+    gpu::Device& device = device_;
     vertices_ = device.createBuffer(vertices.size() * sizeof(vertices[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
                                     vertices.data(), "vertices");
     indices_ = device.createBuffer(indices.size() * sizeof(uint32_t), gpu::kBufferIndex | gpu::kBufferStorage,
@@ -84,24 +133,49 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
 
     // Base-colour textures (sRGB, mipmapped). An empty scene still gets one white texel so the
     // table is never empty.
-    auto upload = [&](const Image& rgba, const std::string& name) {
-        gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0,
-                              "baseColor " + name};
-        const gpu::TextureHandle texture = device.createTexture(desc);
-        device.uploadTexture(texture, rgba.pixels);
-        textures_.push_back(texture);
-    };
-    for (const Texture& t : scene.textures) upload(t.rgba, t.name);
-    if (textures_.empty()) upload(Image(1, 1, 4, 255), "white");
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        const uint32_t limit = device.maxImageSize();
+        if (t.rgba.width <= limit && t.rgba.height <= limit) {
+            uploadTexture(t.rgba, t.name);
+            continue;
+        }
+        const Image fitted = downscaleToFit(t.rgba, limit);
+        warnings_.push_back("texture " + std::to_string(i) + (t.name.empty() ? "" : " '" + t.name + "'") + " is " +
+                            std::to_string(t.rgba.width) + "x" + std::to_string(t.rgba.height) +
+                            ", larger than the device's " + std::to_string(limit) + " texel limit: downscaled to " +
+                            std::to_string(fitted.width) + "x" + std::to_string(fitted.height));
+        uploadTexture(fitted, t.name);
+    }
+    if (textures_.empty()) uploadTexture(Image(1, 1, 4, 255), "white");
     sampler_ = device.createSampler({gpu::Filter::Linear, true, gpu::AddressMode::Repeat});
     textureTable_ = device.createTextureTable(textures_, sampler_);
 }
 
-GpuScene::~GpuScene() {
+void GpuScene::uploadTexture(const Image& rgba, const std::string& name) {
+    const gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0,
+                                "baseColor " + name};
+    const gpu::TextureHandle texture = device_.createTexture(desc);
+    textures_.push_back(texture);  // before the upload, so a failed upload still destroys it
+    device_.uploadTexture(texture, rgba.pixels);
+}
+
+void GpuScene::destroyAll() {
     device_.destroy(textureTable_);
     device_.destroy(sampler_);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
     for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_}) device_.destroy(b);
+    textureTable_ = {};
+    sampler_ = {};
+    textures_.clear();
+    vertices_ = indices_ = instances_ = materials_ = {};
+}
+
+GpuScene::~GpuScene() { destroyAll(); }
+
+void GpuScene::updatesSubmitted() {
+    dirtyInstances_.clear();
+    dirtyMaterials_.clear();
 }
 
 uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene) {

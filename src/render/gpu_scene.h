@@ -4,6 +4,7 @@
 // which any pass (main view, shadow tiles, a future compute rasterizer) can filter. Instances and
 // materials may change between frames: only the changed entries are copied, through the frame's
 // upload ring, at the start of the next frame.
+#include <string>
 #include <vector>
 
 #include "gpu/device.h"
@@ -19,8 +20,18 @@ struct DrawItem {
     uint32_t materialIndex = 0;
 };
 
+// What the packed scene buffers hold, checked against what the GPU layout can address.
+struct GpuSceneTotals {
+    uint64_t vertices = 0, indices = 0, instances = 0, materials = 0;
+};
+// Throws Error when the scene does not fit: more than 2^32 - 1 indices in all (32-bit firstIndex and
+// index values), more than 2^31 - 1 vertices (32-bit signed vertexOffset), or a packed buffer larger
+// than the device's maxStorageBufferRange.
+void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange);
+
 class GpuScene {
 public:
+    // Textures larger than the device's maxImageSize are downscaled (warnings()).
     GpuScene(gpu::Device& device, const Scene& scene);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
@@ -33,14 +44,21 @@ public:
     gpu::BufferHandle materialBuffer() const { return materials_; }
     gpu::TextureTableHandle textureTable() const { return textureTable_; }
     uint64_t triangleCount() const { return triangles_; }
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
     // Marks an instance or material as changed; recordUpdates uploads it.
     void instanceChanged(uint32_t instance) { dirtyInstances_.push_back(instance); }
     void materialChanged(uint32_t material) { dirtyMaterials_.push_back(material); }
-    // Copies the changed entries of `scene` (between beginFrame and submitFrame); returns the bytes copied.
+    // Copies the changed entries of `scene` (between beginFrame and submitFrame); returns the bytes
+    // copied. They stay marked until updatesSubmitted(), so a frame abandoned after an error loses none.
     uint64_t recordUpdates(gpu::CommandList& commands, const Scene& scene);
+    void updatesSubmitted();
 
 private:
+    void create(const Scene& scene);
+    void destroyAll();
+    void uploadTexture(const Image& rgba, const std::string& name);
+
     gpu::Device& device_;
     std::vector<DrawItem> draws_;
     uint64_t triangles_ = 0;
@@ -49,6 +67,7 @@ private:
     gpu::SamplerHandle sampler_;
     gpu::TextureTableHandle textureTable_;
     std::vector<uint32_t> dirtyInstances_, dirtyMaterials_;
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace penumbra

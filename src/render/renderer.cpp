@@ -1,6 +1,7 @@
 #include "penumbra/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <deque>
 
@@ -15,6 +16,7 @@
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_stats_json.h"
 #include "scene/scene_edits.h"
+#include "scene/scene_validation.h"
 #include "scene_structs.h"
 #include "shadows/shadow_planner.h"
 
@@ -99,16 +101,21 @@ struct Renderer::State {
     State(gpu::Device& d, Scene s, const RendererOptions& o)
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), mainPass(d, gpuScene, o.warmup),
           casterPass(d, gpuScene, scene), screenSpacePass(d, mainPass), targets(d) {
-        // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
-        shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
-                                         gpu::CompareOp::LessOrEqual});
-        pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
-        noScreenShadows = d.createTexture(
-            {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
-        gpu::CommandList commands = d.beginCommands();
-        commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
-        d.submitAndWait(commands);
-        if (o.warmup == PipelineWarmup::Background) requestAllVariants();
+        try {
+            // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
+            shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
+                                             gpu::CompareOp::LessOrEqual});
+            pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
+            noScreenShadows = d.createTexture(
+                {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
+            gpu::CommandList commands = d.beginCommands();
+            commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
+            d.submitAndWait(commands);
+            if (o.warmup == PipelineWarmup::Background) requestAllVariants();
+        } catch (...) {
+            destroyOwnObjects();  // the members' destructors run; this body's objects are ours to free
+            throw;
+        }
     }
 
     ~State() {
@@ -117,10 +124,17 @@ struct Renderer::State {
             device.waitIdle();
         } catch (const Error&) {
         }
+        destroyOwnObjects();
+    }
+
+    void destroyOwnObjects() {
         for (const ImportedImage& image : imported) device.destroy(image.texture);
+        imported.clear();
         device.destroy(noScreenShadows);
         device.destroy(shadowSampler);
         device.destroy(pointSampler);
+        noScreenShadows = {};
+        shadowSampler = pointSampler = {};
     }
 
     // Every variant a setting can reach: the generic sets first (what frames fall back on), then the
@@ -152,25 +166,95 @@ struct Renderer::State {
         return imported.back().texture;
     }
 
+    // What recording one frame needs; `stage` names the part being recorded.
+    struct FrameRecording {
+        const RenderRequest& request;
+        const Settings& settings;
+        const CameraView& view;
+        const ShadowFrame& plan;
+        const PackedLights& lights;
+        const FrameTargetSizes& sizes;
+        FrameStats& stats;
+        Stopwatch& phase;
+        const char* stage = "begin";
+    };
+
+    void checkRequest(const RenderRequest& request, const CameraView& view) const;
     uint64_t submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
                     const ExternalImage* target, bool readback, bool captureAtlas);
+    void record(gpu::CommandList& commands, FrameRecording& recording, const ExternalImage* target, bool readback,
+                bool captureAtlas);
     void collectCompleted();
 };
+
+namespace {
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+// A caller's CameraView (render(request, settings, view), submitFrame) is checked like a scene camera.
+void checkCameraView(const CameraView& view) {
+    if (!finite(view.clipFromWorld) || !finite(view.worldFromView) || !finite(view.viewFromWorld))
+        throw Error("camera view: a matrix has a non-finite element");
+    if (!(view.yfov > 0.0f && view.yfov < 3.14159265f)) throw Error("camera view: yfov must be in (0, pi)");
+    if (!(std::isfinite(view.zNear) && view.zNear > 0.0f && view.zFar > view.zNear))
+        throw Error("camera view: needs 0 < zNear < zFar");
+}
+
+// The largest power of two that is <= limit (limit >= 1).
+uint32_t powerOfTwoAtMost(uint32_t limit) {
+    uint32_t size = 1;
+    while (size <= limit / 2) size *= 2;
+    return size;
+}
+
+// The shadow settings this device can hold: an atlas over the device's largest image side is made as
+// large as it allows, with a warning.
+ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, std::vector<std::string>& warnings) {
+    ShadowSettings fitted = requested;
+    const uint32_t largest = powerOfTwoAtMost(maxImageSize);
+    auto fit = [&](uint32_t& atlasSize, const char* key) {
+        if (atlasSize <= largest) return;
+        warnings.push_back(std::string(key) + " = " + std::to_string(atlasSize) + " is larger than the device's largest image (" +
+                           std::to_string(maxImageSize) + "): using " + std::to_string(largest));
+        atlasSize = largest;
+    };
+    fit(fitted.directional.atlasSize, "shadows.directional.atlasSize");
+    fit(fitted.spot.atlasSize, "shadows.spot.atlasSize");
+    return fitted;
+}
+
+}  // namespace
+
+void Renderer::State::checkRequest(const RenderRequest& request, const CameraView& view) const {
+    if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
+        throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
+                    std::to_string(scene.lights.size()) + " lights)");
+    const uint32_t limit = device.maxImageSize();
+    if (request.width == 0 || request.height == 0 || request.width > limit || request.height > limit)
+        throw Error("the output size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                    " is out of range (allowed 1.." + std::to_string(limit) + " per side on " + device.info().name + ")");
+    if (view.width != request.width || view.height != request.height)
+        throw Error("internal: the camera view is " + std::to_string(view.width) + "x" + std::to_string(view.height) +
+                    " but the request " + std::to_string(request.width) + "x" + std::to_string(request.height));
+    checkCameraView(view);
+}
 
 uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
                                  const ExternalImage* target, bool readback, bool captureAtlas) {
     validateSettings(settings);
-    if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
-        throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
-                    std::to_string(scene.lights.size()) + " lights)");
-    if (view.width != request.width || view.height != request.height)
-        throw Error("internal: the camera view is " + std::to_string(view.width) + "x" + std::to_string(view.height) +
-                    " but the request " + std::to_string(request.width) + "x" + std::to_string(request.height));
+    checkRequest(request, view);
     PendingFrame frame;
     FrameStats& stats = frame.stats;
+    stats.warnings = gpuScene.warnings();
+    const ShadowSettings shadows = fitShadowSettings(settings.shadows, device.maxImageSize(), stats.warnings);
 
     Stopwatch phase;
-    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, shadows);
     const PackedLights lights = packLights(scene, [&](uint32_t i) {
         const bool directional = scene.lights[i].type == LightType::Directional;
         const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
@@ -178,7 +262,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     });
     stats.cpu.culling = plan.stats.cullingMilliseconds;
     stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
-    stats.warnings = lights.warnings;
+    stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
     stats.shadowStatsJson = shadowStatsJson(plan);
 
@@ -188,32 +272,73 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     sizes.width = view.width;
     sizes.height = view.height;
     sizes.colorFormat = colorFormatOf(request.output);
-    targets.ensure(sizes);
+    const uint64_t frameIndex = device.nextFrameIndex();
+    const auto failed = [&](const char* stage, const Error& error) {
+        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
+    };
+    try {
+        targets.ensure(sizes);
+    } catch (const Error& error) {
+        throw failed("render targets and shadow atlases", error);
+    }
 
     phase.restart();
     gpu::CommandList commands = device.beginFrame();
-    phase.restart();  // the wait for the slot's previous frame is not CPU work
+    FrameRecording recording{request, settings, view, plan, lights, sizes, stats, phase};
+    try {
+        record(commands, recording, target, readback, captureAtlas);
+    } catch (const Error& error) {
+        device.abandonFrame(commands);
+        throw failed(recording.stage, error);
+    }
+    gpu::ExternalTarget sync;
+    if (target)
+        sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
+                target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
+    phase.restart();
+    try {
+        frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);  // its errors name the frame
+    } catch (const Error&) {
+        device.abandonFrame(commands);
+        throw;
+    }
+    gpuScene.updatesSubmitted();
+    stats.cpu.submit = phase.milliseconds();
+    stats.frameIndex = frame.frameIndex;
+    pending.push_back(std::move(frame));
+    collectCompleted();
+    return pending.back().frameIndex;
+}
+
+// Records the frame's passes; `r.stage` names the one being recorded, for the error of a failure.
+void Renderer::State::record(gpu::CommandList& commands, FrameRecording& r, const ExternalImage* target, bool readback,
+                             bool captureAtlas) {
+    r.stage = "scene updates";
+    r.phase.restart();  // the wait for the slot's previous frame is not CPU work
     gpuScene.recordUpdates(commands, scene);
-    const bool screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
-    const gpu_data::FrameData frameData = makeFrameData(view, lights, request, settings, screenSpace);
+    r.stage = "frame data upload";
+    const bool screenSpace = r.settings.shadows.screenSpace && !r.plan.directional.lights.empty();
+    const gpu_data::FrameData frameData = makeFrameData(r.view, r.lights, r.request, r.settings, screenSpace);
     const gpu::BufferSlice frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
     const gpu::BufferSlice lightSlice =
-        uploadFrameData(device, lights.lights.data(), lights.lights.size() * sizeof(gpu_data::LightData));
+        uploadFrameData(device, r.lights.lights.data(), r.lights.lights.size() * sizeof(gpu_data::LightData));
     const gpu::BufferSlice directionalSlice =
-        uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
-    const gpu::BufferSlice otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
-    stats.cpu.upload = phase.milliseconds();
+        uploadFrameData(device, &r.plan.directional.gpu, sizeof(r.plan.directional.gpu));
+    const gpu::BufferSlice otherSlice = uploadFrameData(device, &r.plan.other.gpu, sizeof(r.plan.other.gpu));
+    r.stats.cpu.upload = r.phase.milliseconds();
     static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
 
-    phase.restart();
+    r.phase.restart();
     const std::vector<gpu::DescriptorWrite> casterWrites = sceneDescriptorWrites(gpuScene, frameSlice, lightSlice);
+    r.stage = "shadows.directional";
     commands.beginTimer("shadows.directional");
-    stats.atlases.push_back(casterPass.record(commands, scene, plan.directional.tiles, targets.directionalAtlas,
-                                              sizes.directionalAtlas, casterWrites, "shadows.directional"));
+    r.stats.atlases.push_back(casterPass.record(commands, scene, r.plan.directional.tiles, targets.directionalAtlas,
+                                                r.sizes.directionalAtlas, casterWrites, "shadows.directional"));
     commands.endTimer();
+    r.stage = "shadows.other";
     commands.beginTimer("shadows.other");
-    stats.atlases.push_back(casterPass.record(commands, scene, plan.other.tiles, targets.otherAtlas, sizes.otherAtlas,
-                                              casterWrites, "shadows.other"));
+    r.stats.atlases.push_back(casterPass.record(commands, scene, r.plan.other.tiles, targets.otherAtlas,
+                                                r.sizes.otherAtlas, casterWrites, "shadows.other"));
     commands.endTimer();
 
     MainPassInputs inputs;
@@ -223,43 +348,40 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     inputs.writes.push_back({7, otherSlice});
     inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
     inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});
-    if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, view, inputs, 0);
+    r.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
+    if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, r.view, inputs, 0);
 
+    r.stage = "main";
     commands.beginTimer("main");
     commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
     commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
     MainPass::Target main;
     main.color = targets.color;
     main.depth = targets.depth;
-    main.width = view.width;
-    main.height = view.height;
-    main.variant = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+    main.width = r.view.width;
+    main.height = r.view.height;
+    main.variant = litVariant(r.sizes.colorFormat, r.plan.other.specializationMode, uint32_t(r.settings.shadows.spot.filter));
     main.genericSpecialization = kGenericLitSpecialization;
     // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
-    if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
-    mainPass.record(commands, scene, view, inputs, main);
+    if (r.request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+    mainPass.record(commands, scene, r.view, inputs, main);
     commands.endTimer();
 
+    r.stage = "readback";
     if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
     if (captureAtlas) {
         commands.copyTextureToBuffer(targets.directionalAtlas, gpu::TextureState::ShaderRead, targets.directionalReadback());
         commands.copyTextureToBuffer(targets.otherAtlas, gpu::TextureState::ShaderRead, targets.otherReadback());
     }
-    gpu::ExternalTarget sync;
     if (target) {
-        sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
-                target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
+        r.stage = "blit to the caller's image";
+        gpu::ExternalTarget sync{target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
+                                 target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask,
+                                 target->vkSignalSemaphore};
         commands.blitToExternal(targets.color, importedTexture(*target), sync);
     }
-    stats.cpu.record = phase.milliseconds();
-
-    phase.restart();
-    frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);
-    stats.cpu.submit = phase.milliseconds();
-    stats.frameIndex = frame.frameIndex;
-    pending.push_back(std::move(frame));
-    collectCompleted();
-    return pending.back().frameIndex;
+    r.stats.cpu.record = r.phase.milliseconds();
+    r.stage = "submit";
 }
 
 void Renderer::State::collectCompleted() {
@@ -274,8 +396,24 @@ void Renderer::State::collectCompleted() {
     }
 }
 
-Renderer::Renderer(Device& device, Scene scene, const RendererOptions& options)
-    : state_(std::make_unique<State>(device.backend(), std::move(scene), options)) {}
+namespace {
+
+// The scene as the renderer takes it: checked first, so no bad index or value reaches the GPU.
+Scene checkedScene(Scene scene) {
+    validateScene(scene);
+    return scene;
+}
+
+}  // namespace
+
+Renderer::Renderer(Device& device, Scene scene, const RendererOptions& options) {
+    Scene checked = checkedScene(std::move(scene));
+    try {
+        state_ = std::make_unique<State>(device.backend(), std::move(checked), options);
+    } catch (const Error& error) {
+        throw Error(std::string("putting the scene on the GPU: ") + error.what());
+    }
+}
 Renderer::~Renderer() = default;
 
 const Scene& Renderer::scene() const { return state_->scene; }

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/scene_validation.h"
+
 namespace penumbra {
 
 glm::mat4 reversedZPerspective(float yfov, float aspect, float zNear, float zFar) {
@@ -23,6 +25,7 @@ glm::mat4 reversedZPerspective(float yfov, float aspect, float zNear, float zFar
 }
 
 CameraView makeCameraView(const Camera& camera, uint32_t width, uint32_t height) {
+    validateCamera(camera, "camera" + (camera.name.empty() ? std::string() : " '" + camera.name + "'"));
     CameraView view;
     view.width = std::max(1u, width);
     view.height = std::max(1u, height);

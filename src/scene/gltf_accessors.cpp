@@ -1,5 +1,7 @@
 // Bounds-checked accessor reads: every index, offset and length in the file is validated before a
 // byte is touched, so a malformed file is an Error, never an out-of-bounds read.
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "scene/gltf_internal.h"
@@ -8,7 +10,7 @@ namespace penumbra::gltf {
 namespace {
 
 struct AccessorData {
-    const uint8_t* base = nullptr;  // null: no bufferView, the values are all zero
+    const uint8_t* base = nullptr;  // the first element in the buffer
     size_t stride = 0;
     size_t count = 0;
     int componentType = 0;
@@ -56,7 +58,9 @@ AccessorData checkedAccessor(const LoadContext& ctx, int accessorIndex, const st
     if (data.componentCount != expectedCount)
         ctx.fail(name + " has " + std::to_string(data.componentCount) + " components per element, expected " +
                  std::to_string(expectedCount));
-    if (accessor.bufferView < 0) return data;  // glTF: no bufferView means all zeros
+    // glTF initializes an accessor without a bufferView to zeros, for sparse data to patch; without
+    // sparse support such an accessor holds nothing useful, and its count alone could ask for gigabytes.
+    if (accessor.bufferView < 0) ctx.fail(name + " has no bufferView (all-zero accessors are not supported)");
     if (size_t(accessor.bufferView) >= model.bufferViews.size())
         ctx.fail(name + " references bufferView " + std::to_string(accessor.bufferView) + ", out of range (the file has " +
                  std::to_string(model.bufferViews.size()) + ")");
@@ -66,19 +70,23 @@ AccessorData checkedAccessor(const LoadContext& ctx, int accessorIndex, const st
         ctx.fail(viewName + " references buffer " + std::to_string(view.buffer) + ", out of range (the file has " +
                  std::to_string(model.buffers.size()) + ")");
     const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
-    if (uint64_t(view.byteOffset) + view.byteLength > buffer.data.size())
+    // Every sum below is done in 128 bits: offsets, strides and counts come from the file, and a wrapped
+    // 64-bit sum would pass the checks.
+    using u128 = unsigned __int128;
+    const u128 viewEnd = u128(view.byteOffset) + view.byteLength;
+    if (viewEnd > buffer.data.size())
         ctx.fail(viewName + " reads past the end of buffer " + std::to_string(view.buffer) + " (needs " +
-                 std::to_string(uint64_t(view.byteOffset) + view.byteLength) + " bytes, has " +
+                 std::to_string(uint64_t(std::min<u128>(viewEnd, UINT64_MAX))) + " bytes, has " +
                  std::to_string(buffer.data.size()) + ")");
     const size_t elementSize = componentSize * size_t(data.componentCount);
     data.stride = view.byteStride ? view.byteStride : elementSize;
     if (data.stride < elementSize) ctx.fail(viewName + " has a byteStride smaller than its elements");
-    if (data.count > 0) {
-        const uint64_t end = uint64_t(accessor.byteOffset) + uint64_t(data.stride) * (data.count - 1) + elementSize;
-        if (end > view.byteLength)
-            ctx.fail(name + " reads past the end of its " + viewName + " (needs " + std::to_string(end) +
-                     " bytes, has " + std::to_string(view.byteLength) + ")");
-    }
+    const u128 end = data.count == 0 ? u128(accessor.byteOffset)
+                                     : u128(accessor.byteOffset) + u128(data.stride) * (data.count - 1) + elementSize;
+    if (end > view.byteLength)
+        ctx.fail(name + " reads past the end of its " + viewName + " (needs " +
+                 std::to_string(uint64_t(std::min<u128>(end, UINT64_MAX))) + " bytes, has " +
+                 std::to_string(view.byteLength) + ")");
     data.base = buffer.data.data() + view.byteOffset + accessor.byteOffset;
     return data;
 }
@@ -110,7 +118,6 @@ template <int N>
 std::vector<glm::vec<N, float>> readVectors(const LoadContext& ctx, int accessorIndex, const std::string& what) {
     const AccessorData data = checkedAccessor(ctx, accessorIndex, what, N);
     std::vector<glm::vec<N, float>> values(data.count, glm::vec<N, float>(0.0f));
-    if (!data.base) return values;
     const size_t componentSize = componentSizeOf(data.componentType);
     for (size_t i = 0; i < data.count; ++i) {
         const uint8_t* element = data.base + i * data.stride;
@@ -132,7 +139,6 @@ std::vector<glm::vec2> readVec2(const LoadContext& ctx, int accessorIndex, const
 std::vector<uint32_t> readIndices(const LoadContext& ctx, int accessorIndex, const std::string& what) {
     const AccessorData data = checkedAccessor(ctx, accessorIndex, what, 1);
     std::vector<uint32_t> indices(data.count, 0u);
-    if (!data.base) return indices;
     for (size_t i = 0; i < data.count; ++i) {
         const uint8_t* p = data.base + i * data.stride;
         switch (data.componentType) {

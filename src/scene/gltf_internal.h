@@ -4,9 +4,12 @@
 #include <string>
 #include <vector>
 
-// Must match src/scene/tinygltf_impl.cpp: the implementation is compiled without stb_image_write.
+// Must match src/scene/tinygltf_impl.cpp: the implementation is compiled without stb_image(_write).
 #ifndef TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
+#endif
+#ifndef TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE
 #endif
 #include <tiny_gltf.h>
 
@@ -42,7 +45,9 @@ void convertMaterials(const LoadContext& ctx);
 
 // ---- lights (gltf_lights.cpp)
 void convertLights(const LoadContext& ctx);
-void placeLight(Light& light, const glm::mat4& worldFromNode);
+// Gives the light its node's world position and -Z axis; a directional or spot light whose node has a
+// zero scale (no direction) is an error naming `object`.
+void placeLight(const LoadContext& ctx, const std::string& object, Light& light, const glm::mat4& worldFromNode);
 // The KHR_lights_punctual light index a node references, or -1.
 int nodeLightIndex(const LoadContext& ctx, size_t nodeIndex);
 

@@ -64,11 +64,15 @@ void convertLights(const LoadContext& ctx) {
     for (size_t i = 0; i < ctx.model.lights.size(); ++i) ctx.scene.lights.push_back(convertLight(ctx, i));
 }
 
-void placeLight(Light& light, const glm::mat4& worldFromNode) {
+void placeLight(const LoadContext& ctx, const std::string& object, Light& light, const glm::mat4& worldFromNode) {
     light.wsPosition = glm::vec3(worldFromNode[3]);
     const glm::vec3 wsMinusZ = -glm::vec3(worldFromNode[2]);
     const float len = glm::length(wsMinusZ);
-    light.wsDirection = len > 0.0f ? wsMinusZ / len : glm::vec3(0.0f, 0.0f, -1.0f);
+    if (std::isfinite(len) && len > 0.0f) {
+        light.wsDirection = wsMinusZ / len;
+    } else if (light.type != LightType::Point) {
+        ctx.fail(object + ": the light's direction is undefined (the node's -Z axis has zero length: a zero scale)");
+    }
 }
 
 int nodeLightIndex(const LoadContext& ctx, size_t nodeIndex) {

@@ -1,15 +1,20 @@
 // glTF file to Scene: parsing (tinygltf), then the node hierarchy flattened to world space.
 #include "scene/gltf_loader.h"
 
+#include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <cstring>
+#include <filesystem>
 
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
+#include "core/files.h"
+#include "core/image_decode.h"
 #include "penumbra/image.h"
 #include "scene/gltf_internal.h"
 #include "scene/mesh_utils.h"
+#include "scene/scene_validation.h"
 
 namespace penumbra {
 namespace gltf {
@@ -44,11 +49,15 @@ std::string oneLine(const std::string& text) {
     return line;
 }
 
-// Decodes every image to RGBA8 with our own decoder so that a bad image is a clean error.
-bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string*, int, int,
+// Decodes every image to RGBA8 with our own decoder so that a bad image is a clean error, and a
+// problem the decoder recovered from is a warning.
+bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string* warn, int, int,
                  const unsigned char* bytes, int size, void*) {
     try {
-        Image rgba = decodeImageRgba(bytes, size_t(size), "image " + std::to_string(imageIndex));
+        std::vector<std::string> warnings;
+        Image rgba = decodePngOrJpeg(bytes, size_t(std::max(size, 0)), 4, "image " + std::to_string(imageIndex), &warnings);
+        for (const std::string& warning : warnings)
+            if (warn) *warn += warning + "\n";
         image->width = int(rgba.width);
         image->height = int(rgba.height);
         image->component = 4;
@@ -62,27 +71,77 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
     }
 }
 
-tinygltf::Model parseFile(const std::string& path, std::string& warnings) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error(path + ": cannot open file");
-    char magic[4] = {};
-    file.read(magic, 4);
-    const bool binary = file.gcount() == 4 && std::string(magic, 4) == "glTF";
-    file.close();
+// External files (buffers and images named by URI): regular files only, so a URI naming a directory,
+// a device or a FIFO is an error rather than a hang or a huge allocation. Without a base folder (a
+// glTF held in memory, the fuzzer) no file is read at all.
+bool externalFileExists(const std::string& path, void* baseDir) {
+    std::error_code error;
+    // Held in memory: "exists", so that readExternalFile explains why it is not read.
+    return baseDir == nullptr || std::filesystem::is_regular_file(path, error);
+}
+
+std::string expandNothing(const std::string& path, void*) { return path; }
+
+bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* baseDir) {
+    if (!baseDir) {
+        if (err) *err += "external file " + path + " is not read (the glTF is held in memory)\n";
+        return false;
+    }
+    try {
+        *out = readFileBytes(path);
+        return true;
+    } catch (const Error& e) {
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+}
+
+bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "writing is not supported\n";
+    return false;
+}
+
+tinygltf::Model parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string* baseDir,
+                          std::string& warnings) {
+    // tinygltf takes 32-bit sizes.
+    if (size > 0xFFFFFFFFu) throw Error(name + ": the file is larger than 4 GiB, which glTF loading does not support");
+    const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
     tinygltf::TinyGLTF parser;
     parser.SetImageLoader(decodeImage, nullptr);
+    parser.SetFsCallbacks({externalFileExists, expandNothing, readExternalFile, writeNothing,
+                           const_cast<std::string*>(baseDir)});
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
+    const std::string folder = baseDir ? *baseDir : std::string();
     try {
-        ok = binary ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                    : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+        ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(size), folder)
+                    : parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data), unsigned(size),
+                                                 folder);
+    } catch (const std::bad_alloc&) {
+        throw Error(name + ": invalid glTF (out of memory while parsing)");
     } catch (const std::exception& e) {
-        throw Error(path + ": invalid glTF (" + e.what() + ")");
+        throw Error(name + ": invalid glTF (" + e.what() + ")");
     }
-    if (!ok) throw Error(path + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    if (!ok) throw Error(name + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
     warnings = oneLine(warn);
     return model;
+}
+
+// glTF quaternions are (x, y, z, w) and must be unit length: a zero (or non-finite) one is an error,
+// one off by more than rounding is normalized with a warning.
+glm::quat nodeRotation(const LoadContext& ctx, size_t nodeIndex) {
+    const tinygltf::Node& node = ctx.model.nodes[nodeIndex];
+    const std::vector<double>& r = node.rotation;
+    const glm::dvec4 xyzw(r[0], r[1], r[2], r[3]);
+    const double length = glm::length(xyzw);
+    const std::string object = gltf::describe("node", nodeIndex, node.name);
+    if (!std::isfinite(length) || length < 1e-6)
+        ctx.fail(object + ": rotation [" + std::to_string(r[0]) + ", " + std::to_string(r[1]) + ", " + std::to_string(r[2]) +
+                 ", " + std::to_string(r[3]) + "] is not a unit quaternion");
+    if (std::abs(length - 1.0) > 1e-3) ctx.warn(object + ": rotation has length " + std::to_string(length) + ", normalized");
+    const glm::dvec4 unit = xyzw / length;
+    return glm::quat(float(unit.w), float(unit.x), float(unit.y), float(unit.z));  // glm takes w first
 }
 
 glm::mat4 localFromNode(const LoadContext& ctx, size_t nodeIndex) {
@@ -95,9 +154,7 @@ glm::mat4 localFromNode(const LoadContext& ctx, size_t nodeIndex) {
         glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
         if (node.translation.size() == 3) t = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
         if (node.scale.size() == 3) s = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
-        // glTF quaternions are (x, y, z, w); glm's constructor takes w first.
-        if (node.rotation.size() == 4)
-            r = glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]));
+        if (node.rotation.size() == 4) r = nodeRotation(ctx, nodeIndex);
         m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
     }
     for (int c = 0; c < 4; ++c)
@@ -173,6 +230,11 @@ private:
             if (size_t(node.mesh) >= ctx_.model.meshes.size())
                 ctx_.fail(object + ": mesh " + std::to_string(node.mesh) + " is out of range (the file has " +
                           std::to_string(ctx_.model.meshes.size()) + ")");
+        }
+        if (node.mesh >= 0 && glm::determinant(glm::mat3(worldFromNode)) == 0.0f) {
+            // A zero scale (a common way to hide a node) leaves no volume and no defined normals.
+            ctx_.warn(object + ": the world transform is singular (a zero scale), its mesh is not drawn");
+        } else if (node.mesh >= 0) {
             for (uint32_t meshIndex : sceneMeshes(size_t(node.mesh))) {
                 Instance instance;
                 instance.meshIndex = meshIndex;
@@ -196,7 +258,7 @@ private:
             if (lightPlaced_[size_t(lightIndex)]) {
                 ctx_.warn(object + ": light " + std::to_string(lightIndex) + " is already placed by another node, ignored");
             } else {
-                gltf::placeLight(ctx_.scene.lights[size_t(lightIndex)], worldFromNode);
+                gltf::placeLight(ctx_, object, ctx_.scene.lights[size_t(lightIndex)], worldFromNode);
                 lightPlaced_[size_t(lightIndex)] = true;
             }
         }
@@ -239,6 +301,11 @@ private:
         camera.yfov = float(p.yfov);
         camera.zNear = float(p.znear);
         camera.zFar = p.zfar == 0.0 ? INFINITY : float(p.zfar);
+        try {
+            validateCamera(camera, object + " (" + gltf::describe("node", chosen->nodeIndex, node.name) + ")");
+        } catch (const Error& e) {
+            ctx_.fail(e.what());
+        }
         ctx_.scene.camera = camera;
     }
 
@@ -253,9 +320,9 @@ private:
 
 }  // namespace
 
-Scene loadGltfScene(const std::string& path) {
-    std::string parserWarnings;
-    const tinygltf::Model model = parseFile(path, parserWarnings);
+namespace {
+
+Scene convertModel(const tinygltf::Model& model, const std::string& path, const std::string& parserWarnings) {
     Scene scene;
     scene.sourcePath = path;
     if (!parserWarnings.empty()) scene.warnings.push_back(path + ": " + parserWarnings);
@@ -271,7 +338,28 @@ Scene loadGltfScene(const std::string& path) {
         scene.materials.push_back(fallback);
     }
     computeWorldBounds(scene);
+    try {
+        validateScene(scene);  // what the renderer will check: world bounds, light positions, ...
+    } catch (const Error& e) {
+        ctx.fail(e.what());
+    }
     return scene;
+}
+
+}  // namespace
+
+Scene loadGltfScene(const std::string& path) {
+    const std::vector<uint8_t> bytes = readFileBytes(path);
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    std::string parserWarnings;
+    const tinygltf::Model model = parseGltf(bytes.data(), bytes.size(), path, &baseDir, parserWarnings);
+    return convertModel(model, path, parserWarnings);
+}
+
+Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name) {
+    std::string parserWarnings;
+    const tinygltf::Model model = parseGltf(data, size, name, nullptr, parserWarnings);
+    return convertModel(model, name, parserWarnings);
 }
 
 }  // namespace penumbra

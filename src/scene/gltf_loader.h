@@ -15,12 +15,18 @@
 // - Materials keep their glTF index; a default material is appended after them only if some
 //   primitive has no material.
 // Any bad input throws penumbra::Error with one line naming the file and the problem.
+#include <cstdint>
 #include <string>
 
 #include "penumbra/scene_loading.h"
 
 namespace penumbra {
 
-// Declared in penumbra/scene_loading.h.
+// loadGltfScene(path) is declared in penumbra/scene_loading.h; external buffers and images are read
+// relative to the file's folder, regular files only.
+
+// A .gltf (JSON) or .glb (by its magic) held in memory, named `name` in messages. Only data: URIs
+// and the GLB's own chunk are read: a URI naming an external file is an error (the fuzzer's entry).
+Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name);
 
 }  // namespace penumbra

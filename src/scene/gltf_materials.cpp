@@ -1,7 +1,9 @@
 // glTF textures and pbrMetallicRoughness materials with their shadow extras.
 #include <cmath>
 
+#include "core/error.h"
 #include "scene/gltf_internal.h"
+#include "scene/scene_validation.h"
 
 namespace penumbra::gltf {
 namespace {
@@ -70,6 +72,11 @@ Material convertMaterial(const LoadContext& ctx, size_t index) {
     material.doubleSided = source.doubleSided;
     material.unlit = source.extensions.count("KHR_materials_unlit") > 0;
     readShadowExtras(ctx, source.extras, object, material);
+    try {
+        validateMaterial(material, ctx.scene.textures.size(), object);  // glTF's ranges: factors in [0, 1], cutoff >= 0
+    } catch (const Error& e) {
+        ctx.fail(e.what());
+    }
     return material;
 }
 

@@ -3,6 +3,7 @@
 
 #include "scene/gltf_internal.h"
 #include "scene/mesh_utils.h"
+#include "scene/scene_validation.h"
 
 namespace penumbra::gltf {
 namespace {
@@ -36,23 +37,34 @@ std::optional<Mesh> convertPrimitive(const LoadContext& ctx, size_t meshIndex, s
     mesh.vertices.resize(positions.size());
     for (size_t i = 0; i < positions.size(); ++i) {
         if (!isFinite(positions[i])) ctx.fail(what + " POSITION: vertex " + std::to_string(i) + " is not finite");
+        if (glm::any(glm::greaterThan(glm::abs(positions[i]), glm::vec3(kMaxWorldCoordinate))))
+            ctx.fail(what + " POSITION: vertex " + std::to_string(i) + " lies beyond 1e10 (too large for float math)");
         mesh.vertices[i].osPosition = positions[i];
     }
     const int normalAccessor = findAttribute(primitive, "NORMAL");
     if (normalAccessor >= 0) {
         const std::vector<glm::vec3> normals = readVec3(ctx, normalAccessor, what + " NORMAL");
         if (normals.size() != positions.size()) ctx.fail(what + ": NORMAL and POSITION have different counts");
+        size_t replaced = 0;
         for (size_t i = 0; i < normals.size(); ++i) {
             const float len = glm::length(normals[i]);
+            const bool usable = std::isfinite(len) && len > 0.0f;
             // A zero or non-finite normal would poison shading; fall back to +Y like a generated one.
-            mesh.vertices[i].osNormal = (std::isfinite(len) && len > 0.0f) ? normals[i] / len : glm::vec3(0, 1, 0);
+            mesh.vertices[i].osNormal = usable ? normals[i] / len : glm::vec3(0, 1, 0);
+            replaced += !usable;
         }
+        if (replaced > 0)
+            ctx.warn(what + " NORMAL: " + std::to_string(replaced) + " zero or non-finite normals replaced by +Y");
     }
     const int uvAccessor = findAttribute(primitive, "TEXCOORD_0");
     if (uvAccessor >= 0) {
         const std::vector<glm::vec2> uvs = readVec2(ctx, uvAccessor, what + " TEXCOORD_0");
         if (uvs.size() != positions.size()) ctx.fail(what + ": TEXCOORD_0 and POSITION have different counts");
-        for (size_t i = 0; i < uvs.size(); ++i) mesh.vertices[i].uv = uvs[i];
+        for (size_t i = 0; i < uvs.size(); ++i) {
+            if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y))
+                ctx.fail(what + " TEXCOORD_0: vertex " + std::to_string(i) + " is not finite");
+            mesh.vertices[i].uv = uvs[i];
+        }
     }
     if (primitive.indices >= 0) {
         mesh.indices = readIndices(ctx, primitive.indices, what + " indices");

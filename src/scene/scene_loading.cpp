@@ -2,6 +2,7 @@
 
 #include "scene/default_light.h"
 #include "scene/generated_scenes.h"
+#include "scene/scene_validation.h"
 
 namespace penumbra {
 
@@ -24,6 +25,7 @@ Scene loadScene(const std::string& source, const SceneSourceOptions& options) {
     if (options.addDefaultSun && addDefaultSunIfUnlit(scene))
         scene.warnings.push_back((source.empty() ? std::string("the scene") : source) +
                                  " has no lights; added a default sun as light 0");
+    validateScene(scene);
     return scene;
 }
 

@@ -1,14 +1,15 @@
 #include "penumbra/settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/files.h"
 
 namespace penumbra {
 
@@ -18,8 +19,19 @@ using nlohmann::json;
 
 [[noreturn]] void fail(const std::string& message) { throw Error("settings: " + message); }
 
+// A value as JSON text for messages; bytes that are not UTF-8 (a --set value is any text) become
+// U+FFFD instead of an exception.
+std::string show(const json& value) { return value.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+// Text from the user (a key, a --set argument) as it may appear in a one-line message: as typed when
+// it is plain printable ASCII, else JSON-quoted with escapes (newlines, control and non-UTF-8 bytes).
+std::string showText(const std::string& text) {
+    const bool plain = std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7F; });
+    return plain ? text : show(json(text));
+}
+
 [[noreturn]] void failType(const std::string& key, const json& value, const char* expected) {
-    fail(key + " = " + value.dump() + " has the wrong type (expected " + expected + ")");
+    fail(showText(key) + " = " + show(value) + " has the wrong type (expected " + expected + ")");
 }
 
 float readFloat(const std::string& key, const json& value) {
@@ -31,7 +43,7 @@ float readFloat(const std::string& key, const json& value) {
 uint32_t readUint(const std::string& key, const json& value, const char* allowed) {
     if (!value.is_number_integer()) failType(key, value, "an integer");
     const bool fits = value.is_number_unsigned() ? value.get<uint64_t>() <= UINT32_MAX : false;
-    if (!fits) fail(key + " = " + value.dump() + " is out of range (allowed " + allowed + ")");
+    if (!fits) fail(key + " = " + show(value) + " is out of range (allowed " + allowed + ")");
     return uint32_t(value.get<uint64_t>());
 }
 
@@ -43,14 +55,14 @@ bool readBool(const std::string& key, const json& value) {
 ShadowFilter readFilter(const std::string& key, const json& value) {
     if (!value.is_string()) failType(key, value, "a string");
     const auto filter = parseShadowFilter(value.get<std::string>());
-    if (!filter) fail(key + " = " + value.dump() + " is out of range (allowed PCF2x2, PCF3x3, PCF5x5, PCF7x7)");
+    if (!filter) fail(key + " = " + show(value) + " is out of range (allowed PCF2x2, PCF3x3, PCF5x5, PCF7x7)");
     return *filter;
 }
 
 CascadeBlend readBlend(const std::string& key, const json& value) {
     if (!value.is_string()) failType(key, value, "a string");
     const auto blend = parseCascadeBlend(value.get<std::string>());
-    if (!blend) fail(key + " = " + value.dump() + " is out of range (allowed hard, soft, dither)");
+    if (!blend) fail(key + " = " + show(value) + " is out of range (allowed hard, soft, dither)");
     return *blend;
 }
 
@@ -118,11 +130,12 @@ void assignObject(Settings& settings, const std::string& prefix, const json& obj
 void assignKey(Settings& settings, const std::string& key, const json& value) {
     if (const LeafKey* leaf = findLeaf(key)) {
         leaf->assign(settings, key, value);
+        if (!settings.userSet(key)) settings.userKeys.push_back(key);
     } else if (isObjectKey(key)) {
         if (!value.is_object()) failType(key, value, "an object");
         assignObject(settings, key, value);
     } else {
-        fail("unknown key " + key);
+        fail("unknown key " + showText(key));
     }
 }
 
@@ -146,11 +159,30 @@ void validateRenderSettings(const RenderSettings& render) {
     }
 }
 
+// nlohmann's parse error, e.g. "syntax error while parsing object - unexpected end of input; expected
+// string literal" at "byte 12", made one line.
+json parseJson(const std::string& jsonText, const std::string& origin) {
+    try {
+        return json::parse(jsonText);
+    } catch (const json::parse_error& error) {
+        std::string detail = error.what();
+        const size_t colon = detail.find(": ");  // "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
+        if (colon != std::string::npos) detail = detail.substr(colon + 2);
+        for (char& c : detail)
+            if (c == '\n' || c == '\r') c = ' ';
+        throw Error("settings: " + origin + " is not valid JSON (byte " + std::to_string(error.byte) + ": " + detail + ")");
+    } catch (const json::exception& error) {  // out_of_range 406: a number too large for a double
+        std::string detail = error.what();
+        const size_t bracket = detail.find("] ");
+        if (bracket != std::string::npos) detail = detail.substr(bracket + 2);
+        throw Error("settings: " + origin + " is not valid JSON (" + showText(detail) + ")");
+    }
+}
+
 }  // namespace
 
 Settings parseSettingsJson(const std::string& jsonText, const std::string& origin) {
-    const json root = json::parse(jsonText, nullptr, /*allow_exceptions=*/false);
-    if (root.is_discarded()) throw Error("settings: " + origin + " is not valid JSON");
+    const json root = parseJson(jsonText, origin);
     if (!root.is_object()) throw Error("settings: " + origin + " must hold a JSON object");
     Settings settings;
     try {
@@ -163,16 +195,18 @@ Settings parseSettingsJson(const std::string& jsonText, const std::string& origi
 }
 
 Settings loadSettingsFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw Error("settings: cannot open " + path);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return parseSettingsJson(text.str(), path);
+    std::string text;
+    try {
+        text = readTextFile(path);
+    } catch (const Error& e) {
+        throw Error(std::string("settings: ") + e.what());
+    }
+    return parseSettingsJson(text, path);
 }
 
 void applySettingOverride(Settings& settings, const std::string& assignment) {
     const size_t equals = assignment.find('=');
-    if (equals == std::string::npos) fail("--set expects key=value, got '" + assignment + "'");
+    if (equals == std::string::npos) fail("--set expects key=value, got '" + showText(assignment) + "'");
     const std::string key = trim(assignment.substr(0, equals));
     const std::string valueText = trim(assignment.substr(equals + 1));
     // JSON when it parses (numbers, true, [0.1,0.2,0.3], "quoted"), else the raw text as a string (PCF5x5).
@@ -182,6 +216,10 @@ void applySettingOverride(Settings& settings, const std::string& assignment) {
     assignKey(updated, key, value);
     validateSettings(updated);
     settings = updated;
+}
+
+bool Settings::userSet(const std::string& key) const {
+    return std::find(userKeys.begin(), userKeys.end(), key) != userKeys.end();
 }
 
 void validateSettings(const Settings& settings) {

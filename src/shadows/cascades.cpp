@@ -18,7 +18,8 @@ std::vector<float> cascadeSplitDistances(const CameraView& camera, float distanc
     std::vector<float> splits(cascadeCount);
     float previous = camera.zNear;
     for (uint32_t i = 0; i + 1 < cascadeCount; ++i) {
-        // The seed leaves increasing ratios to the user (seed 000 §3.1); clamp so no slice inverts.
+        // Settings validation refuses decreasing ratios; the clamp also keeps every split within
+        // [zNear, distance] when the near plane lies beyond the first ratio's distance.
         splits[i] = std::clamp(ratios[i] * distance, previous, distance);
         previous = splits[i];
     }

@@ -79,6 +79,12 @@ void validateShadowSettings(const ShadowSettings& settings) {
         checkFloatRange("shadows.directional.cascadeRatios[" + std::to_string(i) + "]",
                         directional.cascadeRatios[i], 0.0f, 1.0f, "0..1");
     }
+    // Decreasing ratios would make a cascade end before it starts (seed 000 §3.1 leaves them to the
+    // user); an error, not a silent sort, so the user sees which split they asked for.
+    const auto& ratios = directional.cascadeRatios;
+    if (ratios[1] < ratios[0] || ratios[2] < ratios[1])
+        throw Error("settings: shadows.directional.cascadeRatios = [" + formatValue(ratios[0]) + ", " +
+                    formatValue(ratios[1]) + ", " + formatValue(ratios[2]) + "] must not decrease");
     checkFloatRange("shadows.directional.cascadeFade", directional.cascadeFade, 0.001f, 1.0f, "0.001..1");
     checkEnum("shadows.directional.cascadeBlend", int(directional.cascadeBlend), 3);
     checkAtlasSize("shadows.spot.atlasSize", settings.spot.atlasSize);

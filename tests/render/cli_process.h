@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 namespace penumbra::test {
 
 struct CliRun {
@@ -44,6 +46,14 @@ inline CliRun runPenumbra(const std::string& arguments, const std::string& envir
 // A one-line user error: exactly one line on stderr, starting with "penumbra: ".
 inline bool isOneLineError(const std::string& err) {
     return err.rfind("penumbra: ", 0) == 0 && err.find('\n') == err.size() - 1;
+}
+
+// A user error: exit code 1 and exactly one line on stderr, starting with "penumbra: ", that
+// mentions `mentions`.
+inline void expectOneLineError(const CliRun& result, const std::string& mentions) {
+    EXPECT_EQ(result.exitCode, 1) << result.err;
+    EXPECT_TRUE(isOneLineError(result.err)) << result.err;
+    EXPECT_NE(result.err.find(mentions), std::string::npos) << result.err;
 }
 
 }  // namespace penumbra::test

@@ -25,13 +25,6 @@ fs::path tempPath(const std::string& name) {
     return dir / name;
 }
 
-// A user error: exit code 1 and exactly one line on stderr, starting with "penumbra: ".
-void expectOneLineError(const CliRun& result, const std::string& mentions) {
-    EXPECT_EQ(result.exitCode, 1) << result.err;
-    EXPECT_TRUE(isOneLineError(result.err)) << result.err;
-    EXPECT_NE(result.err.find(mentions), std::string::npos) << result.err;
-}
-
 }  // namespace
 
 TEST(CliRender, DemoSceneRendersWithoutValidationMessages) {

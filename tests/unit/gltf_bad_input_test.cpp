@@ -14,23 +14,11 @@ using penumbra::testing::TempDir;
 using penumbra::testing::TestGltf;
 using penumbra::testing::readFile;
 using penumbra::testing::writeFile;
+using penumbra::testing::expectLoadError;
 
 namespace {
 
 const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
-
-// Loads `path` expecting an Error; checks it is one line naming the file and containing `detail`.
-void expectLoadError(const std::string& path, const std::string& detail) {
-    try {
-        loadGltfScene(path);
-        ADD_FAILURE() << "loading " << path << " succeeded";
-    } catch (const Error& e) {
-        const std::string message = e.what();
-        EXPECT_NE(message.find(path), std::string::npos) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        EXPECT_NE(message.find(detail), std::string::npos) << message;
-    }
-}
 
 }  // namespace
 

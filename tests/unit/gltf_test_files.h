@@ -9,7 +9,11 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "scene/gltf_loader.h"
 
 namespace penumbra::testing {
 
@@ -94,5 +98,25 @@ public:
         return path;
     }
 };
+
+// Loads `path` expecting an Error; checks it is one line naming the file and containing `detail`.
+inline void expectLoadError(const std::string& path, const std::string& detail) {
+    try {
+        loadGltfScene(path);
+        ADD_FAILURE() << "loading " << path << " succeeded";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(path), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        EXPECT_NE(message.find(detail), std::string::npos) << message;
+    }
+}
+
+// True when some warning of `scene` contains `text`.
+inline bool hasWarning(const Scene& scene, const std::string& text) {
+    for (const std::string& warning : scene.warnings)
+        if (warning.find(text) != std::string::npos) return true;
+    return false;
+}
 
 }  // namespace penumbra::testing

@@ -6,6 +6,7 @@
 
 #include "penumbra/settings.h"
 #include "core/error.h"
+#include "error_message.h"
 
 using namespace penumbra;
 
@@ -13,22 +14,12 @@ namespace {
 
 // The message of the Error thrown by parsing `json`, or "" when it parses.
 std::string parseError(const std::string& json) {
-    try {
-        parseSettingsJson(json, "test.json");
-    } catch (const Error& error) {
-        return error.what();
-    }
-    return "";
+    return penumbra::testing::errorMessage([&] { parseSettingsJson(json, "test.json"); });
 }
 
 std::string overrideError(const std::string& assignment) {
     Settings settings;
-    try {
-        applySettingOverride(settings, assignment);
-    } catch (const Error& error) {
-        return error.what();
-    }
-    return "";
+    return penumbra::testing::errorMessage([&] { applySettingOverride(settings, assignment); });
 }
 
 }  // namespace
@@ -97,7 +88,7 @@ struct BadValueCase {
     const char* expected;  // a substring of the message: key and allowed range or expected type
 };
 
-class SettingsBadValue : public testing::TestWithParam<BadValueCase> {};
+class SettingsBadValue : public ::testing::TestWithParam<BadValueCase> {};
 
 TEST_P(SettingsBadValue, IsRejectedWithAMessageNamingTheKey) {
     const std::string message = parseError(GetParam().json);
@@ -106,7 +97,7 @@ TEST_P(SettingsBadValue, IsRejectedWithAMessageNamingTheKey) {
 
 INSTANTIATE_TEST_SUITE_P(
     EveryKey, SettingsBadValue,
-    testing::Values(
+    ::testing::Values(
         BadValueCase{R"({"shadows": {"maxDistance": 0}})", "shadows.maxDistance = 0 is out of range (allowed >= 0.001)"},
         BadValueCase{R"({"shadows": {"maxDistance": "far"}})", "shadows.maxDistance = \"far\" has the wrong type (expected a number)"},
         BadValueCase{R"({"shadows": {"distanceFade": 0}})", "shadows.distanceFade = 0 is out of range (allowed 0.001..1)"},
@@ -198,7 +189,7 @@ TEST(SettingsOverride, UnknownKeyAndMissingEqualsAreErrors) {
 }
 
 TEST(SettingsFile, LoadsAFileAndNamesAMissingOne) {
-    const std::string path = testing::TempDir() + "penumbra_settings_test.json";
+    const std::string path = ::testing::TempDir() + "penumbra_settings_test.json";
     std::ofstream(path) << R"({"shadows": {"maxDistance": 12}})";
     EXPECT_EQ(loadSettingsFile(path).shadows.maxDistance, 12.0f);
     std::remove(path.c_str());
@@ -207,5 +198,63 @@ TEST(SettingsFile, LoadsAFileAndNamesAMissingOne) {
         FAIL() << "expected an Error";
     } catch (const Error& error) {
         EXPECT_NE(std::string(error.what()).find(path), std::string::npos);
+    }
+}
+
+TEST(SettingsJson, ParseErrorNamesTheByteAndTheProblem) {
+    const std::string message = parseError("{\"shadows\": [1, }");
+    EXPECT_NE(message.find("test.json is not valid JSON (byte 17: syntax error"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+TEST(SettingsJson, NumberTooLargeForADoubleIsAnError) {
+    // fuzz_settings finding: nlohmann throws out_of_range (not parse_error) for it, which escaped.
+    EXPECT_NE(parseError(R"({"shadows": {"maxDistance": 1e3900}})").find("is not valid JSON (number overflow"),
+              std::string::npos)
+        << parseError(R"({"shadows": {"maxDistance": 1e3900}})");
+}
+
+TEST(SettingsJson, DecreasingCascadeRatiosAreAnError) {
+    EXPECT_NE(parseError(R"({"shadows": {"directional": {"cascadeRatios": [0.5, 0.25, 0.1]}}})")
+                  .find("shadows.directional.cascadeRatios = [0.5, 0.25, 0.1] must not decrease"),
+              std::string::npos);
+}
+
+TEST(SettingsJson, EqualCascadeRatiosAreAllowed) {
+    EXPECT_EQ(parseError(R"({"shadows": {"directional": {"cascadeRatios": [0.3, 0.3, 0.3]}}})"), "");
+}
+
+TEST(SettingsJson, UserKeysListWhatTheDocumentSet) {
+    const Settings settings = parseSettingsJson(R"({"shadows": {"maxDistance": 5, "spot": {"filter": "PCF3x3"}}})", "t");
+    EXPECT_EQ(settings.userKeys, (std::vector<std::string>{"shadows.maxDistance", "shadows.spot.filter"}));
+    EXPECT_TRUE(settings.userSet("shadows.maxDistance"));
+    EXPECT_FALSE(Settings{}.userSet("shadows.maxDistance"));
+}
+
+TEST(SettingsOverride, ValueThatIsNotUtf8IsAnErrorNotACrash) {
+    // fuzz_settings finding: the message's dump() of such a string threw nlohmann's type_error 316.
+    const std::string message = overrideError("shadows.directional.filter=PCF\xff\xfe");
+    EXPECT_NE(message.find("is out of range (allowed PCF2x2"), std::string::npos) << message;
+}
+
+TEST(SettingsOverride, KeyWithALineBreakIsQuotedInAOneLineMessage) {
+    const std::string message = overrideError("shadows.max\nDistance=3");
+    EXPECT_NE(message.find("unknown key \"shadows.max\\nDistance\""), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+TEST(SettingsOverride, OverriddenKeysJoinTheUserKeys) {
+    Settings settings;
+    applySettingOverride(settings, "render.exposure=2");
+    applySettingOverride(settings, "render.exposure=3");
+    EXPECT_EQ(settings.userKeys, std::vector<std::string>{"render.exposure"});
+}
+
+TEST(SettingsFile, ADirectoryIsAnErrorSayingSo) {
+    try {
+        loadSettingsFile(::testing::TempDir());
+        FAIL() << "expected an Error";
+    } catch (const Error& error) {
+        EXPECT_NE(std::string(error.what()).find("cannot open file (it is a directory)"), std::string::npos) << error.what();
     }
 }

@@ -1,0 +1,272 @@
+// Out-of-memory and device loss (issue 9, item 5), through DeviceOptions::faults on lavapipe with
+// validation on: each failure is one penumbra::Error naming where it happened, leaves no GPU object
+// behind, and never hangs; after an allocation failure the renderer renders again.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <gtest/gtest.h>
+
+#include "penumbra/error.h"
+#include "penumbra/renderer.h"
+#include "penumbra/scene_builder.h"
+#include "render_test_support.h"
+
+using namespace penumbra;
+
+namespace {
+
+// A box on a ground under a sun and a shadowed spot, so both atlases and every pass are used.
+Scene faultScene() {
+    SceneBuilder builder;
+    const uint32_t ground = builder.addMesh(makePlaneMesh(glm::vec2(20.0f), 0));
+    builder.addInstance(ground, glm::mat4(1.0f));
+    const uint32_t box = builder.addMesh(makeBoxMesh(glm::vec3(0.5f), 0));
+    builder.addInstance(box, glm::translate(glm::mat4(1.0f), {0.0f, 0.5f, 0.0f}));
+    builder.addLight(makeDirectionalLight({0.3f, -1.0f, -0.2f}, 3.0f));
+    builder.addLight(makeSpotLight({0.0f, 4.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 30.0f, 10.0f, 0.6f, 0.5f));
+    builder.setCamera(makeLookAtCamera({0.0f, 4.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 0.9f));
+    return builder.build();
+}
+
+RenderRequest smallRequest() {
+    RenderRequest request;
+    request.width = 96;
+    request.height = 64;
+    return request;
+}
+
+// An 8192 atlas (256 MiB of depth) needs an allocation of its own while the first frame is made.
+Settings bigAtlasSettings() {
+    Settings settings;
+    settings.shadows.directional.atlasSize = 8192;
+    return settings;
+}
+
+DeviceOptions faultyDevice(const DeviceFaultInjection& faults) {
+    DeviceOptions options = test::testDeviceOptions();
+    options.pipelineCache = "off";
+    options.faults = faults;
+    return options;
+}
+
+struct Outcome {
+    std::string error;  // "" when the device, the renderer and two frames were made
+    uint32_t validationMessages = 0;  // while rendering, and (from stderr) when the device was destroyed
+    bool leftObjects = false;  // GPU objects alive after everything but the device was destroyed
+};
+
+Outcome renderOn(const DeviceFaultInjection& faults, const Settings& settings);
+
+// Makes a device with `faults`, a renderer of faultScene and renders two frames. vkDestroyDevice
+// reports objects that were never destroyed: the validation layer's message is caught on stderr.
+Outcome renderWith(const DeviceFaultInjection& faults, const Settings& settings = {}) {
+    ::testing::internal::CaptureStderr();
+    Outcome outcome = renderOn(faults, settings);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    if (err.find("Vulkan validation") != std::string::npos) {
+        ++outcome.validationMessages;
+        std::fprintf(stderr, "%s", err.c_str());
+    }
+    return outcome;
+}
+
+Outcome renderOn(const DeviceFaultInjection& faults, const Settings& settings) {
+    Outcome outcome;
+    std::unique_ptr<Device> device;
+    try {
+        device = std::make_unique<Device>(faultyDevice(faults));
+        {
+            Renderer renderer(*device, faultScene());
+            renderer.render(smallRequest(), settings);
+            renderer.render(smallRequest(), settings);
+        }
+    } catch (const Error& e) {
+        outcome.error = e.what();
+    }
+    if (device) {
+        try {
+            device->waitIdle();
+        } catch (const Error&) {
+        }
+        const DeviceObjectCounts live = device->liveObjects();
+        // Only the device's own objects stay until it goes: one upload ring per frame in flight.
+        outcome.leftObjects = live.textures + live.samplers + live.pipelines + live.textureTables + live.pendingDestroys > 0 ||
+                              live.buffers > 2;
+        outcome.validationMessages = device->validationMessageCount();
+    }
+    return outcome;
+}
+
+bool oneLine(const std::string& text) { return !text.empty() && text.find('\n') == std::string::npos; }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(DeviceFaults, EveryFailedAllocationIsAnOutOfMemoryErrorThatLeavesNothingBehind) {
+    uint32_t failures = 0;
+    for (uint64_t n = 1; n <= 64; ++n) {
+        SCOPED_TRACE("allocation " + std::to_string(n));
+        DeviceFaultInjection faults;
+        faults.failAllocation = n;
+        const Outcome outcome = renderWith(faults, bigAtlasSettings());
+        EXPECT_EQ(outcome.validationMessages, 0u);
+        EXPECT_FALSE(outcome.leftObjects);
+        if (outcome.error.empty()) break;  // n is past the last allocation the render makes
+        ++failures;
+        EXPECT_TRUE(oneLine(outcome.error)) << outcome.error;
+        EXPECT_TRUE(contains(outcome.error, "out of GPU memory: vkAllocateMemory")) << outcome.error;
+    }
+    EXPECT_GE(failures, 3u);  // the device, the scene upload and the frame each allocate
+}
+
+TEST(DeviceFaults, AllocationFailingInAFrameNamesTheFrameAndWhatItMade) {
+    bool named = false;
+    for (uint64_t n = 1; n <= 64 && !named; ++n) {
+        DeviceFaultInjection faults;
+        faults.failAllocation = n;
+        const Outcome outcome = renderWith(faults, bigAtlasSettings());
+        if (outcome.error.empty()) break;
+        named = contains(outcome.error, "frame 0, render targets and shadow atlases: out of GPU memory") &&
+                contains(outcome.error, "directional atlas");
+    }
+    EXPECT_TRUE(named);
+}
+
+TEST(DeviceFaults, SceneUploadFailureSaysTheSceneWasGoingOnTheGpu) {
+    bool named = false;
+    for (uint64_t n = 1; n <= 64 && !named; ++n) {
+        DeviceFaultInjection faults;
+        faults.failAllocation = n;
+        const Outcome outcome = renderWith(faults);
+        if (outcome.error.empty()) break;
+        named = contains(outcome.error, "putting the scene on the GPU: out of GPU memory");
+    }
+    EXPECT_TRUE(named);
+}
+
+TEST(DeviceFaults, RendererRendersAgainAfterAFrameRanOutOfMemory) {
+    // Find the allocation that the first frame's atlas makes, then fail exactly that one.
+    for (uint64_t n = 1; n <= 64; ++n) {
+        DeviceFaultInjection faults;
+        faults.failAllocation = n;
+        std::unique_ptr<Device> made;
+        std::unique_ptr<Renderer> renderer;
+        try {
+            made = std::make_unique<Device>(faultyDevice(faults));
+            renderer = std::make_unique<Renderer>(*made, faultScene());
+        } catch (const Error&) {
+            continue;  // allocation n is made before the first frame
+        }
+        Device& device = *made;
+        try {
+            renderer->render(smallRequest(), bigAtlasSettings());
+            continue;  // this n failed nothing in the frame (or was spent before it)
+        } catch (const Error& e) {
+            ASSERT_TRUE(contains(e.what(), "frame 0")) << e.what();
+        }
+        const RenderResult again = renderer->render(smallRequest(), bigAtlasSettings());
+        EXPECT_EQ(again.image.width, 96u);
+        Device clean(test::testDeviceOptions());
+        Renderer reference(clean, faultScene());
+        EXPECT_EQ(again.image.pixels, reference.render(smallRequest(), bigAtlasSettings()).image.pixels);
+        EXPECT_EQ(device.validationMessageCount(), 0u);
+        return;
+    }
+    FAIL() << "no allocation failed inside a frame";
+}
+
+TEST(DeviceFaults, FrameThatFailsWhileRecordingIsDroppedAndTheNextOneRenders) {
+    // The screen-space resolve makes its textures while the first frame is recorded.
+    Settings screenSpace;
+    screenSpace.shadows.screenSpace = true;
+    for (uint64_t n = 1; n <= 64; ++n) {
+        DeviceFaultInjection faults;
+        faults.failAllocation = n;
+        std::unique_ptr<Device> device;
+        std::unique_ptr<Renderer> renderer;
+        try {
+            device = std::make_unique<Device>(faultyDevice(faults));
+            renderer = std::make_unique<Renderer>(*device, faultScene());
+            renderer->render(smallRequest(), screenSpace);
+            continue;
+        } catch (const Error& e) {
+            if (!contains(e.what(), "frame 0, screen-space shadows")) continue;
+        }
+        const RenderResult again = renderer->render(smallRequest(), screenSpace);
+        EXPECT_EQ(again.stats.frameIndex, 1u);
+        Device clean(test::testDeviceOptions());
+        Renderer reference(clean, faultScene());
+        EXPECT_EQ(again.image.pixels, reference.render(smallRequest(), screenSpace).image.pixels);
+        EXPECT_EQ(device->validationMessageCount(), 0u);
+        return;
+    }
+    FAIL() << "no allocation failed while a frame was recorded";
+}
+
+TEST(DeviceFaults, DeviceLostAtSubmitNamesTheFrameAndItsPasses) {
+    bool named = false;
+    for (uint64_t n = 1; n <= 16 && !named; ++n) {
+        SCOPED_TRACE("submission " + std::to_string(n));
+        DeviceFaultInjection faults;
+        faults.loseDeviceAtSubmit = n;
+        const Outcome outcome = renderWith(faults);
+        EXPECT_EQ(outcome.validationMessages, 0u);
+        EXPECT_FALSE(outcome.leftObjects);
+        if (outcome.error.empty()) break;
+        EXPECT_TRUE(oneLine(outcome.error));
+        EXPECT_TRUE(contains(outcome.error, "GPU device lost (VK_ERROR_DEVICE_LOST)")) << outcome.error;
+        named = contains(outcome.error, "submitting frame ") &&
+                contains(outcome.error, "(passes shadows.directional, shadows.other, main)");
+    }
+    EXPECT_TRUE(named);
+}
+
+TEST(DeviceFaults, DeviceLostWhileTheGpuRanAFrameNamesItsPasses) {
+    bool named = false;
+    for (uint64_t n = 1; n <= 16 && !named; ++n) {
+        DeviceFaultInjection faults;
+        faults.loseDeviceAtWait = n;
+        const Outcome outcome = renderWith(faults);
+        EXPECT_EQ(outcome.validationMessages, 0u);
+        if (outcome.error.empty()) break;
+        named = contains(outcome.error, "while the GPU ran frame ") && contains(outcome.error, "main)");
+    }
+    EXPECT_TRUE(named);
+}
+
+TEST(DeviceFaults, EveryFrameAfterADeviceLossFailsAtOnce) {
+    DeviceFaultInjection faults;
+    faults.loseDeviceAtWait = 3;  // a frame's wait, after the scene upload's
+    Device device(faultyDevice(faults));
+    Renderer renderer(device, faultScene());
+    EXPECT_THROW(
+        for (int i = 0; i < 8; ++i) renderer.render(smallRequest(), {}), Error);
+    EXPECT_TRUE(device.lost());
+    const CameraView view = resolveCameraView(renderer.scene(), 96, 64);
+    try {
+        renderer.submitFrame(smallRequest(), {}, view);
+        FAIL() << "a frame was submitted on a lost device";
+    } catch (const Error& e) {
+        EXPECT_TRUE(contains(e.what(), "GPU device lost earlier")) << e.what();
+    }
+    renderer.waitIdle();  // returns: nothing of a lost device is waited for
+    EXPECT_EQ(device.validationMessageCount(), 0u);
+}
+
+TEST(DeviceFaults, ALostDeviceWithFramesInFlightIsDestroyedCleanly) {
+    DeviceFaultInjection faults;
+    faults.loseDeviceAtSubmit = 4;  // scene upload, placeholder texture, frame 0, then frame 1 is lost
+    Device device(faultyDevice(faults));
+    {
+        Renderer renderer(device, faultScene());
+        const CameraView view = resolveCameraView(renderer.scene(), 96, 64);
+        renderer.submitFrame(smallRequest(), {}, view);  // in flight, not waited for
+        EXPECT_THROW(renderer.submitFrame(smallRequest(), {}, view), Error);
+    }  // the renderer goes while frame 0 may still run: the loss waited for the queue once
+    EXPECT_TRUE(device.lost());
+    EXPECT_EQ(device.validationMessageCount(), 0u);
+}
