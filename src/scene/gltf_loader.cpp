@@ -49,6 +49,16 @@ std::string oneLine(const std::string& text) {
     return line;
 }
 
+// nlohmann's "[json.exception.parse_error.101] parse error at ..." without the tag.
+std::string withoutJsonTags(std::string text) {
+    for (size_t at = text.find("[json.exception."); at != std::string::npos; at = text.find("[json.exception.", at)) {
+        const size_t end = text.find("] ", at);
+        if (end == std::string::npos) break;
+        text.erase(at, end + 2 - at);
+    }
+    return text;
+}
+
 // Decodes every image to RGBA8 with our own decoder so that a bad image is a clean error, and a
 // problem the decoder recovered from is a warning.
 bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string* warn, int, int,
@@ -76,8 +86,8 @@ bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err,
 // glTF held in memory, the fuzzer) no file is read at all.
 bool externalFileExists(const std::string& path, void* baseDir) {
     std::error_code error;
-    // Held in memory: "exists", so that readExternalFile explains why it is not read.
-    return baseDir == nullptr || std::filesystem::is_regular_file(path, error);
+    // Held in memory, or not a regular file: "exists", so that readExternalFile says why it is not read.
+    return baseDir == nullptr || std::filesystem::exists(path, error);
 }
 
 std::string expandNothing(const std::string& path, void*) { return path; }
@@ -123,7 +133,7 @@ tinygltf::Model parseGltf(const uint8_t* data, size_t size, const std::string& n
     } catch (const std::exception& e) {
         throw Error(name + ": invalid glTF (" + e.what() + ")");
     }
-    if (!ok) throw Error(name + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : oneLine(err)));
+    if (!ok) throw Error(name + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : withoutJsonTags(oneLine(err))));
     warnings = oneLine(warn);
     return model;
 }

@@ -32,7 +32,7 @@ TestGltf withLightExtras(const json& extras) {
 
 TestGltf withMaterialExtras(const json& material) {
     TestGltf gltf;
-    gltf.doc["materials"] = {material};
+    gltf.doc["materials"] = json::array({material});  // not {material}: compilers differ on one-element braces
     return gltf;
 }
 

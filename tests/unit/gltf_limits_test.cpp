@@ -209,6 +209,16 @@ TEST(GltfLimits, BufferUriNamingADirectoryIsAnError) {
     expectLoadError(path, "dirbuffer.bin");
 }
 
+TEST(GltfLimits, BufferUriNamingADeviceIsAnErrorNotAnEndlessRead) {
+    TempDir dir;
+    TestGltf gltf;
+    gltf.addNode({{"mesh", gltf.addTriangleMesh()}});
+    const std::string path = gltf.write(dir, "device");
+    std::filesystem::remove(dir.file("device.bin"));
+    std::filesystem::create_symlink("/dev/zero", dir.file("device.bin"));  // an endless read, were it read
+    expectLoadError(path, "device.bin: cannot open file (not a regular file)");
+}
+
 TEST(GltfLimits, GltfInMemoryReadsNoExternalFile) {
     TempDir dir;
     TestGltf gltf;
