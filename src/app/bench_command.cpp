@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/bench_variations.h"
 #include "app/commands.h"
 #include "core/files.h"
 #include "core/error.h"
@@ -99,51 +100,57 @@ struct Measurements {
 
 }  // namespace
 
-int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
-    if (bench.camera != "orbit" && bench.camera != "static")
-        throw Error("--camera must be orbit or static, not '" + bench.camera + "'");
-    checkWritable(bench.jsonPath);
-    const Settings userSettings = loadSettings(options);
-    Device device(deviceOptionsFor(options));
-    RendererOptions rendererOptions;
-    rendererOptions.warmup = PipelineWarmup::Background;
-    Renderer renderer(device, loadSceneFor(options), rendererOptions);
-    const Scene& scene = renderer.scene();
-    RenderRequest request = makeRenderRequest(options);
-    request.readback = false;
-    const CameraView start = resolveCameraView(scene, request.width, request.height);
-    const Settings settings = withSceneDefaults(userSettings, scene, start);
-    const bool progress = isatty(STDOUT_FILENO);
+namespace {
 
-    uint64_t frame = 0;
-    for (uint32_t i = 0; i < bench.warmup; ++i)
-        renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
-    renderer.buildAllPipelines();  // the timed frames use the specialized variants
-    renderer.waitIdle();
-    renderer.takeCompletedFrames();
-    const DeviceObjectCounts before = device.liveObjects();
-    const double rssFirst = hostRssMegabytes();
-    const double deviceFirst = double(device.deviceMemoryBytes()) / (1024.0 * 1024.0);
+double deviceMegabytes(const Device& device) { return double(device.deviceMemoryBytes()) / (1024.0 * 1024.0); }
 
+// What the timed frames saw, besides the per-frame measurements.
+struct TimedRun {
     Measurements measured;
-    std::vector<std::string> warnings;
+    std::vector<std::string> warnings;  // of the last frame
+    std::vector<MemorySample> samples;  // --vary-settings: one per period
+    DeviceObjectCounts before, after;
+    double rssFirst = 0.0, rssLast = 0.0, deviceFirst = 0.0, deviceLast = 0.0;
+};
+
+// The timed frames; with --vary-settings the settings and shadowed lights change every period.
+TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& bench, const RenderRequest& request,
+                        const Settings& settings, const CameraView& start, uint64_t& frame) {
+    const Scene& scene = renderer.scene();
+    const std::vector<Light> originalLights = scene.lights;
+    const bool progress = isatty(STDOUT_FILENO);
+    TimedRun run;
+    run.before = device.liveObjects();
+    run.rssFirst = hostRssMegabytes();
+    run.deviceFirst = deviceMegabytes(device);
+    Settings current = settings;
+    uint32_t step = 0, shadowedLights = 0;
     for (uint32_t i = 0; i < bench.frames; ++i) {
-        renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
-        for (const FrameStats& stats : renderer.takeCompletedFrames()) {
-            measured.add(stats);
-            warnings = stats.warnings;
+        if (bench.varyPeriod > 0 && i % bench.varyPeriod == 0) {
+            step = (i / bench.varyPeriod) % uint32_t(benchVariations().size());
+            current = variedSettings(settings, benchVariations()[step]);
+            shadowedLights = applyShadowedLights(renderer, originalLights, benchVariations()[step].shadowedLightShare);
         }
+        renderer.submitFrame(request, current, benchCamera(scene, start, bench.camera, frame++), nullptr);
+        for (const FrameStats& stats : renderer.takeCompletedFrames()) {
+            run.measured.add(stats);
+            run.warnings = stats.warnings;
+        }
+        if (bench.varyPeriod > 0 && (i + 1) % bench.varyPeriod == 0)
+            run.samples.push_back({i + 1, step, hostRssMegabytes(), deviceMegabytes(device), shadowedLights});
         if (progress && (i % 8 == 0 || i + 1 == bench.frames)) printProgress(i + 1, bench.frames);
     }
     renderer.waitIdle();
-    for (const FrameStats& stats : renderer.takeCompletedFrames()) measured.add(stats);
-    const double rssLast = hostRssMegabytes();
-    const double deviceLast = double(device.deviceMemoryBytes()) / (1024.0 * 1024.0);
-    const DeviceObjectCounts after = device.liveObjects();
-    const uint64_t objectsMade = after.objectsCreated - before.objectsCreated;
-    const uint64_t memoryAllocations = after.memoryAllocations - before.memoryAllocations;
-    for (const std::string& warning : warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    for (const FrameStats& stats : renderer.takeCompletedFrames()) run.measured.add(stats);
+    run.rssLast = hostRssMegabytes();
+    run.deviceLast = deviceMegabytes(device);
+    run.after = device.liveObjects();
+    return run;
+}
 
+nlohmann::json benchJson(const Device& device, const RenderOptions& options, const BenchOptions& bench,
+                         const RenderRequest& request, const Scene& scene, const TimedRun& run) {
+    const Measurements& measured = run.measured;
     nlohmann::json json;
     json["device"] = device.info().name;
     json["driver"] = device.info().driver;
@@ -166,11 +173,18 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     json["atlases"] = nlohmann::json::object();
     for (const AtlasDrawStats& atlas : measured.atlases)
         json["atlases"][atlas.pass] = {{"tiles", atlas.tiles}, {"draws", atlas.draws}, {"triangles", atlas.triangles}};
-    json["memory"] = {{"host_rss_mb", {{"first", rssFirst}, {"last", rssLast}}},
-                      {"device_mb", {{"first", deviceFirst}, {"last", deviceLast}}}};
-    json["allocationsAfterWarmup"] = {{"gpuObjects", objectsMade}, {"vkAllocateMemory", memoryAllocations}};
+    json["memory"] = {{"host_rss_mb", {{"first", run.rssFirst}, {"last", run.rssLast}}},
+                      {"device_mb", {{"first", run.deviceFirst}, {"last", run.deviceLast}}}};
+    json["allocationsAfterWarmup"] = {{"gpuObjects", run.after.objectsCreated - run.before.objectsCreated},
+                                      {"vkAllocateMemory", run.after.memoryAllocations - run.before.memoryAllocations}};
     json["validationMessages"] = device.validationMessageCount();
+    if (bench.varyPeriod > 0) json["vary"] = variationJson(bench.varyPeriod, run.samples);
+    return json;
+}
 
+void printReport(const Device& device, const RenderOptions& options, const BenchOptions& bench,
+                 const RenderRequest& request, const Scene& scene, const TimedRun& run) {
+    const Measurements& measured = run.measured;
     std::printf("device: %s (%s)\n", device.info().name.c_str(), device.info().driver.c_str());
     std::printf("scene: %s, %llu triangles, %zu instances, %zu lights; %ux%u, %u frames after %u warm-up, camera %s\n",
                 options.scenePath.empty() ? "demo" : options.scenePath.c_str(),
@@ -189,12 +203,52 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     for (const AtlasDrawStats& atlas : measured.atlases)
         std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     (unsigned long long)atlas.triangles);
-    std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", rssFirst, rssLast, deviceFirst, deviceLast);
-    std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n", (unsigned long long)objectsMade,
-                (unsigned long long)memoryAllocations);
+    std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,
+                run.deviceLast);
+    std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n",
+                (unsigned long long)(run.after.objectsCreated - run.before.objectsCreated),
+                (unsigned long long)(run.after.memoryAllocations - run.before.memoryAllocations));
+    if (bench.varyPeriod > 0 && !run.samples.empty()) {
+        const nlohmann::json vary = variationJson(bench.varyPeriod, run.samples);
+        std::printf("vary-settings: %zu periods of %u frames over %zu steps; host RSS %.1f first, %.1f last, %.1f max, "
+                    "+%.1f growth MB; device %.1f first, %.1f last, %.1f max, +%.1f growth MB\n",
+                    run.samples.size(), bench.varyPeriod, benchVariations().size(),
+                    vary["host_rss_mb"]["first"].get<double>(), vary["host_rss_mb"]["last"].get<double>(),
+                    vary["host_rss_mb"]["max"].get<double>(), vary["host_rss_mb"]["growth"].get<double>(),
+                    vary["device_mb"]["first"].get<double>(), vary["device_mb"]["last"].get<double>(),
+                    vary["device_mb"]["max"].get<double>(), vary["device_mb"]["growth"].get<double>());
+    }
+    std::printf("validation messages: %u\n", device.validationMessageCount());
+}
+
+}  // namespace
+
+int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
+    checkWritable(bench.jsonPath);
+    const Settings userSettings = loadSettings(options);
+    Device device(deviceOptionsFor(options));
+    RendererOptions rendererOptions;
+    rendererOptions.warmup = PipelineWarmup::Background;
+    Renderer renderer(device, loadSceneFor(options), rendererOptions);
+    const Scene& scene = renderer.scene();
+    RenderRequest request = makeRenderRequest(options);
+    request.readback = false;
+    const CameraView start = resolveCameraView(scene, request.width, request.height);
+    const Settings settings = withSceneDefaults(userSettings, scene, start);
+
+    uint64_t frame = 0;
+    for (uint32_t i = 0; i < bench.warmup; ++i)
+        renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
+    renderer.buildAllPipelines();  // the timed frames use the specialized variants
+    renderer.waitIdle();
+    renderer.takeCompletedFrames();
+    const TimedRun run = runTimedFrames(device, renderer, bench, request, settings, start, frame);
+    for (const std::string& warning : run.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
+    printReport(device, options, bench, request, scene, run);
     if (!bench.jsonPath.empty()) {
-        if (bench.jsonPath == "-") std::printf("%s\n", json.dump(2).c_str());
-        else writeTextFile(bench.jsonPath, json.dump(2) + "\n");
+        const std::string json = benchJson(device, options, bench, request, scene, run).dump(2);
+        if (bench.jsonPath == "-") std::printf("%s\n", json.c_str());
+        else writeTextFile(bench.jsonPath, json + "\n");
     }
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");

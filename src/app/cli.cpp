@@ -72,6 +72,10 @@ int runCli(int argc, char** argv) {
     bench->add_option("--camera", benchSettings.camera, "orbit (moves every frame) | static")
         ->check(CLI::IsMember({"orbit", "static"}));
     bench->add_option("--json", benchSettings.jsonPath, "write the results as JSON to FILE ('-' = stdout)");
+    bench->add_flag("--vary-settings", benchSettings.vary,
+                    "long run: change atlas sizes, cascades, filters and the shadowed lights every --vary-every frames");
+    bench->add_option("--vary-every", benchSettings.varyEvery, "frames between changes of --vary-settings (default 100)")
+        ->check(CLI::Range(1u, 1000000u));
 
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
@@ -95,7 +99,10 @@ int runCli(int argc, char** argv) {
         if (*render) return runRenderCommand(renderOptions);
         if (*reference) return runReferenceCommand(referenceOptions);
         if (*compare) return runCompareCommand(compareOptions);
-        if (*bench) return runBenchCommand(benchOptions, benchSettings);
+        if (*bench) {
+            benchSettings.varyPeriod = benchSettings.vary ? benchSettings.varyEvery : 0;
+            return runBenchCommand(benchOptions, benchSettings);
+        }
         if (*devices) return runDevicesCommand();
         if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {

@@ -38,6 +38,9 @@ struct BenchOptions {
     uint32_t warmup = 10;
     std::string camera = "static";  // static | orbit
     std::string jsonPath;           // "" = none, "-" = stdout
+    bool vary = false;              // --vary-settings
+    uint32_t varyEvery = 100;       // --vary-every
+    uint32_t varyPeriod = 0;        // frames between changes of --vary-settings (0 = no changes)
 };
 
 // The scene the options name (file, demo or gen:), its warnings printed on stderr.

@@ -2,6 +2,7 @@
 // and a steady-state frame makes no GPU object.
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -81,6 +82,31 @@ TEST(CliBench, MeasuresTheBuiltInBoxesScene) {
     ASSERT_TRUE(json.is_object());
     EXPECT_EQ(json["scene"]["instances"], 301);  // 300 boxes and the ground
     EXPECT_EQ(json["scene"]["triangles"], 300 * 12 + 2);
+}
+
+TEST(CliBench, VarySettingsChangesSettingsAndShadowedLightsEveryPeriodAndSamplesMemory) {
+    const nlohmann::json json = runBenchJson("--frames 16 --warmup 1 --vary-settings --vary-every 4");
+    ASSERT_TRUE(json.is_object());
+    const nlohmann::json& vary = json["vary"];
+    EXPECT_EQ(vary["period"], 4);
+    ASSERT_EQ(vary["samples"].size(), 4u);
+    std::set<int> shadowed;
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(vary["samples"][i]["frame"], 4 * (i + 1));
+        EXPECT_EQ(vary["samples"][i]["step"], i);
+        shadowed.insert(vary["samples"][i]["shadowedLights"].get<int>());
+        EXPECT_GT(vary["samples"][i]["host_rss_mb"].get<double>(), 1.0);
+    }
+    EXPECT_GE(shadowed.size(), 3u);  // the demo's 3 lights: 3, 2, 1, 0 shadowed
+    for (const char* memory : {"host_rss_mb", "device_mb"})
+        expectStatistics(vary[memory], {"first", "last", "max", "growth"}, memory);
+    EXPECT_EQ(json["validationMessages"], 0);
+    // The atlases were made again for the new sizes: those frames did allocate.
+    EXPECT_GT(json["allocationsAfterWarmup"]["gpuObjects"].get<int>(), 0);
+}
+
+TEST(CliBench, WithoutVarySettingsThereIsNoVaryBlock) {
+    EXPECT_FALSE(runBenchJson("--frames 2 --warmup 1").contains("vary"));
 }
 
 TEST(CliBench, RejectsAnUnknownCameraMode) {
