@@ -1,7 +1,8 @@
 // The persistent VkPipelineCache: read at start from the user's cache folder, written back (to a
 // temporary name, then renamed) when the device goes. The driver checks the header (vendor, device,
 // cache UUID) and ignores a cache from another driver; the file name carries them too, so several
-// GPUs and drivers keep their own caches side by side.
+// GPUs and drivers keep their own caches side by side. Penumbra's own header and hash
+// (pipeline_cache_file.h) keep a damaged file from the driver.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "gpu/pipeline_cache_file.h"
 #include "gpu/vk_internal.h"
 
 namespace penumbra::gpu {
@@ -39,8 +41,12 @@ void Device::Impl::loadPipelineCache() {
     std::string data;
     if (!folder.empty()) {
         pipelineCacheFile = folder + "/" + cacheFileName(properties);
-        std::ifstream file(pipelineCacheFile, std::ios::binary);
-        if (file) data.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+        std::error_code error;
+        if (std::filesystem::is_regular_file(pipelineCacheFile, error)) {
+            std::ifstream file(pipelineCacheFile, std::ios::binary);
+            const std::string content((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+            data = unpackPipelineCache(content).value_or(std::string());  // damaged: start empty
+        }
     }
     VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
     info.initialDataSize = data.size();
@@ -60,6 +66,7 @@ void Device::Impl::savePipelineCache() {
     std::string data(size, '\0');
     if (vkGetPipelineCacheData(device, pipelineCache, &size, data.data()) != VK_SUCCESS) return;
     data.resize(size);
+    data = packPipelineCache(data);
     // A cache that cannot be written is not an error: the next start compiles again.
     std::error_code error;
     const std::filesystem::path path(pipelineCacheFile);

@@ -1,8 +1,13 @@
 // The renderer at the limits (issue 9, item 3): textures and atlases over the device's image size
 // (a device limit made small with DeviceFaultInjection::maxImageSize), more lights than the shader
-// arrays hold, degenerate triangles and singular transforms, scenes 10^6 m across, bad camera views.
+// arrays hold, degenerate triangles and singular transforms, scenes 10^6 m across, bad camera views,
+// a damaged pipeline cache file.
 // Each is a warning with a fallback or a one-line Error, with no validation message and no NaN.
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -169,4 +174,27 @@ TEST_F(RenderTest, SceneWithAnIndexOutOfRangeIsRefusedBeforeTheGpuSeesIt) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("scene: mesh 1 'box': index 0 is 100000"), std::string::npos) << e.what();
     }
+}
+
+TEST_F(RenderTest, DamagedPipelineCacheFileIsIgnoredAndWrittenAgain) {
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("penumbra_cache_test_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(folder);
+    DeviceOptions options = testDeviceOptions();
+    options.pipelineCache = folder.string();
+    const auto renderOnce = [&] {
+        Device cached(options);
+        Renderer renderer(cached, boxOnGround());
+        const Image image = renderer.render(request(), {}).image;
+        EXPECT_EQ(cached.validationMessageCount(), 0u);
+        return image;
+    };
+    const Image first = renderOnce();
+    ASSERT_EQ(std::distance(std::filesystem::directory_iterator(folder), {}), 1);
+    const std::filesystem::path file = std::filesystem::directory_iterator(folder)->path();
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << std::string(4096, '\x5a');  // garbage
+    EXPECT_EQ(renderOnce().pixels, first.pixels);
+    std::ifstream written(file, std::ios::binary);
+    EXPECT_EQ(written.get(), 'P');  // Penumbra's header again, not the garbage
+    std::filesystem::remove_all(folder);
 }
