@@ -18,9 +18,11 @@ Texture halfTransparentTexture() {
     return texture;
 }
 
-// A red unlit backdrop at z = -1 behind a 2 x 2 m unlit quad at z = 0 that fills the view.
-Scene quadInFrontOfBackdrop(const Material& quadMaterial) {
+// A red unlit backdrop at z = -1 behind a 2 x 2 m unlit quad at z = 0 that fills the view; `texture`,
+// when given, is texture 0 (added before the materials, so SceneBuilder's checks hold).
+Scene quadInFrontOfBackdrop(const Material& quadMaterial, const Texture* texture = nullptr) {
     SceneBuilder builder;
+    if (texture) builder.addTexture(*texture);
     Material red;
     red.unlit = true;
     red.baseColorFactor = glm::vec4(1, 0, 0, 1);
@@ -40,8 +42,8 @@ TEST_F(RenderTest, MaskMaterialShowsHolesWhereTextureAlphaIsBelowCutoff) {
     mask.alphaMode = AlphaMode::Mask;
     mask.alphaCutoff = 0.5f;
     mask.baseColorTexture = 0;
-    Scene scene = quadInFrontOfBackdrop(mask);
-    scene.textures.push_back(halfTransparentTexture());
+    const Texture texture = halfTransparentTexture();
+    const Scene scene = quadInFrontOfBackdrop(mask, &texture);
     const RenderResult result = renderScene(scene, {64, 64});
     // Left half of the quad: the red backdrop shows through; right half: the white quad.
     EXPECT_EQ(result.image.at(12, 32, 0), 255);
@@ -53,8 +55,8 @@ TEST_F(RenderTest, OpaqueMaterialIgnoresTextureAlpha) {
     Material opaque;
     opaque.unlit = true;
     opaque.baseColorTexture = 0;
-    Scene scene = quadInFrontOfBackdrop(opaque);
-    scene.textures.push_back(halfTransparentTexture());
+    const Texture texture = halfTransparentTexture();
+    const Scene scene = quadInFrontOfBackdrop(opaque, &texture);
     const RenderResult result = renderScene(scene, {64, 64});
     EXPECT_EQ(result.image.at(12, 32, 1), 255);
 }
