@@ -205,6 +205,12 @@ void checkCameraView(const CameraView& view) {
         throw Error("camera view: needs 0 < zNear < zFar");
 }
 
+gpu::ExternalTarget externalTargetOf(const ExternalImage& target) {
+    return {target.vkImage,         target.vkFormat,        target.width,
+            target.height,          target.vkInitialLayout, target.vkFinalLayout,
+            target.vkWaitSemaphore, target.vkWaitStageMask, target.vkSignalSemaphore};
+}
+
 // The largest power of two that is <= limit (limit >= 1).
 uint32_t powerOfTwoAtMost(uint32_t limit) {
     uint32_t size = 1;
@@ -291,10 +297,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
         device.abandonFrame(commands);
         throw failed(recording.stage, error);
     }
-    gpu::ExternalTarget sync;
-    if (target)
-        sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
-                target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
+    const gpu::ExternalTarget sync = target ? externalTargetOf(*target) : gpu::ExternalTarget{};
     phase.restart();
     try {
         frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);  // its errors name the frame
@@ -375,10 +378,7 @@ void Renderer::State::record(gpu::CommandList& commands, FrameRecording& r, cons
     }
     if (target) {
         r.stage = "blit to the caller's image";
-        gpu::ExternalTarget sync{target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
-                                 target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask,
-                                 target->vkSignalSemaphore};
-        commands.blitToExternal(targets.color, importedTexture(*target), sync);
+        commands.blitToExternal(targets.color, importedTexture(*target), externalTargetOf(*target));
     }
     r.stats.cpu.record = r.phase.milliseconds();
     r.stage = "submit";
