@@ -46,6 +46,7 @@ struct DeviceObjectCounts {
     uint64_t objectsCreated = 0;    // buffers, textures, samplers, pipelines and texture tables so far
     uint64_t submits = 0;           // queue submissions so far
     uint64_t deviceWaits = 0;       // queue- or device-wide waits so far
+    uint64_t debugNamesSet = 0;     // objects named for RenderDoc / Nsight (VK_EXT_debug_utils) so far
     uint32_t total() const {
         return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys;
     }

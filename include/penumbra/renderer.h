@@ -59,6 +59,7 @@ struct FrameStats {
     std::vector<PassTiming> gpuTimings;  // per pass, from timestamps (empty where the device has none)
     CpuPhaseTimes cpu;
     double submitToFenceMilliseconds = 0.0;  // from the submission to the fence seen signalled
+    uint64_t sceneBytesUploaded = 0;         // changed instances and materials copied this frame
     std::vector<AtlasDrawStats> atlases;
     std::vector<std::string> warnings;
     std::string shadowStatsJson = "{}";  // the shadow planner's stats (lights reserved, tiles, casters per tile)
@@ -80,6 +81,8 @@ enum class PipelineWarmup {
 
 struct RendererOptions {
     PipelineWarmup warmup = PipelineWarmup::OnDemand;
+    // Testing and debugging: always draw with the generic lit-pass variant (it must give the same image).
+    bool forceGenericVariants = false;
 };
 
 // A caller-owned image to render into (see <penumbra/vulkan.h>, which fills it from Vulkan types).

@@ -371,7 +371,7 @@ void Device::Impl::setDebugName(VkObjectType type, uint64_t handle, const std::s
     info.objectType = type;
     info.objectHandle = handle;
     info.pObjectName = name.c_str();
-    setObjectName(device, &info);
+    if (setObjectName(device, &info) == VK_SUCCESS) ++debugNamesSet;
 }
 
 ObjectCounts Device::objectCounts() const {
@@ -391,6 +391,7 @@ ObjectCounts Device::objectCounts() const {
     counts.objectsCreated = d.objectsCreated;
     counts.submits = d.submits;
     counts.deviceWaits = d.deviceWaits;
+    counts.debugNamesSet = d.debugNamesSet;
     return counts;
 }
 

@@ -72,6 +72,8 @@ public:
     uint64_t submitFrame(CommandList& commands, const ExternalTarget* sync = nullptr);
     void waitFrame(uint64_t frameIndex);  // returns once that frame has finished on the GPU
     void waitIdle();                      // every submitted frame (fence waits, no vkDeviceWaitIdle)
+    // After waitIdle: frees memory blocks that hold nothing (a renderer's end, say).
+    void trimMemory();
     // Frames finished since the last call, oldest first (timestamps per pass, submit-to-fence time).
     std::vector<CompletedFrame> takeCompletedFrames();
 

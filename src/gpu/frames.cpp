@@ -202,6 +202,8 @@ void Device::waitIdle() {
     if (d.recordingSlot < 0) d.destroyGarbage(d.pendingGarbage);
 }
 
+void Device::trimMemory() { impl_->memory->releaseEmptyBlocks(); }
+
 std::vector<CompletedFrame> Device::takeCompletedFrames() {
     std::vector<CompletedFrame> frames;
     frames.swap(impl_->completed);

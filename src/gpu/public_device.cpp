@@ -31,6 +31,7 @@ DeviceObjectCounts Device::liveObjects() const {
     result.objectsCreated = counts.objectsCreated;
     result.submits = counts.submits;
     result.deviceWaits = counts.deviceWaits;
+    result.debugNamesSet = counts.debugNamesSet;
     return result;
 }
 

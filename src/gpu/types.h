@@ -161,6 +161,7 @@ struct ObjectCounts {
     uint64_t objectsCreated = 0;     // buffers, textures, samplers, pipelines, tables created so far
     uint64_t submits = 0;            // vkQueueSubmit calls so far
     uint64_t deviceWaits = 0;        // device- or queue-wide waits so far (not per-frame fence waits)
+    uint64_t debugNamesSet = 0;      // objects named through vkSetDebugUtilsObjectNameEXT so far
     uint32_t total() const { return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys; }
 };
 

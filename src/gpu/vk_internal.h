@@ -126,6 +126,7 @@ struct Device::Impl {
     uint64_t objectsCreated = 0;
     uint64_t submits = 0;
     uint64_t deviceWaits = 0;
+    uint64_t debugNamesSet = 0;
 
     // Frames in flight.
     std::vector<FrameContext> frames;

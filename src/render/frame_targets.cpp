@@ -1,9 +1,11 @@
 #include "render/frame_targets.h"
 
+#include "core/error.h"
+
 namespace penumbra {
 
 FrameTargets::~FrameTargets() {
-    for (gpu::TextureHandle t : {directionalAtlas, otherAtlas, color, depth}) device_.destroy(t);
+    for (gpu::TextureHandle t : {directionalAtlas, otherAtlas, colorSrgb_, colorUnorm_, depth}) device_.destroy(t);
     for (gpu::BufferHandle b : {colorReadback_, directionalReadback_, otherReadback_}) device_.destroy(b);
 }
 
@@ -13,6 +15,7 @@ void FrameTargets::replace(gpu::TextureHandle& texture, const gpu::TextureDesc& 
 }
 
 void FrameTargets::ensure(const FrameTargetSizes& sizes) {
+    PENUMBRA_ASSERT(sizes.colorFormat == gpu::Format::RGBA8Srgb || sizes.colorFormat == gpu::Format::RGBA8Unorm);
     if (made_ && sizes == sizes_) return;
     const uint32_t depthUsage = gpu::kTextureDepthTarget | gpu::kTextureSampled;
     if (!made_ || sizes.directionalAtlas != sizes_.directionalAtlas) {
@@ -27,14 +30,19 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
         otherReadback_ = {};
     }
     const bool resized = !made_ || sizes.width != sizes_.width || sizes.height != sizes_.height;
-    if (resized || sizes.colorFormat != sizes_.colorFormat)
-        replace(color, {sizes.width, sizes.height, sizes.colorFormat, gpu::kTextureColorTarget | gpu::kTextureTransferSrc,
-                        1, "color"});
     if (resized) {
+        device_.destroy(colorSrgb_);
+        device_.destroy(colorUnorm_);
+        colorSrgb_ = colorUnorm_ = {};
         replace(depth, {sizes.width, sizes.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
         device_.destroy(colorReadback_);
         colorReadback_ = {};
     }
+    gpu::TextureHandle& colorOfFormat = sizes.colorFormat == gpu::Format::RGBA8Srgb ? colorSrgb_ : colorUnorm_;
+    if (!colorOfFormat)
+        colorOfFormat = device_.createTexture({sizes.width, sizes.height, sizes.colorFormat,
+                                               gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
+    color = colorOfFormat;
     sizes_ = sizes;
     made_ = true;
 }

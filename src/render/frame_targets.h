@@ -28,7 +28,7 @@ public:
     gpu::BufferHandle otherReadback();
 
     const FrameTargetSizes& sizes() const { return sizes_; }
-    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;
+    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;  // color: the one of sizes().colorFormat
 
 private:
     gpu::BufferHandle readbackBuffer(gpu::BufferHandle& buffer, uint64_t size, const char* name);
@@ -38,6 +38,8 @@ private:
     FrameTargetSizes sizes_;
     bool made_ = false;
     gpu::BufferHandle colorReadback_, directionalReadback_, otherReadback_;
+    // One colour target per format, so frames that alternate colour and AOV outputs re-make nothing.
+    gpu::TextureHandle colorSrgb_, colorUnorm_;
 };
 
 }  // namespace penumbra

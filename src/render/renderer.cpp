@@ -193,7 +193,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     phase.restart();
     gpu::CommandList commands = device.beginFrame();
     phase.restart();  // the wait for the slot's previous frame is not CPU work
-    gpuScene.recordUpdates(commands, scene);
+    stats.sceneBytesUploaded = gpuScene.recordUpdates(commands, scene);
     const bool screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
     const gpu_data::FrameData frameData = makeFrameData(view, lights, request, settings, screenSpace);
     const gpu::BufferSlice frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
@@ -235,6 +235,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     main.height = view.height;
     main.variant = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
     main.genericSpecialization = kGenericLitSpecialization;
+    if (options.forceGenericVariants) main.variant.specialization = kGenericLitSpecialization;
     // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
     if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
     mainPass.record(commands, scene, view, inputs, main);
@@ -276,7 +277,16 @@ void Renderer::State::collectCompleted() {
 
 Renderer::Renderer(Device& device, Scene scene, const RendererOptions& options)
     : state_(std::make_unique<State>(device.backend(), std::move(scene), options)) {}
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+    gpu::Device& device = state_->device;
+    state_.reset();  // the passes and targets hand their objects to the device's deferred destruction
+    try {
+        device.waitIdle();  // nothing of this renderer's is in flight any more: destroyed now
+        device.trimMemory();
+    } catch (const Error&) {
+        // A lost device: its objects go when the device does.
+    }
+}
 
 const Scene& Renderer::scene() const { return state_->scene; }
 
