@@ -64,6 +64,12 @@ int runCli(int argc, char** argv) {
         ->check(CLI::IsMember({"orbit", "static"}));
     bench->add_option("--json", benchSettings.jsonPath, "write the results as JSON to FILE ('-' = stdout)");
 
+    RenderOptions exportOptions;
+    CLI::App* exporter = app.add_subcommand("export", "write a scene (file, demo or gen:) as glTF 2.0 (.gltf or .glb)");
+    exporter->add_option("scene", exportOptions.scenePath, "scene to write; the built-in demo scene if omitted");
+    exporter->add_option("--model", exportOptions.model, "the glTF that gen:field copies");
+    exporter->add_option("-o,--output", exportOptions.outputPath, "output .gltf or .glb")->required();
+
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
     std::string diffA, diffB;
@@ -90,6 +96,7 @@ int runCli(int argc, char** argv) {
         if (*compare) return runCompareCommand(compareOptions);
         if (*bench) return runBenchCommand(benchOptions, benchSettings);
         if (*devices) return runDevicesCommand();
+        if (*exporter) return runExportCommand(exportOptions);
         if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {
         std::fprintf(stderr, "penumbra: %s\n", e.what());

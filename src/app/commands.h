@@ -51,6 +51,8 @@ int runReferenceCommand(const RenderOptions& options);
 int runCompareCommand(const RenderOptions& options);
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench);
 int runDevicesCommand();
+// Writes the scene the options name (a file, the demo or a gen: scene) as .gltf or .glb.
+int runExportCommand(const RenderOptions& options);
 int runDiffCommand(const std::string& pathA, const std::string& pathB);
 
 }  // namespace penumbra

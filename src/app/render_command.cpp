@@ -10,6 +10,7 @@
 #include "penumbra/device.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene_loading.h"
+#include "scene/gltf_writer.h"
 
 namespace penumbra {
 
@@ -96,6 +97,11 @@ int runRenderCommand(const RenderOptions& options) {
     }
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
+    return 0;
+}
+
+int runExportCommand(const RenderOptions& options) {
+    writeGltfScene(loadSceneFor(options), options.outputPath);
     return 0;
 }
 
