@@ -89,7 +89,7 @@ CommandList Device::beginFrame() {
     const uint32_t slot = uint32_t(d.nextFrameIndex % d.frames.size());
     FrameContext& frame = d.frames[slot];
     d.retireFrame(frame);
-    VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, 0));
+    VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));
