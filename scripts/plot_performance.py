@@ -47,6 +47,19 @@ def cpu(run, name):
     return run["cpu"].get(name, {}).get("median_ms", 0.0)
 
 
+def finish(fig, axes, label, xlabel, path):
+    for ax, title in ((axes[0], "GPU ms per pass"), (axes[1], "CPU ms per phase")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xlabel)
+        ax.set_title(f"{label}: {title}")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def plot(runs, label, out_prefix):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
     for spots, style in (("16", "-"), ("0", "--")):
@@ -58,16 +71,7 @@ def plot(runs, label, out_prefix):
             axes[0].plot(x, [gpu(r[3], name) for r in rows], style, marker="o", label=f"{name} ({spots} spots)")
         for name in ("plan", "culling", "record"):
             axes[1].plot(x, [cpu(r[3], name) for r in rows], style, marker="o", label=f"{name} ({spots} spots)")
-    for ax, title in ((axes[0], "GPU ms per pass"), (axes[1], "CPU ms per phase")):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("triangles (millions), gen:field:N[:16]")
-        ax.set_title(f"{label}: {title}")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(out_prefix + "_triangles.png", dpi=110)
-    plt.close(fig)
+    finish(fig, axes, label, "triangles (millions), gen:field:N[:16]", out_prefix + "_triangles.png")
 
     rows = series(runs, "boxes_")
     if not rows:
@@ -78,16 +82,7 @@ def plot(runs, label, out_prefix):
         axes[0].plot(x, [gpu(r[3], name) for r in rows], marker="o", label=name)
     for name in PHASES:
         axes[1].plot(x, [cpu(r[3], name) for r in rows], marker="o", label=name)
-    for ax, title in ((axes[0], "GPU ms per pass"), (axes[1], "CPU ms per phase")):
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("objects (instances), gen:boxes:N")
-        ax.set_title(f"{label}: {title}")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out_prefix + "_objects.png", dpi=110)
-    plt.close(fig)
+    finish(fig, axes, label, "objects (instances), gen:boxes:N", out_prefix + "_objects.png")
 
 
 def table(runs, prefix):
