@@ -46,6 +46,8 @@ public:
     void uploadTexture(TextureHandle texture, std::span<const uint8_t> pixels);
     SamplerHandle createSampler(const SamplerDesc& desc);
     TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, SamplerHandle sampler);
+    // One sampler per texture (samplers.size() == textures.size()).
+    TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, std::span<const SamplerHandle> samplers);
     PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc);
     PipelineHandle createComputePipeline(const ComputePipelineDesc& desc);
     void destroy(BufferHandle handle);

@@ -1,5 +1,7 @@
 #include "render/gpu_scene.h"
 
+#include <algorithm>
+
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "scene_structs.h"
@@ -21,7 +23,31 @@ gpu_data::MaterialData packMaterial(const Material& m) {
     return data;
 }
 
+gpu::AddressMode addressMode(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::ClampToEdge: return gpu::AddressMode::ClampToEdge;
+        case TextureWrap::MirroredRepeat: return gpu::AddressMode::MirroredRepeat;
+        case TextureWrap::Repeat: break;
+    }
+    return gpu::AddressMode::Repeat;
+}
+
+gpu::Filter filter(TextureFilter f) { return f == TextureFilter::Nearest ? gpu::Filter::Nearest : gpu::Filter::Linear; }
+
 }  // namespace
+
+// The Vulkan sampler that applies scene/texture_sampler.h's rule: the hardware's texel addressing is
+// that rule; mipmaps only when the glTF minFilter asks for them (maxLod 0 otherwise).
+gpu::SamplerDesc samplerDesc(const TextureSampler& sampler) {
+    gpu::SamplerDesc desc;
+    desc.filter = filter(sampler.magFilter);
+    desc.minFilter = filter(sampler.minFilter);
+    desc.mipmaps = sampler.mipmaps != MipmapMode::None;
+    desc.mipmapFilter = sampler.mipmaps == MipmapMode::Nearest ? gpu::Filter::Nearest : gpu::Filter::Linear;
+    desc.addressMode = addressMode(sampler.wrapS);
+    desc.addressModeV = addressMode(sampler.wrapT);
+    return desc;
+}
 
 GpuScene::GpuScene(gpu::Device& device, const Scene& scene) {
     std::vector<gpu_data::VertexData> vertices;
@@ -60,19 +86,23 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) {
     materials_ = device.createBuffer(materials.size() * sizeof(materials[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
                                      materials.data(), "materials");
 
-    // Base-colour textures (sRGB, mipmapped). An empty scene still gets one white texel so the
-    // table is never empty.
+    // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
+    // one white texel so the table is never empty.
     std::vector<gpu::TextureHandle> textures;
-    auto upload = [&](const Image& rgba) {
+    std::vector<gpu::SamplerHandle> samplers;
+    std::vector<std::pair<TextureSampler, gpu::SamplerHandle>> made;  // one VkSampler per distinct sampler
+    auto upload = [&](const Image& rgba, const TextureSampler& sampler) {
         gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0, "baseColor"};
         const gpu::TextureHandle texture = device.createTexture(desc);
         device.uploadTexture(texture, rgba.pixels);
         textures.push_back(texture);
+        auto found = std::find_if(made.begin(), made.end(), [&](const auto& m) { return m.first == sampler; });
+        if (found == made.end()) found = made.insert(made.end(), {sampler, device.createSampler(samplerDesc(sampler))});
+        samplers.push_back(found->second);
     };
-    for (const Texture& t : scene.textures) upload(t.rgba);
-    if (textures.empty()) upload(Image(1, 1, 4, 255));
-    const gpu::SamplerHandle sampler = device.createSampler({gpu::Filter::Linear, true, gpu::AddressMode::Repeat});
-    textureTable_ = device.createTextureTable(textures, sampler);
+    for (const Texture& t : scene.textures) upload(t.rgba, t.sampler);
+    if (textures.empty()) upload(Image(1, 1, 4, 255), TextureSampler{});
+    textureTable_ = device.createTextureTable(textures, samplers);
 }
 
 }  // namespace penumbra

@@ -17,6 +17,9 @@ struct DrawItem {
     uint32_t materialIndex = 0;
 };
 
+// The GPU sampler of a glTF texture sampler (filters, mipmap mode, wrap modes).
+gpu::SamplerDesc samplerDesc(const TextureSampler& sampler);
+
 class GpuScene {
 public:
     GpuScene(gpu::Device& device, const Scene& scene);

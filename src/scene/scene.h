@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "scene/texture_sampler.h"
 
 namespace penumbra {
 
@@ -47,6 +48,7 @@ enum class MaterialShadowMode { On, Clip, Dither, Off };
 struct Texture {
     Image rgba;  // RGBA8, sRGB-encoded colour
     std::string name;
+    TextureSampler sampler;  // the glTF texture's sampler (filters, wrap modes)
 };
 
 struct Material {
