@@ -10,6 +10,7 @@
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
 #include "scene/camera_view.h"
+#include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"
 
 using namespace penumbra;
@@ -18,7 +19,7 @@ using namespace penumbra::test;
 namespace {
 
 std::string scenePath(const std::string& name) {
-    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + name + ".gltf";
+    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + canonicalSceneFileName(name);
 }
 
 std::string deviceArgs() {

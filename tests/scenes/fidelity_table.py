@@ -15,35 +15,33 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-# scene -> (lights to compare, extra options). Directional scenes vary shadows.directional.filter, the
-# spot/point scenes shadows.spot.filter (their "hard" lights ignore it).
+# scene -> (file, [(light index, "sun" | "spot")], extra options). Sun rows vary
+# shadows.directional.filter, spot/point rows shadows.spot.filter (their "hard" lights ignore it).
 SCENES = {
-    "near_far_casters": ([0], ["--set", "shadows.maxDistance=150"]),
-    "thin_wall": ([0], []),
-    "poles": ([0], []),
-    "grazing": ([0], []),
-    "foliage": ([0], []),
-    "low_sun": ([0], []),
-    "far_field": ([0], ["--set", "shadows.maxDistance=150"]),
-    "thin_slabs": ([0], []),
-    "grazing_sun": ([0], []),
-    "fence": ([0], []),
-    "field_of_objects": ([0], []),
-    "cube": ([0], []),
-    "cad_engine": ([0], []),
-    "spot_lights": ([0, 1], []),
-    "spot_shelf": ([0, 1, 2], []),
-    "point_light": ([0], []),
-    "cad_engine_spot": ([0], []),
+    "near_far_casters": ("near_far_casters.gltf", [(0, "sun")], ["--set", "shadows.maxDistance=150"]),
+    "thin_wall": ("thin_wall.gltf", [(0, "sun")], []),
+    "poles": ("poles.gltf", [(0, "sun")], []),
+    "grazing": ("grazing.gltf", [(0, "sun")], []),
+    "foliage": ("foliage.gltf", [(0, "sun")], []),
+    "low_sun": ("low_sun.gltf", [(0, "sun")], []),
+    "far_field": ("far_field.gltf", [(0, "sun")], ["--set", "shadows.maxDistance=150"]),
+    "thin_slabs": ("thin_slabs.gltf", [(0, "sun")], []),
+    "grazing_sun": ("grazing_sun.gltf", [(0, "sun")], []),
+    "fence": ("fence.gltf", [(0, "sun")], []),
+    "field_of_objects": ("field_of_objects.gltf", [(0, "sun")], []),
+    "cube": ("cube.gltf", [(0, "sun")], []),
+    "cad_engine": ("cad_engine.glb", [(0, "sun"), (1, "spot")], []),
+    "spot_lights": ("spot_lights.gltf", [(0, "spot"), (1, "spot")], []),
+    "spot_shelf": ("spot_shelf.gltf", [(0, "spot"), (1, "spot"), (2, "spot")], []),
+    "point_light": ("point_light.gltf", [(0, "spot")], []),
 }
-OTHER_LIGHT_SCENES = {"spot_lights", "spot_shelf", "point_light", "cad_engine_spot"}
 FILTERS = ["PCF2x2", "PCF3x3", "PCF5x5", "PCF7x7"]
 
 
-def row_command(args, scene, light, filter_name):
-    lights, extra = SCENES[scene]
-    key = "shadows.spot.filter" if scene in OTHER_LIGHT_SCENES else "shadows.directional.filter"
-    command = [args.penumbra, "compare", os.path.relpath(os.path.join(HERE, scene + ".gltf")), "--light", str(light),
+def row_command(args, scene, light, kind, filter_name):
+    file, _, extra = SCENES[scene]
+    key = "shadows.spot.filter" if kind == "spot" else "shadows.directional.filter"
+    command = [args.penumbra, "compare", os.path.relpath(os.path.join(HERE, file)), "--light", str(light),
                "--width", str(args.width), "--height", str(args.height), "--device", args.device, "--json",
                "--set", f"shadows.directional.atlasSize={args.atlas}", "--set", f"shadows.spot.atlasSize={args.atlas}",
                "--set", f"{key}={filter_name}"] + extra
@@ -73,12 +71,12 @@ def main():
     commands = []
     totals = []
     for scene in args.scenes.split(","):
-        if not os.path.exists(os.path.join(HERE, scene + ".gltf")):
-            print(f"skipping {scene}: no tests/scenes/{scene}.gltf", file=sys.stderr)
+        if not os.path.exists(os.path.join(HERE, SCENES[scene][0])):
+            print(f"skipping {scene}: no tests/scenes/{SCENES[scene][0]}", file=sys.stderr)
             continue
-        for light in SCENES[scene][0]:
+        for light, kind in SCENES[scene][1]:
             for filter_name in args.filters.split(","):
-                command = row_command(args, scene, light, filter_name)
+                command = row_command(args, scene, light, kind, filter_name)
                 run = subprocess.run(command, capture_output=True, text=True)
                 if run.returncode != 0:
                     print(f"| {scene} | {light} | {filter_name} | failed: {run.stderr.strip()} |")
