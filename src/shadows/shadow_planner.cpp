@@ -16,7 +16,7 @@ struct TileInputs {
     const std::vector<Aabb>& rsBounds;  // casters' bounds in the light's rotation-only space
     const std::vector<CascadeSphere>& spheres;
     const AtlasLayout& atlas;
-    float cullingFactor;
+    BlendCulling blendCulling;
 };
 
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
@@ -24,7 +24,7 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     const CascadeSphere& sphere = in.spheres[cascadeIndex];
     const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
     TileCasters casters =
-        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.cullingFactor);
+        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
     skippedByBlendCulling += casters.skippedByBlendCulling;
 
     ShadowTile tile;
@@ -62,13 +62,14 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
     directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
 
-    const float cullingFactor = cascadeBlendCullingFactor(config.cascadeFade);
+    const std::vector<Aabb> receivers = shadowReceiverBounds(scene);
+    const BlendCulling blendCulling{cascadeBlendCullingFactor(config.cascadeFade), &receivers};
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
         const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
-        const TileInputs inputs{scene, casters, rsBounds, directional.cascades, directional.atlas, cullingFactor};
+        const TileInputs inputs{scene, casters, rsBounds, directional.cascades, directional.atlas, blendCulling};
         for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
             directional.tiles.push_back(
                 planTile(inputs, light, rotation, slot, cascade, frame.stats.skippedByBlendCulling));

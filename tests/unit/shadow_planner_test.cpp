@@ -216,3 +216,40 @@ TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
     ASSERT_EQ(faded.cascadeIndex, 3u);
     EXPECT_NEAR(faded.strength, 0.5f, 1e-3f);
 }
+
+// Issue 13 defect 1: a 1 m post 4 m in front of the camera under an 8° sun from the side lies inside
+// 0.7 x cascade 0's sphere, but its 7 m shadow reaches ground that samples cascade 1: cascade 1 must
+// draw it.
+TEST(ShadowPlanner, CasterWhoseShadowLeavesTheSmallerCascadeIsDrawnInTheBiggerOne) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -100}, {60, 0, 10});  // ground
+    const uint32_t post = addBox(scene, {-0.05f, 0, -4.05f}, {0.05f, 1, -3.95f});
+    const float elevation = glm::radians(8.0f), azimuth = glm::radians(30.0f);
+    const glm::vec3 wsHorizontal(std::cos(azimuth), 0.0f, std::sin(azimuth));  // toward +X, a little toward the camera
+    addDirectionalLight(scene, std::cos(elevation) * wsHorizontal - glm::vec3(0.0f, std::sin(elevation), 0.0f));
+    const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
+    ShadowSettings settings;  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, settings);
+    const CascadeSphere& sphere0 = frame.directional.cascades[0];
+    ASSERT_LT(glm::length(glm::vec3(0, 0.5f, -4.0f) - sphere0.wsCenter) + 0.5f, 0.7f * sphere0.radius)
+        << "the post should be inside 0.7 x cascade 0";
+    const glm::vec3 shadowTip = glm::vec3(0.0f, 0.0f, -4.0f) + wsHorizontal / std::tan(elevation);
+    ASSERT_GT(glm::length(shadowTip - sphere0.wsCenter), sphere0.radius) << "its shadow should leave cascade 0";
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], post));
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[1], post));
+}
+
+// The culling still works where it is safe: a small box on the ground under a high sun, its shadow
+// at its foot, is left out of the bigger cascades.
+TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBiggerOnes) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -100}, {60, 0, 10});
+    const uint32_t box = addBox(scene, {-0.2f, 0, -4.2f}, {0.2f, 0.4f, -3.8f});
+    addDirectionalLight(scene, {0.2f, -1.0f, 0.1f});
+    const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, ShadowSettings{});
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], box));
+    EXPECT_FALSE(rendersInstance(frame.directional.tiles[1], box));
+    EXPECT_FALSE(rendersInstance(frame.directional.tiles[2], box));
+    EXPECT_GE(frame.stats.skippedByBlendCulling, 2u);
+}
