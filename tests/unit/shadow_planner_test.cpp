@@ -88,17 +88,45 @@ TEST(ShadowPlanner, CasterIsCloserToTheLightThanTheGroundItShadows) {
     EXPECT_LE(ground.z, 1.0f);
 }
 
-TEST(ShadowPlanner, EveryKeptCasterLiesWithinTheDepthRange) {
+// Issue 13 defect 2: the depth range fits the receivers, the sphere's depth span, whatever the casters;
+// casters toward the light are pancaked onto the near plane by depth clamp, and shadowNearPlane pulls
+// the near plane back by its length.
+TEST(ShadowPlanner, DirectionalDepthRangeFitsTheReceiversNotTheCasters) {
     PlannerFixture f;
     addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
-    f.scene.lights[0].shadowNearPlane = 1.0f;
+    addBox(f.scene, {-1, 500, -1}, {1, 502, 1});  // far toward the light
     const ShadowFrame frame = f.plan();
     for (const ShadowTile& tile : frame.directional.tiles) {
-        for (uint32_t instance : tile.casterInstances) {
-            const Aabb clip = f.scene.instances[instance].wsBounds.transformed(tile.clipFromWorld);
-            EXPECT_GE(clip.min.z, 0.0f - 1e-5f) << "tile " << tile.cascadeIndex;
-        }
-        EXPECT_GE(tile.nearDistance, tile.farDistance + 1.0f);  // near plane offset applied
+        const CascadeSphere& sphere = frame.directional.cascades[tile.cascadeIndex];
+        const float depthRange = tile.nearDistance + tile.farDistance;
+        EXPECT_GE(depthRange, 2.0f * sphere.radius) << "tile " << tile.cascadeIndex;
+        EXPECT_LE(depthRange, 2.0f * sphere.radius + 8.0f * tile.wsTexelSize) << "tile " << tile.cascadeIndex;
+    }
+}
+
+TEST(ShadowPlanner, CastersInFrontOfTheNearPlaneArePancakedOntoIt) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    const glm::vec3 above = f.plan().directional.cascades[0].wsCenter - 400.0f * f.scene.lights[0].wsDirection;
+    const uint32_t high = addBox(f.scene, above - 1.0f, above + 1.0f);  // on the light's ray through cascade 0
+    const ShadowFrame frame = f.plan();
+    const ShadowTile& tile = frame.directional.tiles[0];
+    ASSERT_TRUE(rendersInstance(tile, high));
+    const Aabb clip = f.scene.instances[high].wsBounds.transformed(tile.clipFromWorld);
+    EXPECT_LT(clip.max.z, 0.0f) << "the box lies in front of the near plane";
+    EXPECT_TRUE(tile.depthClamp) << "so it must be drawn with depth clamp";
+    EXPECT_GT(tile.pancakedDepth, 390.0f);  // what the depth range no longer spans
+}
+
+TEST(ShadowPlanner, ShadowNearPlanePullsTheNearPlaneBackByItsLength) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    const ShadowFrame without = f.plan();
+    f.scene.lights[0].shadowNearPlane = 5.0f;
+    const ShadowFrame with = f.plan();
+    for (size_t i = 0; i < with.directional.tiles.size(); ++i) {
+        EXPECT_NEAR(with.directional.tiles[i].nearDistance, without.directional.tiles[i].nearDistance + 5.0f, 1e-4f);
+        EXPECT_EQ(with.directional.tiles[i].farDistance, without.directional.tiles[i].farDistance);
     }
 }
 
