@@ -281,3 +281,15 @@ TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBigge
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[2], box));
     EXPECT_GE(frame.stats.skippedByBlendCulling, 2u);
 }
+
+TEST(ShadowFade, NoBlendTowardANextCascadeWhoseSphereMissesThePoint) {
+    gpu_data::DirectionalShadowData data{};
+    data.config = glm::uvec4(2, 0, uint32_t(CascadeBlend::Soft), 1);
+    data.fade = glm::vec4(0.0f, 1.0f, 1.0f / (1.0f - 0.8f * 0.8f), 100.0f);  // cascade fade 0.2
+    data.cullingSpheres[0] = glm::vec4(0, 0, 0, 100);   // radius 10 around the origin
+    data.cullingSpheres[1] = glm::vec4(20, 0, 0, 144);  // radius 12 around x = 20
+    data.cascadeData[0].x = 1.0f / 100.0f;
+    data.cascadeData[1].x = 1.0f / 144.0f;
+    EXPECT_LT(selectCascade(data, {9.5f, 0, 0}, 1.0f).cascadeBlend, 1.0f);   // in the band, inside sphere 1
+    EXPECT_EQ(selectCascade(data, {-9.5f, 0, 0}, 1.0f).cascadeBlend, 1.0f);  // in the band, outside sphere 1
+}
