@@ -43,10 +43,12 @@ const Limits kLimits[] = {
     // (filter + 1) unit measured e.g. thin_wall PCF7x7 2.251 0.275 0.0249, near_far_casters PCF7x7
     // 2.048 0.486 0.0213.
     // scene                filter               mis %  int. %   MAE      measured: mis %, interior %, MAE
-    {"near_far_casters", ShadowFilter::PCF2x2,  0.47, 0.020, 0.0068},  // measured 0.331 0.000 0.0046
-    {"near_far_casters", ShadowFilter::PCF3x3,  0.98, 0.020, 0.0120},  // measured 0.740 0.000 0.0088
-    {"near_far_casters", ShadowFilter::PCF5x5,  1.40, 0.181, 0.0173},  // measured 1.079 0.107 0.0130
-    {"near_far_casters", ShadowFilter::PCF7x7,  1.64, 0.346, 0.0222},  // measured 1.266 0.217 0.0169
+    // near_far_casters re-measured once the reference's shadow rays stopped starting 6 cm off its 600 m
+    // ground (the old limits were 0.47 / 0.98 / 1.40 / 1.64 %).
+    {"near_far_casters", ShadowFilter::PCF2x2,  0.65, 0.020, 0.0078},  // measured 0.549 0.004 0.0061
+    {"near_far_casters", ShadowFilter::PCF3x3,  1.10, 0.150, 0.0132},  // measured 0.958 0.088 0.0105
+    {"near_far_casters", ShadowFilter::PCF5x5,  1.48, 0.360, 0.0186},  // measured 1.296 0.223 0.0148
+    {"near_far_casters", ShadowFilter::PCF7x7,  1.68, 0.520, 0.0235},  // measured 1.484 0.335 0.0187
     {"thin_wall",        ShadowFilter::PCF2x2,  0.83, 0.020, 0.0092},  // measured 0.617 0.000 0.0065
     {"thin_wall",        ShadowFilter::PCF3x3,  1.18, 0.020, 0.0134},  // measured 0.897 0.000 0.0099
     {"thin_wall",        ShadowFilter::PCF5x5,  1.57, 0.020, 0.0182},  // measured 1.211 0.000 0.0137
