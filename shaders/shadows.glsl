@@ -38,6 +38,12 @@ float sampleDirectionalCascade(uint slot, int cascade, vec3 wsPosition, vec3 wsN
     return filterDirectionalShadow(atlasUvDepth);
 }
 
+bool insideCullingSphere(int cascade, vec3 wsPosition) {
+    vec4 sphere = directionalShadows.cullingSpheres[cascade];
+    vec3 offset = wsPosition - sphere.xyz;
+    return dot(offset, offset) < sphere.w;
+}
+
 // seed 000 §3.5-§3.8 and §4.8 GetShadowData + GetDirectionalShadowAttenuation: choose the cascade by
 // culling sphere, fade by distance and in the last cascade, blend cascades (soft: lerp two samples;
 // dither: pick one by interleaved gradient noise), then lerp(1, shadow, strength).
@@ -61,6 +67,9 @@ ShadowSample directionalShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, 
         }
     }
     if (cascade == cascadeCount) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
+    // Blend only toward a cascade whose sphere holds the point: spheres need not nest, and next to the
+    // camera a point in cascade i's band can lie outside sphere i + 1 (its tile never saw it).
+    if (cascadeBlend < 1.0 && !insideCullingSphere(cascade + 1, wsPosition)) cascadeBlend = 1.0;
     uint blendMode = directionalShadows.config.z;
     if (blendMode == kCascadeBlendDither && cascadeBlend < interleavedGradientNoise(pixel)) cascade += 1;
     if (blendMode != kCascadeBlendSoft) cascadeBlend = 1.0;

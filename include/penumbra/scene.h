@@ -13,6 +13,21 @@
 
 namespace penumbra {
 
+// How a texture is sampled: glTF's sampler. src/scene/texture_sampler.h holds the texel rule that the
+// GPU and the ray-traced reference both follow.
+enum class TextureFilter { Nearest, Linear };
+enum class MipmapMode { None, Nearest, Linear };  // None: level 0 only
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
+struct TextureSampler {
+    TextureFilter magFilter = TextureFilter::Linear;
+    TextureFilter minFilter = TextureFilter::Linear;
+    MipmapMode mipmaps = MipmapMode::Linear;  // glTF's default when no sampler or no minFilter is given
+    TextureWrap wrapS = TextureWrap::Repeat;
+    TextureWrap wrapT = TextureWrap::Repeat;
+    bool operator==(const TextureSampler&) const = default;
+};
+
 struct Vertex {
     glm::vec3 osPosition{0.0f};
     glm::vec3 osNormal{0.0f, 1.0f, 0.0f};
@@ -47,6 +62,7 @@ enum class MaterialShadowMode { On, Clip, Dither, Off };
 struct Texture {
     Image rgba;  // RGBA8, sRGB-encoded colour
     std::string name;
+    TextureSampler sampler;  // the glTF texture's sampler (filters, wrap modes)
 };
 
 struct Material {

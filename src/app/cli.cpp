@@ -53,6 +53,8 @@ int runCli(int argc, char** argv) {
     addRenderOptions(*compare, compareOptions);
     compare->add_option("--diff", compareOptions.diffPath, "write a diff image: false shadow and false lit in two colours");
     compare->add_flag("--json", compareOptions.json, "print the metrics as JSON");
+    compare->add_flag("--shimmer", compareOptions.shimmer,
+                      "also render and trace with the camera 2 cm to its right: % of pixels that flip in ours only");
 
     RenderOptions benchOptions;
     BenchOptions benchSettings;

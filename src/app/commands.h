@@ -29,6 +29,7 @@ struct RenderOptions {
     std::string maskPath;
     std::string diffPath;
     bool json = false;
+    bool shimmer = false;  // compare: also measure shimmer with the camera moved 2 cm to its right
 };
 
 // `penumbra bench` only.

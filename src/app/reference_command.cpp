@@ -37,6 +37,24 @@ int runReferenceCommand(const RenderOptions& options) {
     return 0;
 }
 
+namespace {
+
+// The shimmer step of issue 13: the camera moved 2 cm sideways between two frames.
+constexpr float kShimmerStepMetres = 0.02f;
+
+ShimmerMetrics measureShimmer(const Scene& scene, const CameraView& view, const RenderOptions& options,
+                              const Settings& settings, Renderer& renderer, const RenderRequest& request,
+                              const Image& ours0, const ReferenceImages& reference0) {
+    const CameraView moved = translatedCameraView(view, kShimmerStepMetres * wsCameraRight(view));
+    const ReferenceImages reference1 =
+        traceReferenceShadow(scene, moved, options.light, false, referenceOptionsFor(settings, moved));
+    const RenderResult ours1 = renderer.render(request, settings, moved);
+    return compareShimmer(ours0, ours1.image, reference0.shadow, reference1.shadow, reference0.validMask,
+                          reference1.validMask);
+}
+
+}  // namespace
+
 int runCompareCommand(const RenderOptions& options) {
     const Settings settings = loadSettings(options);
     Scene scene = loadSceneFor(options);
@@ -51,6 +69,9 @@ int runCompareCommand(const RenderOptions& options) {
     request.output = OutputMode::ShadowAov;
     const RenderResult ours = renderer.render(request, settings, view);
     const CompareMetrics metrics = compareShadowImages(ours.image, reference.shadow, reference.validMask);
+    ShimmerMetrics shimmer;
+    if (options.shimmer)
+        shimmer = measureShimmer(renderer.scene(), view, options, settings, renderer, request, ours.image, reference);
     if (!options.diffPath.empty()) {
         request.output = OutputMode::Color;
         const RenderResult colour = renderer.render(request, settings, view);
@@ -60,7 +81,10 @@ int runCompareCommand(const RenderOptions& options) {
     if (metrics.validPixels == 0)
         std::fprintf(stderr, "penumbra: warning: no pixel is valid for comparison (nothing in view, or no surface "
                              "faces light %u within the shadow distance); the metrics are empty\n", options.light);
-    std::printf("%s\n", options.json ? toJson(metrics).c_str() : toText(metrics).c_str());
+    if (options.json)
+        std::printf("%s\n", (options.shimmer ? toJson(metrics, shimmer) : toJson(metrics)).c_str());
+    else
+        std::printf("%s%s\n", toText(metrics).c_str(), options.shimmer ? toText(shimmer).c_str() : "");
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
     return 0;

@@ -46,6 +46,8 @@ public:
     TextureHandle importTexture(const ExternalTarget& target, const std::string& debugName);
     SamplerHandle createSampler(const SamplerDesc& desc);
     TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, SamplerHandle sampler);
+    // One sampler per texture (samplers.size() == textures.size()).
+    TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, std::span<const SamplerHandle> samplers);
     PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc);
     // The same, built on the device's worker thread; bind it only once pipelineReady() says so.
     PipelineHandle createGraphicsPipelineAsync(const GraphicsPipelineDesc& desc);

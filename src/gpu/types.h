@@ -3,6 +3,7 @@
 // render/ talks only in these terms, and src/gpu/*.cpp translates them (Godot RD / Filament backend
 // style). Handles are indices into the Device's pools; 0 is never a valid handle.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,7 +33,7 @@ enum TextureUsage : uint32_t {
 enum class TextureState { Undefined, ColorTarget, DepthTarget, ShaderRead, Storage, TransferSrc, TransferDst };
 
 enum class Filter { Nearest, Linear };
-enum class AddressMode { Repeat, ClampToEdge, ClampToBorderWhite };
+enum class AddressMode { Repeat, ClampToEdge, ClampToBorderWhite, MirroredRepeat };
 enum class CompareOp { Never, Less, LessOrEqual, Greater, GreaterOrEqual, Always };
 enum class CullMode { None, Back };
 enum class BlendMode { Opaque, Alpha };
@@ -52,6 +53,10 @@ struct SamplerDesc {
     AddressMode addressMode = AddressMode::Repeat;
     bool compare = false;  // depth comparison sampler (hardware PCF)
     CompareOp compareOp = CompareOp::LessOrEqual;
+    // glTF samplers set these apart; unset = `filter` (min and between mip levels) / `addressMode` (V).
+    std::optional<Filter> minFilter;
+    std::optional<Filter> mipmapFilter;
+    std::optional<AddressMode> addressModeV;
 };
 
 // Set 0 of every pipeline is pushed per draw (VK_KHR_push_descriptor); set 1 optionally holds a

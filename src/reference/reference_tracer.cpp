@@ -21,7 +21,11 @@ namespace {
 constexpr float kMinNDotL = 0.1f;
 constexpr float kCreaseCos = 0.9f;
 constexpr float kDepthStepFootprints = 2.0f;
-constexpr float kOffsetScale = 1e-4f;  // shadow-ray origin offset, relative to the scene's size
+// Shadow-ray origin offset along the geometric normal: a few float ulps of the hit point's coordinates
+// (and of the scene's size, for points near the origin), enough to leave the surface, far below any
+// shadow feature. It used to be 1e-4 of the scene's size: 6 cm on a 600 m ground, which shrank shadows.
+constexpr float kOffsetScale = 1e-6f;
+constexpr float kOffsetPerCoordinate = 8e-6f;
 
 // What the first pass learns about a pixel; the second pass turns it into validity.
 struct PixelSample {
@@ -101,7 +105,8 @@ public:
         sample.viewDepth = hit->t * cosForward;
         const glm::vec3 wsShadingNormal = facing * hit->wsShadingNormal;
 
-        const float epsilon = std::max(epsilon_, 1e-6f * glm::length(hit->wsPosition));
+        const glm::vec3 a = glm::abs(hit->wsPosition);
+        const float epsilon = std::max(epsilon_, kOffsetPerCoordinate * std::max({a.x, a.y, a.z}));
         const glm::vec3 wsOrigin = hit->wsPosition + sample.wsNormal * epsilon;
         const LightRay toLight = lightRay(light_, wsOrigin, epsilon);
         const float fade = distanceFadeFactor(sample.viewDepth, options_);

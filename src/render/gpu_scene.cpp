@@ -46,7 +46,31 @@ void forEachRun(std::vector<uint32_t>& indices, Visit&& visit) {
     indices.clear();
 }
 
+gpu::AddressMode addressMode(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::ClampToEdge: return gpu::AddressMode::ClampToEdge;
+        case TextureWrap::MirroredRepeat: return gpu::AddressMode::MirroredRepeat;
+        case TextureWrap::Repeat: break;
+    }
+    return gpu::AddressMode::Repeat;
+}
+
+gpu::Filter filter(TextureFilter f) { return f == TextureFilter::Nearest ? gpu::Filter::Nearest : gpu::Filter::Linear; }
+
 }  // namespace
+
+// The Vulkan sampler that applies scene/texture_sampler.h's rule: the hardware's texel addressing is
+// that rule; mipmaps only when the glTF minFilter asks for them (maxLod 0 otherwise).
+gpu::SamplerDesc samplerDesc(const TextureSampler& sampler) {
+    gpu::SamplerDesc desc;
+    desc.filter = filter(sampler.magFilter);
+    desc.minFilter = filter(sampler.minFilter);
+    desc.mipmaps = sampler.mipmaps != MipmapMode::None;
+    desc.mipmapFilter = sampler.mipmaps == MipmapMode::Nearest ? gpu::Filter::Nearest : gpu::Filter::Linear;
+    desc.addressMode = addressMode(sampler.wrapS);
+    desc.addressModeV = addressMode(sampler.wrapT);
+    return desc;
+}
 
 GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     std::vector<gpu_data::VertexData> vertices;
@@ -82,24 +106,31 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     materials_ = device.createBuffer(materials.size() * sizeof(materials[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
                                      materials.data(), "materials");
 
-    // Base-colour textures (sRGB, mipmapped). An empty scene still gets one white texel so the
-    // table is never empty.
-    auto upload = [&](const Image& rgba, const std::string& name) {
+    // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
+    // one white texel so the table is never empty.
+    std::vector<gpu::SamplerHandle> samplerOfTexture;
+    std::vector<TextureSampler> made;  // one VkSampler per distinct sampler, samplers_[i] for made[i]
+    auto upload = [&](const Image& rgba, const TextureSampler& sampler, const std::string& name) {
         gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0,
                               "baseColor " + name};
         const gpu::TextureHandle texture = device.createTexture(desc);
         device.uploadTexture(texture, rgba.pixels);
         textures_.push_back(texture);
+        const auto found = std::find(made.begin(), made.end(), sampler);
+        if (found == made.end()) {
+            made.push_back(sampler);
+            samplers_.push_back(device.createSampler(samplerDesc(sampler)));
+        }
+        samplerOfTexture.push_back(samplers_[size_t(std::find(made.begin(), made.end(), sampler) - made.begin())]);
     };
-    for (const Texture& t : scene.textures) upload(t.rgba, t.name);
-    if (textures_.empty()) upload(Image(1, 1, 4, 255), "white");
-    sampler_ = device.createSampler({gpu::Filter::Linear, true, gpu::AddressMode::Repeat});
-    textureTable_ = device.createTextureTable(textures_, sampler_);
+    for (const Texture& t : scene.textures) upload(t.rgba, t.sampler, t.name);
+    if (textures_.empty()) upload(Image(1, 1, 4, 255), TextureSampler{}, "white");
+    textureTable_ = device.createTextureTable(textures_, samplerOfTexture);
 }
 
 GpuScene::~GpuScene() {
     device_.destroy(textureTable_);
-    device_.destroy(sampler_);
+    for (gpu::SamplerHandle sampler : samplers_) device_.destroy(sampler);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
     for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_}) device_.destroy(b);
 }

@@ -19,6 +19,9 @@ struct DrawItem {
     uint32_t materialIndex = 0;
 };
 
+// The GPU sampler of a glTF texture sampler (filters, mipmap mode, wrap modes).
+gpu::SamplerDesc samplerDesc(const TextureSampler& sampler);
+
 class GpuScene {
 public:
     GpuScene(gpu::Device& device, const Scene& scene);
@@ -46,7 +49,7 @@ private:
     uint64_t triangles_ = 0;
     gpu::BufferHandle vertices_, indices_, instances_, materials_;
     std::vector<gpu::TextureHandle> textures_;
-    gpu::SamplerHandle sampler_;
+    std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler
     gpu::TextureTableHandle textureTable_;
     std::vector<uint32_t> dirtyInstances_, dirtyMaterials_;
 };

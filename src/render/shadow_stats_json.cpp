@@ -17,6 +17,14 @@ std::string shadowStatsJson(const ShadowFrame& plan) {
     directional["castersPerTile"] = stats.castersPerTile;
     directional["casterDraws"] = stats.casterDraws;
     directional["skippedByCascadeBlendCulling"] = stats.skippedByBlendCulling;
+    // Depth range per tile in metres (near + far distance) and how far casters reach in front of it.
+    std::vector<float> depthRange, pancakedDepth;
+    for (const ShadowTile& tile : plan.directional.tiles) {
+        depthRange.push_back(tile.nearDistance + tile.farDistance);
+        pancakedDepth.push_back(tile.pancakedDepth);
+    }
+    directional["depthRangeMetres"] = depthRange;
+    directional["pancakedDepthMetres"] = pancakedDepth;
     json["directional"] = directional;
 
     // Spot and point lights (seed 001): a spot light takes 1 tile, a point light 6, at most 16 tiles.

@@ -1,3 +1,4 @@
+#include "scene/texture_sampler.h"
 #include "scene/gltf_writer.h"
 
 #include <algorithm>
@@ -169,7 +170,8 @@ json writeCamera(const Camera& camera) {
 
 void writeTextures(const Scene& scene, json& root, BufferWriter& buffer) {
     if (scene.textures.empty()) return;
-    root["samplers"] = json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}});
+    root["samplers"] = json::array();
+    std::vector<TextureSampler> samplers;  // one glTF sampler per distinct TextureSampler
     root["images"] = json::array();
     root["textures"] = json::array();
     for (const Texture& texture : scene.textures) {
@@ -184,7 +186,16 @@ void writeTextures(const Scene& scene, json& root, BufferWriter& buffer) {
             throw Error("cannot encode texture '" + texture.name + "' as PNG");
         const int view = buffer.addView(png.data(), png.size(), 0);
         root["images"].push_back({{"name", texture.name}, {"bufferView", view}, {"mimeType", "image/png"}});
-        root["textures"].push_back({{"name", texture.name}, {"sampler", 0}, {"source", root["images"].size() - 1}});
+        size_t sampler = 0;
+        while (sampler < samplers.size() && !(samplers[sampler] == texture.sampler)) ++sampler;
+        if (sampler == samplers.size()) {
+            samplers.push_back(texture.sampler);
+            root["samplers"].push_back({{"magFilter", gltfMagFilterCode(texture.sampler)},
+                                        {"minFilter", gltfMinFilterCode(texture.sampler)},
+                                        {"wrapS", gltfWrapCode(texture.sampler.wrapS)},
+                                        {"wrapT", gltfWrapCode(texture.sampler.wrapT)}});
+        }
+        root["textures"].push_back({{"name", texture.name}, {"sampler", sampler}, {"source", root["images"].size() - 1}});
     }
 }
 

@@ -29,6 +29,12 @@ CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, cons
         }
     }
     if (i == count) selection.strength = 0.0f;  // seed 000 §3.5: beyond the last cascade
+    // Blend only toward a next cascade whose sphere holds the point (spheres need not nest).
+    if (selection.cascadeBlend < 1.0f && i + 1 < count) {
+        const glm::vec4 next = data.cullingSpheres[i + 1];
+        const glm::vec3 d = wsPosition - glm::vec3(next);
+        if (!(glm::dot(d, d) < next.w)) selection.cascadeBlend = 1.0f;
+    }
     selection.cascadeIndex = i;
     return selection;
 }

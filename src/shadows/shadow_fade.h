@@ -19,7 +19,8 @@ struct CascadeSelection {
 };
 
 // GetShadowData of seed 000 §4.7 (before the hard/dither keyword handling): the first culling sphere
-// containing wsPosition, the distance fade from the view depth and the cascade fade.
+// containing wsPosition, the distance fade from the view depth and the cascade fade; no blend (1) where
+// the next cascade's sphere does not hold the point.
 CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
                                float viewDepth);
 

@@ -17,8 +17,15 @@ struct TileInputs {
     const std::vector<Aabb>& rsBounds;  // casters' bounds in the light's rotation-only space
     const std::vector<CascadeSphere>& spheres;
     const AtlasLayout& atlas;
-    float cullingFactor;
+    BlendCulling blendCulling;
+    ShadowFilter filter;
 };
+
+// How far toward the light the lit pass may look up a receiver of this cascade: the normal bias moves
+// the lookup by up to normalBias units (shadow_gpu_packing.h), plus one texel of rounding.
+float nearPlaneMargin(const ReservedDirectionalLight& light, float wsTexelSize, ShadowFilter filter) {
+    return wsTexelSize * (1.0f + light.normalBias * directionalNormalBiasTexels(filter) * 1.4142136f);
+}
 
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
                     uint32_t slot, uint32_t cascadeIndex, ShadowStats& stats) {
@@ -26,7 +33,7 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
     const Stopwatch cullingTime;
     TileCasters casters =
-        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.cullingFactor);
+        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
     stats.cullingMilliseconds += cullingTime.milliseconds();
     stats.skippedByBlendCulling += casters.skippedByBlendCulling;
 
@@ -37,11 +44,14 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     tile.rect = tileRect(in.atlas, tileIndex);
     tile.lightFromWorld = view.lightFromWorld;
     tile.wsTexelSize = view.wsTexelSize;
-    // The near plane goes back toward the light far enough to hold every kept caster, including those
-    // outside the camera's view, plus the light's near-plane offset (seed 000 §4.5); depthClamp still
-    // pancakes anything in front. The far plane is the sphere's far side: nothing behind it is sampled.
+    // The depth range fits the receivers (seed 000 §4.5, issue 13 defect 2): from the sphere's side toward
+    // the light (plus what the normal bias may add) to its far side; nothing outside it is sampled.
+    // Casters in front of the near plane are pancaked onto it by depth clamp, per fragment (no clipping,
+    // no distortion of triangles that cross the plane); shadowNearPlane pulls the near plane back.
     tile.farDistance = sphere.radius - view.lsSphereCenter.z;
-    tile.nearDistance = std::max(sphere.radius + view.lsSphereCenter.z, casters.lsMaxZ) + light.nearPlaneOffset;
+    tile.nearDistance = sphere.radius + view.lsSphereCenter.z + nearPlaneMargin(light, view.wsTexelSize, in.filter) +
+                        light.nearPlaneOffset;
+    tile.pancakedDepth = std::max(0.0f, casters.lsMaxZ - tile.nearDistance);
     tile.clipFromLight = orthoClipFromLight(view.halfExtent, tile.nearDistance, tile.farDistance);
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = atlasFromClip(in.atlas, tileIndex) * tile.clipFromWorld;
@@ -65,13 +75,15 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
     directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
 
-    const float cullingFactor = cascadeBlendCullingFactor(config.cascadeFade);
+    const std::vector<Aabb> receivers = shadowReceiverBounds(scene);
+    const BlendCulling blendCulling{cascadeBlendCullingFactor(config.cascadeFade), &receivers};
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
         const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
-        const TileInputs inputs{scene, casters, rsBounds, directional.cascades, directional.atlas, cullingFactor};
+        const TileInputs inputs{scene,   casters, rsBounds, directional.cascades, directional.atlas, blendCulling,
+                                config.filter};
         for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
             directional.tiles.push_back(
                 planTile(inputs, light, rotation, slot, cascade, frame.stats));

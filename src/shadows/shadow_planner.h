@@ -43,6 +43,9 @@ struct ShadowTile {
     float wsTexelSize = 0.0f;        // world size of one texel of this tile (perspective: at distance 1)
     float nearDistance = 0.0f;       // light-view distance from the sphere centre to the near plane
     float farDistance = 0.0f;        // ... and to the far plane (the sphere radius)
+    // Directional tiles: how far the kept casters reach in front of the near plane (pancaked onto it by
+    // depth clamp); the depth range would have to grow by this much to hold them all.
+    float pancakedDepth = 0.0f;
     float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor
     bool depthClamp = true;          // pancaking: draw with depthClampEnable
     std::vector<uint32_t> casterInstances;  // indices into Scene::instances, scene order

@@ -43,14 +43,16 @@ const Limits kLimits[] = {
     // (filter + 1) unit measured e.g. thin_wall PCF7x7 2.251 0.275 0.0249, near_far_casters PCF7x7
     // 2.048 0.486 0.0213.
     // scene                filter               mis %  int. %   MAE      measured: mis %, interior %, MAE
-    {"near_far_casters", ShadowFilter::PCF2x2,  0.47, 0.020, 0.0068},  // measured 0.331 0.000 0.0046
-    {"near_far_casters", ShadowFilter::PCF3x3,  0.98, 0.020, 0.0120},  // measured 0.740 0.000 0.0088
-    {"near_far_casters", ShadowFilter::PCF5x5,  1.40, 0.181, 0.0173},  // measured 1.079 0.107 0.0130
-    {"near_far_casters", ShadowFilter::PCF7x7,  1.64, 0.346, 0.0222},  // measured 1.266 0.217 0.0169
+    // near_far_casters re-measured once the reference's shadow rays stopped starting 6 cm off its 600 m
+    // ground (the old limits were 0.47 / 0.98 / 1.40 / 1.64 %).
+    {"near_far_casters", ShadowFilter::PCF2x2,  0.65, 0.020, 0.0078},  // measured 0.549 0.004 0.0061
+    {"near_far_casters", ShadowFilter::PCF3x3,  1.10, 0.150, 0.0132},  // measured 0.958 0.088 0.0105
+    {"near_far_casters", ShadowFilter::PCF5x5,  1.48, 0.360, 0.0186},  // measured 1.296 0.223 0.0148
+    {"near_far_casters", ShadowFilter::PCF7x7,  1.68, 0.520, 0.0235},  // measured 1.484 0.335 0.0187
     {"thin_wall",        ShadowFilter::PCF2x2,  0.83, 0.020, 0.0092},  // measured 0.617 0.000 0.0065
     {"thin_wall",        ShadowFilter::PCF3x3,  1.18, 0.020, 0.0134},  // measured 0.897 0.000 0.0099
     {"thin_wall",        ShadowFilter::PCF5x5,  1.57, 0.020, 0.0182},  // measured 1.211 0.000 0.0137
-    {"thin_wall",        ShadowFilter::PCF7x7,  1.89, 0.020, 0.0229},  // measured 1.467 0.000 0.0175
+    {"thin_wall",        ShadowFilter::PCF7x7,  1.70, 0.020, 0.0229},  // measured 1.467 0.000 0.0175 (x 1.1 + 0.05: a 2 px shift gives 1.80)
     {"poles",            ShadowFilter::PCF2x2,  0.37, 0.020, 0.0049},  // measured 0.252 0.000 0.0031
     {"poles",            ShadowFilter::PCF3x3,  0.37, 0.020, 0.0069},  // measured 0.252 0.000 0.0047
     {"poles",            ShadowFilter::PCF5x5,  0.54, 0.020, 0.0097},  // measured 0.386 0.000 0.0069
@@ -76,6 +78,18 @@ std::string testName(const ::testing::TestParamInfo<Limits>& info) {
     return std::string(info.param.scene) + "_" + shadowFilterName(info.param.filter);
 }
 
+// Our AOV moved by (dx, dy) pixels, the vacated border lit.
+Image shifted(const Image& image, int dx, int dy) {
+    Image moved(image.width, image.height, 1, 255);
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const int sx = int(x) - dx, sy = int(y) - dy;
+            if (sx >= 0 && sy >= 0 && sx < int(image.width) && sy < int(image.height))
+                moved.at(x, y) = image.at(uint32_t(sx), uint32_t(sy));
+        }
+    return moved;
+}
+
 }  // namespace
 
 TEST_P(DirectionalCompare, ShadowStaysWithinTheMeasuredErrorOfTheReference) {
@@ -91,6 +105,21 @@ TEST_P(DirectionalCompare, ShadowStaysWithinTheMeasuredErrorOfTheReference) {
     EXPECT_LE(m.misclassifiedPercent, limits.misclassifiedPercent);
     EXPECT_LE(m.interiorMisclassifiedPercent, limits.interiorMisclassifiedPercent);
     EXPECT_LE(m.meanAbsoluteError, limits.meanAbsoluteError);
+}
+
+// The limits have teeth: the same AOV with its shadows displaced by 2 pixels breaks them (issue 13,
+// defect 5: the old PCF7x7 rows let a 2 px shift pass).
+TEST_P(DirectionalCompare, ShadowShiftedTwoPixelsBreaksTheLimits) {
+    const Limits& limits = GetParam();
+    const SceneComparison result = compareCanonicalScene(limits.scene, 0, settingsFor(limits));
+    const ReferenceImages& reference = cachedReference(limits.scene, 0, settingsFor(limits));
+    for (const glm::ivec2 shift : {glm::ivec2(2, 0), glm::ivec2(0, 2)}) {
+        const CompareMetrics m = compareShadowImages(shifted(result.ours.image, shift.x, shift.y), reference.shadow,
+                                                     reference.validMask);
+        std::printf("shifted (%d, %d) %s/%s: misclassified %.3f %%, edge error %.2f px\n", shift.x, shift.y,
+                    limits.scene, shadowFilterName(limits.filter), m.misclassifiedPercent, m.edgeErrorPixels);
+        EXPECT_GT(m.misclassifiedPercent, limits.misclassifiedPercent) << "shift " << shift.x << ", " << shift.y;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(CanonicalScenes, DirectionalCompare, ::testing::ValuesIn(kLimits), testName);

@@ -11,6 +11,7 @@
 #include "reference/reference_tracer.h"
 #include "render_test_support.h"
 #include "penumbra/camera.h"
+#include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"
 
 namespace penumbra::test {
@@ -20,7 +21,7 @@ constexpr uint32_t kCompareWidth = 256;
 constexpr uint32_t kCompareHeight = 144;
 
 inline std::string canonicalScenePath(const std::string& name) {
-    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + name + ".gltf";
+    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + canonicalSceneFileName(name);
 }
 
 // Loaded once per test program: the tests read the same files a user passes to `penumbra compare`.
