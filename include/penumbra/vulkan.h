@@ -4,7 +4,8 @@
 // <penumbra/device.h> and <penumbra/renderer.h>; only this header needs <vulkan/vulkan.h>.
 //
 // The caller's VkDevice must be Vulkan 1.3 with these enabled:
-//   features: dynamicRendering, synchronization2, maintenance4 (1.3), depthClamp (1.0);
+//   features: dynamicRendering, synchronization2, maintenance4 (1.3), drawIndirectCount (1.2),
+//             depthClamp (1.0);
 //   extension: VK_KHR_push_descriptor;
 //   a queue whose family supports graphics and compute (Penumbra submits to it: externally
 //   synchronize it with your own submissions, e.g. submit from one thread).

@@ -171,6 +171,13 @@ void CommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint3
     vkCmdDrawIndexed(native(*this), indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
 }
 
+void CommandList::drawIndexedIndirectCount(BufferHandle commands, uint64_t offset, BufferHandle count,
+                                           uint64_t countOffset, uint32_t maxDraws) {
+    Device::Impl& d = impl(*this);
+    vkCmdDrawIndexedIndirectCount(native(*this), d.buffers.at(commands.id).buffer, offset, d.buffers.at(count.id).buffer,
+                                  countOffset, maxDraws, sizeof(VkDrawIndexedIndirectCommand));
+}
+
 void CommandList::draw(uint32_t vertexCount, uint32_t instanceCount) {
     vkCmdDraw(native(*this), vertexCount, instanceCount, 0, 0);
 }
@@ -226,7 +233,10 @@ void CommandList::copyTextureToBuffer(TextureHandle texture, TextureState state,
     vkCmdCopyImageToBuffer(native(*this), t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers.at(destination.id).buffer,
                            1, &copy);
     recordTransition(native(*this), t, TextureState::TransferSrc, state);
-    // Make the copy visible to the host once the frame's fence signals.
+    hostReadBarrier();
+}
+
+void CommandList::hostReadBarrier() {
     VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
     barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
     barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;

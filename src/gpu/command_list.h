@@ -26,6 +26,10 @@ public:
     void drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint32_t firstIndex, int32_t vertexOffset,
                      uint32_t firstInstance);
     void draw(uint32_t vertexCount, uint32_t instanceCount = 1);
+    // vkCmdDrawIndexedIndirectCount: up to maxDraws VkDrawIndexedIndirectCommands (20 bytes each) from
+    // `commands` at `offset`, as many as the uint32 at `countOffset` of `count` says.
+    void drawIndexedIndirectCount(BufferHandle commands, uint64_t offset, BufferHandle count, uint64_t countOffset,
+                                  uint32_t maxDraws);
     void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1);
     void clearBuffer(BufferHandle buffer, uint32_t value);
     void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
@@ -36,6 +40,8 @@ public:
     void blitToExternal(TextureHandle source, TextureHandle external, const ExternalTarget& target);
     // A full memory barrier between compute/graphics writes and later reads (buffers and storage images).
     void memoryBarrier();
+    // Transfer writes so far become visible to the host once the frame's fence has signalled.
+    void hostReadBarrier();
     // GPU timestamps around a named pass; results in Device::takeCompletedFrames() once the frame is
     // done. One-off command lists (Device::beginCommands) record none.
     void beginTimer(const std::string& name);

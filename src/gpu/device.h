@@ -72,6 +72,9 @@ public:
     // Ends and submits the frame with its fence (one vkQueueSubmit); `sync` adds the caller's
     // semaphores. Returns the frame's index.
     uint64_t submitFrame(CommandList& commands, const ExternalTarget* sync = nullptr);
+    // Copies `source` (GPU-written, e.g. counters) at the end of this frame's work into memory the host
+    // reads once the frame is done: the bytes arrive in CompletedFrame::readback, in call order.
+    void readBackAtFrameEnd(CommandList& commands, const BufferSlice& source);
     void waitFrame(uint64_t frameIndex);  // returns once that frame has finished on the GPU
     void waitIdle();                      // every submitted frame (fence waits, no vkDeviceWaitIdle)
     // After waitIdle: frees memory blocks that hold nothing (a renderer's end, say).
@@ -85,6 +88,8 @@ public:
     // Copies a texture (RGBA8 / R8 / R32Float / D32Float) to host memory; the texture must be in
     // `state` and is left there. Float formats come back as 4 bytes per pixel.
     Image readTexture(TextureHandle texture, TextureState state);
+    // Copies a whole buffer to host memory (waits for the GPU; tests and debugging).
+    std::vector<uint8_t> readBuffer(BufferHandle buffer);
 
     ObjectCounts objectCounts() const;
     // Device memory this process uses: VK_EXT_memory_budget's heap usage where the driver has it,

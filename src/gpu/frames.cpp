@@ -38,7 +38,8 @@ void Device::Impl::createFrames(uint32_t count) {
 
 void Device::Impl::createUploadRings(Device& owner) {
     for (FrameContext& frame : frames) {
-        frame.uploadBuffer = owner.createBuffer(kInitialUploadBytes, kBufferUniform | kBufferStorage | kBufferTransferSrc,
+        frame.uploadBuffer = owner.createBuffer(kInitialUploadBytes,
+                                                kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst,
                                                 MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = kInitialUploadBytes;
     }
@@ -74,6 +75,10 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         for (size_t i = 0; i < frame.timerNames.size(); ++i)
             done.timings.push_back({frame.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
     }
+    const auto* ring = static_cast<const uint8_t*>(buffers.at(frame.uploadBuffer.id).mapped);
+    for (const auto& [offset, size] : frame.readbackRanges)
+        done.readback.insert(done.readback.end(), ring + offset, ring + offset + size);
+    frame.readbackRanges.clear();
     completed.push_back(std::move(done));
     frame.inFlight = false;
     frame.timerNames.clear();
@@ -95,6 +100,7 @@ CommandList Device::beginFrame() {
     VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));
     frame.frameIndex = d.nextFrameIndex++;
     frame.uploadUsed = 0;
+    frame.readbackRanges.clear();
     d.recordingSlot = int32_t(slot);
 
     CommandList commands;
@@ -126,7 +132,8 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
             // Data written earlier in this frame lives in the old buffer; keep it until the frame is done.
             frame.garbage.buffers.push_back(d.buffers.remove(frame.uploadBuffer.id));
         }
-        frame.uploadBuffer = createBuffer(capacity, kBufferUniform | kBufferStorage | kBufferTransferSrc,
+        if (!frame.readbackRanges.empty()) throw Error("internal: the upload ring grew after a frame readback");
+        frame.uploadBuffer = createBuffer(capacity, kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst,
                                           MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = capacity;
         offset = 0;
@@ -136,6 +143,16 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
     allocation.slice = {frame.uploadBuffer, offset, size};
     allocation.mapped = static_cast<uint8_t*>(d.buffers.at(frame.uploadBuffer.id).mapped) + offset;
     return allocation;
+}
+
+void Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& source) {
+    Impl& d = *impl_;
+    if (d.recordingSlot < 0) throw Error("internal: readBackAtFrameEnd outside beginFrame/submitFrame");
+    const FrameAllocation target = allocateFrameData(source.size, 16);
+    commands.memoryBarrier();
+    commands.copyBuffer(source, target.slice.buffer, target.slice.offset);
+    commands.hostReadBarrier();
+    d.frames[d.recordingSlot].readbackRanges.emplace_back(target.slice.offset, source.size);
 }
 
 uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) {

@@ -321,6 +321,34 @@ TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> tex
     return TextureTableHandle{d.tables.insert(table)};
 }
 
+std::vector<uint8_t> Device::readBuffer(BufferHandle handle) {
+    Impl& d = *impl_;
+    const uint64_t size = d.buffers.at(handle.id).size;
+    const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible, nullptr, "readback");
+    d.immediate([&](VkCommandBuffer cb) {
+        VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
+        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dependency.memoryBarrierCount = 1;
+        dependency.pMemoryBarriers = &barrier;
+        vkCmdPipelineBarrier2(cb, &dependency);
+        const VkBufferCopy copy{0, 0, size};
+        vkCmdCopyBuffer(cb, d.buffers.at(handle.id).buffer, d.buffers.at(readback.id).buffer, 1, &copy);
+        barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+        barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        barrier.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        vkCmdPipelineBarrier2(cb, &dependency);
+    });
+    const auto* mapped = static_cast<const uint8_t*>(d.buffers.at(readback.id).mapped);
+    std::vector<uint8_t> bytes(mapped, mapped + size);
+    BufferResource readbackResource = d.buffers.remove(readback.id);
+    d.destroyNow(readbackResource);
+    return bytes;
+}
+
 Image Device::readTexture(TextureHandle handle, TextureState state) {
     Impl& d = *impl_;
     const TextureResource& t = d.textures.at(handle.id);

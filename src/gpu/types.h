@@ -175,6 +175,7 @@ struct CompletedFrame {
     uint64_t frameIndex = 0;
     std::vector<PassTiming> timings;
     double submitToFenceMilliseconds = 0.0;
+    std::vector<uint8_t> readback;  // what Device::readBackAtFrameEnd asked for, in call order
 };
 
 // An image the caller owns on the caller's VkDevice (penumbra/vulkan.h fills this from Vulkan types;

@@ -86,6 +86,7 @@ struct FrameContext {
     BufferHandle uploadBuffer;
     uint64_t uploadCapacity = 0;
     uint64_t uploadUsed = 0;
+    std::vector<std::pair<uint64_t, uint64_t>> readbackRanges;  // (offset, size) in the upload ring
 };
 
 // A graphics pipeline built on the Device's worker thread.

@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "cull_structs.h"
 #include "scene_structs.h"
 
 namespace penumbra {
@@ -29,6 +30,15 @@ gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance
     data.worldFromObject = instance.worldFromObject;
     data.normalFromObject = glm::mat4(glm::inverseTranspose(glm::mat3(instance.worldFromObject)));
     data.info = glm::uvec4(scene.meshes.at(instance.meshIndex).materialIndex, 0, 0, 0);
+    return data;
+}
+
+gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshSlot) {
+    gpu_data::CullInstance data{};
+    const bool casts = instance.castShadows && instance.wsBounds.valid() && meshSlot != ~0u;
+    data.wsMin = glm::vec4(casts ? instance.wsBounds.min : glm::vec3(0.0f), 0.0f);
+    data.wsMax = glm::vec4(casts ? instance.wsBounds.max : glm::vec3(0.0f), 0.0f);
+    data.info = glm::uvec4(casts ? meshSlot : 0u, casts ? gpu_data::kCullInstanceCasts : 0u, 0u, 0u);
     return data;
 }
 
@@ -92,6 +102,33 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
         draws_.push_back({i, r.firstIndex, r.indexCount, r.vertexOffset, scene.meshes[instance.meshIndex].materialIndex});
         triangles_ += r.indexCount / 3;
     }
+    // Culling: a slot per mesh with geometry; its instances get consecutive places in a tile's list.
+    std::vector<gpu_data::CullMesh> cullMeshes;
+    meshSlotOfMesh_.assign(scene.meshes.size(), ~0u);
+    for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        if (ranges[m].indexCount == 0) continue;
+        meshSlotOfMesh_[m] = uint32_t(cullMeshes.size());
+        gpu_data::CullMesh mesh{};
+        mesh.draw = glm::uvec4(ranges[m].indexCount, ranges[m].firstIndex, uint32_t(ranges[m].vertexOffset),
+                               scene.meshes[m].materialIndex);
+        cullMeshes.push_back(mesh);
+    }
+    std::vector<gpu_data::CullInstance> cullInstances;
+    for (const Instance& instance : scene.instances) {
+        const uint32_t slot = meshSlotOfMesh_[instance.meshIndex];
+        if (slot != ~0u) ++cullMeshes[slot].counts.y;
+        cullInstances.push_back(packCullInstance(instance, slot));
+    }
+    uint32_t firstSlot = 0;
+    for (gpu_data::CullMesh& mesh : cullMeshes) {
+        mesh.counts.x = firstSlot;
+        firstSlot += mesh.counts.y;
+    }
+    if (cullMeshes.empty()) cullMeshes.push_back({});
+    if (cullInstances.empty()) cullInstances.push_back({});
+    instanceCount_ = uint32_t(scene.instances.size());
+    meshSlotCount_ = uint32_t(cullMeshes.size());
+
     std::vector<gpu_data::MaterialData> materials;
     for (const Material& m : scene.materials) materials.push_back(packMaterial(m));
     if (materials.empty()) materials.push_back(packMaterial(Material{}));
@@ -105,6 +142,10 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
                                      instances.data(), "instances");
     materials_ = device.createBuffer(materials.size() * sizeof(materials[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
                                      materials.data(), "materials");
+    cullInstances_ = device.createBuffer(cullInstances.size() * sizeof(cullInstances[0]), gpu::kBufferStorage,
+                                         MemoryKind::DeviceLocal, cullInstances.data(), "cull instances");
+    cullMeshes_ = device.createBuffer(cullMeshes.size() * sizeof(cullMeshes[0]), gpu::kBufferStorage,
+                                      MemoryKind::DeviceLocal, cullMeshes.data(), "cull meshes");
 
     // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
     // one white texel so the table is never empty.
@@ -132,7 +173,7 @@ GpuScene::~GpuScene() {
     device_.destroy(textureTable_);
     for (gpu::SamplerHandle sampler : samplers_) device_.destroy(sampler);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
-    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_}) device_.destroy(b);
 }
 
 uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene) {
@@ -146,7 +187,15 @@ uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene)
         auto* out = static_cast<gpu_data::InstanceData*>(staging.mapped);
         for (uint32_t i = 0; i < count; ++i) out[i] = packInstance(scene, scene.instances[first + i]);
         commands.copyBuffer(staging.slice, instances_, uint64_t(first) * sizeof(gpu_data::InstanceData));
-        bytes += size;
+        const uint64_t cullSize = uint64_t(count) * sizeof(gpu_data::CullInstance);
+        const gpu::FrameAllocation cullStaging = device_.allocateFrameData(cullSize, 16);
+        auto* cullOut = static_cast<gpu_data::CullInstance*>(cullStaging.mapped);
+        for (uint32_t i = 0; i < count; ++i) {
+            const Instance& instance = scene.instances[first + i];
+            cullOut[i] = packCullInstance(instance, meshSlotOfMesh_[instance.meshIndex]);
+        }
+        commands.copyBuffer(cullStaging.slice, cullInstances_, uint64_t(first) * sizeof(gpu_data::CullInstance));
+        bytes += size + cullSize;
     });
     forEachRun(dirtyMaterials_, [&](uint32_t first, uint32_t count) {
         const uint64_t size = uint64_t(count) * sizeof(gpu_data::MaterialData);

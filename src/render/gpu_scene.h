@@ -35,6 +35,12 @@ public:
     gpu::BufferHandle instanceBuffer() const { return instances_; }
     gpu::BufferHandle materialBuffer() const { return materials_; }
     gpu::TextureTableHandle textureTable() const { return textureTable_; }
+    // The GPU culling pass's view (cull_structs.h): per instance its bounds and mesh slot, per mesh
+    // with geometry its draw and where its instances go in a tile's visible list.
+    gpu::BufferHandle cullInstanceBuffer() const { return cullInstances_; }
+    gpu::BufferHandle cullMeshBuffer() const { return cullMeshes_; }
+    uint32_t instanceCount() const { return instanceCount_; }
+    uint32_t meshSlotCount() const { return meshSlotCount_; }
     uint64_t triangleCount() const { return triangles_; }
 
     // Marks an instance or material as changed; recordUpdates uploads it.
@@ -47,7 +53,9 @@ private:
     gpu::Device& device_;
     std::vector<DrawItem> draws_;
     uint64_t triangles_ = 0;
-    gpu::BufferHandle vertices_, indices_, instances_, materials_;
+    gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_;
+    std::vector<uint32_t> meshSlotOfMesh_;  // per Scene::meshes entry: its CullMesh slot, ~0u without geometry
+    uint32_t instanceCount_ = 0, meshSlotCount_ = 0;
     std::vector<gpu::TextureHandle> textures_;
     std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler
     gpu::TextureTableHandle textureTable_;

@@ -13,9 +13,12 @@
 #include "render/readback_images.h"
 #include "render/screen_space_shadow_pass.h"
 #include "render/shadow_caster_pass.h"
+#include "render/shadow_culling_pass.h"
 #include "render/shadow_stats_json.h"
 #include "scene/scene_edits.h"
 #include "scene_structs.h"
+#include "cull_structs.h"
+#include "shadows/cull_packing.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -77,7 +80,25 @@ constexpr size_t kMaxImportedImages = 8;
 struct PendingFrame {
     uint64_t frameIndex = 0;
     FrameStats stats;
+    ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
 };
+
+// What the GPU culling pass reports per tile, turned into the frame's atlas stats and the
+// planner stats JSON's casters per tile.
+void applyCullStats(FrameStats& stats, const ShadowFrame& plan, const std::vector<uint8_t>& readback) {
+    const size_t tileCount = plan.directional.tiles.size() + plan.other.tiles.size();
+    std::vector<gpu_data::CullTileStats> tiles(tileCount);
+    if (readback.size() >= tileCount * sizeof(gpu_data::CullTileStats) && tileCount > 0)
+        std::memcpy(tiles.data(), readback.data(), tileCount * sizeof(gpu_data::CullTileStats));
+    std::vector<uint32_t> casters;
+    for (size_t i = 0; i < tileCount; ++i) {
+        AtlasDrawStats& atlas = stats.atlases[i < plan.directional.tiles.size() ? 0 : 1];
+        atlas.draws += tiles[i].counts.x;
+        atlas.triangles += tiles[i].counts.z;
+        casters.push_back(tiles[i].counts.y);
+    }
+    stats.shadowStatsJson = shadowStatsJson(plan, &casters);
+}
 
 }  // namespace
 
@@ -86,6 +107,7 @@ struct Renderer::State {
     Scene scene;
     RendererOptions options;
     GpuScene gpuScene;
+    ShadowCullingPass culling;
     MainPass mainPass;
     ShadowCasterPass casterPass;
     ScreenSpaceShadowPass screenSpacePass;
@@ -97,8 +119,8 @@ struct Renderer::State {
     std::vector<FrameStats> completed;
 
     State(gpu::Device& d, Scene s, const RendererOptions& o)
-        : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), mainPass(d, gpuScene, o.warmup),
-          casterPass(d, gpuScene, scene), screenSpacePass(d, mainPass), targets(d) {
+        : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
+          mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass), targets(d) {
         // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
         shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
                                          gpu::CompareOp::LessOrEqual});
@@ -170,7 +192,10 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     FrameStats& stats = frame.stats;
 
     Stopwatch phase;
-    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    PlanOptions planOptions;
+    planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
+    frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planOptions);
+    const ShadowFrame& plan = frame.plan;
     const PackedLights lights = packLights(scene, [&](uint32_t i) {
         const bool directional = scene.lights[i].type == LightType::Directional;
         const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
@@ -180,7 +205,6 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
     stats.warnings = lights.warnings;
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
-    stats.shadowStatsJson = shadowStatsJson(plan);
 
     FrameTargetSizes sizes;
     sizes.directionalAtlas = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
@@ -202,19 +226,28 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     const gpu::BufferSlice directionalSlice =
         uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
     const gpu::BufferSlice otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
+    const uint32_t directionalTiles = uint32_t(plan.directional.tiles.size());
+    const uint32_t cullTiles = directionalTiles + uint32_t(plan.other.tiles.size());
+    const gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+    const gpu::BufferSlice cullSlice = uploadFrameData(device, &cullFrame, sizeof(cullFrame));
     stats.cpu.upload = phase.milliseconds();
     static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
 
     phase.restart();
     const std::vector<gpu::DescriptorWrite> casterWrites = sceneDescriptorWrites(gpuScene, frameSlice, lightSlice);
+    commands.beginTimer("shadows.culling");
+    culling.record(commands, cullSlice, cullTiles);
+    commands.endTimer();
     commands.beginTimer("shadows.directional");
-    stats.atlases.push_back(casterPass.record(commands, scene, plan.directional.tiles, targets.directionalAtlas,
-                                              sizes.directionalAtlas, casterWrites, "shadows.directional"));
+    casterPass.record(commands, plan.directional.tiles, 0, targets.directionalAtlas, sizes.directionalAtlas, casterWrites,
+                      culling);
     commands.endTimer();
     commands.beginTimer("shadows.other");
-    stats.atlases.push_back(casterPass.record(commands, scene, plan.other.tiles, targets.otherAtlas, sizes.otherAtlas,
-                                              casterWrites, "shadows.other"));
+    casterPass.record(commands, plan.other.tiles, directionalTiles, targets.otherAtlas, sizes.otherAtlas, casterWrites,
+                      culling);
     commands.endTimer();
+    stats.atlases = {{"shadows.directional", directionalTiles, 0, 0}, {"shadows.other", cullTiles - directionalTiles, 0, 0}};
+    device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
 
     MainPassInputs inputs;
     inputs.writes = casterWrites;
@@ -268,6 +301,7 @@ void Renderer::State::collectCompleted() {
         while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.pop_front();  // not ours
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
         FrameStats stats = std::move(pending.front().stats);
+        applyCullStats(stats, pending.front().plan, done.readback);
         pending.pop_front();
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
         stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;

@@ -19,6 +19,7 @@ struct TileInputs {
     const AtlasLayout& atlas;
     BlendCulling blendCulling;
     ShadowFilter filter;
+    bool cullCasters;
 };
 
 // How far toward the light the lit pass may look up a receiver of this cascade: the normal bias moves
@@ -32,8 +33,9 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     const CascadeSphere& sphere = in.spheres[cascadeIndex];
     const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
     const Stopwatch cullingTime;
-    TileCasters casters =
-        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
+    TileCasters casters;
+    if (in.cullCasters)
+        casters = cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
     stats.cullingMilliseconds += cullingTime.milliseconds();
     stats.skippedByBlendCulling += casters.skippedByBlendCulling;
 
@@ -43,6 +45,7 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     const uint32_t tileIndex = light.firstTile + cascadeIndex;
     tile.rect = tileRect(in.atlas, tileIndex);
     tile.lightFromWorld = view.lightFromWorld;
+    tile.lsHalfExtent = view.halfExtent;
     tile.wsTexelSize = view.wsTexelSize;
     // The depth range fits the receivers (seed 000 §4.5, issue 13 defect 2): from the sphere's side toward
     // the light (plus what the normal bias may add) to its far side; nothing outside it is sampled.
@@ -63,7 +66,8 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
 
 }  // namespace
 
-ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings) {
+ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                                const PlanOptions& options) {
     ShadowFrame frame;
     DirectionalShadowPlan& directional = frame.directional;
     const DirectionalShadowSettings& config = settings.directional;
@@ -75,15 +79,21 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
     directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
 
-    const std::vector<Aabb> receivers = shadowReceiverBounds(scene);
-    const BlendCulling blendCulling{cascadeBlendCullingFactor(config.cascadeFade), &receivers};
+    // Blend culling asks where a caster's shadow can land: anywhere in the receivers' common bounds (one
+    // box, so the same rule costs O(1) per caster on the CPU and in the GPU culling pass).
+    for (const Aabb& receiver : shadowReceiverBounds(scene)) directional.wsReceiverBounds.extend(receiver);
+    directional.blendCullingFactor = cascadeBlendCullingFactor(config.cascadeFade);
+    const std::vector<Aabb> receivers = {directional.wsReceiverBounds};
+    const BlendCulling blendCulling{directional.blendCullingFactor,
+                                    directional.wsReceiverBounds.valid() ? &receivers : nullptr};
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
-        const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
-        const TileInputs inputs{scene,   casters, rsBounds, directional.cascades, directional.atlas, blendCulling,
-                                config.filter};
+        const std::vector<Aabb> rsBounds =
+            options.cullCasters ? rotatedCasterBounds(scene, casters, rotation) : std::vector<Aabb>{};
+        const TileInputs inputs{scene,        casters,       rsBounds,           directional.cascades,
+                                directional.atlas, blendCulling, config.filter, options.cullCasters};
         for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
             directional.tiles.push_back(
                 planTile(inputs, light, rotation, slot, cascade, frame.stats));
@@ -99,7 +109,7 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
         stats.casterDraws += uint32_t(tile.casterInstances.size());
     }
     directional.gpu = packDirectionalShadowData(directional, settings, distance);
-    frame.other = planOtherShadows(scene, camera, settings, casters, distance);
+    frame.other = planOtherShadows(scene, camera, settings, casters, distance, options.cullCasters);
     stats.cullingMilliseconds += frame.other.cullingMilliseconds;
     return frame;
 }

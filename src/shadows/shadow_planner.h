@@ -48,7 +48,12 @@ struct ShadowTile {
     float pancakedDepth = 0.0f;
     float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor
     bool depthClamp = true;          // pancaking: draw with depthClampEnable
-    std::vector<uint32_t> casterInstances;  // indices into Scene::instances, scene order
+    bool perspective = false;        // spot / point face (else a directional cascade)
+    float lsHalfExtent = 0.0f;       // directional: the ortho box is [-h, h]^2 in light view
+    glm::vec3 wsApex{0.0f};          // perspective: the light's position
+    // Indices into Scene::instances, scene order; empty when the plan leaves culling to the GPU
+    // (PlanOptions::cullCasters false).
+    std::vector<uint32_t> casterInstances;
 };
 
 struct ShadowStats {
@@ -68,6 +73,8 @@ struct DirectionalShadowPlan {
     std::vector<ShadowTile> tiles;                 // tile i = light slot * cascadeCount + cascade
     std::vector<int32_t> slotOfSceneLight;         // per Scene::lights entry: slot, or -1
     gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
+    Aabb wsReceiverBounds;                         // every shadow receiver: how far shadows can reach
+    float blendCullingFactor = 0.0f;               // seed 000 §4.9, cascadeBlendCullingFactor
 };
 
 // Spot and point light shadows (seed 001) in their own atlas, planned by shadows/spot_shadow_planner.
@@ -90,10 +97,18 @@ struct ShadowFrame {
     ShadowStats stats;
 };
 
+struct PlanOptions {
+    // Fill ShadowTile::casterInstances by culling every caster against every tile on the CPU. The
+    // renderer culls on the GPU (render/shadow_culling_pass) and turns this off; tests keep it as the
+    // reference the GPU lists are compared with.
+    bool cullCasters = true;
+};
+
 class ShadowPlanner {
 public:
     // Settings must be valid (validateShadowSettings); scene and camera are read only.
-    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings);
+    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                            const PlanOptions& options = {});
 };
 
 }  // namespace penumbra

@@ -33,7 +33,7 @@ LightTiles lightTileShape(const Light& light, const ReservedOtherLight& reserved
 
 ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& casters, const SpotAtlasLayout& layout,
                          const ReservedOtherLight& reserved, const LightTiles& shape, uint32_t slot, uint32_t face,
-                         const glm::vec3& wsDirection, double& cullingMilliseconds) {
+                         const glm::vec3& wsDirection, bool cullCasters, double& cullingMilliseconds) {
     const Light& light = scene.lights[reserved.sceneLightIndex];
     const uint32_t tileIndex = reserved.firstTile + face;
     ShadowTile tile;
@@ -50,8 +50,10 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
     tile.wsTexelSize = 2.0f * shape.tanHalfFov / float(layout.tileSize);
     tile.slopeScaleBias = reserved.slopeScaleBias;
     tile.depthClamp = true;  // pancaking onto the near plane, as for directional tiles
+    tile.perspective = true;
+    tile.wsApex = light.wsPosition;
     const Stopwatch cullingTime;
-    tile.casterInstances = frustumCasters(scene, casters, tile.clipFromWorld, light.wsPosition);
+    if (cullCasters) tile.casterInstances = frustumCasters(scene, casters, tile.clipFromWorld, light.wsPosition);
     cullingMilliseconds += cullingTime.milliseconds();
     return tile;
 }
@@ -72,7 +74,7 @@ void packLight(gpu_data::OtherShadowData& data, const Light& light, const Reserv
 }  // namespace
 
 OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
-                                 const std::vector<uint32_t>& casters, float shadowDistance) {
+                                 const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters) {
     OtherShadowPlan plan;
     OtherLightReservation reservation = reserveOtherShadows(scene, camera, casters);
     plan.lights = std::move(reservation.lights);
@@ -92,7 +94,7 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
         for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
             const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
             ShadowTile tile = planOtherTile(scene, casters, plan.atlas, reserved, shape, slot, face, direction,
-                                            plan.cullingMilliseconds);
+                                            cullCasters, plan.cullingMilliseconds);
             const uint32_t tileIndex = reserved.firstTile + face;
             data.atlasFromWorld[tileIndex] = tile.atlasFromWorld;
             data.tileBounds[tileIndex] = spotTileSampleBounds(plan.atlas, tileIndex, shape.reach);

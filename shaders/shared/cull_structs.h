@@ -1,0 +1,71 @@
+// GPU shadow-caster culling (issue 10), shared by C++ (render/shadow_culling_pass) and GLSL
+// (shadow_cull.comp, shadow_draws.comp, shadow_caster.vert). One compute pass tests every instance
+// against every shadow tile of the frame with the CPU planner's rules (shadows/caster_culling.h,
+// shadows/spot_culling.h, which stay the reference the tests compare with) and appends the survivors
+// to per-(tile, mesh) lists; a second pass turns the non-empty lists into compacted indirect draws,
+// one list per tile and caster kind, drawn with vkCmdDrawIndexedIndirectCount.
+//
+// Visible-instance list layout: tile t, mesh m, entry i lives at
+//   t * instanceCount + meshes[m].counts.x + i      (counts.x = the mesh's first slot, a prefix sum)
+// so a draw's firstInstance is where its list starts and gl_InstanceIndex indexes the list.
+#ifndef PENUMBRA_CULL_STRUCTS_H
+#define PENUMBRA_CULL_STRUCTS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+PENUMBRA_CONST(uint, kMaxCullTiles, 32u)  // 16 directional (4 lights x 4 cascades) + 16 spot/point
+PENUMBRA_CONST(uint, kCullWorkgroupSize, 64u)
+PENUMBRA_CONST(uint, kCasterKinds, 2u)  // 0: opaque (depth-only pipeline), 1: alpha-tested (clip, dither)
+PENUMBRA_CONST(uint, kCullInstanceCasts, 1u)  // CullInstance.info.y bit: node casts and has bounds
+PENUMBRA_CONST(uint, kCullTileDirectional, 0u)
+PENUMBRA_CONST(uint, kCullTilePerspective, 1u)
+
+// Per instance; rewritten when its transform or cast flag changes.
+struct CullInstance {
+    vec4 wsMin;   // xyz: world bounds
+    vec4 wsMax;
+    uvec4 info;   // x = mesh slot (index into CullMesh), y = kCullInstance* bits
+};
+PENUMBRA_CHECK_SIZE(CullInstance, 48)
+
+// Per mesh with geometry.
+struct CullMesh {
+    uvec4 draw;    // x = index count, y = first index, z = vertex offset (int bits), w = material index
+    uvec4 counts;  // x = first slot of the mesh's instances in a tile's list, y = its instance count
+};
+PENUMBRA_CHECK_SIZE(CullMesh, 32)
+
+// Per shadow tile of the frame (both atlases, directional first).
+struct CullTile {
+    mat4 lightFromWorld;  // directional: the cascade's light view (rotation + translation)
+    vec4 planes[5];       // perspective: clip-frustum planes (shadows/spot_culling.h)
+    vec4 frustumMin;      // perspective: world bounds of the frustum; w = kind (kCullTile*)
+    vec4 frustumMax;
+    vec4 params;          // directional: x = half extent, y = far distance, z = cascade index, w = blend culling factor
+    vec4 wsLightDirection;  // directional: xyz = the way the light travels
+};
+PENUMBRA_CHECK_SIZE(CullTile, 208)
+PENUMBRA_CHECK_LAYOUT(CullTile, planes, 64)
+PENUMBRA_CHECK_LAYOUT(CullTile, frustumMin, 144)
+PENUMBRA_CHECK_LAYOUT(CullTile, params, 176)
+
+struct CullFrame {
+    CullTile tiles[32];
+    vec4 spheres[4];           // cascade culling spheres: xyz centre, w radius (shared by every light)
+    vec4 wsReceiverMin;        // bounds of every shadow receiver (blend culling's reach of shadows)
+    vec4 wsReceiverMax;
+    uvec4 counts;              // x = tiles, y = instances, z = meshes
+};
+PENUMBRA_CHECK_SIZE(CullFrame, 6768)
+PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 6656)
+PENUMBRA_CHECK_LAYOUT(CullFrame, counts, 6752)
+
+// What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done.
+struct CullTileStats {
+    uvec4 counts;  // x = draws (indirect commands), y = instances drawn, z = triangles, w unused
+};
+PENUMBRA_CHECK_SIZE(CullTileStats, 16)
+
+PENUMBRA_GPU_NAMESPACE_END
+#endif
