@@ -60,6 +60,8 @@ struct FrameStats {
     CpuPhaseTimes cpu;
     double submitToFenceMilliseconds = 0.0;  // from the submission to the fence seen signalled
     uint64_t sceneBytesUploaded = 0;         // changed instances and materials copied this frame
+    std::string shadowRaster = "hw";         // the rasterizer that drew this frame's shadow maps: hw | compute
+    std::string shadowRasterChoice;          // shadows.raster = auto: how it was chosen
     std::vector<AtlasDrawStats> atlases;
     std::vector<std::string> warnings;
     std::string shadowStatsJson = "{}";  // the shadow planner's stats (lights reserved, tiles, casters per tile)

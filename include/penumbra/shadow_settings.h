@@ -9,6 +9,9 @@ namespace penumbra {
 
 enum class ShadowFilter { PCF2x2, PCF3x3, PCF5x5, PCF7x7 };
 enum class CascadeBlend { Hard, Soft, Dither };
+// How shadow depth is rasterized (issue 10): the hardware pipeline, compute shaders (fast where few
+// SMs run graphics, e.g. NVIDIA H100/H200), or whichever the first frames measure faster.
+enum class ShadowRaster { Hw, Compute, Auto };
 
 struct DirectionalShadowSettings {
     uint32_t atlasSize = 1024;
@@ -41,6 +44,7 @@ struct ShadowSettings {
     float maxDistance = 100.0f;
     float distanceFade = 0.1f;
     bool screenSpace = false;
+    ShadowRaster raster = ShadowRaster::Auto;
     DirectionalShadowSettings directional;
     SpotShadowSettings spot;
 };
@@ -53,6 +57,8 @@ const char* shadowFilterName(ShadowFilter filter);
 const char* cascadeBlendName(CascadeBlend blend);
 std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
 std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
+const char* shadowRasterName(ShadowRaster raster);
+std::optional<ShadowRaster> parseShadowRaster(const std::string& name);
 
 // Checks the ranges of DESIGN.md; throws Error naming the first bad key with its allowed range, e.g.
 // "settings: shadows.directional.cascadeCount = 7 is out of range (allowed 1..4)".

@@ -43,12 +43,18 @@ struct CullTile {
     vec4 frustumMin;      // perspective: world bounds of the frustum; w = kind (kCullTile*)
     vec4 frustumMax;
     vec4 params;          // directional: x = half extent, y = far distance, z = cascade index, w = blend culling factor
-    vec4 wsLightDirection;  // directional: xyz = the way the light travels
+    vec4 wsLightDirection;  // directional: xyz = the way the light travels; w = slope-scale depth bias
+    // The compute rasterizer (shadow_raster.glsl): what the caster pass's vertex shader and viewport do.
+    mat4 clipFromWorld;
+    vec4 viewport;        // x, y, width, height in atlas texels
+    uvec4 scissor;        // x0, y0, x1, y1 (exclusive) in atlas texels
 };
-PENUMBRA_CHECK_SIZE(CullTile, 208)
+PENUMBRA_CHECK_SIZE(CullTile, 304)
 PENUMBRA_CHECK_LAYOUT(CullTile, planes, 64)
 PENUMBRA_CHECK_LAYOUT(CullTile, frustumMin, 144)
 PENUMBRA_CHECK_LAYOUT(CullTile, params, 176)
+PENUMBRA_CHECK_LAYOUT(CullTile, clipFromWorld, 208)
+PENUMBRA_CHECK_LAYOUT(CullTile, viewport, 272)
 
 struct CullFrame {
     CullTile tiles[32];
@@ -57,15 +63,40 @@ struct CullFrame {
     vec4 wsReceiverMax;
     uvec4 counts;              // x = tiles, y = instances, z = meshes
 };
-PENUMBRA_CHECK_SIZE(CullFrame, 6768)
-PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 6656)
-PENUMBRA_CHECK_LAYOUT(CullFrame, counts, 6752)
+PENUMBRA_CHECK_SIZE(CullFrame, 9840)
+PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 9728)
+PENUMBRA_CHECK_LAYOUT(CullFrame, counts, 9824)
 
 // What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done.
 struct CullTileStats {
     uvec4 counts;  // x = draws (indirect commands), y = instances drawn, z = triangles, w unused
 };
 PENUMBRA_CHECK_SIZE(CullTileStats, 16)
+
+// ---- compute rasterizer of shadow depth (shadow_raster.glsl)
+// Triangles whose clamped bounding box covers more than kRasterSmallArea texels are not rasterized by
+// the thread that set them up but queued, split into kRasterChunk x kRasterChunk chunks, and
+// rasterized one workgroup per chunk.
+PENUMBRA_CONST(uint, kRasterSmallArea, 256u)
+PENUMBRA_CONST(uint, kRasterChunk, 16u)
+PENUMBRA_CONST(uint, kRasterMaxLarge, 262144u)    // queued large triangles per atlas pass
+PENUMBRA_CONST(uint, kRasterMaxChunks, 4194304u)  // queued chunks per atlas pass
+PENUMBRA_CONST(uint, kRasterDispatchWidth, 65535u)
+
+// A queued large triangle: x = culling tile, y = instance, z = triangle index in its mesh, w = mesh slot.
+struct RasterTriangle {
+    uvec4 ids;
+};
+PENUMBRA_CHECK_SIZE(RasterTriangle, 16)
+
+// Counters of one atlas pass: x = large triangles queued, y = chunks queued, z = large triangles
+// dropped (queue full), w = chunks dropped; then the two indirect dispatches (x, y, z) sized from them.
+struct RasterCounters {
+    uvec4 counts;
+    uvec4 largeDispatch;
+    uvec4 chunkDispatch;
+};
+PENUMBRA_CHECK_SIZE(RasterCounters, 48)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

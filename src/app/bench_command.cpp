@@ -85,6 +85,7 @@ struct Measurements {
     std::map<std::string, Series> cpu;
     Series frame;
     std::vector<AtlasDrawStats> atlases;  // of the last timed frame
+    std::string raster, rasterChoice;     // of the last timed frame
     void add(const FrameStats& stats) {
         for (const PassTiming& t : stats.gpuTimings) passes[t.name].values.push_back(t.milliseconds);
         cpu["plan"].values.push_back(stats.cpu.plan);
@@ -94,6 +95,8 @@ struct Measurements {
         cpu["submit"].values.push_back(stats.cpu.submit);
         frame.values.push_back(stats.submitToFenceMilliseconds);
         atlases = stats.atlases;
+        raster = stats.shadowRaster;
+        rasterChoice = stats.shadowRasterChoice;
     }
 };
 
@@ -168,6 +171,7 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
                       {"device_mb", {{"first", deviceFirst}, {"last", deviceLast}}}};
     json["allocationsAfterWarmup"] = {{"gpuObjects", objectsMade}, {"vkAllocateMemory", memoryAllocations}};
     json["validationMessages"] = device.validationMessageCount();
+    json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice}};
 
     std::printf("device: %s (%s)\n", device.info().name.c_str(), device.info().driver.c_str());
     std::printf("scene: %s, %llu triangles, %zu instances, %zu lights; %ux%u, %u frames after %u warm-up, camera %s\n",
@@ -187,6 +191,7 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     for (const AtlasDrawStats& atlas : measured.atlases)
         std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     (unsigned long long)atlas.triangles);
+    std::printf("shadow raster: %s (%s)\n", measured.raster.c_str(), measured.rasterChoice.c_str());
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", rssFirst, rssLast, deviceFirst, deviceLast);
     std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n", (unsigned long long)objectsMade,
                 (unsigned long long)memoryAllocations);

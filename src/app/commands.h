@@ -20,6 +20,7 @@ struct RenderOptions {
     std::string settingsPath;
     std::vector<std::string> overrides;
     std::string device = "auto";
+    std::string raster;  // --raster: shorthand for --set shadows.raster=...
     bool validation = false;
     uint32_t light = 0;
     std::string outputPath;

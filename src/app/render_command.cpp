@@ -43,6 +43,7 @@ RenderRequest makeRenderRequest(const RenderOptions& options) {
 Settings loadSettings(const RenderOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
     for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
+    if (!options.raster.empty()) applySettingOverride(settings, "shadows.raster=" + options.raster);
     validateSettings(settings);
     return settings;
 }
@@ -70,6 +71,7 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
                       {"submit", result.stats.cpu.submit}};
     stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
     stats["warnings"] = result.stats.warnings;
+    stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
     return stats.dump(2);
 }
 

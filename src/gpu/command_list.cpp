@@ -186,6 +186,24 @@ void CommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ)
     vkCmdDispatch(native(*this), groupsX, groupsY, groupsZ);
 }
 
+void CommandList::dispatchIndirect(BufferHandle arguments, uint64_t offset) {
+    vkCmdDispatchIndirect(native(*this), impl(*this).buffers.at(arguments.id).buffer, offset);
+}
+
+void CommandList::fillBuffer(BufferHandle buffer, uint32_t value) { clearBuffer(buffer, value); }
+
+void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& t = d.textures.at(texture.id);
+    recordTransition(native(*this), t, TextureState::Undefined, TextureState::TransferDst);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+    copy.imageExtent = {t.desc.width, t.desc.height, 1};
+    vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &copy);
+    recordTransition(native(*this), t, TextureState::TransferDst, finalState);
+}
+
 void CommandList::clearBuffer(BufferHandle buffer, uint32_t value) {
     vkCmdFillBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_WHOLE_SIZE, value);
 }

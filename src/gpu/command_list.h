@@ -31,6 +31,11 @@ public:
     void drawIndexedIndirectCount(BufferHandle commands, uint64_t offset, BufferHandle count, uint64_t countOffset,
                                   uint32_t maxDraws);
     void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1);
+    void dispatchIndirect(BufferHandle arguments, uint64_t offset);  // a VkDispatchIndirectCommand
+    void fillBuffer(BufferHandle buffer, uint32_t value);             // every 32-bit word
+    // Copies a tightly packed buffer into level 0 of `texture` (depth aspect for depth formats); the
+    // texture goes from Undefined to `finalState`.
+    void copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState);
     void clearBuffer(BufferHandle buffer, uint32_t value);
     void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
     // Copies level 0 of `texture` (in `state`, left there) tightly packed into `destination`.

@@ -361,6 +361,7 @@ Device::~Device() {
 
 const DeviceInfo& Device::info() const { return impl_->info; }
 uint32_t Device::maxImageSize() const { return impl_->properties.limits.maxImageDimension2D; }
+bool Device::hasTimestamps() const { return impl_->timestampsSupported; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);

@@ -31,6 +31,7 @@ public:
     const DeviceInfo& info() const;
     static std::vector<DeviceInfo> listDevices();
     uint32_t maxImageSize() const;
+    bool hasTimestamps() const;
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,

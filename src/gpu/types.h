@@ -94,6 +94,7 @@ struct ComputePipelineDesc {
     std::string shader;
     std::vector<BindingDesc> bindings;
     uint32_t pushConstantSize = 0;
+    TextureTableHandle textureTable;  // optional set 1
     std::vector<SpecConstant> specialization;
     std::string debugName;
 };

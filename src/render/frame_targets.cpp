@@ -1,12 +1,14 @@
 #include "render/frame_targets.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace penumbra {
 
 FrameTargets::~FrameTargets() {
     for (gpu::TextureHandle t : {directionalAtlas, otherAtlas, colorSrgb_, colorUnorm_, depth}) device_.destroy(t);
-    for (gpu::BufferHandle b : {colorReadback_, directionalReadback_, otherReadback_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {colorReadback_, directionalReadback_, otherReadback_, rasterDepth}) device_.destroy(b);
 }
 
 void FrameTargets::replace(gpu::TextureHandle& texture, const gpu::TextureDesc& desc) {
@@ -29,6 +31,15 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
         device_.destroy(otherReadback_);
         otherReadback_ = {};
     }
+    const uint32_t rasterSize = std::max(sizes.directionalAtlas, sizes.otherAtlas);
+    const uint32_t madeRasterSize = made_ && sizes_.computeRaster ? std::max(sizes_.directionalAtlas, sizes_.otherAtlas) : 0;
+    if (!sizes.computeRaster || rasterSize != madeRasterSize) {
+        device_.destroy(rasterDepth);
+        rasterDepth = {};
+    }
+    if (sizes.computeRaster && !rasterDepth)
+        rasterDepth = device_.createBuffer(uint64_t(rasterSize) * rasterSize * 4, gpu::kBufferStorage,
+                                           gpu::MemoryKind::DeviceLocal, nullptr, "shadow raster depth");
     const bool resized = !made_ || sizes.width != sizes_.width || sizes.height != sizes_.height;
     if (resized) {
         device_.destroy(colorSrgb_);

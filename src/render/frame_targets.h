@@ -11,6 +11,7 @@ struct FrameTargetSizes {
     uint32_t otherAtlas = 1;        // 1 when no spot/point light is reserved
     uint32_t width = 1, height = 1;
     gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+    bool computeRaster = false;     // the compute rasterizer's depth buffer (larger atlas squared)
     bool operator==(const FrameTargetSizes&) const = default;
 };
 
@@ -29,6 +30,7 @@ public:
 
     const FrameTargetSizes& sizes() const { return sizes_; }
     gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;  // color: the one of sizes().colorFormat
+    gpu::BufferHandle rasterDepth;  // sizes().computeRaster: uint per texel of the larger atlas
 
 private:
     gpu::BufferHandle readbackBuffer(gpu::BufferHandle& buffer, uint64_t size, const char* name);

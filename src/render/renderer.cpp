@@ -6,10 +6,12 @@
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "render/compute_raster_pass.h"
 #include "render/frame_targets.h"
 #include "render/gpu_scene.h"
 #include "render/light_packing.h"
 #include "render/main_pass.h"
+#include "render/raster_choice.h"
 #include "render/readback_images.h"
 #include "render/screen_space_shadow_pass.h"
 #include "render/shadow_caster_pass.h"
@@ -81,7 +83,16 @@ struct PendingFrame {
     uint64_t frameIndex = 0;
     FrameStats stats;
     ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
+    bool computeRaster = false;
+    bool autoRaster = false;  // shadows.raster = auto: its timings feed the choice
 };
+
+double shadowPassMilliseconds(const FrameStats& stats) {
+    double total = 0.0;
+    for (const PassTiming& t : stats.gpuTimings)
+        if (t.name == "shadows.directional" || t.name == "shadows.other") total += t.milliseconds;
+    return total;
+}
 
 // What the GPU culling pass reports per tile, turned into the frame's atlas stats and the
 // planner stats JSON's casters per tile.
@@ -111,6 +122,8 @@ struct Renderer::State {
     MainPass mainPass;
     ShadowCasterPass casterPass;
     ScreenSpaceShadowPass screenSpacePass;
+    ComputeRasterPass computeRaster;
+    RasterChoice rasterChoice;
     FrameTargets targets;
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
@@ -120,7 +133,8 @@ struct Renderer::State {
 
     State(gpu::Device& d, Scene s, const RendererOptions& o)
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
-          mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass), targets(d) {
+          mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
+          computeRaster(d, gpuScene), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
         // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
         shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
                                          gpu::CompareOp::LessOrEqual});
@@ -212,6 +226,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     sizes.width = view.width;
     sizes.height = view.height;
     sizes.colorFormat = colorFormatOf(request.output);
+    sizes.computeRaster = settings.shadows.raster != ShadowRaster::Hw;
     targets.ensure(sizes);
 
     phase.restart();
@@ -238,13 +253,21 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     commands.beginTimer("shadows.culling");
     culling.record(commands, cullSlice, cullTiles);
     commands.endTimer();
+    frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
+    frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
+    stats.shadowRaster = frame.computeRaster ? "compute" : "hw";
+    auto drawAtlas = [&](const std::vector<ShadowTile>& tiles, uint32_t firstTile, gpu::TextureHandle atlas, uint32_t size) {
+        if (frame.computeRaster)
+            computeRaster.record(commands, casterWrites, cullSlice, culling, firstTile, uint32_t(tiles.size()), atlas, size,
+                                 targets.rasterDepth);
+        else
+            casterPass.record(commands, tiles, firstTile, atlas, size, casterWrites, culling);
+    };
     commands.beginTimer("shadows.directional");
-    casterPass.record(commands, plan.directional.tiles, 0, targets.directionalAtlas, sizes.directionalAtlas, casterWrites,
-                      culling);
+    drawAtlas(plan.directional.tiles, 0, targets.directionalAtlas, sizes.directionalAtlas);
     commands.endTimer();
     commands.beginTimer("shadows.other");
-    casterPass.record(commands, plan.other.tiles, directionalTiles, targets.otherAtlas, sizes.otherAtlas, casterWrites,
-                      culling);
+    drawAtlas(plan.other.tiles, directionalTiles, targets.otherAtlas, sizes.otherAtlas);
     commands.endTimer();
     stats.atlases = {{"shadows.directional", directionalTiles, 0, 0}, {"shadows.other", cullTiles - directionalTiles, 0, 0}};
     device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
@@ -302,8 +325,11 @@ void Renderer::State::collectCompleted() {
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
         FrameStats stats = std::move(pending.front().stats);
         applyCullStats(stats, pending.front().plan, done.readback);
+        const bool computeRasterFrame = pending.front().computeRaster, autoFrame = pending.front().autoRaster;
         pending.pop_front();
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
+        if (autoFrame) rasterChoice.measured(computeRasterFrame, shadowPassMilliseconds(stats));
+        stats.shadowRasterChoice = rasterChoice.describe();
         stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
         completed.push_back(std::move(stats));
     }

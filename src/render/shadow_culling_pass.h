@@ -32,6 +32,7 @@ public:
     };
     DrawList drawList(uint32_t tile, uint32_t kind) const;
     gpu::BufferHandle visibleInstances() const { return visible_; }
+    gpu::BufferHandle listCounts() const { return listCounts_; }
     // Per-tile stats (CullTileStats), GPU-written; read them back with Device::readBackAtFrameEnd.
     gpu::BufferSlice tileStats(uint32_t tileCount) const;
     // Tests and debugging (waits for the GPU): the instances each of the first `tileCount` tiles

@@ -47,6 +47,13 @@ ShadowFilter readFilter(const std::string& key, const json& value) {
     return *filter;
 }
 
+ShadowRaster readRaster(const std::string& key, const json& value) {
+    if (!value.is_string()) failType(key, value, "a string");
+    const auto raster = parseShadowRaster(value.get<std::string>());
+    if (!raster) fail(key + " = " + value.dump() + " is out of range (allowed hw, compute, auto)");
+    return *raster;
+}
+
 CascadeBlend readBlend(const std::string& key, const json& value) {
     if (!value.is_string()) failType(key, value, "a string");
     const auto blend = parseCascadeBlend(value.get<std::string>());
@@ -83,6 +90,7 @@ const LeafKey kLeafKeys[] = {
          s.shadows.directional.cascadeFade = readFloat(k, v); }},
     {"shadows.directional.cascadeBlend", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.directional.cascadeBlend = readBlend(k, v); }},
+    {"shadows.raster", [](Settings& s, const std::string& k, const json& v) { s.shadows.raster = readRaster(k, v); }},
     {"shadows.spot.atlasSize", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.spot.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
     {"shadows.spot.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.filter = readFilter(k, v); }},

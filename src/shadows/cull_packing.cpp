@@ -7,6 +7,17 @@ namespace penumbra {
 
 namespace {
 
+// What the compute rasterizer needs of every tile: its projection, viewport and scissor, the bias.
+void packRaster(gpu_data::CullTile& packed, const ShadowTile& tile) {
+    packed.clipFromWorld = tile.clipFromWorld;
+    packed.viewport = glm::vec4(float(tile.rect.offset.x), float(tile.rect.offset.y), float(tile.rect.size),
+                                float(tile.rect.size));
+    const uint32_t inset = tile.scissorInset;
+    packed.scissor = glm::uvec4(tile.rect.offset.x + inset, tile.rect.offset.y + inset,
+                                tile.rect.offset.x + tile.rect.size - inset, tile.rect.offset.y + tile.rect.size - inset);
+    packed.wsLightDirection.w = tile.slopeScaleBias;
+}
+
 gpu_data::CullTile directionalTile(const ShadowTile& tile, float blendCullingFactor) {
     gpu_data::CullTile packed{};
     packed.lightFromWorld = tile.lightFromWorld;
@@ -14,6 +25,7 @@ gpu_data::CullTile directionalTile(const ShadowTile& tile, float blendCullingFac
     packed.params = glm::vec4(tile.lsHalfExtent, tile.farDistance, float(tile.cascadeIndex), blendCullingFactor);
     // The light travels along -Z of its view: the third row of the rotation, negated (as caster_culling.cpp).
     packed.wsLightDirection = glm::vec4(-tile.lightFromWorld[0][2], -tile.lightFromWorld[1][2], -tile.lightFromWorld[2][2], 0.0f);
+    packRaster(packed, tile);
     return packed;
 }
 
@@ -24,6 +36,7 @@ gpu_data::CullTile perspectiveTile(const ShadowTile& tile) {
     const Aabb bounds = perspectiveFrustumBounds(tile.clipFromWorld, tile.wsApex);
     packed.frustumMin = glm::vec4(bounds.min, float(gpu_data::kCullTilePerspective));
     packed.frustumMax = glm::vec4(bounds.max, 0.0f);
+    packRaster(packed, tile);
     return packed;
 }
 

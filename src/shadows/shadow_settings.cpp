@@ -11,6 +11,7 @@ namespace {
 
 constexpr const char* kFilterNames[] = {"PCF2x2", "PCF3x3", "PCF5x5", "PCF7x7"};
 constexpr const char* kBlendNames[] = {"hard", "soft", "dither"};
+constexpr const char* kRasterNames[] = {"hw", "compute", "auto"};
 
 std::string formatValue(float value) {
     std::ostringstream out;
@@ -65,10 +66,23 @@ std::optional<CascadeBlend> parseCascadeBlend(const std::string& name) {
     return std::nullopt;
 }
 
+const char* shadowRasterName(ShadowRaster raster) {
+    const int i = int(raster);
+    return i >= 0 && i < 3 ? kRasterNames[i] : "?";
+}
+
+std::optional<ShadowRaster> parseShadowRaster(const std::string& name) {
+    for (int i = 0; i < 3; ++i) {
+        if (name == kRasterNames[i]) return ShadowRaster(i);
+    }
+    return std::nullopt;
+}
+
 void validateShadowSettings(const ShadowSettings& settings) {
     constexpr float kHuge = 3.0e38f;
     checkFloatRange("shadows.maxDistance", settings.maxDistance, 0.001f, kHuge, ">= 0.001");
     checkFloatRange("shadows.distanceFade", settings.distanceFade, 0.001f, 1.0f, "0.001..1");
+    checkEnum("shadows.raster", int(settings.raster), 3);
     const DirectionalShadowSettings& directional = settings.directional;
     checkAtlasSize("shadows.directional.atlasSize", directional.atlasSize);
     checkEnum("shadows.directional.filter", int(directional.filter), 4);
