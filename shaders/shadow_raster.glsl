@@ -22,12 +22,16 @@ layout(set = 0, binding = 6, std430) readonly buffer CullMeshBlock { CullMesh cu
 layout(set = 0, binding = 7, std430) readonly buffer IndexBlock { uint indices[]; };
 layout(set = 0, binding = 8, std430) buffer DepthBlock { uint atlasDepth[]; };  // atlasSize^2 float bits
 layout(set = 0, binding = 9, std430) buffer CounterBlock { RasterCounters counters; };
-layout(set = 0, binding = 10, std430) buffer LargeBlock { RasterTriangle largeTriangles[]; };
-layout(set = 0, binding = 11, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large triangle, chunk x | y << 16)
+layout(set = 0, binding = 10, std430) buffer LargeBlock { RasterPiece largePieces[]; };
+layout(set = 0, binding = 11, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
 
 layout(push_constant) uniform RasterConstants {
-    uvec4 pass;  // x = first culling tile of this atlas, y = its tile count, z = atlas size, w = unused
+    uvec4 pass;      // x = first entry of CullFrame::rasterTiles for this atlas, y = their count, z = atlas size
+    uvec4 capacity;  // x = large pieces, y = chunks the queues hold
 } raster;
+
+// Culling tile drawn by entry `i` of the frame's raster tile list.
+uint rasterTile(uint i) { return cull.rasterTiles[i / 4u][i % 4u]; }
 
 const float kNearW = 1e-5;
 const float kGuard = 2.0;  // clip-space |x|, |y| <= kGuard w: window coordinates stay within 2^22 sub-texels
@@ -52,10 +56,10 @@ struct RasterTriangleSetup {
     bool alphaTested;
 };
 
-RasterVertex casterVertex(uint instance, uint vertexIndex, mat4 clipFromWorld) {
+RasterVertex casterVertex(uint vertexIndex, mat4 clipFromObject) {
     VertexData vertex = vertices[vertexIndex];
     RasterVertex v;
-    v.clip = clipFromWorld * (instances[instance].worldFromObject * vec4(vertex.osPositionU.xyz, 1.0));
+    v.clip = clipFromObject * vec4(vertex.osPositionU.xyz, 1.0);
     v.uv = vec2(vertex.osPositionU.w, vertex.osNormalV.w);
     return v;
 }
@@ -164,7 +168,10 @@ void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
     if (t.alphaTested && !alphaKeeps(t, weights, x, y)) return;
     float z = dot(weights, t.z) + slopeBias * max(abs(t.depthSlope.x), abs(t.depthSlope.y));
     z = clamp(z, 0.0, 1.0);
-    atomicMin(atlasDepth[uint(y) * raster.pass.z + uint(x)], floatBitsToUint(z));
+    // A plain read first: far-away casters put thousands of triangles on one texel, and most of them
+    // lie behind what is there already (the early depth test of the hardware path).
+    uint texel = uint(y) * raster.pass.z + uint(x), bits = floatBitsToUint(z);
+    if (bits < atlasDepth[texel]) atomicMin(atlasDepth[texel], bits);
 }
 
 bool isAlphaTested(CullMesh mesh) { return materials[mesh.draw.w].flags.w != kShadowModeOn; }
@@ -207,25 +214,51 @@ int clipTriangle(RasterVertex v[3], out RasterVertex polygon[kMaxClipped]) {
     return count;
 }
 
-// Fetches triangle `triangle` of mesh slot `meshSlot` for `instance` and sets up its rasterizable
-// pieces (the clipped fan); returns how many. Each piece's bounds lie inside the tile's scissor.
-int setupPieces(CullTile tile, uint meshSlot, uint instance, uint triangle, out RasterTriangleSetup pieces[6]) {
-    CullMesh mesh = cullMeshes[meshSlot];
-    RasterVertex v[3];
+// Fetches triangle `triangle` of `mesh` in the tile's clip space (clipFromObject = the tile's
+// clipFromWorld x the instance's worldFromObject).
+void fetchTriangle(CullMesh mesh, uint triangle, mat4 clipFromObject, out RasterVertex v[3]) {
     for (int i = 0; i < 3; ++i) {
         uint index = indices[mesh.draw.y + triangle * 3u + uint(i)];
-        v[i] = casterVertex(instance, uint(int(index) + int(mesh.draw.z)), tile.clipFromWorld);
+        v[i] = casterVertex(uint(int(index) + int(mesh.draw.z)), clipFromObject);
     }
-    RasterVertex polygon[kMaxClipped];
-    int vertexCount = clipTriangle(v, polygon);
-    int count = 0;
-    for (int i = 1; i + 1 < vertexCount; ++i) {
-        if (!setupTriangle(tile, polygon[0], polygon[i], polygon[i + 1], pieces[count])) continue;
-        pieces[count].materialIndex = mesh.draw.w;
-        pieces[count].alphaTested = isAlphaTested(mesh);
-        ++count;
-    }
-    return count;
+}
+
+// Whether some vertex lies outside w > kNearW or the guard band (the rare case that clips).
+bool needsClipping(RasterVertex v[3]) {
+    for (int i = 0; i < 3; ++i)
+        for (int plane = 0; plane < 5; ++plane)
+            if (planeDistance(v[i].clip, plane) < 0.0) return true;
+    return false;
+}
+
+RasterPiece packPiece(RasterTriangleSetup t, float slopeBias) {
+    RasterPiece piece;
+    piece.points01 = ivec4(t.p[0], t.p[1]);
+    piece.point2 = ivec4(t.p[2], int(t.materialIndex), t.alphaTested ? 1 : 0);
+    piece.depth = vec4(t.z, t.area);
+    piece.inverseW = vec4(t.invW, slopeBias);
+    piece.uvOverW01 = vec4(t.uvOverW[0], t.uvOverW[1]);
+    piece.uvOverW2Slope = vec4(t.uvOverW[2], t.depthSlope);
+    piece.bounds = t.bounds;
+    return piece;
+}
+
+RasterTriangleSetup unpackPiece(RasterPiece piece) {
+    RasterTriangleSetup t;
+    t.p[0] = piece.points01.xy;
+    t.p[1] = piece.points01.zw;
+    t.p[2] = piece.point2.xy;
+    t.materialIndex = uint(piece.point2.z);
+    t.alphaTested = piece.point2.w != 0;
+    t.z = piece.depth.xyz;
+    t.area = piece.depth.w;
+    t.invW = piece.inverseW.xyz;
+    t.uvOverW[0] = piece.uvOverW01.xy;
+    t.uvOverW[1] = piece.uvOverW01.zw;
+    t.uvOverW[2] = piece.uvOverW2Slope.xy;
+    t.depthSlope = piece.uvOverW2Slope.zw;
+    t.bounds = piece.bounds;
+    return t;
 }
 
 uint boundsArea(ivec4 bounds) { return uint(bounds.z - bounds.x + 1) * uint(bounds.w - bounds.y + 1); }

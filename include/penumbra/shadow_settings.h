@@ -45,6 +45,9 @@ struct ShadowSettings {
     float distanceFade = 0.1f;
     bool screenSpace = false;
     ShadowRaster raster = ShadowRaster::Auto;
+    // Cached shadow tiles: a tile whose light, projection and casters did not change since the last
+    // frame keeps its depth and is not drawn again.
+    bool cacheTiles = true;
     DirectionalShadowSettings directional;
     SpotShadowSettings spot;
 };

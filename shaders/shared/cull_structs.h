@@ -32,7 +32,8 @@ PENUMBRA_CHECK_SIZE(CullInstance, 48)
 // Per mesh with geometry.
 struct CullMesh {
     uvec4 draw;    // x = index count, y = first index, z = vertex offset (int bits), w = material index
-    uvec4 counts;  // x = first slot of the mesh's instances in a tile's list, y = its instance count
+    uvec4 counts;  // x = first slot of the mesh's instances in a tile's list, y = its instance count,
+                   // z = its first compute-raster work item, w = triangle batches per instance
 };
 PENUMBRA_CHECK_SIZE(CullMesh, 32)
 
@@ -62,10 +63,14 @@ struct CullFrame {
     vec4 wsReceiverMin;        // bounds of every shadow receiver (blend culling's reach of shadows)
     vec4 wsReceiverMax;
     uvec4 counts;              // x = tiles, y = instances, z = meshes
+    // The tiles the compute rasterizer draws this frame (the others are cached), 4 per uvec4: the
+    // directional atlas's first, then the spot/point atlas's; a raster pass reads its part.
+    uvec4 rasterTiles[8];
 };
-PENUMBRA_CHECK_SIZE(CullFrame, 9840)
+PENUMBRA_CHECK_SIZE(CullFrame, 9968)
 PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 9728)
 PENUMBRA_CHECK_LAYOUT(CullFrame, counts, 9824)
+PENUMBRA_CHECK_LAYOUT(CullFrame, rasterTiles, 9840)
 
 // What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done.
 struct CullTileStats {
@@ -74,20 +79,31 @@ struct CullTileStats {
 PENUMBRA_CHECK_SIZE(CullTileStats, 16)
 
 // ---- compute rasterizer of shadow depth (shadow_raster.glsl)
-// Triangles whose clamped bounding box covers more than kRasterSmallArea texels are not rasterized by
-// the thread that set them up but queued, split into kRasterChunk x kRasterChunk chunks, and
-// rasterized one workgroup per chunk.
-PENUMBRA_CONST(uint, kRasterSmallArea, 256u)
+// Triangle pieces whose clamped bounding box covers more than kRasterSmallArea texels are not
+// rasterized by the thread that set them up but queued (already set up), split into kRasterChunk x
+// kRasterChunk chunks, and rasterized one workgroup per chunk, kRasterChunk^2 / 256 texels a thread.
+PENUMBRA_CONST(uint, kRasterSmallArea, 64u)
 PENUMBRA_CONST(uint, kRasterChunk, 16u)
-PENUMBRA_CONST(uint, kRasterMaxLarge, 262144u)    // queued large triangles per atlas pass
-PENUMBRA_CONST(uint, kRasterMaxChunks, 4194304u)  // queued chunks per atlas pass
+// Pass 1 works in batches of kRasterBatch triangles of one instance (one workgroup each), so a mesh
+// of many triangles on few instances still fills the GPU.
+PENUMBRA_CONST(uint, kRasterBatch, 128u)
+// The queues of large pieces and chunks start at these capacities and grow when a frame overflows
+// them (the renderer reads the counters back; render() draws the frame again).
+PENUMBRA_CONST(uint, kRasterInitialLarge, 262144u)
+PENUMBRA_CONST(uint, kRasterInitialChunks, 1048576u)
 PENUMBRA_CONST(uint, kRasterDispatchWidth, 65535u)
 
-// A queued large triangle: x = culling tile, y = instance, z = triangle index in its mesh, w = mesh slot.
-struct RasterTriangle {
-    uvec4 ids;
+// A queued large piece, set up (shadow_raster.glsl RasterTriangleSetup, packed).
+struct RasterPiece {
+    ivec4 points01;     // snapped window positions of vertices 0 and 1 (1/256 texel)
+    ivec4 point2;       // xy = vertex 2, z = material index, w = 1 alpha-tested
+    vec4 depth;         // xyz = window z per vertex, w = twice the area in sub-texel units
+    vec4 inverseW;      // xyz = 1 / w per vertex, w = the tile's slope-scale bias
+    vec4 uvOverW01;
+    vec4 uvOverW2Slope; // xy = uv / w of vertex 2, zw = dz per texel in x, y
+    ivec4 bounds;       // texels x0, y0, x1, y1 inclusive
 };
-PENUMBRA_CHECK_SIZE(RasterTriangle, 16)
+PENUMBRA_CHECK_SIZE(RasterPiece, 112)
 
 // Counters of one atlas pass: x = large triangles queued, y = chunks queued, z = large triangles
 // dropped (queue full), w = chunks dropped; then the two indirect dispatches (x, y, z) sized from them.

@@ -72,6 +72,7 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
     stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
     stats["warnings"] = result.stats.warnings;
     stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
+    stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
     return stats.dump(2);
 }
 

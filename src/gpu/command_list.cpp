@@ -204,6 +204,38 @@ void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture
     recordTransition(native(*this), t, TextureState::TransferDst, finalState);
 }
 
+void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects,
+                                           TextureState from, TextureState to) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& t = d.textures.at(texture.id);
+    recordTransition(native(*this), t, from, TextureState::TransferDst);
+    std::vector<VkBufferImageCopy> copies;
+    for (const Rect& r : rects) {
+        VkBufferImageCopy copy{};
+        copy.bufferOffset = (uint64_t(r.y) * t.desc.width + uint64_t(r.x)) * bytesPerPixel(t.desc.format);
+        copy.bufferRowLength = t.desc.width;
+        copy.bufferImageHeight = t.desc.height;
+        copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+        copy.imageOffset = {r.x, r.y, 0};
+        copy.imageExtent = {r.width, r.height, 1};
+        copies.push_back(copy);
+    }
+    if (!copies.empty())
+        vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(copies.size()), copies.data());
+    recordTransition(native(*this), t, TextureState::TransferDst, to);
+}
+
+void CommandList::clearDepthRects(std::span<const Rect> rects, float depth) {
+    if (rects.empty()) return;
+    VkClearAttachment attachment{};
+    attachment.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+    attachment.clearValue.depthStencil.depth = depth;
+    std::vector<VkClearRect> clears;
+    for (const Rect& r : rects) clears.push_back({{{r.x, r.y}, {r.width, r.height}}, 0, 1});
+    vkCmdClearAttachments(native(*this), 1, &attachment, uint32_t(clears.size()), clears.data());
+}
+
 void CommandList::clearBuffer(BufferHandle buffer, uint32_t value) {
     vkCmdFillBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_WHOLE_SIZE, value);
 }
@@ -221,18 +253,23 @@ void CommandList::memoryBarrier() {
 
 void CommandList::beginTimer(const std::string& name) {
     Device::Impl& d = impl(*this);
-    PENUMBRA_ASSERT(openTimer == ~0u);
-    if (queryBase == ~0u || (timerNames.size() + 1) * 2 > queryCapacity) return;
-    openTimer = uint32_t(timerNames.size());
+    if (queryBase == ~0u || (timerNames.size() + 1) * 2 > queryCapacity) {
+        openTimers.push_back(~0u);  // no room: this timer records nothing
+        return;
+    }
+    openTimers.push_back(uint32_t(timerNames.size()));
     timerNames.push_back(name);
-    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool, queryBase + openTimer * 2);
+    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool,
+                         queryBase + openTimers.back() * 2);
 }
 
 void CommandList::endTimer() {
-    if (openTimer == ~0u) return;
+    PENUMBRA_ASSERT(!openTimers.empty());
+    const uint32_t timer = openTimers.back();
+    openTimers.pop_back();
+    if (timer == ~0u) return;
     vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, impl(*this).timestampPool,
-                         queryBase + openTimer * 2 + 1);
-    openTimer = ~0u;
+                         queryBase + timer * 2 + 1);
 }
 
 void CommandList::copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset) {

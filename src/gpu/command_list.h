@@ -36,6 +36,12 @@ public:
     // Copies a tightly packed buffer into level 0 of `texture` (depth aspect for depth formats); the
     // texture goes from Undefined to `finalState`.
     void copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState);
+    // Copies the rectangles `rects` of a tightly packed texture-sized buffer into them in `texture`,
+    // which goes from `from` (Undefined discards the rest) to `to`.
+    void copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects,
+                                  TextureState from, TextureState to);
+    // Inside beginRendering: sets the depth of `rects` to `depth` (the rest of the target is kept).
+    void clearDepthRects(std::span<const Rect> rects, float depth);
     void clearBuffer(BufferHandle buffer, uint32_t value);
     void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
     // Copies level 0 of `texture` (in `state`, left there) tightly packed into `destination`.
@@ -47,8 +53,9 @@ public:
     void memoryBarrier();
     // Transfer writes so far become visible to the host once the frame's fence has signalled.
     void hostReadBarrier();
-    // GPU timestamps around a named pass; results in Device::takeCompletedFrames() once the frame is
-    // done. One-off command lists (Device::beginCommands) record none.
+    // GPU timestamps around a named pass (timers nest: a pass may time its steps inside its own
+    // timer); results in Device::takeCompletedFrames() once the frame is done. One-off command lists
+    // (Device::beginCommands) record none.
     void beginTimer(const std::string& name);
     void endTimer();
 
@@ -57,7 +64,7 @@ public:
     void* nativeCommandBuffer = nullptr;
     PipelineHandle boundPipeline;
     std::vector<std::string> timerNames;
-    uint32_t openTimer = ~0u;
+    std::vector<uint32_t> openTimers;  // nested timers, innermost last
     uint32_t queryBase = ~0u;  // first timestamp query of this list's range, ~0u = no timers
     uint32_t queryCapacity = 0;
 };

@@ -157,7 +157,7 @@ void Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& source
 
 uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) {
     Impl& d = *impl_;
-    PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimer == ~0u);
+    PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimers.empty());
     FrameContext& frame = d.frames[d.recordingSlot];
     VK_CHECK(vkEndCommandBuffer(frame.commandBuffer));
     VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
@@ -273,7 +273,7 @@ CommandList Device::beginCommands() {
 }
 
 void Device::submitAndWait(CommandList& commands) {
-    PENUMBRA_ASSERT(commands.openTimer == ~0u);
+    PENUMBRA_ASSERT(commands.openTimers.empty());
     impl_->endImmediate(static_cast<VkCommandBuffer>(commands.nativeCommandBuffer));
     commands.nativeCommandBuffer = nullptr;
 }

@@ -8,7 +8,8 @@ namespace penumbra {
 
 FrameTargets::~FrameTargets() {
     for (gpu::TextureHandle t : {directionalAtlas, otherAtlas, colorSrgb_, colorUnorm_, depth}) device_.destroy(t);
-    for (gpu::BufferHandle b : {colorReadback_, directionalReadback_, otherReadback_, rasterDepth}) device_.destroy(b);
+    for (gpu::BufferHandle b : {colorReadback_, directionalReadback_, otherReadback_, directionalRasterDepth, otherRasterDepth})
+        device_.destroy(b);
 }
 
 void FrameTargets::replace(gpu::TextureHandle& texture, const gpu::TextureDesc& desc) {
@@ -23,23 +24,32 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
     if (!made_ || sizes.directionalAtlas != sizes_.directionalAtlas) {
         replace(directionalAtlas,
                 {sizes.directionalAtlas, sizes.directionalAtlas, gpu::Format::D32Float, depthUsage, 1, "directional atlas"});
+        ++directionalGeneration;
         device_.destroy(directionalReadback_);
         directionalReadback_ = {};
     }
     if (!made_ || sizes.otherAtlas != sizes_.otherAtlas) {
         replace(otherAtlas, {sizes.otherAtlas, sizes.otherAtlas, gpu::Format::D32Float, depthUsage, 1, "spot/point atlas"});
+        ++otherGeneration;
         device_.destroy(otherReadback_);
         otherReadback_ = {};
     }
-    const uint32_t rasterSize = std::max(sizes.directionalAtlas, sizes.otherAtlas);
-    const uint32_t madeRasterSize = made_ && sizes_.computeRaster ? std::max(sizes_.directionalAtlas, sizes_.otherAtlas) : 0;
-    if (!sizes.computeRaster || rasterSize != madeRasterSize) {
-        device_.destroy(rasterDepth);
-        rasterDepth = {};
-    }
-    if (sizes.computeRaster && !rasterDepth)
-        rasterDepth = device_.createBuffer(uint64_t(rasterSize) * rasterSize * 4, gpu::kBufferStorage,
-                                           gpu::MemoryKind::DeviceLocal, nullptr, "shadow raster depth");
+    auto rasterDepth = [&](gpu::BufferHandle& buffer, uint32_t size, uint32_t madeSize, uint64_t& generation,
+                           const char* name) {
+        if (!sizes.computeRaster || size != madeSize || !(made_ && sizes_.computeRaster)) {
+            if (buffer) ++generation;
+            device_.destroy(buffer);
+            buffer = {};
+        }
+        if (sizes.computeRaster && !buffer) {
+            buffer = device_.createBuffer(uint64_t(size) * size * 4, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal,
+                                          nullptr, name);
+            ++generation;
+        }
+    };
+    rasterDepth(directionalRasterDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, directionalGeneration,
+                "directional raster depth");
+    rasterDepth(otherRasterDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, otherGeneration, "spot/point raster depth");
     const bool resized = !made_ || sizes.width != sizes_.width || sizes.height != sizes_.height;
     if (resized) {
         device_.destroy(colorSrgb_);

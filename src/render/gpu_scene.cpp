@@ -123,6 +123,10 @@ GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
     for (gpu_data::CullMesh& mesh : cullMeshes) {
         mesh.counts.x = firstSlot;
         firstSlot += mesh.counts.y;
+        const uint32_t batches = (mesh.draw.x / 3 + gpu_data::kRasterBatch - 1) / gpu_data::kRasterBatch;
+        mesh.counts.z = rasterWorkItems_;
+        mesh.counts.w = batches;
+        rasterWorkItems_ += mesh.counts.y * batches;
     }
     if (cullMeshes.empty()) cullMeshes.push_back({});
     if (cullInstances.empty()) cullInstances.push_back({});

@@ -41,6 +41,8 @@ public:
     gpu::BufferHandle cullMeshBuffer() const { return cullMeshes_; }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t meshSlotCount() const { return meshSlotCount_; }
+    // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's triangle batches.
+    uint32_t rasterWorkItems() const { return rasterWorkItems_; }
     uint64_t triangleCount() const { return triangles_; }
 
     // Marks an instance or material as changed; recordUpdates uploads it.
@@ -55,7 +57,7 @@ private:
     uint64_t triangles_ = 0;
     gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_;
     std::vector<uint32_t> meshSlotOfMesh_;  // per Scene::meshes entry: its CullMesh slot, ~0u without geometry
-    uint32_t instanceCount_ = 0, meshSlotCount_ = 0;
+    uint32_t instanceCount_ = 0, meshSlotCount_ = 0, rasterWorkItems_ = 0;
     std::vector<gpu::TextureHandle> textures_;
     std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler
     gpu::TextureTableHandle textureTable_;

@@ -13,6 +13,7 @@
 #include "render/main_pass.h"
 #include "render/raster_choice.h"
 #include "render/readback_images.h"
+#include "render/tile_cache.h"
 #include "render/screen_space_shadow_pass.h"
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_culling_pass.h"
@@ -84,7 +85,8 @@ struct PendingFrame {
     FrameStats stats;
     ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
     bool computeRaster = false;
-    bool autoRaster = false;  // shadows.raster = auto: its timings feed the choice
+    bool autoRaster = false;  // shadows.raster = auto and still measuring: its timings feed the choice
+    ShadowRaster rasterSetting = ShadowRaster::Auto;
 };
 
 double shadowPassMilliseconds(const FrameStats& stats) {
@@ -96,6 +98,27 @@ double shadowPassMilliseconds(const FrameStats& stats) {
 
 // What the GPU culling pass reports per tile, turned into the frame's atlas stats and the
 // planner stats JSON's casters per tile.
+// The compute rasterizer's counters of both atlas passes, after the cull stats in the readback;
+// `needed` gets the most large pieces and chunks one pass asked for.
+void applyRasterCounters(FrameStats& stats, const ShadowFrame& plan, const std::vector<uint8_t>& readback,
+                         glm::uvec2& needed) {
+    const size_t offset = (plan.directional.tiles.size() + plan.other.tiles.size()) * sizeof(gpu_data::CullTileStats);
+    for (size_t pass = 0; pass < 2; ++pass) {
+        gpu_data::RasterCounters counters{};
+        const size_t at = std::max<size_t>(offset, sizeof(gpu_data::CullTileStats)) + pass * sizeof(counters);
+        if (readback.size() < at + sizeof(counters)) return;
+        std::memcpy(&counters, readback.data() + at, sizeof(counters));
+        stats.rasterLargeTriangles += counters.counts.x;
+        stats.rasterChunks += counters.counts.y;
+        stats.rasterDropped += counters.counts.z + counters.counts.w;
+        needed = glm::max(needed, glm::uvec2(counters.counts.x, counters.counts.y));
+    }
+    if (stats.rasterDropped > 0)
+        stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
+                                 " large pieces or chunks were not drawn in frame " + std::to_string(stats.frameIndex) +
+                                 "; the queues grow for the next frames");
+}
+
 void applyCullStats(FrameStats& stats, const ShadowFrame& plan, const std::vector<uint8_t>& readback) {
     const size_t tileCount = plan.directional.tiles.size() + plan.other.tiles.size();
     std::vector<gpu_data::CullTileStats> tiles(tileCount);
@@ -124,6 +147,10 @@ struct Renderer::State {
     ScreenSpaceShadowPass screenSpacePass;
     ComputeRasterPass computeRaster;
     RasterChoice rasterChoice;
+    glm::uvec2 rasterNeeded{0};  // the most large pieces / chunks a finished frame asked the compute rasterizer for
+    TileCache directionalCache, otherCache;
+    uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
+    uint64_t sceneVersion = 0;   // bumped by every change to the casters (transforms, cast flags, materials)
     FrameTargets targets;
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
@@ -134,7 +161,7 @@ struct Renderer::State {
     State(gpu::Device& d, Scene s, const RendererOptions& o)
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
           mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
-          computeRaster(d, gpuScene), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
+          computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
         // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
         shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
                                          gpu::CompareOp::LessOrEqual});
@@ -243,7 +270,27 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     const gpu::BufferSlice otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
     const uint32_t directionalTiles = uint32_t(plan.directional.tiles.size());
     const uint32_t cullTiles = directionalTiles + uint32_t(plan.other.tiles.size());
-    const gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+    frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
+    // Cached tiles: each atlas draws only the tiles that changed.
+    std::vector<TileSignature> directionalSignatures, otherSignatures;
+    for (const ShadowTile& tile : plan.directional.tiles) directionalSignatures.push_back(directionalTileSignature(tile, plan.directional));
+    for (const ShadowTile& tile : plan.other.tiles) otherSignatures.push_back(otherTileSignature(tile));
+    const bool freshDirectional = targets.directionalGeneration != directionalGenerationDrawn;
+    const bool freshOther = targets.otherGeneration != otherGenerationDrawn;
+    const std::vector<uint32_t> drawDirectional =
+        directionalCache.tilesToDraw(directionalSignatures, targets.directionalGeneration, frame.computeRaster,
+                                     sceneVersion, settings.shadows.cacheTiles);
+    const std::vector<uint32_t> drawOther = otherCache.tilesToDraw(otherSignatures, targets.otherGeneration,
+                                                                   frame.computeRaster, sceneVersion,
+                                                                   settings.shadows.cacheTiles);
+    directionalGenerationDrawn = targets.directionalGeneration;
+    otherGenerationDrawn = targets.otherGeneration;
+    stats.tilesRendered = uint32_t(drawDirectional.size() + drawOther.size());
+    stats.tilesReused = directionalCache.reused() + otherCache.reused();
+    gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+    std::vector<uint32_t> rasterTiles = drawDirectional;
+    for (uint32_t i : drawOther) rasterTiles.push_back(directionalTiles + i);
+    packRasterTiles(cullFrame, rasterTiles);
     const gpu::BufferSlice cullSlice = uploadFrameData(device, &cullFrame, sizeof(cullFrame));
     stats.cpu.upload = phase.milliseconds();
     static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
@@ -253,24 +300,37 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     commands.beginTimer("shadows.culling");
     culling.record(commands, cullSlice, cullTiles);
     commands.endTimer();
-    frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
     frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
+    frame.rasterSetting = settings.shadows.raster;
+    if (frame.computeRaster) computeRaster.reserve(rasterNeeded.x + rasterNeeded.x / 2, rasterNeeded.y + rasterNeeded.y / 2);
     stats.shadowRaster = frame.computeRaster ? "compute" : "hw";
-    auto drawAtlas = [&](const std::vector<ShadowTile>& tiles, uint32_t firstTile, gpu::TextureHandle atlas, uint32_t size) {
-        if (frame.computeRaster)
-            computeRaster.record(commands, casterWrites, cullSlice, culling, firstTile, uint32_t(tiles.size()), atlas, size,
-                                 targets.rasterDepth);
-        else
-            casterPass.record(commands, tiles, firstTile, atlas, size, casterWrites, culling);
+    auto drawAtlas = [&](const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& draw, bool fresh,
+                         uint32_t firstTile, uint32_t listOffset, gpu::TextureHandle atlas, uint32_t size,
+                         gpu::BufferHandle rasterDepth, const std::string& name) {
+        if (frame.computeRaster) {
+            ComputeRasterPass::AtlasTiles atlasTiles;
+            atlasTiles.listOffset = listOffset;
+            atlasTiles.freshAtlas = fresh;
+            for (uint32_t i : draw)
+                atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
+                                            tiles[i].rect.size, tiles[i].rect.size});
+            computeRaster.record(commands, casterWrites, cullSlice, culling, atlasTiles, atlas, size, rasterDepth,
+                                 "shadows." + name);
+            device.readBackAtFrameEnd(commands, computeRaster.counters());
+        } else {
+            casterPass.record(commands, tiles, draw, fresh, firstTile, atlas, size, casterWrites, culling);
+        }
     };
+    device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));  // before the raster counters, see applyRasterCounters
     commands.beginTimer("shadows.directional");
-    drawAtlas(plan.directional.tiles, 0, targets.directionalAtlas, sizes.directionalAtlas);
+    drawAtlas(plan.directional.tiles, drawDirectional, freshDirectional, 0, 0, targets.directionalAtlas,
+              sizes.directionalAtlas, targets.directionalRasterDepth, "directional");
     commands.endTimer();
     commands.beginTimer("shadows.other");
-    drawAtlas(plan.other.tiles, directionalTiles, targets.otherAtlas, sizes.otherAtlas);
+    drawAtlas(plan.other.tiles, drawOther, freshOther, directionalTiles, uint32_t(drawDirectional.size()),
+              targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth, "other");
     commands.endTimer();
     stats.atlases = {{"shadows.directional", directionalTiles, 0, 0}, {"shadows.other", cullTiles - directionalTiles, 0, 0}};
-    device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
 
     MainPassInputs inputs;
     inputs.writes = casterWrites;
@@ -325,11 +385,19 @@ void Renderer::State::collectCompleted() {
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
         FrameStats stats = std::move(pending.front().stats);
         applyCullStats(stats, pending.front().plan, done.readback);
+        if (pending.front().computeRaster) applyRasterCounters(stats, pending.front().plan, done.readback, rasterNeeded);
+        if (stats.rasterDropped > 0) {  // those tiles are incomplete: draw them all again
+            directionalCache.invalidate();
+            otherCache.invalidate();
+        }
         const bool computeRasterFrame = pending.front().computeRaster, autoFrame = pending.front().autoRaster;
+        const ShadowRaster rasterSetting = pending.front().rasterSetting;
         pending.pop_front();
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
         if (autoFrame) rasterChoice.measured(computeRasterFrame, shadowPassMilliseconds(stats));
-        stats.shadowRasterChoice = rasterChoice.describe();
+        stats.shadowRasterChoice = rasterSetting == ShadowRaster::Auto
+                                       ? "auto: " + rasterChoice.describe()
+                                       : std::string("shadows.raster = ") + shadowRasterName(rasterSetting);
         stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
         completed.push_back(std::move(stats));
     }
@@ -352,6 +420,7 @@ const Scene& Renderer::scene() const { return state_->scene; }
 
 void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
     setInstanceWorldTransform(state_->scene, instance, worldFromObject);
+    ++state_->sceneVersion;
     state_->gpuScene.instanceChanged(instance);
 }
 
@@ -359,7 +428,9 @@ void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
     if (instance >= state_->scene.instances.size())
         throw Error("instance " + std::to_string(instance) + " does not exist (the scene has " +
                     std::to_string(state_->scene.instances.size()) + ")");
-    state_->scene.instances[instance].castShadows = castShadows;  // read by the planner only
+    state_->scene.instances[instance].castShadows = castShadows;
+    state_->gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
+    ++state_->sceneVersion;
 }
 
 void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state_->scene, light, value); }
@@ -367,6 +438,7 @@ void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state
 void Renderer::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(state_->scene, material, value);
     state_->gpuScene.materialChanged(material);
+    ++state_->sceneVersion;
 }
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings) {
@@ -375,15 +447,19 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
     State& s = *state_;
-    const uint64_t frameIndex = s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas);
-    s.device.waitFrame(frameIndex);
-    s.collectCompleted();
     RenderResult result;
-    const auto found = std::find_if(s.completed.begin(), s.completed.end(),
-                                    [&](const FrameStats& f) { return f.frameIndex == frameIndex; });
-    if (found != s.completed.end()) {
-        result.stats = std::move(*found);
-        s.completed.erase(found);
+    // A frame whose compute-raster queues overflowed is drawn again once they have grown.
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        const uint64_t frameIndex = s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas);
+        s.device.waitFrame(frameIndex);
+        s.collectCompleted();
+        const auto found = std::find_if(s.completed.begin(), s.completed.end(),
+                                        [&](const FrameStats& f) { return f.frameIndex == frameIndex; });
+        if (found != s.completed.end()) {
+            result.stats = std::move(*found);
+            s.completed.erase(found);
+        }
+        if (result.stats.rasterDropped == 0) break;
     }
     const FrameTargetSizes& sizes = s.targets.sizes();
     if (request.readback)

@@ -29,22 +29,32 @@ ShadowCasterPass::~ShadowCasterPass() {
     device_.destroy(alphaTested_);
 }
 
-void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<ShadowTile>& tiles, uint32_t firstCullTile,
+void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<ShadowTile>& tiles,
+                              const std::vector<uint32_t>& draw, bool freshAtlas, uint32_t firstCullTile,
                               gpu::TextureHandle atlas, uint32_t atlasSize,
                               const std::vector<gpu::DescriptorWrite>& writes, const ShadowCullingPass& culling) {
-    commands.transition(atlas, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    if (draw.empty() && !freshAtlas) return;  // every tile cached
+    commands.transition(atlas, freshAtlas ? gpu::TextureState::Undefined : gpu::TextureState::ShaderRead,
+                        gpu::TextureState::DepthTarget);
     gpu::RenderingDesc rendering;
     rendering.width = rendering.height = atlasSize;
-    rendering.depth = {atlas, true, 1.0f};
+    rendering.depth = {atlas, freshAtlas, 1.0f};
     commands.beginRendering(rendering);
+    if (!freshAtlas) {
+        std::vector<gpu::Rect> rects;
+        for (uint32_t i : draw)
+            rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y), tiles[i].rect.size,
+                             tiles[i].rect.size});
+        commands.clearDepthRects(rects, 1.0f);
+    }
     std::vector<gpu::DescriptorWrite> casterWrites = writes;
     casterWrites.push_back({12, culling.visibleInstances(), {}, {}});
-    for (uint32_t kind = 0; kind < 2 && !tiles.empty(); ++kind) {
+    for (uint32_t kind = 0; kind < 2 && !draw.empty(); ++kind) {
         commands.bindPipeline(kind ? alphaTested_ : depthOnly_);
         commands.pushDescriptors(casterWrites);
         commands.bindTextureTable(scene_.textureTable());
         commands.bindIndexBuffer(scene_.indexBuffer());
-        for (uint32_t i = 0; i < tiles.size(); ++i) {
+        for (uint32_t i : draw) {
             const ShadowTile& tile = tiles[i];
             const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
             // Other-light tiles keep an empty border: casters are drawn through a smaller scissor (seed 001 §5.5).

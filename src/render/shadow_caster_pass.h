@@ -23,9 +23,11 @@ public:
     // Clears `atlas` (depth 1 = far, nothing cast) and draws every tile, tile i from the culling pass's
     // lists of culling tile firstCullTile + i; `atlas` goes from Undefined to ShaderRead. `writes`:
     // the scene bindings 0-4.
-    void record(gpu::CommandList& commands, const std::vector<ShadowTile>& tiles, uint32_t firstCullTile,
-                gpu::TextureHandle atlas, uint32_t atlasSize, const std::vector<gpu::DescriptorWrite>& writes,
-                const ShadowCullingPass& culling);
+    // Only the tiles `draw` lists (indices into `tiles`) are drawn; with freshAtlas false the others
+    // keep their depth (cached tiles: the atlas goes from ShaderRead and only the drawn tiles are cleared).
+    void record(gpu::CommandList& commands, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& draw,
+                bool freshAtlas, uint32_t firstCullTile, gpu::TextureHandle atlas, uint32_t atlasSize,
+                const std::vector<gpu::DescriptorWrite>& writes, const ShadowCullingPass& culling);
 
 private:
     gpu::Device& device_;

@@ -90,6 +90,7 @@ const LeafKey kLeafKeys[] = {
          s.shadows.directional.cascadeFade = readFloat(k, v); }},
     {"shadows.directional.cascadeBlend", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.directional.cascadeBlend = readBlend(k, v); }},
+    {"shadows.cacheTiles", [](Settings& s, const std::string& k, const json& v) { s.shadows.cacheTiles = readBool(k, v); }},
     {"shadows.raster", [](Settings& s, const std::string& k, const json& v) { s.shadows.raster = readRaster(k, v); }},
     {"shadows.spot.atlasSize", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.spot.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},

@@ -63,4 +63,9 @@ gpu_data::CullFrame packCullFrame(const ShadowFrame& frame, uint32_t instanceCou
     return packed;
 }
 
+void packRasterTiles(gpu_data::CullFrame& frame, const std::vector<uint32_t>& tiles) {
+    PENUMBRA_ASSERT(tiles.size() <= gpu_data::kMaxCullTiles);
+    for (size_t i = 0; i < tiles.size() && i < gpu_data::kMaxCullTiles; ++i) frame.rasterTiles[i / 4][i % 4] = tiles[i];
+}
+
 }  // namespace penumbra

@@ -14,5 +14,7 @@ namespace penumbra {
 // frame.directional.tiles[i] for i < directional tile count, else frame.other.tiles[i - that count].
 // Throws Error (internal) when the plan has more than kMaxCullTiles tiles.
 gpu_data::CullFrame packCullFrame(const ShadowFrame& frame, uint32_t instanceCount, uint32_t meshCount);
+// Sets CullFrame::rasterTiles to `tiles` (culling tile indices, at most kMaxCullTiles).
+void packRasterTiles(gpu_data::CullFrame& frame, const std::vector<uint32_t>& tiles);
 
 }  // namespace penumbra

@@ -109,7 +109,7 @@ TEST_F(ComputeRasterTest, AutoMeasuresBothPathsThenKeepsTheFaster) {
     EXPECT_TRUE(sawCompute) << "auto measures the compute path too";
     const std::string choice = frames.back().shadowRasterChoice;
     EXPECT_NE(choice.find("measured"), std::string::npos) << choice;
-    EXPECT_EQ(choice.rfind(frames.back().shadowRaster, 0), 0u) << "the last frame uses the choice: " << choice;
+    EXPECT_EQ(choice.rfind("auto: " + frames.back().shadowRaster, 0), 0u) << "the last frame uses the choice: " << choice;
 }
 
 // A horizontal quad whose corners land exactly on texel centres of cascade 0: both rasterizers must
@@ -178,3 +178,21 @@ TEST_F(ComputeRasterTest, BothRasterizersFollowTheTopLeftRuleOnTexelCentres) {
 }  // namespace
 }  // namespace penumbra::test
 
+
+namespace penumbra::test {
+namespace {
+
+TEST_F(ComputeRasterTest, OverflowingQueuesGrowAndTheFrameIsDrawnAgain) {
+    RendererOptions tiny;
+    tiny.rasterLargeQueue = 4;  // the demo's ground alone needs more
+    tiny.rasterChunkQueue = 8;
+    Renderer small(device(), makeDemoScene(), tiny), normal(device(), makeDemoScene());
+    Settings settings;
+    const RenderResult grown = render(small, ShadowRaster::Compute, 0, settings);
+    EXPECT_EQ(grown.stats.rasterDropped, 0u) << "render() drew the frame again with larger queues";
+    EXPECT_GT(grown.stats.rasterLargeTriangles, 4u);
+    EXPECT_TRUE(grown.image.pixels == render(normal, ShadowRaster::Compute, 0, settings).image.pixels);
+}
+
+}  // namespace
+}  // namespace penumbra::test
