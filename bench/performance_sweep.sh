@@ -5,6 +5,8 @@
 # PENUMBRA: the program (e.g. ".portable/bin/penumbra" with LD_LIBRARY_PATH set). PRESET:
 #   gpu      1920x1080, field 1..400 engines with 16 spots, boxes 1k..1M, the 3000-frame orbit run
 #   lavapipe 320x180, field 1..16, boxes 1k..100k (a 2-core CPU renders these in minutes)
+#   raster   1920x1080: issue 10's rows: hw vs compute rasterizer per atlas against triangles
+#            (field 1..400, 16 spots), cached vs uncached tiles with a still camera, objects 1k..1M
 # Every run uses the issue-8 configuration: 4 cascades in a 4096² atlas, PCF5x5, soft cascade blend,
 # spot/point shadows in a 4096² atlas (PCF5x5).
 set -euo pipefail
@@ -36,9 +38,21 @@ run() {  # NAME SCENE FRAMES [extra options]
     set -- --set "shadows.maxDistance=$(distance_for "$scene")" "$@"
     echo "== $name: $scene, $n frames $*" >&2
     "$penumbra" bench "$scene" --device "$device" "${model[@]}" "${size[@]}" "${config[@]}" --frames "$n" --warmup "$warmup" \
-        --json "$out/$name.json" "$@" > "$out/$name.txt"
+        "$@" --json "$out/$name.json" > "$out/$name.txt"
     tail -n 4 "$out/$name.txt" >&2
 }
+if [ "$preset" = raster ]; then
+    size=(--width 1920 --height 1080); frames=15; warmup=5
+    for n in 1 4 16 25 64 100 200 400; do
+        for r in hw compute; do run "field_${n}_16_$r" "gen:field:$n:16" "$frames" --camera orbit --raster "$r"; done
+    done
+    for c in true false; do
+        run "field_100_16_static_cache_$c" gen:field:100:16 "$frames" --camera static --raster compute --set "shadows.cacheTiles=$c"
+    done
+    warmup=12; run field_100_16_auto gen:field:100:16 "$frames" --camera orbit; warmup=5
+    for n in 1000 10000 100000 1000000; do run "boxes_${n}_compute" "gen:boxes:$n" 8 --camera orbit --raster compute; done
+    exit 0
+fi
 for n in $fields; do run "field_${n}_16" "gen:field:$n:16" "$frames" --camera orbit; done
 for n in $fields; do run "field_${n}_0" "gen:field:$n" "$frames" --camera orbit; done
 for n in $boxes; do
