@@ -5,10 +5,14 @@
 #define PENUMBRA_SHADOWS_GLSL
 #include "other_shadow_structs.h"
 #include "shadow_structs.h"
+#include "shadow_bias.glsl"
 #include "shadow_tent.glsl"
 
 layout(set = 0, binding = 5, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
 layout(set = 0, binding = 6) uniform sampler2DShadow directionalShadowAtlas;
+// The same atlases read as raw depth (nearest): the receiver-plane compare and blocker searches.
+layout(set = 0, binding = 12) uniform sampler2D directionalShadowDepth;
+layout(set = 0, binding = 13) uniform sampler2D otherShadowDepth;
 
 const uint kNoShadowSlot = 0xffffffffu;
 
@@ -22,20 +26,21 @@ float fadedShadowStrength(float distance, float scale, float fade) {
     return clamp((1.0 - distance * scale) * fade, 0.0, 1.0);
 }
 
-// seed 000 §4.7 FilterDirectionalShadow: one hardware 2x2 PCF tap or a tent of taps (shadow_tent.glsl).
-float filterDirectionalShadow(vec3 atlasUvDepth) {
-    return sampleShadowFiltered(directionalShadowAtlas, atlasUvDepth, directionalShadows.atlasSize.yyxx,
-                                directionalShadows.config.y);
-}
-
-// seed 000 §4.3 / §4.6: sample one cascade of a light, the surface pushed along its normal by the
-// light's normal bias times the cascade's unit, texel diagonal * (1 + filter / 2) (shadow_structs.h).
-float sampleDirectionalCascade(uint slot, int cascade, vec3 wsPosition, vec3 wsNormal) {
+// seed 000 §4.3 / §4.6 / §4.7: sample one cascade of a light, biased as shadows.bias says
+// (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent (shadow_tent.glsl).
+float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
     vec4 light = directionalShadows.lights[slot];
-    vec3 wsBiased = wsPosition + wsNormal * (light.z * directionalShadows.cascadeData[cascade].y);
-    uint tile = uint(light.y) + uint(cascade);
-    vec3 atlasUvDepth = (directionalShadows.atlasFromWorld[tile] * vec4(wsBiased, 1.0)).xyz;
-    return filterDirectionalShadow(atlasUvDepth);
+    vec4 lightBias = directionalShadows.lightBias[slot];
+    uint filterMode = uint(lightBias.z);
+    ShadowBiasParams bias = ShadowBiasParams(directionalShadows.modes.x, lightBias.x, lightBias.y,
+                                             directionalShadows.cascadeData[cascade].z,
+                                             normalOffsetFootprint(filterMode), 0.0);
+    vec3 wsToLight = directionalShadows.lightDirections[slot].xyz;
+    mat4 atlasFromWorld = directionalShadows.atlasFromWorld[uint(light.y) + uint(cascade)];
+    vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
+    ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize.x);
+    return sampleShadowFiltered(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth,
+                                directionalShadows.atlasSize.yyxx, filterMode, lookup.depthGradient, lookup.perTexelPlane);
 }
 
 bool insideCullingSphere(int cascade, vec3 wsPosition) {
@@ -47,8 +52,9 @@ bool insideCullingSphere(int cascade, vec3 wsPosition) {
 // seed 000 §3.5-§3.8 and §4.8 GetShadowData + GetDirectionalShadowAttenuation: choose the cascade by
 // culling sphere, fade by distance and in the last cascade, blend cascades (soft: lerp two samples;
 // dither: pick one by interleaved gradient noise), then lerp(1, shadow, strength).
-ShadowSample directionalShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec2 pixel) {
+ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
     if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.config.w) return ShadowSample(1.0, -1);
+    vec3 wsPosition = receiver.wsPosition;
     int cascadeCount = int(directionalShadows.config.x);
     float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
     vec4 fade = directionalShadows.fade;
@@ -76,9 +82,9 @@ ShadowSample directionalShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, 
 
     strength *= directionalShadows.lights[shadowSlot].x;
     if (strength <= 0.0) return ShadowSample(1.0, cascade);
-    float shadow = sampleDirectionalCascade(shadowSlot, cascade, wsPosition, wsNormal);
+    float shadow = sampleDirectionalCascade(shadowSlot, cascade, receiver);
     if (cascadeBlend < 1.0)
-        shadow = mix(sampleDirectionalCascade(shadowSlot, cascade + 1, wsPosition, wsNormal), shadow, cascadeBlend);
+        shadow = mix(sampleDirectionalCascade(shadowSlot, cascade + 1, receiver), shadow, cascadeBlend);
     return ShadowSample(mix(1.0, shadow, strength), cascade);
 }
 
@@ -93,11 +99,14 @@ layout(set = 0, binding = 7, std140) uniform OtherShadowBlock { OtherShadowData 
 layout(set = 0, binding = 8) uniform sampler2DShadow otherShadowAtlas;
 
 // Seed 001 §4.4 HardShadowAttenuation / SoftShadowAttenuation, the soft one with spot.filter's tent.
-float filterOtherShadow(vec3 atlasUvDepth, bool soft) {
+float filterOtherShadow(ShadowLookup lookup, bool soft) {
     bool useSoft = kOtherShadowMode == kOtherShadowsSoft || (kOtherShadowMode != kOtherShadowsHard && soft);
+    vec4 texelSize = otherShadows.atlasSize.yyxx;
     if (useSoft)
-        return sampleShadowFiltered(otherShadowAtlas, atlasUvDepth, otherShadows.atlasSize.yyxx, kOtherShadowFilter);
-    return sampleShadowPcf2x2(otherShadowAtlas, atlasUvDepth);
+        return sampleShadowFiltered(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, kOtherShadowFilter,
+                                    lookup.depthGradient, lookup.perTexelPlane);
+    return sampleShadowPcf2x2(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, lookup.depthGradient,
+                              lookup.perTexelPlane);
 }
 
 // Cube face (+X, -X, +Y, -Y, +Z, -Z order) holding a direction from a point light: its major axis.
@@ -107,43 +116,45 @@ uint pointLightFace(vec3 wsFromLight) {
     return 2u * axis + (wsFromLight[axis] < 0.0 ? 1u : 0u);
 }
 
-// Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: pick the tile (a point light's
-// cube face by the major axis of light -> fragment), push the surface along its normal by the light's
-// normal bias times the world texel size at the fragment's distance along the tile's axis, project,
-// divide by w, keep the filter inside the tile's drawn interior (§5.5), compare, lerp by strength.
+// Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: bias the lookup as
+// shadows.bias says (shadow_bias.glsl; the world texel grows with the distance along the tile's axis),
+// pick the tile (a point light's cube face by the major axis of light -> lookup point), project, divide
+// by w, keep the filter inside the tile's drawn interior (§5.5), compare, lerp by strength.
 // Fragments behind a spot light or outside its tile's frustum are not shadowed.
-ShadowSample otherShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec3 wsToLight) {
+ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLight) {
     if (kOtherShadowMode == 0u) return ShadowSample(1.0, -1);
     if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.config.x) return ShadowSample(1.0, -1);
     vec4 light = otherShadows.lights[shadowSlot];
-    float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
+    float viewDepth = -(frame.viewFromWorld * vec4(receiver.wsPosition, 1.0)).z;
     float strength = light.x * fadedShadowStrength(viewDepth, otherShadows.fade.x, otherShadows.fade.y);
     if (strength <= 0.0) return ShadowSample(1.0, -1);
 
     vec4 position = otherShadows.lightPositions[shadowSlot];
     vec4 direction = otherShadows.lightDirections[shadowSlot];
-    vec3 wsFromLight = wsPosition - position.xyz;
+    vec4 lightBias = otherShadows.lightBias[shadowSlot];
+    vec3 wsFromLight = receiver.wsPosition - position.xyz;
     bool pointLight = light.w > 0.5;
     float distance = pointLight ? max(max(abs(wsFromLight.x), abs(wsFromLight.y)), abs(wsFromLight.z))
                                 : dot(wsFromLight, direction.xyz);
     if (distance <= 0.0) return ShadowSample(1.0, -1);
-    vec3 wsBiased = wsPosition + wsNormal * (position.w * distance);
-    uint tile = uint(light.y);
-    if (pointLight) tile += pointLightFace(wsBiased - position.xyz);  // the face that holds the biased point
-    vec4 atlasClip = otherShadows.atlasFromWorld[tile] * vec4(wsBiased, 1.0);
-    atlasClip.z -= direction.w;  // constant clip-space depth bias (seed 001 §4.2), 0 by default
-    if (atlasClip.w <= 0.0) return ShadowSample(1.0, -1);
-    vec3 atlasUvDepth = atlasClip.xyz / atlasClip.w;
-    if (atlasUvDepth.z >= 1.0) return ShadowSample(1.0, -1);  // beyond the far plane (range): no caster drawn there
-
     bool soft = light.z > 0.5;
+    ShadowBiasParams bias = ShadowBiasParams(otherShadows.modes.x, lightBias.x, lightBias.y, lightBias.z * distance,
+                                             normalOffsetFootprint(uint(lightBias.w)), direction.w);
+    vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
+    uint tile = uint(light.y);
+    if (pointLight) tile += pointLightFace(wsLookup - position.xyz);  // the face that holds the lookup point
+    ShadowLookup lookup = shadowLookup(otherShadows.atlasFromWorld[tile], receiver, wsLookup, wsToLight, bias,
+                                       otherShadows.atlasSize.x);
+    if (lookup.w <= 0.0) return ShadowSample(1.0, -1);
+    if (lookup.uvDepth.z >= 1.0) return ShadowSample(1.0, -1);  // beyond the far plane (range): no caster drawn there
+
     vec4 bounds = otherShadows.tileBounds[tile];
     // The cone (or a point light's 90° face) lies inside `bounds`, the drawn interior less the filter
     // reach: a fragment outside it gets no light from this tile, and clamping it onto the tile's edge
     // would smear edge texels into streaks across the AOV.
-    if (any(lessThan(atlasUvDepth.xy, bounds.xy)) || any(greaterThan(atlasUvDepth.xy, bounds.zw)))
+    if (any(lessThan(lookup.uvDepth.xy, bounds.xy)) || any(greaterThan(lookup.uvDepth.xy, bounds.zw)))
         return ShadowSample(1.0, -1);
-    float shadow = filterOtherShadow(atlasUvDepth, soft);
+    float shadow = filterOtherShadow(lookup, soft);
     return ShadowSample(mix(1.0, shadow, strength), -1);
 }
 #endif

@@ -28,6 +28,17 @@ PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
 PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
 PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)
 
+// ShadowBias.x of DirectionalShadowData and OtherShadowData mirrors ShadowBiasMode (issue 13 item 6):
+// how the lit pass keeps a surface from shadowing itself (see shaders/shadows.glsl shadowLookup).
+PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (seed 000 §4.3, the old rule)
+PENUMBRA_CONST(uint, kShadowBiasScaledNormal, 1u)    // normal offset x the texel's size x sin(N, L)
+PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the receiver plane's depth there
+
+// One unit of a light's shadowNormalBias, in texels of its shadow map: the texel diagonal x (1 + filter
+// / 2), for directional, spot and point lights alike (issue 13 defect 4; before, spots used 1 + filter).
+// filterMode = kShadowFilter* of the light (PCF2x2 for "hard" lights). Measured in shadow_gpu_packing.cpp.
+PENUMBRA_INLINE float normalOffsetFootprint(uint filterMode) { return (1.0f + 0.5f * float(filterMode)) * 1.4142136f; }
+
 struct DirectionalShadowData {
     // Tile t = lights[slot].y + cascade: world -> (atlas uv, depth). Unused tiles are zero.
     mat4 atlasFromWorld[16];
@@ -56,14 +67,25 @@ struct DirectionalShadowData {
     // x = atlas size in texels, y = 1 / atlas size, z = tile size in texels, w = 1 / tile size.
     // The tent filters take vec4(1/size, 1/size, size, size) = atlasSize.yyxx (seed 000 §4.6).
     vec4 atlasSize;
+    // Per shadowed light slot: x = normal-bias multiplier (shadowNormalBias), y = slope-scale bias
+    // (shadowBias: depth per texel of receiver slope, applied in the lit pass, not the rasterizer),
+    // z = filter (kShadowFilter*: the directional filter, or PCF2x2 for a "hard" light), w unused.
+    vec4 lightBias[4];
+    // Per shadowed light slot: xyz = unit vector toward the light (opposite to the way it travels).
+    vec4 lightDirections[4];
+    // x = bias mode (kShadowBias*), y = fade mode (0 linear, 1 squared), zw unused.
+    uvec4 modes;
 };
-PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1264)
+PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1408)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cullingSpheres, 1024)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascadeData, 1088)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lights, 1152)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, fade, 1216)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, config, 1232)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, atlasSize, 1248)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightBias, 1264)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightDirections, 1328)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, modes, 1392)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

@@ -54,6 +54,13 @@ CascadeBlend readBlend(const std::string& key, const json& value) {
     return *blend;
 }
 
+ShadowBiasMode readBiasMode(const std::string& key, const json& value) {
+    if (!value.is_string()) failType(key, value, "a string");
+    const auto mode = parseShadowBiasMode(value.get<std::string>());
+    if (!mode) fail(key + " = " + value.dump() + " is out of range (allowed normal, scaledNormal, receiverPlane)");
+    return *mode;
+}
+
 std::array<float, 3> readRatios(const std::string& key, const json& value) {
     if (!value.is_array() || value.size() != 3) failType(key, value, "an array of 3 numbers");
     std::array<float, 3> ratios{};
@@ -69,6 +76,7 @@ struct LeafKey {
 
 // Every leaf of the settings JSON (DESIGN.md "Settings" plus the "render" block).
 const LeafKey kLeafKeys[] = {
+    {"shadows.bias", [](Settings& s, const std::string& k, const json& v) { s.shadows.bias = readBiasMode(k, v); }},
     {"shadows.maxDistance", [](Settings& s, const std::string& k, const json& v) { s.shadows.maxDistance = readFloat(k, v); }},
     {"shadows.distanceFade", [](Settings& s, const std::string& k, const json& v) { s.shadows.distanceFade = readFloat(k, v); }},
     {"shadows.screenSpace", [](Settings& s, const std::string& k, const json& v) { s.shadows.screenSpace = readBool(k, v); }},

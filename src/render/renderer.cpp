@@ -136,10 +136,11 @@ private:
     gpu::Device& device_;
 };
 
-// Bindings 0-8 of the scene passes: scene buffers, both shadow blocks and both atlases.
+// Bindings 0-8, 12, 13 of the scene passes: scene buffers, both shadow blocks and both atlases.
 MainPassInputs shadowedSceneInputs(const GpuScene& gpuScene, gpu::BufferHandle frame, gpu::BufferHandle lights,
                                    gpu::BufferHandle directionalShadows, gpu::BufferHandle otherShadows,
-                                   const FrameTargets& targets, gpu::SamplerHandle shadowSampler) {
+                                   const FrameTargets& targets, gpu::SamplerHandle shadowSampler,
+                                   gpu::SamplerHandle depthSampler) {
     MainPassInputs inputs;
     inputs.bindings = sceneBindings();
     inputs.writes = sceneDescriptorWrites(gpuScene, frame, lights);
@@ -151,6 +152,11 @@ MainPassInputs shadowedSceneInputs(const GpuScene& gpuScene, gpu::BufferHandle f
     inputs.writes.push_back({6, {}, targets.atlas, shadowSampler});
     inputs.writes.push_back({7, otherShadows, {}, {}});
     inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
+    // 12, 13: the same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
+    inputs.bindings.push_back({12, gpu::DescriptorType::SampledTexture});
+    inputs.bindings.push_back({13, gpu::DescriptorType::SampledTexture});
+    inputs.writes.push_back({12, {}, targets.atlas, depthSampler});
+    inputs.writes.push_back({13, {}, targets.otherAtlas, depthSampler});
     return inputs;
 }
 
@@ -211,7 +217,7 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     commands.endTimer();
 
     MainPassInputs inputs = shadowedSceneInputs(s.gpuScene, s.frameBuffer, s.lightBuffer, s.directionalShadowBuffer,
-                                                s.otherShadowBuffer, targets, s.shadowSampler);
+                                                s.otherShadowBuffer, targets, s.shadowSampler, s.pointSampler);
     gpu::TextureHandle screenShadows = s.noScreenShadows;
     if (screenSpace) screenShadows = s.screenSpacePass.record(commands, s.scene, view, inputs, 0);
     inputs.bindings.push_back({9, gpu::DescriptorType::SampledTexture});

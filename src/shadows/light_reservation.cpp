@@ -45,6 +45,7 @@ std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& sce
         entry.firstTile = uint32_t(reserved.size()) * cascadeCount;  // seed 000 §3.2
         entry.normalBias = light.shadowNormalBias;
         entry.slopeScaleBias = light.shadowBias;
+        entry.soft = light.shadows == LightShadows::Soft;
         entry.nearPlaneOffset = light.shadowNearPlane;
         entry.wsDirection = glm::normalize(light.wsDirection);
         reserved.push_back(entry);

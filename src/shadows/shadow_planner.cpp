@@ -23,7 +23,7 @@ struct TileInputs {
 // How far toward the light the lit pass may look up a receiver of this cascade: the normal bias moves
 // the lookup by up to normalBias units (shadow_gpu_packing.h), plus one texel of rounding.
 float nearPlaneMargin(const ReservedDirectionalLight& light, float wsTexelSize, ShadowFilter filter) {
-    return wsTexelSize * (1.0f + light.normalBias * directionalNormalBiasTexels(filter) * 1.4142136f);
+    return wsTexelSize * (1.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter)));
 }
 
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
@@ -52,7 +52,7 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     tile.clipFromLight = orthoClipFromLight(view.halfExtent, tile.nearDistance, tile.farDistance);
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = atlasFromClip(in.atlas, tileIndex) * tile.clipFromWorld;
-    tile.slopeScaleBias = light.slopeScaleBias;
+    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (shadow_bias.glsl)
     tile.depthClamp = true;
     tile.casterInstances = std::move(casters.instances);
     return tile;

@@ -9,8 +9,10 @@
 //   draw casters with depth test LESS, sample with compare op LESS_OR_EQUAL (fragment <= stored -> lit);
 // - pancaking (seed 000 §4.5): tiles with depthClamp set must be drawn with depthClampEnable so casters
 //   in front of the near plane flatten onto it instead of being clipped;
-// - slope-scale bias: depthBiasSlopeFactor = slopeScaleBias (the light's shadowBias, seed 000 §4.4),
-//   constant bias 0; the lit pass adds the normal bias instead (seed 000 §4.3).
+// - no rasterizer depth bias: the caster pass writes the casters' exact depth (clamped to [0, 1] by
+//   depth clamp). Every bias, the light's slope-scale shadowBias (seed 000 §4.4) included, is applied
+//   by the lit pass to the receiver (shaders/shadow_bias.glsl), so a compute rasterizer has only the
+//   depth to reproduce.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -46,7 +48,7 @@ struct ShadowTile {
     // Directional tiles: how far the kept casters reach in front of the near plane (pancaked onto it by
     // depth clamp); the depth range would have to grow by this much to hold them all.
     float pancakedDepth = 0.0f;
-    float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor
+    float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor: 0 (biases are the lit pass's, see above)
     bool depthClamp = true;          // pancaking: draw with depthClampEnable
     std::vector<uint32_t> casterInstances;  // indices into Scene::instances, scene order
 };

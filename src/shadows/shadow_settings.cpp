@@ -11,6 +11,7 @@ namespace {
 
 constexpr const char* kFilterNames[] = {"PCF2x2", "PCF3x3", "PCF5x5", "PCF7x7"};
 constexpr const char* kBlendNames[] = {"hard", "soft", "dither"};
+constexpr const char* kBiasModeNames[] = {"normal", "scaledNormal", "receiverPlane"};
 
 std::string formatValue(float value) {
     std::ostringstream out;
@@ -51,6 +52,18 @@ const char* cascadeBlendName(CascadeBlend blend) {
     return i >= 0 && i < 3 ? kBlendNames[i] : "?";
 }
 
+const char* shadowBiasModeName(ShadowBiasMode mode) {
+    const int i = int(mode);
+    return i >= 0 && i < 3 ? kBiasModeNames[i] : "?";
+}
+
+std::optional<ShadowBiasMode> parseShadowBiasMode(const std::string& name) {
+    for (int i = 0; i < 3; ++i) {
+        if (name == kBiasModeNames[i]) return ShadowBiasMode(i);
+    }
+    return std::nullopt;
+}
+
 std::optional<ShadowFilter> parseShadowFilter(const std::string& name) {
     for (int i = 0; i < 4; ++i) {
         if (name == kFilterNames[i]) return ShadowFilter(i);
@@ -67,6 +80,7 @@ std::optional<CascadeBlend> parseCascadeBlend(const std::string& name) {
 
 void validateShadowSettings(const ShadowSettings& settings) {
     constexpr float kHuge = 3.0e38f;
+    checkEnum("shadows.bias", int(settings.bias), 3);
     checkFloatRange("shadows.maxDistance", settings.maxDistance, 0.001f, kHuge, ">= 0.001");
     checkFloatRange("shadows.distanceFade", settings.distanceFade, 0.001f, 1.0f, "0.001..1");
     const DirectionalShadowSettings& directional = settings.directional;

@@ -9,6 +9,10 @@ namespace penumbra {
 
 enum class ShadowFilter { PCF2x2, PCF3x3, PCF5x5, PCF7x7 };
 enum class CascadeBlend { Hard, Soft, Dither };
+// How the lit pass keeps surfaces from shadowing themselves (issue 13 item 6; shaders/shadow_bias.glsl):
+// the seed's constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
+// Every light's shadowNormalBias multiplies the automatic amount, its shadowBias adds a slope-scale bias.
+enum class ShadowBiasMode { Normal, ScaledNormal, ReceiverPlane };
 
 struct DirectionalShadowSettings {
     uint32_t atlasSize = 1024;
@@ -38,6 +42,7 @@ struct SpotShadowSettings {
 };
 
 struct ShadowSettings {
+    ShadowBiasMode bias = ShadowBiasMode::ReceiverPlane;  // measured best (docs/fidelity.md)
     float maxDistance = 100.0f;
     float distanceFade = 0.1f;
     bool screenSpace = false;
@@ -51,6 +56,8 @@ inline float filterSize(ShadowFilter filter) { return float(int(filter)); }
 // Names as written in the settings JSON ("PCF5x5", "soft") and back; nullopt for an unknown name.
 const char* shadowFilterName(ShadowFilter filter);
 const char* cascadeBlendName(CascadeBlend blend);
+const char* shadowBiasModeName(ShadowBiasMode mode);
+std::optional<ShadowBiasMode> parseShadowBiasMode(const std::string& name);
 std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
 std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
 
