@@ -32,11 +32,13 @@ float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) 
     vec4 light = directionalShadows.lights[slot];
     vec4 lightBias = directionalShadows.lightBias[slot];
     uint filterMode = uint(lightBias.z);
-    ShadowBiasParams bias = ShadowBiasParams(directionalShadows.modes.x, lightBias.x, lightBias.y,
-                                             directionalShadows.cascadeData[cascade].z,
+    mat4 atlasFromWorld = directionalShadows.atlasFromWorld[uint(light.y) + uint(cascade)];
+    // The tile's world texel: 1 / (atlas texels per metre along u), exact for sphere and tight tiles.
+    float wsTexel = 1.0 / (directionalShadows.atlasSize.x * length(vec3(atlasFromWorld[0][0], atlasFromWorld[1][0],
+                                                                        atlasFromWorld[2][0])));
+    ShadowBiasParams bias = ShadowBiasParams(directionalShadows.modes.x, lightBias.x, lightBias.y, wsTexel,
                                              normalOffsetFootprint(filterMode), 0.0);
     vec3 wsToLight = directionalShadows.lightDirections[slot].xyz;
-    mat4 atlasFromWorld = directionalShadows.atlasFromWorld[uint(light.y) + uint(cascade)];
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
     ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize.x);
     return sampleShadowFiltered(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth,
@@ -49,33 +51,64 @@ bool insideCullingSphere(int cascade, vec3 wsPosition) {
     return dot(offset, offset) < sphere.w;
 }
 
+struct CascadeChoice {
+    int cascade;  // -1: beyond the last cascade
+    float fade;   // 1 inside the cascade, falling to 0 over its blend band (seed 000 §3.8)
+};
+
+// seed 000 §3.4 and §3.8: the first culling sphere that holds the point, faded over the sphere's outer
+// band (squared distances); or, for tight cascades (issue 13 item 8), the first slice whose split lies
+// beyond the point's view depth, faded over the slice's last cascadeFade of view depth.
+CascadeChoice selectDirectionalCascade(vec3 wsPosition, float viewDepth) {
+    int cascadeCount = int(directionalShadows.config.x);
+    bool tight = directionalShadows.modes.z == kCascadeFitTight;
+    for (int cascade = 0; cascade < cascadeCount; ++cascade) {
+        vec4 data = directionalShadows.cascadeData[cascade];
+        if (tight) {
+            if (viewDepth < data.w)
+                return CascadeChoice(cascade, fadedShadowStrength(viewDepth, 1.0 / data.w, directionalShadows.depthSelection.x));
+            continue;
+        }
+        vec4 sphere = directionalShadows.cullingSpheres[cascade];
+        vec3 offset = wsPosition - sphere.xyz;
+        float distanceSquared = dot(offset, offset);
+        if (distanceSquared < sphere.w)
+            return CascadeChoice(cascade, fadedShadowStrength(distanceSquared, data.x, directionalShadows.fade.z));
+    }
+    return CascadeChoice(-1, 0.0);
+}
+
+// The distance fade of every shadow (fade = DirectionalShadowData.fade or OtherShadowData.fade): seed
+// 000 §3.7 by view depth (kShadowFadeLinear), or URP's (seed 004 _MainLightShadowParams.zw) by the
+// squared distance to the camera, saturate(d^2 * scale + bias) fading the shadow out (kShadowFadeSquared).
+float distanceFadeStrength(vec3 wsPosition, float viewDepth, vec4 fade, uint mode, vec2 squaredScaleBias) {
+    if (mode == kShadowFadeSquared) {
+        vec3 fromCamera = wsPosition - frame.wsCameraPosition.xyz;
+        return 1.0 - clamp(dot(fromCamera, fromCamera) * squaredScaleBias.x + squaredScaleBias.y, 0.0, 1.0);
+    }
+    return fadedShadowStrength(viewDepth, fade.x, fade.y);
+}
+
 // seed 000 §3.5-§3.8 and §4.8 GetShadowData + GetDirectionalShadowAttenuation: choose the cascade by
 // culling sphere, fade by distance and in the last cascade, blend cascades (soft: lerp two samples;
 // dither: pick one by interleaved gradient noise), then lerp(1, shadow, strength).
 ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
     if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.config.w) return ShadowSample(1.0, -1);
     vec3 wsPosition = receiver.wsPosition;
-    int cascadeCount = int(directionalShadows.config.x);
     float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
-    vec4 fade = directionalShadows.fade;
-    float strength = fadedShadowStrength(viewDepth, fade.x, fade.y);
+    float strength = distanceFadeStrength(wsPosition, viewDepth, directionalShadows.fade, directionalShadows.modes.y,
+                                          directionalShadows.depthSelection.yz);
+    CascadeChoice choice = selectDirectionalCascade(wsPosition, viewDepth);
+    if (choice.cascade < 0) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
+    int cascade = choice.cascade;
     float cascadeBlend = 1.0;
-    int cascade = 0;
-    for (; cascade < cascadeCount; ++cascade) {
-        vec4 sphere = directionalShadows.cullingSpheres[cascade];
-        vec3 offset = wsPosition - sphere.xyz;
-        float distanceSquared = dot(offset, offset);
-        if (distanceSquared < sphere.w) {
-            float cascadeFade = fadedShadowStrength(distanceSquared, directionalShadows.cascadeData[cascade].x, fade.z);
-            if (cascade == cascadeCount - 1) strength *= cascadeFade;
-            else cascadeBlend = cascadeFade;
-            break;
-        }
-    }
-    if (cascade == cascadeCount) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
-    // Blend only toward a cascade whose sphere holds the point: spheres need not nest, and next to the
-    // camera a point in cascade i's band can lie outside sphere i + 1 (its tile never saw it).
-    if (cascadeBlend < 1.0 && !insideCullingSphere(cascade + 1, wsPosition)) cascadeBlend = 1.0;
+    if (cascade == int(directionalShadows.config.x) - 1) strength *= choice.fade;
+    else cascadeBlend = choice.fade;
+    // Blend only toward a cascade that holds the point: culling spheres need not nest, and next to the
+    // camera a point in cascade i's band can lie outside sphere i + 1 (its tile never saw it). A tight
+    // cascade's box holds the previous one's band by construction.
+    if (cascadeBlend < 1.0 && directionalShadows.modes.z == kCascadeFitSphere && !insideCullingSphere(cascade + 1, wsPosition))
+        cascadeBlend = 1.0;
     uint blendMode = directionalShadows.config.z;
     if (blendMode == kCascadeBlendDither && cascadeBlend < interleavedGradientNoise(pixel)) cascade += 1;
     if (blendMode != kCascadeBlendSoft) cascadeBlend = 1.0;
@@ -126,7 +159,8 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
     if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.config.x) return ShadowSample(1.0, -1);
     vec4 light = otherShadows.lights[shadowSlot];
     float viewDepth = -(frame.viewFromWorld * vec4(receiver.wsPosition, 1.0)).z;
-    float strength = light.x * fadedShadowStrength(viewDepth, otherShadows.fade.x, otherShadows.fade.y);
+    float strength = light.x * distanceFadeStrength(receiver.wsPosition, viewDepth, otherShadows.fade,
+                                                    otherShadows.modes.y, otherShadows.fade.zw);
     if (strength <= 0.0) return ShadowSample(1.0, -1);
 
     vec4 position = otherShadows.lightPositions[shadowSlot];

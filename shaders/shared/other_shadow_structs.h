@@ -32,7 +32,8 @@ struct OtherShadowData {
     // Per slot: xyz = spot axis (unit, the direction the light travels; unused for points), w = constant
     // clip-space depth bias subtracted from the receiver's clip z before the divide (seed 001 §4.2).
     vec4 lightDirections[16];
-    // x = 1 / shadow distance, y = 1 / distanceFade: the directional lights' distance fade (seed 000 §3.7).
+    // x = 1 / shadow distance, y = 1 / distanceFade: the directional lights' distance fade (seed 000 §3.7);
+    // z, w = scale and bias of the squared-distance fade (modes.y = kShadowFadeSquared, shadow_fade.h).
     vec4 fade;
     // x = shadowed light count, y = soft filter (kShadowFilter*), z = tiles used, w = split.
     uvec4 config;

@@ -34,6 +34,14 @@ PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (
 PENUMBRA_CONST(uint, kShadowBiasScaledNormal, 1u)    // normal offset x the texel's size x sin(N, L)
 PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the receiver plane's depth there
 
+// modes.z: how cascades were fitted and so how the lit pass selects one (issue 13 item 8).
+PENUMBRA_CONST(uint, kCascadeFitSphere, 0u)  // the first culling sphere that holds the point (seed 000 §3.4)
+PENUMBRA_CONST(uint, kCascadeFitTight, 1u)   // the first slice whose split lies beyond the point's view depth
+
+// modes.y: the distance fade (issue 13 item 10).
+PENUMBRA_CONST(uint, kShadowFadeLinear, 0u)   // seed 000 §3.7: by view depth, over the last distanceFade
+PENUMBRA_CONST(uint, kShadowFadeSquared, 1u)  // URP (seed 004): by squared camera distance, scale and bias
+
 // One unit of a light's shadowNormalBias, in texels of its shadow map: the texel diagonal x (1 + filter
 // / 2), for directional, spot and point lights alike (issue 13 defect 4; before, spots used 1 + filter).
 // filterMode = kShadowFilter* of the light (PCF2x2 for "hard" lights). Measured in shadow_gpu_packing.cpp.
@@ -46,7 +54,7 @@ struct DirectionalShadowData {
     // the radius shrunk by the filter footprint so filtering stays inside the tile (seed 000 §4.6).
     vec4 cullingSpheres[4];
     // Per cascade: x = 1 / cullingSpheres.w (seed 000 §4.2), y = the world-space normal-bias unit,
-    // z = world texel size (2r / tileSize), w unused.
+    // z = world texel size (2r / tileSize), w = the view depth where the cascade's slice ends (its split).
     // One unit of shadowNormalBias ("shadow texels", DESIGN.md) = texel * (1 + filter / 2) * sqrt(2): the
     // texel diagonal (seed 000 §4.3) times 1 / 1.5 / 2 / 2.5 for PCF2x2 / 3x3 / 5x5 / 7x7. Seed 000 §4.6
     // scales by filter + 1 (1 / 2 / 3 / 4); measured, that over-biases wide filters (thin_wall PCF7x7:
@@ -73,10 +81,13 @@ struct DirectionalShadowData {
     vec4 lightBias[4];
     // Per shadowed light slot: xyz = unit vector toward the light (opposite to the way it travels).
     vec4 lightDirections[4];
-    // x = bias mode (kShadowBias*), y = fade mode (0 linear, 1 squared), zw unused.
+    // x = bias mode (kShadowBias*), y = fade mode (kShadowFade*), z = cascade fit (kCascadeFit*), w unused.
     uvec4 modes;
+    // x = 1 / cascadeFade: the tight fit's blend band, the last cascadeFade of a slice's view depth;
+    // y, z = scale and bias of the squared-distance fade (kShadowFadeSquared, shadow_fade.h); w unused.
+    vec4 depthSelection;
 };
-PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1408)
+PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1424)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cullingSpheres, 1024)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascadeData, 1088)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lights, 1152)
@@ -86,6 +97,7 @@ PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, atlasSize, 1248)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightBias, 1264)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightDirections, 1328)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, modes, 1392)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, depthSelection, 1408)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

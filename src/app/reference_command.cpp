@@ -19,6 +19,7 @@ ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView&
     // The rasterizer's shadow distance: maxDistance, or the camera's far plane when nearer (seed 000 §3.6).
     options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
     options.distanceFade = settings.shadows.distanceFade;
+    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
     return options;
 }
 

@@ -47,10 +47,16 @@ const Light& shadowedLight(const Scene& scene, uint32_t lightIndex) {
     return light;
 }
 
-// Seed 000 §3.7: strength fades linearly to 0 over the last `distanceFade` of maxShadowDistance.
-float distanceFadeFactor(float viewDepth, const ReferenceOptions& options) {
+// Seed 000 §3.7: strength fades linearly to 0 over the last `distanceFade` of maxShadowDistance, in
+// view depth; or (URP, seed 004) in the squared distance to the camera over the same band.
+float distanceFadeFactor(float viewDepth, float cameraDistance, const ReferenceOptions& options) {
     if (!std::isfinite(options.maxShadowDistance)) return 1.0f;
     const float fade = std::max(options.distanceFade, 1e-6f);
+    if (options.squaredFade) {
+        const float start = options.maxShadowDistance * (1.0f - fade);
+        const float band = options.maxShadowDistance * options.maxShadowDistance - start * start;
+        return 1.0f - std::clamp((cameraDistance * cameraDistance - start * start) / band, 0.0f, 1.0f);
+    }
     return std::clamp((1.0f - viewDepth / options.maxShadowDistance) / fade, 0.0f, 1.0f);
 }
 
@@ -109,7 +115,7 @@ public:
         const float epsilon = std::max(epsilon_, kOffsetPerCoordinate * std::max({a.x, a.y, a.z}));
         const glm::vec3 wsOrigin = hit->wsPosition + sample.wsNormal * epsilon;
         const LightRay toLight = lightRay(light_, wsOrigin, epsilon);
-        const float fade = distanceFadeFactor(sample.viewDepth, options_);
+        const float fade = distanceFadeFactor(sample.viewDepth, hit->t, options_);
         sample.surfaceValid = toLight.inside && fade >= 1.0f &&
                               glm::dot(sample.wsNormal, toLight.wsToLight) >= kMinNDotL &&
                               glm::dot(wsShadingNormal, toLight.wsToLight) >= kMinNDotL;

@@ -26,6 +26,9 @@ struct ReferenceImages {
 struct ReferenceOptions {
     float maxShadowDistance = std::numeric_limits<float>::infinity();  // view depth where shadows end
     float distanceFade = 0.1f;  // fraction of maxShadowDistance over which shadows fade out
+    // false: linear in view depth (seed 000 §3.7); true: linear in the squared camera distance (URP,
+    // seed 004; the setting shadows.fadeMode = squared), over the same band.
+    bool squaredFade = false;
 };
 
 // Traces light `lightIndex`'s shadow as seen by `view`. A pixel is valid when all of these hold:

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <optional>
 
 #include "core/error.h"
+#include "render/frame_data.h"
 #include "render/gpu_scene.h"
 #include "render/light_packing.h"
 #include "render/main_pass.h"
 #include "render/screen_space_shadow_pass.h"
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_stats_json.h"
+#include "render/visible_surface_pass.h"
 #include "scene_structs.h"
 #include "shadows/shadow_planner.h"
 
@@ -23,12 +26,14 @@ struct Renderer::State {
     MainPass mainPass;
     ShadowCasterPass casterPass;
     ScreenSpaceShadowPass screenSpacePass;
+    VisibleSurfacePass visiblePass;
     gpu::BufferHandle frameBuffer, lightBuffer, directionalShadowBuffer, otherShadowBuffer;
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
 
     State(gpu::Device& d, const Scene& s)
-        : device(d), scene(s), gpuScene(d, s), mainPass(d, gpuScene), casterPass(d, gpuScene), screenSpacePass(d, mainPass) {
+        : device(d), scene(s), gpuScene(d, s), mainPass(d, gpuScene), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
+          visiblePass(d, gpuScene, mainPass) {
         frameBuffer = d.createBuffer(sizeof(gpu_data::FrameData), gpu::kBufferUniform, gpu::MemoryKind::HostVisible);
         const size_t maxLights = gpu_data::kMaxDirectionalLights + gpu_data::kMaxOtherLights;
         lightBuffer = d.createBuffer(maxLights * sizeof(gpu_data::LightData), gpu::kBufferStorage, gpu::MemoryKind::HostVisible);
@@ -59,12 +64,7 @@ namespace {
 
 gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
                                   const Settings& settings, bool screenSpaceShadows) {
-    gpu_data::FrameData frame{};
-    frame.clipFromWorld = view.clipFromWorld;
-    frame.viewFromWorld = view.viewFromWorld;
-    frame.worldFromClip = glm::inverse(view.clipFromWorld);
-    frame.wsCameraPosition = glm::vec4(view.wsPosition, 1.0f);
-    frame.viewport = glm::vec4(float(view.width), float(view.height), 1.0f / float(view.width), 1.0f / float(view.height));
+    gpu_data::FrameData frame = cameraFrameData(view);
     uint32_t mode = gpu_data::kOutputColor;
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
@@ -185,7 +185,10 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
                     std::to_string(s.scene.lights.size()) + " lights)");
     RenderResult result;
     const auto planStart = std::chrono::steady_clock::now();
-    const ShadowFrame plan = ShadowPlanner::plan(s.scene, view, settings.shadows);
+    std::optional<VisibleSurfaces> visible;  // the tight cascade fit's depth reduction (issue 13 item 8)
+    if (settings.shadows.directional.fit == CascadeFit::Tight)
+        visible = s.visiblePass.render(s.scene, view, s.frameBuffer, s.lightBuffer);
+    const ShadowFrame plan = ShadowPlanner::plan(s.scene, view, settings.shadows, visible ? &*visible : nullptr);
     const PackedLights lights = packLights(s.scene, [&](uint32_t i) {
         const bool directional = s.scene.lights[i].type == LightType::Directional;
         const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);

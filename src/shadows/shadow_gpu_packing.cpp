@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "shadows/shadow_fade.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -27,7 +28,7 @@ void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter fi
     const float radiusSqr = radius * radius;
     cullingSphere = glm::vec4(sphere.wsCenter, radiusSqr);
     const float normalBiasUnit = texelSize * gpu_data::normalOffsetFootprint(uint32_t(filter));
-    cascadeData = glm::vec4(1.0f / radiusSqr, normalBiasUnit, texelSize, 0.0f);
+    cascadeData = glm::vec4(1.0f / radiusSqr, normalBiasUnit, texelSize, sphere.vsFar);
 }
 
 gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShadowPlan& plan,
@@ -47,7 +48,10 @@ gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShado
         data.lightBias[i] = glm::vec4(light.normalBias, light.slopeScaleBias, float(uint32_t(filter)), 0.0f);
         data.lightDirections[i] = glm::vec4(-light.wsDirection, 0.0f);
     }
-    data.modes = glm::uvec4(uint32_t(settings.bias), 0u, 0u, 0u);
+    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode),
+                            plan.tight ? gpu_data::kCascadeFitTight : gpu_data::kCascadeFitSphere, 0u);
+    const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
+    data.depthSelection = glm::vec4(1.0f / directional.cascadeFade, squaredFade, 0.0f);
     const float fade = directional.cascadeFade;
     data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade,
                           1.0f / (1.0f - (1.0f - fade) * (1.0f - fade)), shadowDistance);

@@ -18,6 +18,8 @@ struct TileInputs {
     const AtlasLayout& atlas;
     BlendCulling blendCulling;
     ShadowFilter filter;
+    const VisibleSurfaces* visible;  // the tight fit's receivers; null = the sphere fit
+    float cascadeFade;
 };
 
 // How far toward the light the lit pass may look up a receiver of this cascade: the normal bias moves
@@ -26,10 +28,29 @@ float nearPlaneMargin(const ReservedDirectionalLight& light, float wsTexelSize, 
     return wsTexelSize * (1.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter)));
 }
 
+// The texels a lookup may reach beyond a receiver: the filter's taps plus the normal offset, plus one.
+float lookupReachTexels(const ReservedDirectionalLight& light, ShadowFilter filter) {
+    return filterSize(filter) + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter));
+}
+
+// The cascade's light view: around its culling sphere, or (tight fit) around the visible points of its
+// slice, which reaches back over the previous cascade's blend band (those points sample it too).
+CascadeLightView fitLightView(const TileInputs& in, const ReservedDirectionalLight& light,
+                              const glm::mat4& lightRotation, uint32_t cascadeIndex) {
+    const CascadeSphere& sphere = in.spheres[cascadeIndex];
+    if (!in.visible) return fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
+    const float vsNear = cascadeIndex == 0 ? 0.0f : sphere.vsNear * (1.0f - in.cascadeFade);
+    Aabb rsBounds = rotatedVisibleBounds(*in.visible, lightRotation, vsNear, sphere.vsFar);
+    if (!rsBounds.valid()) {  // nothing visible in this slice: a minimal tile that nothing samples
+        const glm::vec3 rsCenter = glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f));
+        rsBounds = Aabb{rsCenter - 1e-3f, rsCenter + 1e-3f};
+    }
+    return fitTightLightView(lightRotation, rsBounds, in.atlas.tileSize, lookupReachTexels(light, in.filter));
+}
+
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
                     uint32_t slot, uint32_t cascadeIndex, uint32_t& skippedByBlendCulling) {
-    const CascadeSphere& sphere = in.spheres[cascadeIndex];
-    const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
+    const CascadeLightView view = fitLightView(in, light, lightRotation, cascadeIndex);
     TileCasters casters =
         cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
     skippedByBlendCulling += casters.skippedByBlendCulling;
@@ -41,13 +62,13 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     tile.rect = tileRect(in.atlas, tileIndex);
     tile.lightFromWorld = view.lightFromWorld;
     tile.wsTexelSize = view.wsTexelSize;
-    // The depth range fits the receivers (seed 000 §4.5, issue 13 defect 2): from the sphere's side toward
-    // the light (plus what the normal bias may add) to its far side; nothing outside it is sampled.
-    // Casters in front of the near plane are pancaked onto it by depth clamp, per fragment (no clipping,
-    // no distortion of triangles that cross the plane); shadowNearPlane pulls the near plane back.
-    tile.farDistance = sphere.radius - view.lsSphereCenter.z;
-    tile.nearDistance = sphere.radius + view.lsSphereCenter.z + nearPlaneMargin(light, view.wsTexelSize, in.filter) +
-                        light.nearPlaneOffset;
+    // The depth range fits the receivers (seed 000 §4.5, issue 13 defect 2): from the sphere's (or the
+    // tight box's) side toward the light, plus what the normal bias may add, to its far side; nothing
+    // outside it is sampled. Casters in front of the near plane are pancaked onto it by depth clamp, per
+    // fragment (no clipping, no distortion of triangles that cross the plane); shadowNearPlane pulls
+    // the near plane back.
+    tile.farDistance = view.receiversFar;
+    tile.nearDistance = view.receiversNear + nearPlaneMargin(light, view.wsTexelSize, in.filter) + light.nearPlaneOffset;
     tile.pancakedDepth = std::max(0.0f, casters.lsMaxZ - tile.nearDistance);
     tile.clipFromLight = orthoClipFromLight(view.halfExtent, tile.nearDistance, tile.farDistance);
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
@@ -60,27 +81,36 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
 
 }  // namespace
 
-ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings) {
+ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                                const VisibleSurfaces* visible) {
     ShadowFrame frame;
     DirectionalShadowPlan& directional = frame.directional;
     const DirectionalShadowSettings& config = settings.directional;
     const float distance = shadowDistance(camera, settings.maxDistance);
 
-    directional.cascades = computeCascadeSpheres(camera, settings);
+    // The tight fit needs the frame's visible surfaces; without them (or with none) it is the sphere fit.
+    const bool tight = config.fit == CascadeFit::Tight && visible && !visible->empty();
+    directional.tight = tight;
+    // The last split just beyond the farthest visible point (cascades select by depth < split).
+    directional.cascades = tight ? computeCascadeSpheres(camera, settings, visible->vsMinDepth,
+                                                         visible->vsMaxDepth * 1.001f + 1e-3f)
+                                 : computeCascadeSpheres(camera, settings);
     const std::vector<uint32_t> casters = shadowCasterInstances(scene);
     directional.lights = reserveDirectionalShadows(scene, directional.cascades, casters, config.cascadeCount);
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
     directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
 
     const std::vector<Aabb> receivers = shadowReceiverBounds(scene);
-    const BlendCulling blendCulling{cascadeBlendCullingFactor(config.cascadeFade), &receivers};
+    // Blend culling (seed 000 §4.9) reasons about culling spheres; the tight fit selects cascades by view
+    // depth, so it draws every caster that meets a cascade's box.
+    const BlendCulling blendCulling{tight ? 0.0f : cascadeBlendCullingFactor(config.cascadeFade), &receivers};
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
         const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
-        const TileInputs inputs{scene,   casters, rsBounds, directional.cascades, directional.atlas, blendCulling,
-                                config.filter};
+        const TileInputs inputs{scene,         casters, rsBounds, directional.cascades, directional.atlas, blendCulling,
+                                config.filter, tight ? visible : nullptr, config.cascadeFade};
         for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
             directional.tiles.push_back(
                 planTile(inputs, light, rotation, slot, cascade, frame.stats.skippedByBlendCulling));

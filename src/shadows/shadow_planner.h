@@ -29,6 +29,7 @@
 #include "shadows/shadow_settings.h"
 #include "shadows/spot_atlas_layout.h"
 #include "shadows/spot_reservation.h"
+#include "shadows/visible_surfaces.h"
 
 namespace penumbra {
 
@@ -68,6 +69,7 @@ struct DirectionalShadowPlan {
     std::vector<CascadeSphere> cascades;           // shared by every light (seed 000 §3.3)
     std::vector<ShadowTile> tiles;                 // tile i = light slot * cascadeCount + cascade
     std::vector<int32_t> slotOfSceneLight;         // per Scene::lights entry: slot, or -1
+    bool tight = false;  // tight cascade fit (cascades selected by view depth), else culling spheres
     gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
 };
 
@@ -92,8 +94,10 @@ struct ShadowFrame {
 
 class ShadowPlanner {
 public:
-    // Settings must be valid (validateShadowSettings); scene and camera are read only.
-    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings);
+    // Settings must be valid (validateShadowSettings); scene and camera are read only. `visible` (the
+    // frame's depth reduction) serves shadows.directional.fit = tight; without it the fit is the sphere.
+    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                            const VisibleSurfaces* visible = nullptr);
 };
 
 }  // namespace penumbra

@@ -13,6 +13,15 @@ enum class CascadeBlend { Hard, Soft, Dither };
 // the seed's constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
 // Every light's shadowNormalBias multiplies the automatic amount, its shadowBias adds a slope-scale bias.
 enum class ShadowBiasMode { Normal, ScaledNormal, ReceiverPlane };
+// How cascades are fitted (issue 13 item 8): the seed's culling sphere around the frustum slice, or
+// tight to what the frame shows (a depth reduction: the visible surfaces' light-space bounds per slice).
+enum class CascadeFit { Sphere, Tight };
+// Where cascades split: the seed's ratios of the shadow distance, logarithmic, or the "practical" blend
+// lambda * log + (1 - lambda) * uniform over the depth range (the visible one with the tight fit).
+enum class CascadeSplitMode { Manual, Log, Practical };
+// The distance fade (issue 13 item 10): seed 000's, linear in view depth over the last distanceFade of
+// the shadow distance, or URP's (seed 004), linear in the squared camera distance over the same band.
+enum class ShadowFadeMode { Linear, Squared };
 
 struct DirectionalShadowSettings {
     uint32_t atlasSize = 1024;
@@ -21,6 +30,9 @@ struct DirectionalShadowSettings {
     std::array<float, 3> cascadeRatios{0.1f, 0.25f, 0.5f};
     float cascadeFade = 0.1f;
     CascadeBlend cascadeBlend = CascadeBlend::Hard;
+    CascadeFit fit = CascadeFit::Sphere;
+    CascadeSplitMode cascadeSplits = CascadeSplitMode::Manual;
+    float splitLambda = 0.75f;  // practical splits: weight of the logarithmic split, 0..1
 };
 
 struct SpotShadowSettings {
@@ -43,6 +55,7 @@ struct SpotShadowSettings {
 
 struct ShadowSettings {
     ShadowBiasMode bias = ShadowBiasMode::ReceiverPlane;  // measured best (docs/fidelity.md)
+    ShadowFadeMode fadeMode = ShadowFadeMode::Linear;
     float maxDistance = 100.0f;
     float distanceFade = 0.1f;
     bool screenSpace = false;
@@ -58,6 +71,12 @@ const char* shadowFilterName(ShadowFilter filter);
 const char* cascadeBlendName(CascadeBlend blend);
 const char* shadowBiasModeName(ShadowBiasMode mode);
 std::optional<ShadowBiasMode> parseShadowBiasMode(const std::string& name);
+const char* shadowFadeModeName(ShadowFadeMode mode);
+std::optional<ShadowFadeMode> parseShadowFadeMode(const std::string& name);
+const char* cascadeFitName(CascadeFit fit);
+std::optional<CascadeFit> parseCascadeFit(const std::string& name);
+const char* cascadeSplitModeName(CascadeSplitMode mode);
+std::optional<CascadeSplitMode> parseCascadeSplitMode(const std::string& name);
 std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
 std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shadows/shadow_fade.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
 
@@ -96,8 +97,9 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
         }
         packLight(data, light, reserved, shape, plan.atlas, settings, slot);
     }
-    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, 0.0f, shadowDistance);
-    data.modes = glm::uvec4(uint32_t(settings.bias), 0u, 0u, 0u);
+    const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
+    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, squaredFade);
+    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode), 0u, 0u);
     data.config = glm::uvec4(uint32_t(plan.lights.size()), uint32_t(settings.spot.filter), plan.atlas.tileCount,
                              plan.atlas.split);
     const float atlasSize = float(std::max(plan.atlas.atlasSize, 1u));

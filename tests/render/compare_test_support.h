@@ -37,6 +37,7 @@ inline ReferenceOptions referenceOptionsFor(const Settings& settings, const Came
     ReferenceOptions options;
     options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
     options.distanceFade = settings.shadows.distanceFade;
+    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
     return options;
 }
 

@@ -167,6 +167,7 @@ protected:
         ReferenceOptions options;
         options.maxShadowDistance = settings.shadows.maxDistance;
         options.distanceFade = settings.shadows.distanceFade;
+        options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
         const ReferenceImages reference = traceReferenceShadow(scene, view, light, false, options);
         return compareShadowImages(aov, reference.shadow, reference.validMask, threshold);
     }

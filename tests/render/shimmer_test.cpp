@@ -2,8 +2,10 @@
 // far-field scene must not flip shadow pixels where the truth does not change. Away from the truth's
 // shadow edges no pixel may flip at all (the shadow map's texels stay put in the world: snapped sphere
 // centres, a radius independent of the camera's orientation, exact per-texel compares); on the edges
-// the flips are bounded by how far our edges sit from the true ones.
+// the flips are bounded by how far our edges sit from the true ones. The tight fit (boxes quantized
+// to 1/8 octave, snapped to texels) must be as stable.
 #include <cstdio>
+#include <utility>
 
 #include "compare_test_support.h"
 
@@ -31,10 +33,14 @@ TEST_F(CompareTest, FarFieldShadowsDoNotShimmerWhenTheCameraSteps2cmSideways) {
     const Scene& scene = canonicalScene("far_field");
     const CameraView start = resolveCameraView(scene, kCompareWidth, kCompareHeight);
     Renderer renderer(device(), scene);
-    for (ShadowFilter filter : {ShadowFilter::PCF2x2, ShadowFilter::PCF5x5}) {
+    for (const auto& [fit, filter] : {std::pair{CascadeFit::Sphere, ShadowFilter::PCF2x2},
+                                       std::pair{CascadeFit::Sphere, ShadowFilter::PCF5x5},
+                                       std::pair{CascadeFit::Tight, ShadowFilter::PCF2x2}}) {
+        SCOPED_TRACE(cascadeFitName(fit));
         Settings settings;
         settings.shadows.maxDistance = 150.0f;
         settings.shadows.directional.filter = filter;
+        settings.shadows.directional.fit = fit;
         Frame previous = renderFrame(renderer, scene, start, settings);
         uint64_t flickering = 0, pixels = 0;
         for (int step = 1; step <= 4; ++step) {
