@@ -30,8 +30,8 @@ struct DirectionalShadowSettings {
     std::array<float, 3> cascadeRatios{0.1f, 0.25f, 0.5f};
     float cascadeFade = 0.1f;
     CascadeBlend cascadeBlend = CascadeBlend::Hard;
-    CascadeFit fit = CascadeFit::Sphere;
-    CascadeSplitMode cascadeSplits = CascadeSplitMode::Manual;
+    CascadeFit fit = CascadeFit::Tight;                   // measured best (docs/fidelity.md)
+    CascadeSplitMode cascadeSplits = CascadeSplitMode::Log;  // measured best (docs/fidelity.md)
     float splitLambda = 0.75f;  // practical splits: weight of the logarithmic split, 0..1
 };
 

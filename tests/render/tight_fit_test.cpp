@@ -21,9 +21,11 @@ double meanTexel(const RenderResult& result) {
 }  // namespace
 
 TEST_F(CompareTest, TightFitGivesFinerTexelsAndAFaithfulerShadowOnTheCadModel) {
-    Settings sphere;
+    Settings sphere;  // the seed's cascades: culling spheres, manual ratios
+    sphere.shadows.directional.fit = CascadeFit::Sphere;
+    sphere.shadows.directional.cascadeSplits = CascadeSplitMode::Manual;
     const SceneComparison sphereResult = compareCanonicalScene("cad_engine", 0, sphere);
-    Settings tight;
+    Settings tight = sphere;
     tight.shadows.directional.fit = CascadeFit::Tight;
     const SceneComparison tightResult = compareCanonicalScene("cad_engine", 0, tight);
     const nlohmann::json stats = nlohmann::json::parse(tightResult.ours.stats.shadowStatsJson)["directional"];

@@ -61,7 +61,9 @@ TEST(CascadeSplits, PracticalSplitsBlendLogAndUniformByLambda) {
 
 TEST(CascadeSplits, ManualSplitsKeepTheRatiosAndEndAtTheRangesFarEnd) {
     const CameraView camera = cameraLookingAt({0, 2, 0}, {0, 2, -1});
-    const std::vector<float> splits = cascadeSplitDistances(camera, 1.0f, 30.0f, DirectionalShadowSettings{}, 100.0f);
+    DirectionalShadowSettings settings;
+    settings.cascadeSplits = CascadeSplitMode::Manual;
+    const std::vector<float> splits = cascadeSplitDistances(camera, 1.0f, 30.0f, settings, 100.0f);
     EXPECT_EQ(splits, (std::vector<float>{10.0f, 25.0f, 30.0f, 30.0f}));
 }
 
@@ -138,7 +140,7 @@ TEST(CullingSphere, RadiusIsInvariantUnderCameraRotation) {
 TEST(CullingSphere, IsIndependentOfTheLight) {
     Scene scene;  // no light enters computeCascadeSpheres at all: only camera and settings
     const CameraView camera = cameraLookingAt({0, 5, 10}, {0, 0, 0});
-    const std::vector<CascadeSphere> spheres = computeCascadeSpheres(camera, ShadowSettings{});
+    const std::vector<CascadeSphere> spheres = computeCascadeSpheres(camera, seedCascadeSettings());
     ASSERT_EQ(spheres.size(), 4u);
     EXPECT_FLOAT_EQ(spheres[1].vsNear, 10.0f);
     EXPECT_FLOAT_EQ(spheres[1].vsFar, 25.0f);

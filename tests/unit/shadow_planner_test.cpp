@@ -15,7 +15,7 @@ namespace {
 struct PlannerFixture {
     Scene scene = baseScene();
     CameraView camera = cameraLookingAt({0, 6, 15}, {0, 0, 0});
-    ShadowSettings settings;
+    ShadowSettings settings = seedCascadeSettings();
 
     PlannerFixture() {
         settings.maxDistance = 40.0f;
@@ -275,7 +275,7 @@ TEST(ShadowPlanner, CasterWhoseShadowLeavesTheSmallerCascadeIsDrawnInTheBiggerOn
     const glm::vec3 wsHorizontal(std::cos(azimuth), 0.0f, std::sin(azimuth));  // toward +X, a little toward the camera
     addDirectionalLight(scene, std::cos(elevation) * wsHorizontal - glm::vec3(0.0f, std::sin(elevation), 0.0f));
     const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
-    ShadowSettings settings;  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
+    ShadowSettings settings = seedCascadeSettings();  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
     const ShadowFrame frame = ShadowPlanner::plan(scene, camera, settings);
     const CascadeSphere& sphere0 = frame.directional.cascades[0];
     ASSERT_LT(glm::length(glm::vec3(0, 0.5f, -4.0f) - sphere0.wsCenter) + 0.5f, 0.7f * sphere0.radius)
@@ -294,7 +294,7 @@ TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBigge
     const uint32_t box = addBox(scene, {-0.2f, 0, -4.2f}, {0.2f, 0.4f, -3.8f});
     addDirectionalLight(scene, {0.2f, -1.0f, 0.1f});
     const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
-    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, ShadowSettings{});
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, seedCascadeSettings());
     EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], box));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[1], box));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[2], box));
