@@ -6,6 +6,7 @@
 #include "other_shadow_structs.h"
 #include "shadow_structs.h"
 #include "shadow_bias.glsl"
+#include "shadow_pcss.glsl"
 #include "shadow_tent.glsl"
 
 layout(set = 0, binding = 5, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
@@ -26,6 +27,15 @@ float fadedShadowStrength(float distance, float scale, float fade) {
     return clamp((1.0 - distance * scale) * fade, 0.0, 1.0);
 }
 
+// The uv rectangle of directional tile `tile` less one texel: where filter taps may read (seed 000 §1.5:
+// tiles in rows of `split`).
+vec4 directionalTileBounds(uint tile) {
+    float tileSize = directionalShadows.atlasSize.z, atlasSize = directionalShadows.atlasSize.x;
+    uint split = uint(atlasSize / tileSize + 0.5);
+    vec2 origin = vec2(float(tile % split), float(tile / split)) * tileSize;
+    return vec4(origin + 1.0, origin + tileSize - 1.0) / atlasSize;
+}
+
 // seed 000 §4.3 / §4.6 / §4.7: sample one cascade of a light, biased as shadows.bias says
 // (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent (shadow_tent.glsl).
 float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
@@ -41,6 +51,12 @@ float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) 
     vec3 wsToLight = directionalShadows.lightDirections[slot].xyz;
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
     ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize.x);
+    if (lightBias.w > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
+        float metresPerDepth = 1.0 / length(vec3(atlasFromWorld[0][2], atlasFromWorld[1][2], atlasFromWorld[2][2]));
+        PcssLight pcss = PcssLight(0.0, vec4(metresPerDepth, lightBias.w, wsTexel, 0.0));
+        return pcssShadow(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth, lookup.depthGradient, directionalShadows.atlasSize.yyxx,
+                          directionalTileBounds(uint(light.y) + uint(cascade)), pcss);
+    }
     return sampleShadowFiltered(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth,
                                 directionalShadows.atlasSize.yyxx, filterMode, lookup.depthGradient, lookup.perTexelPlane);
 }
@@ -188,7 +204,11 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
     // would smear edge texels into streaks across the AOV.
     if (any(lessThan(lookup.uvDepth.xy, bounds.xy)) || any(greaterThan(lookup.uvDepth.xy, bounds.zw)))
         return ShadowSample(1.0, -1);
-    float shadow = filterOtherShadow(lookup, soft);
+    vec4 pcss = otherShadows.pcss[shadowSlot];
+    float shadow = pcss.x > 0.0
+        ? pcssShadow(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, lookup.depthGradient, otherShadows.atlasSize.yyxx, bounds,
+                     PcssLight(1.0, vec4(pcss.x, pcss.y, pcss.z, lightBias.z)))
+        : filterOtherShadow(lookup, soft);
     return ShadowSample(mix(1.0, shadow, strength), -1);
 }
 #endif

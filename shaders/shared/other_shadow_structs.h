@@ -45,8 +45,11 @@ struct OtherShadowData {
     vec4 lightBias[16];
     // x = bias mode (kShadowBias*, shadow_structs.h), y = fade mode (0 linear, 1 squared), zw unused.
     uvec4 modes;
+    // Per slot: x = emitter radius of a "pcss" light (its shadowLightSize; 0 = not pcss), y = near and
+    // z = far distance of its tiles (to turn depths into distances), w unused.
+    vec4 pcss[16];
 };
-PENUMBRA_CHECK_SIZE(OtherShadowData, 2368)
+PENUMBRA_CHECK_SIZE(OtherShadowData, 2624)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, tileBounds, 1024)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, lights, 1280)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightPositions, 1536)
@@ -56,6 +59,7 @@ PENUMBRA_CHECK_LAYOUT(OtherShadowData, config, 2064)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, atlasSize, 2080)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightBias, 2096)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, modes, 2352)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, pcss, 2368)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

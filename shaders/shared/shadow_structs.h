@@ -34,6 +34,10 @@ PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (
 PENUMBRA_CONST(uint, kShadowBiasScaledNormal, 1u)    // normal offset x the texel's size x sin(N, L)
 PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the receiver plane's depth there
 
+// PCSS (shaders/shadow_pcss.glsl): the widest blocker search and filter radius, in texels; the tight fit
+// keeps that many texels around the visible receivers of a pcss light.
+PENUMBRA_CONST(float, kPcssMaxRadiusTexels, 24.0f)
+
 // modes.z: how cascades were fitted and so how the lit pass selects one (issue 13 item 8).
 PENUMBRA_CONST(uint, kCascadeFitSphere, 0u)  // the first culling sphere that holds the point (seed 000 §3.4)
 PENUMBRA_CONST(uint, kCascadeFitTight, 1u)   // the first slice whose split lies beyond the point's view depth
@@ -77,7 +81,8 @@ struct DirectionalShadowData {
     vec4 atlasSize;
     // Per shadowed light slot: x = normal-bias multiplier (shadowNormalBias), y = slope-scale bias
     // (shadowBias: depth per texel of receiver slope, applied in the lit pass, not the rasterizer),
-    // z = filter (kShadowFilter*: the directional filter, or PCF2x2 for a "hard" light), w unused.
+    // z = filter (kShadowFilter*: the directional filter, or PCF2x2 for a "hard" light), w = tan of the
+    // sun's angular radius for a "pcss" light (its shadowLightSize / 2), 0 for every other.
     vec4 lightBias[4];
     // Per shadowed light slot: xyz = unit vector toward the light (opposite to the way it travels).
     vec4 lightDirections[4];

@@ -45,7 +45,7 @@ gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShado
         const ReservedDirectionalLight& light = plan.lights[i];
         data.lights[i] = glm::vec4(light.strength, float(light.firstTile), light.normalBias, float(light.sceneLightIndex));
         const ShadowFilter filter = light.soft ? directional.filter : ShadowFilter::PCF2x2;  // seed 004's soft flag
-        data.lightBias[i] = glm::vec4(light.normalBias, light.slopeScaleBias, float(uint32_t(filter)), 0.0f);
+        data.lightBias[i] = glm::vec4(light.normalBias, light.slopeScaleBias, float(uint32_t(filter)), light.pcssTanRadius);
         data.lightDirections[i] = glm::vec4(-light.wsDirection, 0.0f);
     }
     data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode),

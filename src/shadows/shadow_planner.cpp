@@ -30,7 +30,8 @@ float nearPlaneMargin(const ReservedDirectionalLight& light, float wsTexelSize, 
 
 // The texels a lookup may reach beyond a receiver: the filter's taps plus the normal offset, plus one.
 float lookupReachTexels(const ReservedDirectionalLight& light, ShadowFilter filter) {
-    return filterSize(filter) + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter));
+    const float taps = light.pcssTanRadius > 0.0f ? gpu_data::kPcssMaxRadiusTexels : filterSize(filter);
+    return taps + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter));
 }
 
 // The cascade's light view: around its culling sphere, or (tight fit) around the visible points of its

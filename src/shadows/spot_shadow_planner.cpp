@@ -65,6 +65,7 @@ void packLight(gpu_data::OtherShadowData& data, const Light& light, const Reserv
     data.lightPositions[slot] = glm::vec4(light.wsPosition, 0.0f);
     data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), settings.spot.depthBias);
     data.lightBias[slot] = glm::vec4(reserved.normalBias, reserved.slopeScaleBias, texelPerDistance, float(uint32_t(filter)));
+    data.pcss[slot] = glm::vec4(reserved.pcssRadius, reserved.nearDistance, reserved.farDistance, 0.0f);
 }
 
 }  // namespace
