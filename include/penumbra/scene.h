@@ -89,7 +89,9 @@ struct Instance {
 };
 
 enum class LightType { Directional, Spot, Point };
-enum class LightShadows { None, Hard, Soft };
+// Soft: the settings' filter; Hard: one hardware 2x2 PCF tap; Pcss: contact-hardening soft shadows
+// sized by shadowLightSize (issue 13 item 9).
+enum class LightShadows { None, Hard, Soft, Pcss };
 
 struct Light {
     std::string name;
@@ -106,7 +108,13 @@ struct Light {
     float shadowBias = 0.0f;        // slope-scale depth bias
     float shadowNormalBias = 1.0f;  // in shadow texels
     float shadowNearPlane = 0.0f;   // near-plane offset (directional) or near clip (spot, point)
+    // The emitter's size for pcss shadows: angular diameter in degrees (directional; the sun's 0.53) or
+    // radius in metres (spot, point). The ray-traced reference's --soft samples the same disk.
+    float shadowLightSize = 0.53f;
 };
+
+// shadowLightSize's default for a light type: 0.53° for the sun, a 5 cm emitter for spot and point lights.
+inline float defaultShadowLightSize(LightType type) { return type == LightType::Directional ? 0.53f : 0.05f; }
 
 struct Camera {
     std::string name;

@@ -49,12 +49,17 @@ int runCli(int argc, char** argv) {
     addRenderOptions(*reference, referenceOptions);
     reference->add_option("-o,--output", referenceOptions.outputPath, "output PNG (shadow AOV convention)")->default_val("reference.png");
     reference->add_option("--mask", referenceOptions.maskPath, "write the validity mask PNG");
+    reference->add_option("--soft", referenceOptions.softSamples,
+                          "trace the light as a disk of its shadowLightSize with N shadow rays per pixel (pcss truth)")
+        ->check(CLI::Range(1u, 4096u));
 
     RenderOptions compareOptions;
     CLI::App* compare = app.add_subcommand("compare", "compare the rasterized shadow AOV with the ray-traced reference");
     addRenderOptions(*compare, compareOptions);
     compare->add_option("--diff", compareOptions.diffPath, "write a diff image: false shadow and false lit in two colours");
     compare->add_flag("--json", compareOptions.json, "print the metrics as JSON");
+    compare->add_option("--soft", compareOptions.softSamples, "compare with the area-light reference of N rays per pixel")
+        ->check(CLI::Range(1u, 4096u));
     compare->add_flag("--shimmer", compareOptions.shimmer,
                       "also render and trace with the camera 2 cm to its right: % of pixels that flip in ours only");
 

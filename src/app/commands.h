@@ -31,6 +31,7 @@ struct RenderOptions {
     std::string diffPath;
     bool json = false;
     bool shimmer = false;  // compare: also measure shimmer with the camera moved 2 cm to its right
+    uint32_t softSamples = 0;  // reference / compare: trace the light as a disk with N rays per pixel
 };
 
 // `penumbra bench` only.

@@ -14,11 +14,13 @@ namespace penumbra {
 
 namespace {
 
-ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view) {
+ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view, uint32_t softSamples) {
     ReferenceOptions options;
     // The rasterizer's shadow distance: maxDistance, or the camera's far plane when nearer (seed 000 §3.6).
     options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
     options.distanceFade = settings.shadows.distanceFade;
+    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
+    options.softSamples = softSamples;
     return options;
 }
 
@@ -29,7 +31,7 @@ int runReferenceCommand(const RenderOptions& options) {
     const Scene scene = loadSceneFor(options);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
     const ReferenceImages reference =
-        traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view));
+        traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view, options.softSamples));
     writePng(reference.shadow, options.outputPath);
     if (!options.maskPath.empty()) writePng(reference.validMask, options.maskPath);
     std::printf("reference: light %u, %llu of %llu pixels valid for comparison\n", options.light,
@@ -47,7 +49,7 @@ ShimmerMetrics measureShimmer(const Scene& scene, const CameraView& view, const 
                               const Image& ours0, const ReferenceImages& reference0) {
     const CameraView moved = translatedCameraView(view, kShimmerStepMetres * wsCameraRight(view));
     const ReferenceImages reference1 =
-        traceReferenceShadow(scene, moved, options.light, false, referenceOptionsFor(settings, moved));
+        traceReferenceShadow(scene, moved, options.light, false, referenceOptionsFor(settings, moved, options.softSamples));
     const RenderResult ours1 = renderer.render(request, settings, moved);
     return compareShimmer(ours0, ours1.image, reference0.shadow, reference1.shadow, reference0.validMask,
                           reference1.validMask);
@@ -62,7 +64,7 @@ int runCompareCommand(const RenderOptions& options) {
     // Trace first: it validates the light (exists, casts shadows) before the GPU is touched.
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO) && !options.json,
-                             referenceOptionsFor(settings, view));
+                             referenceOptionsFor(settings, view, options.softSamples));
     Device device(deviceOptionsFor(options));
     Renderer renderer(device, std::move(scene));
     RenderRequest request = makeRenderRequest(options);

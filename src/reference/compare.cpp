@@ -117,9 +117,13 @@ ShimmerMetrics compareShimmer(const Image& ours0, const Image& ours1, const Imag
             const bool oursFlips = isLit(ours0, x, y, threshold) != isLit(ours1, x, y, threshold);
             s.referenceFlips += referenceFlips ? 1 : 0;
             s.flickering += oursFlips && !referenceFlips ? 1 : 0;
+            const bool interior = !nearBoundary(reference0, x, y, threshold) && !nearBoundary(reference1, x, y, threshold);
+            s.interiorPixels += interior ? 1 : 0;
+            s.interiorFlickering += interior && oursFlips ? 1 : 0;
         }
     }
     s.shimmerPercent = percent(s.flickering, s.pixels);
+    s.interiorShimmerPercent = percent(s.interiorFlickering, s.interiorPixels);
     return s;
 }
 
@@ -182,6 +186,9 @@ std::string toJson(const CompareMetrics& m, const ShimmerMetrics& s) {
     json["shimmerFlickering"] = s.flickering;
     json["shimmerReferenceFlips"] = s.referenceFlips;
     json["shimmerPercent"] = s.shimmerPercent;
+    json["shimmerInteriorPixels"] = s.interiorPixels;
+    json["shimmerInteriorFlickering"] = s.interiorFlickering;
+    json["shimmerInteriorPercent"] = s.interiorShimmerPercent;
     return json.dump(2);
 }
 
@@ -189,9 +196,11 @@ std::string toText(const ShimmerMetrics& s) {
     char buffer[256];
     std::snprintf(buffer, sizeof(buffer),
                   "shimmer pixels        %10llu\n"
-                  "shimmer (ours flips)  %10llu  %7.3f %%  (reference flips: %llu, not counted)\n",
+                  "shimmer (ours flips)  %10llu  %7.3f %%  (reference flips: %llu, not counted)\n"
+                  "interior shimmer      %10llu  %7.3f %%\n",
                   (unsigned long long)s.pixels, (unsigned long long)s.flickering, s.shimmerPercent,
-                  (unsigned long long)s.referenceFlips);
+                  (unsigned long long)s.referenceFlips, (unsigned long long)s.interiorFlickering,
+                  s.interiorShimmerPercent);
     return buffer;
 }
 

@@ -42,6 +42,12 @@ struct ShimmerMetrics {
     uint64_t flickering = 0;     // ours flips, the reference does not
     uint64_t referenceFlips = 0; // the reference flips (the truth moved): not counted
     double shimmerPercent = 0.0; // flickering / pixels
+    // The same away from shadow edges: pixels farther than kBoundaryRadius from a reference boundary in
+    // both frames. Edge pixels flip where our edge and the truth's differ by a fraction of the step;
+    // interior flips mean the shadow map itself changed (unstable cascades, depth ties).
+    uint64_t interiorPixels = 0;
+    uint64_t interiorFlickering = 0;
+    double interiorShimmerPercent = 0.0;
 };
 
 // A reference pixel is on a shadow boundary when its class differs from any pixel within this

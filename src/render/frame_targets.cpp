@@ -55,7 +55,7 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
         device_.destroy(colorSrgb_);
         device_.destroy(colorUnorm_);
         colorSrgb_ = colorUnorm_ = {};
-        replace(depth, {sizes.width, sizes.height, gpu::Format::D32Float, gpu::kTextureDepthTarget, 1, "depth"});
+        replace(depth, {sizes.width, sizes.height, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "depth"});
         device_.destroy(colorReadback_);
         colorReadback_ = {};
     }

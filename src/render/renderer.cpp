@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cstring>
 #include <deque>
+#include <optional>
 
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "render/compute_raster_pass.h"
+#include "render/frame_data.h"
 #include "render/frame_targets.h"
 #include "render/gpu_scene.h"
 #include "render/light_packing.h"
@@ -18,6 +20,7 @@
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_culling_pass.h"
 #include "render/shadow_stats_json.h"
+#include "render/visible_surface_pass.h"
 #include "scene/scene_edits.h"
 #include "scene_structs.h"
 #include "cull_structs.h"
@@ -50,12 +53,7 @@ const std::vector<gpu::SpecConstant> kGenericLitSpecialization = {
 
 gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
                                   const Settings& settings, bool screenSpaceShadows) {
-    gpu_data::FrameData frame{};
-    frame.clipFromWorld = view.clipFromWorld;
-    frame.viewFromWorld = view.viewFromWorld;
-    frame.worldFromClip = glm::inverse(view.clipFromWorld);
-    frame.wsCameraPosition = glm::vec4(view.wsPosition, 1.0f);
-    frame.viewport = glm::vec4(float(view.width), float(view.height), 1.0f / float(view.width), 1.0f / float(view.height));
+    gpu_data::FrameData frame = cameraFrameData(view);
     uint32_t mode = gpu_data::kOutputColor;
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
@@ -86,6 +84,8 @@ struct PendingFrame {
     ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
     bool computeRaster = false;
     bool autoRaster = false;  // shadows.raster = auto and still measuring: its timings feed the choice
+    bool visibleReadback = false;  // the tight fit's depth subsample is in the readback, for later frames
+    CameraView view;
     ShadowRaster rasterSetting = ShadowRaster::Auto;
 };
 
@@ -145,8 +145,11 @@ struct Renderer::State {
     MainPass mainPass;
     ShadowCasterPass casterPass;
     ScreenSpaceShadowPass screenSpacePass;
+    VisibleSurfacePass visiblePass;
     ComputeRasterPass computeRaster;
     RasterChoice rasterChoice;
+    std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
+    glm::uvec2 latestVisibleSize{0};
     glm::uvec2 rasterNeeded{0};  // the most large pieces / chunks a finished frame asked the compute rasterizer for
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
@@ -161,6 +164,7 @@ struct Renderer::State {
     State(gpu::Device& d, Scene s, const RendererOptions& o)
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
           mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
+          visiblePass(d, gpuScene, mainPass),
           computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
         // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
         shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
@@ -215,13 +219,14 @@ struct Renderer::State {
         return imported.back().texture;
     }
 
+    // oneShot: the caller waits for this frame (render()): the tight fit reduces this very view's depth.
     uint64_t submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
-                    const ExternalImage* target, bool readback, bool captureAtlas);
+                    const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot);
     void collectCompleted();
 };
 
 uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
-                                 const ExternalImage* target, bool readback, bool captureAtlas) {
+                                 const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot) {
     validateSettings(settings);
     if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
         throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
@@ -235,7 +240,14 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     Stopwatch phase;
     PlanOptions planOptions;
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
-    frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planOptions);
+    // The tight cascade fit's depth reduction (issue 13 item 8): this view's, waited for, when the
+    // caller waits anyway or nothing earlier matches; else the latest finished frame's.
+    const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
+    const glm::uvec2 viewSize(view.width, view.height);
+    std::optional<VisibleSurfaces> visible;
+    if (tight && (oneShot || !latestVisible || latestVisibleSize != viewSize)) visible = visiblePass.now(scene, view);
+    const VisibleSurfaces* planVisible = !tight ? nullptr : visible ? &*visible : &*latestVisible;
+    frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions);
     const ShadowFrame& plan = frame.plan;
     const PackedLights lights = packLights(scene, [&](uint32_t i) {
         const bool directional = scene.lights[i].type == LightType::Directional;
@@ -338,7 +350,10 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
     inputs.writes.push_back({7, otherSlice});
     inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
-    inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});
+    // 12, 13: the same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
+    inputs.writes.push_back({12, {}, targets.directionalAtlas, pointSampler});
+    inputs.writes.push_back({13, {}, targets.otherAtlas, pointSampler});
+    inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
     if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, view, inputs, 0);
 
     commands.beginTimer("main");
@@ -356,6 +371,11 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
     mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
+    if (tight && !oneShot) {
+        visiblePass.recordSubsample(commands, targets.depth, view);
+        frame.visibleReadback = true;
+        frame.view = view;
+    }
 
     if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
     if (captureAtlas) {
@@ -392,6 +412,17 @@ void Renderer::State::collectCompleted() {
         }
         const bool computeRasterFrame = pending.front().computeRaster, autoFrame = pending.front().autoRaster;
         const ShadowRaster rasterSetting = pending.front().rasterSetting;
+        if (pending.front().visibleReadback) {
+            const PendingFrame& finished = pending.front();
+            // After the cull stats (one per tile, at least one) and the compute rasterizer's two counters.
+            const size_t tiles = finished.plan.directional.tiles.size() + finished.plan.other.tiles.size();
+            const size_t offset = std::max<size_t>(tiles, 1) * sizeof(gpu_data::CullTileStats) +
+                                  (finished.computeRaster ? 2 * sizeof(gpu_data::RasterCounters) : 0);
+            if (done.readback.size() >= offset + VisibleSurfacePass::readbackBytes(finished.view)) {
+                latestVisible = VisibleSurfacePass::fromReadback(done.readback.data() + offset, finished.view);
+                latestVisibleSize = glm::uvec2(finished.view.width, finished.view.height);
+            }
+        }
         pending.pop_front();
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
         if (autoFrame) rasterChoice.measured(computeRasterFrame, shadowPassMilliseconds(stats));
@@ -450,7 +481,8 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     RenderResult result;
     // A frame whose compute-raster queues overflowed is drawn again once they have grown.
     for (int attempt = 0; attempt < 4; ++attempt) {
-        const uint64_t frameIndex = s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas);
+        const uint64_t frameIndex =
+            s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas, true);
         s.device.waitFrame(frameIndex);
         s.collectCompleted();
         const auto found = std::find_if(s.completed.begin(), s.completed.end(),
@@ -476,7 +508,7 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
 
 uint64_t Renderer::submitFrame(const RenderRequest& request, const Settings& settings, const CameraView& view,
                                const ExternalImage* target) {
-    return state_->submit(request, settings, view, target, false, false);
+    return state_->submit(request, settings, view, target, false, false, false);
 }
 
 std::vector<FrameStats> Renderer::takeCompletedFrames() {

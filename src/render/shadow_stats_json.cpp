@@ -39,11 +39,17 @@ std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>
     directional["casterDraws"] = sum(directionalCasters);
     directional["skippedByCascadeBlendCulling"] = stats.skippedByBlendCulling;
     // Depth range per tile in metres (near + far distance) and how far casters reach in front of it.
-    std::vector<float> depthRange, pancakedDepth;
+    // World texel size per tile (the tight fit's gain shows here) and each cascade's split.
+    std::vector<float> depthRange, pancakedDepth, texelSize, splits;
     for (const ShadowTile& tile : plan.directional.tiles) {
         depthRange.push_back(tile.nearDistance + tile.farDistance);
         pancakedDepth.push_back(tile.pancakedDepth);
+        texelSize.push_back(tile.wsTexelSize);
     }
+    for (const CascadeSphere& cascade : plan.directional.cascades) splits.push_back(cascade.vsFar);
+    directional["texelSizeMetres"] = texelSize;
+    directional["cascadeSplits"] = splits;
+    directional["fit"] = plan.directional.tight ? "tight" : "sphere";
     directional["depthRangeMetres"] = depthRange;
     directional["pancakedDepthMetres"] = pancakedDepth;
     json["directional"] = directional;

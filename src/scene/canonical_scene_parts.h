@@ -74,5 +74,6 @@ Scene makeFieldOfObjects();
 Scene makeCube();
 Scene makeCadEngine();
 Scene makeSpotShelf();
+Scene makePcssContact();
 
 }  // namespace penumbra::canonical

@@ -239,6 +239,8 @@ const std::vector<Entry>& entries() {
          makeCadEngine},
         {{"spot_shelf", "three spot lights (two soft, one hard) over a box, a ball, a pole and a wall shelf"},
          makeSpotShelf},
+        {{"pcss_contact", "contact-hardening soft shadows: a 3° pcss sun (light 0) and a pcss spot with a 15 cm emitter"},
+         makePcssContact},
     };
     return kEntries;
 }

@@ -128,7 +128,7 @@ json writeMaterial(const Material& material) {
 
 json writeLight(const Light& light) {
     static const char* kTypes[] = {"directional", "spot", "point"};
-    static const char* kShadows[] = {"none", "hard", "soft"};
+    static const char* kShadows[] = {"none", "hard", "soft", "pcss"};
     json out = {{"name", light.name},
                 {"type", kTypes[int(light.type)]},
                 {"color", toJson(light.color)},
@@ -139,6 +139,7 @@ json writeLight(const Light& light) {
                   {"shadowBias", light.shadowBias},
                   {"shadowNormalBias", light.shadowNormalBias},
                   {"shadowNearPlane", light.shadowNearPlane}}}};
+    if (light.shadows == LightShadows::Pcss) out["extras"]["shadowLightSize"] = light.shadowLightSize;
     if (light.range > 0.0f && light.type != LightType::Directional) out["range"] = light.range;
     if (light.type == LightType::Spot)
         out["spot"] = {{"innerConeAngle", light.innerConeAngle}, {"outerConeAngle", light.outerConeAngle}};

@@ -116,7 +116,7 @@ TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& cas
     PENUMBRA_ASSERT(casters.size() == rsBounds.size() && cascadeIndex < spheres.size());
     // lightFromWorld = translate(t) * rotation, so light-view bounds are the rotated bounds shifted by t.
     const glm::vec3 translation(view.lightFromWorld[3]);
-    const float farDistance = spheres[cascadeIndex].radius - view.lsSphereCenter.z;
+    const float farDistance = view.receiversFar;
     // The light travels along -Z of its view: the third row of the rotation, negated.
     const glm::vec3 wsLightDirection = -glm::vec3(view.lightFromWorld[0][2], view.lightFromWorld[1][2],
                                                   view.lightFromWorld[2][2]);

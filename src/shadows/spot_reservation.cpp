@@ -86,7 +86,8 @@ OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& 
         ReservedOtherLight entry;
         entry.sceneLightIndex = i;
         entry.point = light.type == LightType::Point;
-        entry.soft = light.shadows == LightShadows::Soft;
+        entry.soft = light.shadows != LightShadows::Hard;
+        if (light.shadows == LightShadows::Pcss) entry.pcssRadius = light.shadowLightSize;
         entry.strength = std::min(light.shadowStrength, 1.0f);
         entry.normalBias = light.shadowNormalBias;
         entry.slopeScaleBias = light.shadowBias;

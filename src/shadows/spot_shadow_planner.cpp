@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/stopwatch.h"
+#include "shadows/shadow_fade.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
 
@@ -48,7 +49,7 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = spotAtlasFromClip(layout, tileIndex) * tile.clipFromWorld;
     tile.wsTexelSize = 2.0f * shape.tanHalfFov / float(layout.tileSize);
-    tile.slopeScaleBias = reserved.slopeScaleBias;
+    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (shadow_bias.glsl)
     tile.depthClamp = true;  // pancaking onto the near plane, as for directional tiles
     tile.perspective = true;
     tile.wsApex = light.wsPosition;
@@ -59,16 +60,17 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
 }
 
 void packLight(gpu_data::OtherShadowData& data, const Light& light, const ReservedOtherLight& reserved,
-               const LightTiles& shape, const SpotAtlasLayout& layout, float depthBias, uint32_t slot) {
+               const LightTiles& shape, const SpotAtlasLayout& layout, const ShadowSettings& settings, uint32_t slot) {
     data.lights[slot] = glm::vec4(reserved.strength, float(reserved.firstTile), reserved.soft ? 1.0f : 0.0f,
                                   reserved.point ? 1.0f : 0.0f);
     // World texel size grows linearly with the distance d along the tile's axis: 2 d tan(fov/2) / tileSize.
-    // The normal bias pushes the surface by normalBias filter texels along the diagonal (seed 000 §4.3,
-    // §4.6 scale it the same way for cascades).
+    // The lit pass scales its biases by it, with the directional lights' rule (shadow_bias.glsl).
     const float texelPerDistance = 2.0f * shape.tanHalfFov / float(layout.tileSize);
-    const float normalBiasPerDistance = reserved.normalBias * shape.reach * 1.4142136f * texelPerDistance;
-    data.lightPositions[slot] = glm::vec4(light.wsPosition, normalBiasPerDistance);
-    data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), depthBias);
+    const ShadowFilter filter = reserved.soft ? settings.spot.filter : ShadowFilter::PCF2x2;
+    data.lightPositions[slot] = glm::vec4(light.wsPosition, 0.0f);
+    data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), settings.spot.depthBias);
+    data.lightBias[slot] = glm::vec4(reserved.normalBias, reserved.slopeScaleBias, texelPerDistance, float(uint32_t(filter)));
+    data.pcss[slot] = glm::vec4(reserved.pcssRadius, reserved.nearDistance, reserved.farDistance, 0.0f);
 }
 
 }  // namespace
@@ -100,9 +102,11 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
             data.tileBounds[tileIndex] = spotTileSampleBounds(plan.atlas, tileIndex, shape.reach);
             plan.tiles.push_back(std::move(tile));
         }
-        packLight(data, light, reserved, shape, plan.atlas, settings.spot.depthBias, slot);
+        packLight(data, light, reserved, shape, plan.atlas, settings, slot);
     }
-    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, 0.0f, shadowDistance);
+    const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
+    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, squaredFade);
+    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode), 0u, 0u);
     data.config = glm::uvec4(uint32_t(plan.lights.size()), uint32_t(settings.spot.filter), plan.atlas.tileCount,
                              plan.atlas.split);
     const float atlasSize = float(std::max(plan.atlas.atlasSize, 1u));

@@ -40,10 +40,12 @@ bool inFadeBandOfSphere(const gpu_data::DirectionalShadowData& data, int cascade
            fadedShadowStrength(distanceSquared, data.cascadeData[cascade].x, data.fade.z) < 1.0f;
 }
 
-// Soft blending with wide (30 %) fade bands, 4 cascades over 40 m.
+// Soft blending with wide (30 %) fade bands, 4 cascades over 40 m; the seed's normal-offset bias, whose
+// offset grows with the cascade's texel (so cascades disagree along shadow edges).
 Settings softBlendSettings() {
     Settings settings = shadowSettings(40.0f, 4, 1024, ShadowFilter::PCF2x2, CascadeBlend::Soft);
     settings.shadows.directional.cascadeFade = 0.3f;
+    settings.shadows.bias = ShadowBiasMode::Normal;
     return settings;
 }
 

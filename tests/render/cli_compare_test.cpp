@@ -95,3 +95,13 @@ TEST(CliCompare, ShimmerFlagAddsTheTwoFrameMeasurement) {
     EXPECT_GT(m.at("shimmerReferenceFlips").get<uint64_t>(), 0u) << "the truth moves at the shadow edges";
     EXPECT_TRUE(m.contains("edgeBalance"));
 }
+
+TEST(CliCompare, SoftComparesWithTheAreaLightReference) {
+    const std::string args = "compare " + scenePath("pcss_contact") + " --width 96 --height 54 --json" + deviceArgs();
+    const CliRun hard = runPenumbra(args), soft = runPenumbra(args + " --soft 32");
+    ASSERT_EQ(hard.exitCode, 0) << hard.err;
+    ASSERT_EQ(soft.exitCode, 0) << soft.err;
+    // The pcss sun's shadow against a point-sun truth has more error than against its area truth.
+    EXPECT_LT(nlohmann::json::parse(soft.out).at("meanAbsoluteError").get<double>(),
+              nlohmann::json::parse(hard.out).at("meanAbsoluteError").get<double>());
+}

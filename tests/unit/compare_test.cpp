@@ -149,6 +149,16 @@ TEST(CompareShimmer, CountsPixelsThatFlipInOursButNotInTheReference) {
     EXPECT_DOUBLE_EQ(s.shimmerPercent, 100.0 / 256.0);
 }
 
+TEST(CompareShimmer, InteriorShimmerCountsFlipsAwayFromTheTruthsEdges) {
+    Image ours1 = halfShadowed();
+    ours1.at(13, 3) = 0;  // 5 columns from the edge: interior
+    ours1.at(8, 5) = 0;   // next to the edge: not interior
+    const ShimmerMetrics s = compareShimmer(halfShadowed(), ours1, halfShadowed(), halfShadowed(), kAllValid, kAllValid);
+    EXPECT_EQ(s.interiorPixels, 256u - 4u * 16u);
+    EXPECT_EQ(s.interiorFlickering, 1u);
+    EXPECT_EQ(s.flickering, 2u);
+}
+
 TEST(CompareShimmer, OnlyPixelsValidInBothFramesCount) {
     Image ours1 = halfShadowed();
     ours1.at(12, 3) = 0;

@@ -15,7 +15,7 @@ namespace {
 struct PlannerFixture {
     Scene scene = baseScene();
     CameraView camera = cameraLookingAt({0, 6, 15}, {0, 0, 0});
-    ShadowSettings settings;
+    ShadowSettings settings = seedCascadeSettings();
 
     PlannerFixture() {
         settings.maxDistance = 40.0f;
@@ -150,13 +150,31 @@ TEST(ShadowPlanner, PointsInACullingSphereMapInsideTheirTile) {
     }
 }
 
-TEST(ShadowPlanner, TilesCarryTheLightsSlopeBiasAndPancaking) {
+// The caster pass writes exact depth: the light's slope-scale bias goes to the lit pass (with its normal
+// bias and filter), so a second rasterizer has only depth and depth clamp to reproduce.
+TEST(ShadowPlanner, TilesWriteExactDepthAndTheLitPassGetsTheLightsBiases) {
     PlannerFixture f;
     addDirectionalLight(f.scene, {0, -1, 0});
     f.scene.lights[0].shadowBias = 0.8f;
+    f.scene.lights[0].shadowNormalBias = 1.5f;
+    f.settings.directional.filter = ShadowFilter::PCF5x5;
     const ShadowFrame frame = f.plan();
-    EXPECT_EQ(frame.directional.tiles[2].slopeScaleBias, 0.8f);
+    EXPECT_EQ(frame.directional.tiles[2].slopeScaleBias, 0.0f);
     EXPECT_TRUE(frame.directional.tiles[2].depthClamp);
+    EXPECT_EQ(frame.directional.gpu.lightBias[0], glm::vec4(1.5f, 0.8f, float(gpu_data::kShadowFilterPcf5x5), 0.0f));
+    EXPECT_EQ(frame.directional.gpu.lightDirections[0], glm::vec4(0, 1, 0, 0));
+}
+
+// Seed 004's per-light soft flag for directional lights too (issue 13 item 10): "hard" = one hardware
+// 2x2 PCF tap, "soft" = directional.filter.
+TEST(ShadowPackedData, HardDirectionalLightsUseOneHardwarePcfTap) {
+    PlannerFixture f;
+    f.settings.directional.filter = ShadowFilter::PCF7x7;
+    addDirectionalLight(f.scene, {0.3f, -1, 0}, 1.0f, LightShadows::Hard);
+    addDirectionalLight(f.scene, {-0.3f, -1, 0}, 1.0f, LightShadows::Soft);
+    const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
+    EXPECT_EQ(gpu.lightBias[0].z, float(gpu_data::kShadowFilterPcf2x2));
+    EXPECT_EQ(gpu.lightBias[1].z, float(gpu_data::kShadowFilterPcf7x7));
 }
 
 TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
@@ -179,11 +197,12 @@ TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
     }
 }
 
-TEST(ShadowPackedData, NormalBiasUnitGrowsByHalfATexelPerFilterStep) {
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF2x2), 1.0f);
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF3x3), 1.5f);
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF5x5), 2.0f);
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF7x7), 2.5f);
+TEST(ShadowPackedData, NormalBiasUnitGrowsByHalfATexelDiagonalPerFilterStep) {
+    const float diagonal = std::sqrt(2.0f);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf2x2), 1.0f * diagonal);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf3x3), 1.5f * diagonal);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf5x5), 2.0f * diagonal);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf7x7), 2.5f * diagonal);
 }
 
 TEST(ShadowPackedData, HoldsLightsConfigAtlasAndMatrices) {
@@ -256,7 +275,7 @@ TEST(ShadowPlanner, CasterWhoseShadowLeavesTheSmallerCascadeIsDrawnInTheBiggerOn
     const glm::vec3 wsHorizontal(std::cos(azimuth), 0.0f, std::sin(azimuth));  // toward +X, a little toward the camera
     addDirectionalLight(scene, std::cos(elevation) * wsHorizontal - glm::vec3(0.0f, std::sin(elevation), 0.0f));
     const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
-    ShadowSettings settings;  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
+    ShadowSettings settings = seedCascadeSettings();  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
     const ShadowFrame frame = ShadowPlanner::plan(scene, camera, settings);
     const CascadeSphere& sphere0 = frame.directional.cascades[0];
     ASSERT_LT(glm::length(glm::vec3(0, 0.5f, -4.0f) - sphere0.wsCenter) + 0.5f, 0.7f * sphere0.radius)
@@ -275,7 +294,7 @@ TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBigge
     const uint32_t box = addBox(scene, {-0.2f, 0, -4.2f}, {0.2f, 0.4f, -3.8f});
     addDirectionalLight(scene, {0.2f, -1.0f, 0.1f});
     const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
-    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, ShadowSettings{});
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, seedCascadeSettings());
     EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], box));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[1], box));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[2], box));
