@@ -314,7 +314,8 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     commands.endTimer();
     frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
     frame.rasterSetting = settings.shadows.raster;
-    if (frame.computeRaster) computeRaster.reserve(rasterNeeded.x + rasterNeeded.x / 2, rasterNeeded.y + rasterNeeded.y / 2);
+    // Twice what a frame asked for: a moving camera rarely needs another growth (each is one allocation).
+    if (frame.computeRaster) computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y);
     stats.shadowRaster = frame.computeRaster ? "compute" : "hw";
     auto drawAtlas = [&](const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& draw, bool fresh,
                          uint32_t firstTile, uint32_t listOffset, gpu::TextureHandle atlas, uint32_t size,
