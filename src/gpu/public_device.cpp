@@ -17,22 +17,6 @@ std::vector<std::string> Device::validationMessages() const { return device_->va
 uint64_t Device::deviceMemoryBytes() const { return device_->deviceMemoryBytes(); }
 void Device::waitIdle() { device_->waitIdle(); }
 
-DeviceObjectCounts Device::liveObjects() const {
-    const gpu::ObjectCounts counts = device_->objectCounts();
-    DeviceObjectCounts result;
-    result.buffers = counts.buffers;
-    result.textures = counts.textures;
-    result.samplers = counts.samplers;
-    result.pipelines = counts.pipelines;
-    result.textureTables = counts.textureTables;
-    result.memoryBlocks = counts.memoryBlocks;
-    result.pendingDestroys = counts.pendingDestroys;
-    result.memoryAllocations = counts.memoryAllocations;
-    result.objectsCreated = counts.objectsCreated;
-    result.submits = counts.submits;
-    result.deviceWaits = counts.deviceWaits;
-    result.debugNamesSet = counts.debugNamesSet;
-    return result;
-}
+DeviceObjectCounts Device::liveObjects() const { return device_->objectCounts(); }
 
 }  // namespace penumbra

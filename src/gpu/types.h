@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/device.h"
+
 namespace penumbra::gpu {
 
 struct BufferHandle { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
@@ -155,21 +157,8 @@ struct PassTiming {
     double milliseconds = 0.0;
 };
 
-// GPU objects alive on a Device (what a renderer must give back), and cumulative creation counts
-// (what a steady-state frame must not raise).
-struct ObjectCounts {
-    uint32_t buffers = 0, textures = 0, samplers = 0, pipelines = 0, textureTables = 0;
-    uint32_t memoryBlocks = 0;       // VkDeviceMemory objects alive (blocks and dedicated allocations)
-    uint32_t pendingDestroys = 0;    // objects waiting for the GPU to finish with them
-    uint64_t memoryBlockBytes = 0;   // bytes held in those blocks
-    uint64_t memoryUsedBytes = 0;    // bytes suballocated from them
-    uint64_t memoryAllocations = 0;  // vkAllocateMemory calls so far
-    uint64_t objectsCreated = 0;     // buffers, textures, samplers, pipelines, tables created so far
-    uint64_t submits = 0;            // vkQueueSubmit calls so far
-    uint64_t deviceWaits = 0;        // device- or queue-wide waits so far (not per-frame fence waits)
-    uint64_t debugNamesSet = 0;      // objects named through vkSetDebugUtilsObjectNameEXT so far
-    uint32_t total() const { return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys; }
-};
+// GPU objects alive on a Device and cumulative counts: the public DeviceObjectCounts.
+using ObjectCounts = penumbra::DeviceObjectCounts;
 
 // A finished frame as the GPU reports it: timestamps per pass and the submit-to-fence time.
 struct CompletedFrame {

@@ -192,5 +192,12 @@ VkCompareOp toVkCompareOp(CompareOp op);
 bool isDepthFormat(Format format);
 uint32_t bytesPerPixel(Format format);
 void recordTransition(VkCommandBuffer commandBuffer, const TextureResource& texture, TextureState from, TextureState to);
+// One layout transition of mip level `level` (count 1) of a colour image.
+void recordColorImageBarrier(VkCommandBuffer commandBuffer, VkImage image, uint32_t level, VkImageLayout from,
+                             VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                             VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+// A global memory barrier.
+void recordMemoryBarrier(VkCommandBuffer commandBuffer, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
 }  // namespace penumbra::gpu

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "penumbra/scene_builder.h"
+#include "scene/canonical_scene_parts.h"
 
 namespace penumbra {
 
@@ -25,15 +26,6 @@ uint32_t parseCount(const std::string& text, const std::string& source, const ch
         throw Error("scene " + source + ": " + what + " '" + text + "' must be an integer in " + std::to_string(lo) +
                     ".." + std::to_string(hi));
     return uint32_t(value);
-}
-
-Material matte(const char* name, glm::vec3 rgb) {
-    Material material;
-    material.name = name;
-    material.baseColorFactor = glm::vec4(rgb, 1.0f);
-    material.metallic = 0.0f;
-    material.roughness = 0.8f;
-    return material;
 }
 
 // The nearest camera along `wsDirection` from the origin whose view (at aspect 1, so every wider
@@ -57,7 +49,7 @@ Camera framingCamera(const Aabb& wsBounds, const glm::vec3& wsDirection, float y
 // A ground of `halfSize` around the origin, a sun from the upper left, a camera looking down on the
 // square [-halfSize, halfSize]^2 (and `height` above it) from its front-left corner.
 void addGroundSunCamera(SceneBuilder& builder, float halfSize, float height) {
-    const uint32_t ground = builder.addMaterial(matte("ground", glm::vec3(0.55f, 0.55f, 0.5f)));
+    const uint32_t ground = builder.addMaterial(canonical::colored("ground", glm::vec3(0.55f, 0.55f, 0.5f)));
     const float side = 2.0f * halfSize + 4.0f;
     builder.addInstance(builder.addMesh(makePlaneMesh(glm::vec2(side), ground)), glm::mat4(1.0f), true, "ground");
     Light sun = makeDirectionalLight(glm::vec3(-0.45f, -1.0f, -0.35f), 3.0f);
@@ -137,7 +129,7 @@ Scene makeBoxesScene(uint32_t boxes) {
     const glm::vec3 colors[4] = {{0.8f, 0.3f, 0.25f}, {0.3f, 0.6f, 0.8f}, {0.85f, 0.75f, 0.3f}, {0.45f, 0.75f, 0.4f}};
     uint32_t meshes[4];
     for (uint32_t i = 0; i < 4; ++i)
-        meshes[i] = builder.addMesh(makeBoxMesh(glm::vec3(0.3f, 0.5f, 0.3f), builder.addMaterial(matte("box", colors[i]))));
+        meshes[i] = builder.addMesh(makeBoxMesh(glm::vec3(0.3f, 0.5f, 0.3f), builder.addMaterial(canonical::colored("box", colors[i]))));
     const uint32_t side = uint32_t(std::ceil(std::sqrt(double(boxes))));
     const float halfSize = 0.5f * kBoxSpacing * float(side);
     for (uint32_t i = 0; i < boxes; ++i) {
