@@ -13,12 +13,16 @@ function(penumbra_embed_shaders target sources)
     string(REGEX MATCH "[^.]+$" stage ${shader_name})         # vert
     string(MAKE_C_IDENTIFIER ${shader_name} ident)
     set(inc ${out_dir}/${shader_name}.spv.inc)
+    # glslc compiles without optimizing and spirv-opt optimizes: shaderc 2023.2's built-in optimizer (-O)
+    # crashes on the lit pass since the PCSS loops (shaders/shadow_pcss.glsl); Debian's spirv-opt does not.
     add_custom_command(
       OUTPUT ${inc}
-      COMMAND ${GLSLC} -fshader-stage=${stage} --target-env=vulkan1.3 -O -g
+      COMMAND ${GLSLC} -fshader-stage=${stage} --target-env=vulkan1.3 -O0 -g
               -I ${CMAKE_SOURCE_DIR}/shaders -I ${CMAKE_SOURCE_DIR}/shaders/shared
-              -mfmt=num -MD -MF ${inc}.d -o ${inc} ${src}
-      DEPENDS ${src}
+              -MD -MF ${inc}.d -MT ${inc} -o ${inc}.unoptimized.spv ${src}
+      COMMAND ${SPIRV_OPT} -O --target-env=vulkan1.3 ${inc}.unoptimized.spv -o ${inc}.spv
+      COMMAND ${CMAKE_COMMAND} -DINPUT=${inc}.spv -DOUTPUT=${inc} -P ${CMAKE_SOURCE_DIR}/cmake/spirv_to_inc.cmake
+      DEPENDS ${src} ${CMAKE_SOURCE_DIR}/cmake/spirv_to_inc.cmake
       DEPFILE ${inc}.d
       COMMENT "glslc ${file_name}"
       VERBATIM)

@@ -19,6 +19,22 @@ vec4 materialBaseColor(MaterialData material, vec2 uv) {
     return color;
 }
 
+// The mip level of a texture sampled with uv gradients dx, dy (uv change to the next texel / pixel in
+// x and y): Vulkan's isotropic rule, log2 of the larger footprint in texels. The shadow casters use it
+// in the hardware (from dFdx / dFdy) and in the compute rasterizer alike.
+float textureLevel(uint texture, vec2 dx, vec2 dy) {
+    vec2 size = vec2(textureSize(baseColorTextures[texture], 0));
+    float rho = max(length(dx * size), length(dy * size));
+    return log2(max(rho, 1e-20));
+}
+
+// Base colour (factor x texture) with an explicit level (textureLevel); alpha included.
+vec4 materialBaseColorLod(MaterialData material, vec2 uv, float level) {
+    vec4 color = material.baseColorFactor;
+    if (material.flags.x != 0u) color *= textureLod(baseColorTextures[material.flags.x - 1u], uv, level);
+    return color;
+}
+
 // Interleaved gradient noise (Jimenez 2014), the dither pattern Unity's pipelines use for dithered
 // shadows and cascade blending (seed 000 §4.8, §5.3).
 float interleavedGradientNoise(vec2 pixel) {

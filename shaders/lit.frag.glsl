@@ -4,6 +4,7 @@
 #include "bindings.glsl"
 #include "lighting.glsl"
 #include "shadows.glsl"
+#include "surface_normals.glsl"
 
 layout(constant_id = 1) const bool kBlendPass = false;
 // The main directional light's shadow term from the screen-space resolve (seed 004), when enabled.
@@ -21,12 +22,14 @@ vec3 cascadeColor(int cascade) {
 }
 
 void main() {
+    vec3 wsNormal = normalize(inWsNormal);
+    if (!gl_FrontFacing) wsNormal = -wsNormal;  // double-sided back faces
+    // Before any discard or branch: derivatives need the whole quad (the biases use the triangle's plane).
+    ShadowReceiver receiver = ShadowReceiver(inWsPosition, wsNormal, geometricNormal(inWsPosition, wsNormal));
     MaterialData material = materials[instances[inInstance].info.x];
     vec4 baseColor = materialBaseColor(material, inUv);
     if (material.flags.z == kAlphaMask && baseColor.a < material.params.z) discard;
 
-    vec3 wsNormal = normalize(inWsNormal);
-    if (!gl_FrontFacing) wsNormal = -wsNormal;  // double-sided back faces
     vec3 wsToCamera = normalize(frame.wsCameraPosition.xyz - inWsPosition);
     Surface surface = Surface(inWsPosition, wsNormal, wsToCamera, baseColor.rgb, material.params.x, material.params.y);
     bool receives = (material.flags.y & kMaterialReceiveShadows) != 0u;
@@ -47,7 +50,7 @@ void main() {
             if (receives && resolved)
                 shadow = ShadowSample(texelFetch(screenSpaceShadows, ivec2(gl_FragCoord.xy), 0).r, -1);
             else if (receives)
-                shadow = directionalShadow(light.shadow.y, inWsPosition, wsNormal, gl_FragCoord.xy);
+                shadow = directionalShadow(light.shadow.y, receiver, gl_FragCoord.xy);
         } else {
             vec3 wsOffset = light.wsPosition.xyz - inWsPosition;
             float distanceSquared = dot(wsOffset, wsOffset);
@@ -55,7 +58,7 @@ void main() {
             attenuation = rangeAttenuation(distanceSquared, light.wsPosition.w);
             if (uint(light.colorIntensity.a) == kLightSpot)
                 attenuation *= spotAttenuation(-wsToLight, -light.wsToLight.xyz, light.spotAngles);
-            if (receives) shadow = otherShadow(light.shadow.y, inWsPosition, wsNormal, wsToLight);
+            if (receives) shadow = otherShadow(light.shadow.y, receiver, wsToLight);
         }
         if (light.shadow.x == aovLight) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
         float nDotL = max(dot(wsNormal, wsToLight), 0.0);

@@ -1,7 +1,9 @@
 #version 460
-// Depth prepass of the screen-space shadow path (seed 004): depth plus the shading normal, which the
-// resolve needs for the normal bias. Alpha-tested like the lit pass so both see the same surfaces.
+// Depth prepass of the screen-space shadow path (seed 004): depth plus the shading and the geometric
+// normal (octahedral, xy and zw), which the resolve's biases need (shadow_bias.glsl). Alpha-tested like
+// the lit pass so both see the same surfaces.
 #include "bindings.glsl"
+#include "surface_normals.glsl"
 
 layout(location = 0) in vec3 inWsPosition;
 layout(location = 1) in vec3 inWsNormal;
@@ -10,9 +12,10 @@ layout(location = 3) flat in uint inInstance;
 layout(location = 0) out vec4 outWsNormal;
 
 void main() {
-    MaterialData material = materials[instances[inInstance].info.x];
-    if (material.flags.z == kAlphaMask && materialBaseColor(material, inUv).a < material.params.z) discard;
     vec3 wsNormal = normalize(inWsNormal);
     if (!gl_FrontFacing) wsNormal = -wsNormal;
-    outWsNormal = vec4(wsNormal, 1.0);
+    vec3 wsGeometricNormal = geometricNormal(inWsPosition, wsNormal);
+    MaterialData material = materials[instances[inInstance].info.x];
+    if (material.flags.z == kAlphaMask && materialBaseColor(material, inUv).a < material.params.z) discard;
+    outWsNormal = vec4(octEncode(wsNormal), octEncode(wsGeometricNormal));
 }

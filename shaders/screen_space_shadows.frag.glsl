@@ -3,6 +3,7 @@
 // pixel, from the depth prepass, with exactly the forward path's sampling (shadows.glsl).
 #include "bindings.glsl"
 #include "shadows.glsl"
+#include "surface_normals.glsl"
 
 layout(set = 0, binding = 10) uniform sampler2D sceneDepth;
 layout(set = 0, binding = 11) uniform sampler2D sceneNormals;
@@ -17,6 +18,7 @@ void main() {
     if (depth <= 0.0) { outAttenuation = 1.0; return; }  // reversed Z: 0 = nothing drawn
     vec2 ndc = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
     vec4 wsPosition = frame.worldFromClip * vec4(ndc, depth, 1.0);
-    vec3 wsNormal = texelFetch(sceneNormals, pixel, 0).xyz;
-    outAttenuation = directionalShadow(resolve.slot.x, wsPosition.xyz / wsPosition.w, wsNormal, gl_FragCoord.xy).attenuation;
+    vec4 normals = texelFetch(sceneNormals, pixel, 0);
+    ShadowReceiver receiver = ShadowReceiver(wsPosition.xyz / wsPosition.w, octDecode(normals.xy), octDecode(normals.zw));
+    outAttenuation = directionalShadow(resolve.slot.x, receiver, gl_FragCoord.xy).attenuation;
 }

@@ -9,7 +9,9 @@ layout(location = 1) flat in uint inInstance;
 
 void main() {
     MaterialData material = materials[instances[inInstance].info.x];
-    float alpha = materialBaseColor(material, inUv).a;
+    // The level rule of the compute rasterizer too (bindings.glsl textureLevel).
+    float level = material.flags.x != 0u ? textureLevel(material.flags.x - 1u, dFdx(inUv), dFdy(inUv)) : 0.0;
+    float alpha = materialBaseColorLod(material, inUv, level).a;
     if (material.flags.w == kShadowModeClip && alpha < material.params.z) discard;
     if (material.flags.w == kShadowModeDither && alpha < interleavedGradientNoise(gl_FragCoord.xy)) discard;
 }

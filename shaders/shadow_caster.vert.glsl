@@ -8,13 +8,18 @@ layout(push_constant) uniform CasterConstants {
     mat4 clipFromWorld;
 } caster;
 
+// The tile's visible casters (cull_structs.h): gl_InstanceIndex = the draw's firstInstance + i
+// indexes the list the culling pass wrote.
+layout(set = 0, binding = 12, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+
 layout(location = 0) out vec2 outUv;
 layout(location = 1) flat out uint outInstance;
 
 void main() {
     VertexData vertex = vertices[gl_VertexIndex];
-    InstanceData instance = instances[gl_InstanceIndex];
+    uint instanceIndex = visibleInstances[gl_InstanceIndex];
+    InstanceData instance = instances[instanceIndex];
     outUv = vec2(vertex.osPositionU.w, vertex.osNormalV.w);
-    outInstance = gl_InstanceIndex;
+    outInstance = instanceIndex;
     gl_Position = caster.clipFromWorld * (instance.worldFromObject * vec4(vertex.osPositionU.xyz, 1.0));
 }

@@ -5,10 +5,15 @@
 #define PENUMBRA_SHADOWS_GLSL
 #include "other_shadow_structs.h"
 #include "shadow_structs.h"
+#include "shadow_bias.glsl"
+#include "shadow_pcss.glsl"
 #include "shadow_tent.glsl"
 
 layout(set = 0, binding = 5, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
 layout(set = 0, binding = 6) uniform sampler2DShadow directionalShadowAtlas;
+// The same atlases read as raw depth (nearest): the receiver-plane compare and blocker searches.
+layout(set = 0, binding = 12) uniform sampler2D directionalShadowDepth;
+layout(set = 0, binding = 13) uniform sampler2D otherShadowDepth;
 
 const uint kNoShadowSlot = 0xffffffffu;
 
@@ -22,54 +27,113 @@ float fadedShadowStrength(float distance, float scale, float fade) {
     return clamp((1.0 - distance * scale) * fade, 0.0, 1.0);
 }
 
-// seed 000 §4.7 FilterDirectionalShadow: one hardware 2x2 PCF tap or a tent of taps (shadow_tent.glsl).
-float filterDirectionalShadow(vec3 atlasUvDepth) {
-    return sampleShadowFiltered(directionalShadowAtlas, atlasUvDepth, directionalShadows.atlasSize.yyxx,
-                                directionalShadows.config.y);
+// The uv rectangle of directional tile `tile` less one texel: where filter taps may read (seed 000 §1.5:
+// tiles in rows of `split`).
+vec4 directionalTileBounds(uint tile) {
+    float tileSize = directionalShadows.atlasSize.z, atlasSize = directionalShadows.atlasSize.x;
+    uint split = uint(atlasSize / tileSize + 0.5);
+    vec2 origin = vec2(float(tile % split), float(tile / split)) * tileSize;
+    return vec4(origin + 1.0, origin + tileSize - 1.0) / atlasSize;
 }
 
-// seed 000 §4.3 / §4.6: sample one cascade of a light, the surface pushed along its normal by the
-// light's normal bias times the cascade's unit, texel diagonal * (1 + filter / 2) (shadow_structs.h).
-float sampleDirectionalCascade(uint slot, int cascade, vec3 wsPosition, vec3 wsNormal) {
+// seed 000 §4.3 / §4.6 / §4.7: sample one cascade of a light, biased as shadows.bias says
+// (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent (shadow_tent.glsl).
+float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
     vec4 light = directionalShadows.lights[slot];
-    vec3 wsBiased = wsPosition + wsNormal * (light.z * directionalShadows.cascadeData[cascade].y);
-    uint tile = uint(light.y) + uint(cascade);
-    vec3 atlasUvDepth = (directionalShadows.atlasFromWorld[tile] * vec4(wsBiased, 1.0)).xyz;
-    return filterDirectionalShadow(atlasUvDepth);
+    vec4 lightBias = directionalShadows.lightBias[slot];
+    uint filterMode = uint(lightBias.z);
+    mat4 atlasFromWorld = directionalShadows.atlasFromWorld[uint(light.y) + uint(cascade)];
+    // The tile's world texel: 1 / (atlas texels per metre along u), exact for sphere and tight tiles.
+    float wsTexel = 1.0 / (directionalShadows.atlasSize.x * length(vec3(atlasFromWorld[0][0], atlasFromWorld[1][0],
+                                                                        atlasFromWorld[2][0])));
+    ShadowBiasParams bias = ShadowBiasParams(directionalShadows.modes.x, lightBias.x, lightBias.y, wsTexel,
+                                             normalOffsetFootprint(filterMode), 0.0);
+    vec3 wsToLight = directionalShadows.lightDirections[slot].xyz;
+    vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
+    ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize.x);
+    if (lightBias.w > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
+        float metresPerDepth = 1.0 / length(vec3(atlasFromWorld[0][2], atlasFromWorld[1][2], atlasFromWorld[2][2]));
+        PcssLight pcss = PcssLight(0.0, vec4(metresPerDepth, lightBias.w, wsTexel, 0.0));
+        return pcssShadow(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth, lookup.depthGradient, directionalShadows.atlasSize.yyxx,
+                          directionalTileBounds(uint(light.y) + uint(cascade)), pcss);
+    }
+    return sampleShadowFiltered(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth,
+                                directionalShadows.atlasSize.yyxx, filterMode, lookup.depthGradient, lookup.perTexelPlane);
+}
+
+bool insideCullingSphere(int cascade, vec3 wsPosition) {
+    vec4 sphere = directionalShadows.cullingSpheres[cascade];
+    vec3 offset = wsPosition - sphere.xyz;
+    return dot(offset, offset) < sphere.w;
+}
+
+struct CascadeChoice {
+    int cascade;  // -1: beyond the last cascade
+    float fade;   // 1 inside the cascade, falling to 0 over its blend band (seed 000 §3.8)
+};
+
+// seed 000 §3.4 and §3.8: the first culling sphere that holds the point, faded over the sphere's outer
+// band (squared distances); or, for tight cascades (issue 13 item 8), the first slice whose split lies
+// beyond the point's view depth, faded over the slice's last cascadeFade of view depth.
+CascadeChoice selectDirectionalCascade(vec3 wsPosition, float viewDepth) {
+    int cascadeCount = int(directionalShadows.config.x);
+    bool tight = directionalShadows.modes.z == kCascadeFitTight;
+    for (int cascade = 0; cascade < cascadeCount; ++cascade) {
+        vec4 data = directionalShadows.cascadeData[cascade];
+        if (tight) {
+            if (viewDepth < data.w)
+                return CascadeChoice(cascade, fadedShadowStrength(viewDepth, 1.0 / data.w, directionalShadows.depthSelection.x));
+            continue;
+        }
+        vec4 sphere = directionalShadows.cullingSpheres[cascade];
+        vec3 offset = wsPosition - sphere.xyz;
+        float distanceSquared = dot(offset, offset);
+        if (distanceSquared < sphere.w)
+            return CascadeChoice(cascade, fadedShadowStrength(distanceSquared, data.x, directionalShadows.fade.z));
+    }
+    return CascadeChoice(-1, 0.0);
+}
+
+// The distance fade of every shadow (fade = DirectionalShadowData.fade or OtherShadowData.fade): seed
+// 000 §3.7 by view depth (kShadowFadeLinear), or URP's (seed 004 _MainLightShadowParams.zw) by the
+// squared distance to the camera, saturate(d^2 * scale + bias) fading the shadow out (kShadowFadeSquared).
+float distanceFadeStrength(vec3 wsPosition, float viewDepth, vec4 fade, uint mode, vec2 squaredScaleBias) {
+    if (mode == kShadowFadeSquared) {
+        vec3 fromCamera = wsPosition - frame.wsCameraPosition.xyz;
+        return 1.0 - clamp(dot(fromCamera, fromCamera) * squaredScaleBias.x + squaredScaleBias.y, 0.0, 1.0);
+    }
+    return fadedShadowStrength(viewDepth, fade.x, fade.y);
 }
 
 // seed 000 §3.5-§3.8 and §4.8 GetShadowData + GetDirectionalShadowAttenuation: choose the cascade by
 // culling sphere, fade by distance and in the last cascade, blend cascades (soft: lerp two samples;
 // dither: pick one by interleaved gradient noise), then lerp(1, shadow, strength).
-ShadowSample directionalShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec2 pixel) {
+ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
     if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.config.w) return ShadowSample(1.0, -1);
-    int cascadeCount = int(directionalShadows.config.x);
+    vec3 wsPosition = receiver.wsPosition;
     float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
-    vec4 fade = directionalShadows.fade;
-    float strength = fadedShadowStrength(viewDepth, fade.x, fade.y);
+    float strength = distanceFadeStrength(wsPosition, viewDepth, directionalShadows.fade, directionalShadows.modes.y,
+                                          directionalShadows.depthSelection.yz);
+    CascadeChoice choice = selectDirectionalCascade(wsPosition, viewDepth);
+    if (choice.cascade < 0) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
+    int cascade = choice.cascade;
     float cascadeBlend = 1.0;
-    int cascade = 0;
-    for (; cascade < cascadeCount; ++cascade) {
-        vec4 sphere = directionalShadows.cullingSpheres[cascade];
-        vec3 offset = wsPosition - sphere.xyz;
-        float distanceSquared = dot(offset, offset);
-        if (distanceSquared < sphere.w) {
-            float cascadeFade = fadedShadowStrength(distanceSquared, directionalShadows.cascadeData[cascade].x, fade.z);
-            if (cascade == cascadeCount - 1) strength *= cascadeFade;
-            else cascadeBlend = cascadeFade;
-            break;
-        }
-    }
-    if (cascade == cascadeCount) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
+    if (cascade == int(directionalShadows.config.x) - 1) strength *= choice.fade;
+    else cascadeBlend = choice.fade;
+    // Blend only toward a cascade that holds the point: culling spheres need not nest, and next to the
+    // camera a point in cascade i's band can lie outside sphere i + 1 (its tile never saw it). A tight
+    // cascade's box holds the previous one's band by construction.
+    if (cascadeBlend < 1.0 && directionalShadows.modes.z == kCascadeFitSphere && !insideCullingSphere(cascade + 1, wsPosition))
+        cascadeBlend = 1.0;
     uint blendMode = directionalShadows.config.z;
     if (blendMode == kCascadeBlendDither && cascadeBlend < interleavedGradientNoise(pixel)) cascade += 1;
     if (blendMode != kCascadeBlendSoft) cascadeBlend = 1.0;
 
     strength *= directionalShadows.lights[shadowSlot].x;
     if (strength <= 0.0) return ShadowSample(1.0, cascade);
-    float shadow = sampleDirectionalCascade(shadowSlot, cascade, wsPosition, wsNormal);
+    float shadow = sampleDirectionalCascade(shadowSlot, cascade, receiver);
     if (cascadeBlend < 1.0)
-        shadow = mix(sampleDirectionalCascade(shadowSlot, cascade + 1, wsPosition, wsNormal), shadow, cascadeBlend);
+        shadow = mix(sampleDirectionalCascade(shadowSlot, cascade + 1, receiver), shadow, cascadeBlend);
     return ShadowSample(mix(1.0, shadow, strength), cascade);
 }
 
@@ -86,11 +150,15 @@ layout(set = 0, binding = 7, std140) uniform OtherShadowBlock { OtherShadowData 
 layout(set = 0, binding = 8) uniform sampler2DShadow otherShadowAtlas;
 
 // Seed 001 §4.4 HardShadowAttenuation / SoftShadowAttenuation, the soft one with spot.filter's tent.
-float filterOtherShadow(vec3 atlasUvDepth, bool soft) {
+float filterOtherShadow(ShadowLookup lookup, bool soft) {
     bool useSoft = kOtherShadowMode == kOtherShadowsSoft || (kOtherShadowMode != kOtherShadowsHard && soft);
+    vec4 texelSize = otherShadows.atlasSize.yyxx;
     uint filterMode = kOtherShadowFilter == kShadowFilterFromData ? otherShadows.config.y : kOtherShadowFilter;
-    if (useSoft) return sampleShadowFiltered(otherShadowAtlas, atlasUvDepth, otherShadows.atlasSize.yyxx, filterMode);
-    return sampleShadowPcf2x2(otherShadowAtlas, atlasUvDepth);
+    if (useSoft)
+        return sampleShadowFiltered(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, filterMode,
+                                    lookup.depthGradient, lookup.perTexelPlane);
+    return sampleShadowPcf2x2(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, lookup.depthGradient,
+                              lookup.perTexelPlane);
 }
 
 // Cube face (+X, -X, +Y, -Y, +Z, -Z order) holding a direction from a point light: its major axis.
@@ -100,43 +168,50 @@ uint pointLightFace(vec3 wsFromLight) {
     return 2u * axis + (wsFromLight[axis] < 0.0 ? 1u : 0u);
 }
 
-// Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: pick the tile (a point light's
-// cube face by the major axis of light -> fragment), push the surface along its normal by the light's
-// normal bias times the world texel size at the fragment's distance along the tile's axis, project,
-// divide by w, keep the filter inside the tile's drawn interior (§5.5), compare, lerp by strength.
+// Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: bias the lookup as
+// shadows.bias says (shadow_bias.glsl; the world texel grows with the distance along the tile's axis),
+// pick the tile (a point light's cube face by the major axis of light -> lookup point), project, divide
+// by w, keep the filter inside the tile's drawn interior (§5.5), compare, lerp by strength.
 // Fragments behind a spot light or outside its tile's frustum are not shadowed.
-ShadowSample otherShadow(uint shadowSlot, vec3 wsPosition, vec3 wsNormal, vec3 wsToLight) {
+ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLight) {
     if (kOtherShadowMode == 0u) return ShadowSample(1.0, -1);
     if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.config.x) return ShadowSample(1.0, -1);
     vec4 light = otherShadows.lights[shadowSlot];
-    float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
-    float strength = light.x * fadedShadowStrength(viewDepth, otherShadows.fade.x, otherShadows.fade.y);
+    float viewDepth = -(frame.viewFromWorld * vec4(receiver.wsPosition, 1.0)).z;
+    float strength = light.x * distanceFadeStrength(receiver.wsPosition, viewDepth, otherShadows.fade,
+                                                    otherShadows.modes.y, otherShadows.fade.zw);
     if (strength <= 0.0) return ShadowSample(1.0, -1);
 
     vec4 position = otherShadows.lightPositions[shadowSlot];
     vec4 direction = otherShadows.lightDirections[shadowSlot];
-    vec3 wsFromLight = wsPosition - position.xyz;
+    vec4 lightBias = otherShadows.lightBias[shadowSlot];
+    vec3 wsFromLight = receiver.wsPosition - position.xyz;
     bool pointLight = light.w > 0.5;
     float distance = pointLight ? max(max(abs(wsFromLight.x), abs(wsFromLight.y)), abs(wsFromLight.z))
                                 : dot(wsFromLight, direction.xyz);
     if (distance <= 0.0) return ShadowSample(1.0, -1);
-    vec3 wsBiased = wsPosition + wsNormal * (position.w * distance);
-    uint tile = uint(light.y);
-    if (pointLight) tile += pointLightFace(wsBiased - position.xyz);  // the face that holds the biased point
-    vec4 atlasClip = otherShadows.atlasFromWorld[tile] * vec4(wsBiased, 1.0);
-    atlasClip.z -= direction.w;  // constant clip-space depth bias (seed 001 §4.2), 0 by default
-    if (atlasClip.w <= 0.0) return ShadowSample(1.0, -1);
-    vec3 atlasUvDepth = atlasClip.xyz / atlasClip.w;
-    if (atlasUvDepth.z >= 1.0) return ShadowSample(1.0, -1);  // beyond the far plane (range): no caster drawn there
-
     bool soft = light.z > 0.5;
+    ShadowBiasParams bias = ShadowBiasParams(otherShadows.modes.x, lightBias.x, lightBias.y, lightBias.z * distance,
+                                             normalOffsetFootprint(uint(lightBias.w)), direction.w);
+    vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
+    uint tile = uint(light.y);
+    if (pointLight) tile += pointLightFace(wsLookup - position.xyz);  // the face that holds the lookup point
+    ShadowLookup lookup = shadowLookup(otherShadows.atlasFromWorld[tile], receiver, wsLookup, wsToLight, bias,
+                                       otherShadows.atlasSize.x);
+    if (lookup.w <= 0.0) return ShadowSample(1.0, -1);
+    if (lookup.uvDepth.z >= 1.0) return ShadowSample(1.0, -1);  // beyond the far plane (range): no caster drawn there
+
     vec4 bounds = otherShadows.tileBounds[tile];
     // The cone (or a point light's 90° face) lies inside `bounds`, the drawn interior less the filter
     // reach: a fragment outside it gets no light from this tile, and clamping it onto the tile's edge
     // would smear edge texels into streaks across the AOV.
-    if (any(lessThan(atlasUvDepth.xy, bounds.xy)) || any(greaterThan(atlasUvDepth.xy, bounds.zw)))
+    if (any(lessThan(lookup.uvDepth.xy, bounds.xy)) || any(greaterThan(lookup.uvDepth.xy, bounds.zw)))
         return ShadowSample(1.0, -1);
-    float shadow = filterOtherShadow(atlasUvDepth, soft);
+    vec4 pcss = otherShadows.pcss[shadowSlot];
+    float shadow = pcss.x > 0.0
+        ? pcssShadow(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, lookup.depthGradient, otherShadows.atlasSize.yyxx, bounds,
+                     PcssLight(1.0, vec4(pcss.x, pcss.y, pcss.z, lightBias.z)))
+        : filterOtherShadow(lookup, soft);
     return ShadowSample(mix(1.0, shadow, strength), -1);
 }
 #endif

@@ -1,4 +1,4 @@
-// Writes the canonical shadow test scenes (src/scene/canonical_scenes.h) as OUTDIR/NAME.gltf.
+// Writes the canonical shadow test scenes (src/scene/canonical_scenes.h) as OUTDIR/NAME.gltf (or .glb).
 // Regenerate the committed copies with: ./build/tests/make_test_scenes tests/scenes
 #include <cstdio>
 #include <string>
@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
     }
     try {
         for (const penumbra::CanonicalSceneInfo& info : penumbra::canonicalScenes()) {
-            const std::string path = std::string(argv[1]) + "/" + info.name + ".gltf";
+            const std::string path = std::string(argv[1]) + "/" + info.fileName();
             penumbra::writeGltfScene(penumbra::makeCanonicalScene(info.name), path);
             std::printf("%s: %s\n", path.c_str(), info.description.c_str());
         }

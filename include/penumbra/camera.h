@@ -33,6 +33,11 @@ glm::mat4 reversedZPerspective(float yfov, float aspect, float zNear, float zFar
 // framing of the scene bounds) for an output of width x height pixels.
 CameraView resolveCameraView(const Scene& scene, uint32_t width, uint32_t height);
 CameraView makeCameraView(const Camera& camera, uint32_t width, uint32_t height);
+// The same view with the camera moved by wsOffset (orientation, projection and size unchanged); the
+// shimmer measurement moves it 2 cm to its right (penumbra compare --shimmer).
+CameraView translatedCameraView(const CameraView& view, const glm::vec3& wsOffset);
+// The camera's right axis (+X of view space) in world space, unit.
+glm::vec3 wsCameraRight(const CameraView& view);
 // A camera that frames `wsBounds` from above and in front; used when a scene has no camera.
 Camera autoFramingCamera(const Aabb& wsBounds);
 

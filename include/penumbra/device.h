@@ -54,11 +54,14 @@ struct ExternalVulkanDevice {
 struct DeviceObjectCounts {
     uint32_t buffers = 0, textures = 0, samplers = 0, pipelines = 0, textureTables = 0;
     uint32_t memoryBlocks = 0;      // VkDeviceMemory objects alive
+    uint64_t memoryBlockBytes = 0;  // bytes held in those blocks
+    uint64_t memoryUsedBytes = 0;   // bytes suballocated from them
     uint32_t pendingDestroys = 0;   // destroyed objects the GPU may still be using
     uint64_t memoryAllocations = 0; // vkAllocateMemory calls so far
     uint64_t objectsCreated = 0;    // buffers, textures, samplers, pipelines and texture tables so far
     uint64_t submits = 0;           // queue submissions so far
     uint64_t deviceWaits = 0;       // queue- or device-wide waits so far
+    uint64_t debugNamesSet = 0;     // objects named for RenderDoc / Nsight (VK_EXT_debug_utils) so far
     uint32_t total() const {
         return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys;
     }

@@ -59,6 +59,14 @@ struct FrameStats {
     std::vector<PassTiming> gpuTimings;  // per pass, from timestamps (empty where the device has none)
     CpuPhaseTimes cpu;
     double submitToFenceMilliseconds = 0.0;  // from the submission to the fence seen signalled
+    uint64_t sceneBytesUploaded = 0;         // changed instances and materials copied this frame
+    std::string shadowRaster = "hw";         // the rasterizer that drew this frame's shadow maps: hw | compute
+    std::string shadowRasterChoice;          // shadows.raster = auto: how it was chosen
+    // The compute rasterizer (both atlases): large triangle pieces split into chunks, the chunks, and what
+    // its queues could not hold (drawn incompletely: a warning names it).
+    uint64_t rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
+    // Shadow tiles drawn this frame and kept from earlier frames (shadows.cacheTiles).
+    uint32_t tilesRendered = 0, tilesReused = 0;
     std::vector<AtlasDrawStats> atlases;
     std::vector<std::string> warnings;
     std::string shadowStatsJson = "{}";  // the shadow planner's stats (lights reserved, tiles, casters per tile)
@@ -80,6 +88,11 @@ enum class PipelineWarmup {
 
 struct RendererOptions {
     PipelineWarmup warmup = PipelineWarmup::OnDemand;
+    // Testing and debugging: always draw with the generic lit-pass variant (it must give the same image).
+    bool forceGenericVariants = false;
+    // The compute rasterizer's queues of large triangle pieces and of their chunks start this large
+    // (0 = the defaults, 256k and 1M) and grow when a frame overflows them.
+    uint32_t rasterLargeQueue = 0, rasterChunkQueue = 0;
 };
 
 // A caller-owned image to render into (see <penumbra/vulkan.h>, which fills it from Vulkan types).

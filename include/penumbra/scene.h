@@ -13,6 +13,21 @@
 
 namespace penumbra {
 
+// How a texture is sampled: glTF's sampler. src/scene/texture_sampler.h holds the texel rule that the
+// GPU and the ray-traced reference both follow.
+enum class TextureFilter { Nearest, Linear };
+enum class MipmapMode { None, Nearest, Linear };  // None: level 0 only
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
+struct TextureSampler {
+    TextureFilter magFilter = TextureFilter::Linear;
+    TextureFilter minFilter = TextureFilter::Linear;
+    MipmapMode mipmaps = MipmapMode::Linear;  // glTF's default when no sampler or no minFilter is given
+    TextureWrap wrapS = TextureWrap::Repeat;
+    TextureWrap wrapT = TextureWrap::Repeat;
+    bool operator==(const TextureSampler&) const = default;
+};
+
 struct Vertex {
     glm::vec3 osPosition{0.0f};
     glm::vec3 osNormal{0.0f, 1.0f, 0.0f};
@@ -47,6 +62,7 @@ enum class MaterialShadowMode { On, Clip, Dither, Off };
 struct Texture {
     Image rgba;  // RGBA8, sRGB-encoded colour
     std::string name;
+    TextureSampler sampler;  // the glTF texture's sampler (filters, wrap modes)
 };
 
 struct Material {
@@ -73,7 +89,9 @@ struct Instance {
 };
 
 enum class LightType { Directional, Spot, Point };
-enum class LightShadows { None, Hard, Soft };
+// Soft: the settings' filter; Hard: one hardware 2x2 PCF tap; Pcss: contact-hardening soft shadows
+// sized by shadowLightSize (issue 13 item 9).
+enum class LightShadows { None, Hard, Soft, Pcss };
 
 struct Light {
     std::string name;
@@ -90,7 +108,13 @@ struct Light {
     float shadowBias = 0.0f;        // slope-scale depth bias
     float shadowNormalBias = 1.0f;  // in shadow texels
     float shadowNearPlane = 0.0f;   // near-plane offset (directional) or near clip (spot, point)
+    // The emitter's size for pcss shadows: angular diameter in degrees (directional; the sun's 0.53) or
+    // radius in metres (spot, point). The ray-traced reference's --soft samples the same disk.
+    float shadowLightSize = 0.53f;
 };
+
+// shadowLightSize's default for a light type: 0.53° for the sun, a 5 cm emitter for spot and point lights.
+inline float defaultShadowLightSize(LightType type) { return type == LightType::Directional ? 0.53f : 0.05f; }
 
 struct Camera {
     std::string name;

@@ -9,6 +9,22 @@ namespace penumbra {
 
 enum class ShadowFilter { PCF2x2, PCF3x3, PCF5x5, PCF7x7 };
 enum class CascadeBlend { Hard, Soft, Dither };
+// How shadow depth is rasterized (issue 10): the hardware pipeline, compute shaders (fast where few
+// SMs run graphics, e.g. NVIDIA H100/H200), or whichever the first frames measure faster.
+enum class ShadowRaster { Hw, Compute, Auto };
+// How the lit pass keeps surfaces from shadowing themselves (issue 13 item 6; shaders/shadow_bias.glsl):
+// the seed's constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
+// Every light's shadowNormalBias multiplies the automatic amount, its shadowBias adds a slope-scale bias.
+enum class ShadowBiasMode { Normal, ScaledNormal, ReceiverPlane };
+// How cascades are fitted (issue 13 item 8): the seed's culling sphere around the frustum slice, or
+// tight to what the frame shows (a depth reduction: the visible surfaces' light-space bounds per slice).
+enum class CascadeFit { Sphere, Tight };
+// Where cascades split: the seed's ratios of the shadow distance, logarithmic, or the "practical" blend
+// lambda * log + (1 - lambda) * uniform over the depth range (the visible one with the tight fit).
+enum class CascadeSplitMode { Manual, Log, Practical };
+// The distance fade (issue 13 item 10): seed 000's, linear in view depth over the last distanceFade of
+// the shadow distance, or URP's (seed 004), linear in the squared camera distance over the same band.
+enum class ShadowFadeMode { Linear, Squared };
 
 struct DirectionalShadowSettings {
     uint32_t atlasSize = 1024;
@@ -17,6 +33,9 @@ struct DirectionalShadowSettings {
     std::array<float, 3> cascadeRatios{0.1f, 0.25f, 0.5f};
     float cascadeFade = 0.1f;
     CascadeBlend cascadeBlend = CascadeBlend::Hard;
+    CascadeFit fit = CascadeFit::Tight;                   // measured best (docs/fidelity.md)
+    CascadeSplitMode cascadeSplits = CascadeSplitMode::Log;  // measured best (docs/fidelity.md)
+    float splitLambda = 0.75f;  // practical splits: weight of the logarithmic split, 0..1
 };
 
 struct SpotShadowSettings {
@@ -38,9 +57,15 @@ struct SpotShadowSettings {
 };
 
 struct ShadowSettings {
+    ShadowBiasMode bias = ShadowBiasMode::ReceiverPlane;  // measured best (docs/fidelity.md)
+    ShadowFadeMode fadeMode = ShadowFadeMode::Linear;
     float maxDistance = 100.0f;
     float distanceFade = 0.1f;
     bool screenSpace = false;
+    ShadowRaster raster = ShadowRaster::Auto;
+    // Cached shadow tiles: a tile whose light, projection and casters did not change since the last
+    // frame keeps its depth and is not drawn again.
+    bool cacheTiles = true;
     DirectionalShadowSettings directional;
     SpotShadowSettings spot;
 };
@@ -51,8 +76,18 @@ inline float filterSize(ShadowFilter filter) { return float(int(filter)); }
 // Names as written in the settings JSON ("PCF5x5", "soft") and back; nullopt for an unknown name.
 const char* shadowFilterName(ShadowFilter filter);
 const char* cascadeBlendName(CascadeBlend blend);
+const char* shadowBiasModeName(ShadowBiasMode mode);
+std::optional<ShadowBiasMode> parseShadowBiasMode(const std::string& name);
+const char* shadowFadeModeName(ShadowFadeMode mode);
+std::optional<ShadowFadeMode> parseShadowFadeMode(const std::string& name);
+const char* cascadeFitName(CascadeFit fit);
+std::optional<CascadeFit> parseCascadeFit(const std::string& name);
+const char* cascadeSplitModeName(CascadeSplitMode mode);
+std::optional<CascadeSplitMode> parseCascadeSplitMode(const std::string& name);
 std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
 std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
+const char* shadowRasterName(ShadowRaster raster);
+std::optional<ShadowRaster> parseShadowRaster(const std::string& name);
 
 // Checks the ranges of DESIGN.md; throws Error naming the first bad key with its allowed range, e.g.
 // "settings: shadows.directional.cascadeCount = 7 is out of range (allowed 1..4)".

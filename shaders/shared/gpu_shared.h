@@ -1,4 +1,5 @@
 // Included by C++ and GLSL alike: lets one struct definition serve both (niagara's config.h idea).
+// Small functions written in the common subset of both languages (PENUMBRA_INLINE) serve both too.
 // Only vec4 / uvec4 / mat4 members, so std140 and std430 layouts equal the C++ layout; each C++
 // struct gets static_asserts on size and offsets next to its definition.
 #ifndef PENUMBRA_GPU_SHARED_H
@@ -14,12 +15,14 @@
 #define PENUMBRA_CONST(type, name, value) inline constexpr type name = value;
 #define PENUMBRA_CHECK_LAYOUT(type, member, offset) static_assert(offsetof(type, member) == (offset), #type "." #member " offset");
 #define PENUMBRA_CHECK_SIZE(type, size) static_assert(sizeof(type) == (size), "sizeof(" #type ")");
+#define PENUMBRA_INLINE inline
 #else
 #define PENUMBRA_GPU_NAMESPACE_BEGIN
 #define PENUMBRA_GPU_NAMESPACE_END
 #define PENUMBRA_CONST(type, name, value) const type name = value;
 #define PENUMBRA_CHECK_LAYOUT(type, member, offset)
 #define PENUMBRA_CHECK_SIZE(type, size)
+#define PENUMBRA_INLINE
 #endif
 
 #endif

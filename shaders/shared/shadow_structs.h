@@ -31,6 +31,29 @@ PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
 PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
 PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)
 
+// ShadowBias.x of DirectionalShadowData and OtherShadowData mirrors ShadowBiasMode (issue 13 item 6):
+// how the lit pass keeps a surface from shadowing itself (see shaders/shadows.glsl shadowLookup).
+PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (seed 000 §4.3, the old rule)
+PENUMBRA_CONST(uint, kShadowBiasScaledNormal, 1u)    // normal offset x the texel's size x sin(N, L)
+PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the receiver plane's depth there
+
+// PCSS (shaders/shadow_pcss.glsl): the widest blocker search and filter radius, in texels; the tight fit
+// keeps that many texels around the visible receivers of a pcss light.
+PENUMBRA_CONST(float, kPcssMaxRadiusTexels, 24.0f)
+
+// modes.z: how cascades were fitted and so how the lit pass selects one (issue 13 item 8).
+PENUMBRA_CONST(uint, kCascadeFitSphere, 0u)  // the first culling sphere that holds the point (seed 000 §3.4)
+PENUMBRA_CONST(uint, kCascadeFitTight, 1u)   // the first slice whose split lies beyond the point's view depth
+
+// modes.y: the distance fade (issue 13 item 10).
+PENUMBRA_CONST(uint, kShadowFadeLinear, 0u)   // seed 000 §3.7: by view depth, over the last distanceFade
+PENUMBRA_CONST(uint, kShadowFadeSquared, 1u)  // URP (seed 004): by squared camera distance, scale and bias
+
+// One unit of a light's shadowNormalBias, in texels of its shadow map: the texel diagonal x (1 + filter
+// / 2), for directional, spot and point lights alike (issue 13 defect 4; before, spots used 1 + filter).
+// filterMode = kShadowFilter* of the light (PCF2x2 for "hard" lights). Measured in shadow_gpu_packing.cpp.
+PENUMBRA_INLINE float normalOffsetFootprint(uint filterMode) { return (1.0f + 0.5f * float(filterMode)) * 1.4142136f; }
+
 struct DirectionalShadowData {
     // Tile t = lights[slot].y + cascade: world -> (atlas uv, depth). Unused tiles are zero.
     mat4 atlasFromWorld[16];
@@ -38,7 +61,7 @@ struct DirectionalShadowData {
     // the radius shrunk by the filter footprint so filtering stays inside the tile (seed 000 §4.6).
     vec4 cullingSpheres[4];
     // Per cascade: x = 1 / cullingSpheres.w (seed 000 §4.2), y = the world-space normal-bias unit,
-    // z = world texel size (2r / tileSize), w unused.
+    // z = world texel size (2r / tileSize), w = the view depth where the cascade's slice ends (its split).
     // One unit of shadowNormalBias ("shadow texels", DESIGN.md) = texel * (1 + filter / 2) * sqrt(2): the
     // texel diagonal (seed 000 §4.3) times 1 / 1.5 / 2 / 2.5 for PCF2x2 / 3x3 / 5x5 / 7x7. Seed 000 §4.6
     // scales by filter + 1 (1 / 2 / 3 / 4); measured, that over-biases wide filters (thin_wall PCF7x7:
@@ -59,14 +82,30 @@ struct DirectionalShadowData {
     // x = atlas size in texels, y = 1 / atlas size, z = tile size in texels, w = 1 / tile size.
     // The tent filters take vec4(1/size, 1/size, size, size) = atlasSize.yyxx (seed 000 §4.6).
     vec4 atlasSize;
+    // Per shadowed light slot: x = normal-bias multiplier (shadowNormalBias), y = slope-scale bias
+    // (shadowBias: depth per texel of receiver slope, applied in the lit pass, not the rasterizer),
+    // z = filter (kShadowFilter*: the directional filter, or PCF2x2 for a "hard" light), w = tan of the
+    // sun's angular radius for a "pcss" light (its shadowLightSize / 2), 0 for every other.
+    vec4 lightBias[4];
+    // Per shadowed light slot: xyz = unit vector toward the light (opposite to the way it travels).
+    vec4 lightDirections[4];
+    // x = bias mode (kShadowBias*), y = fade mode (kShadowFade*), z = cascade fit (kCascadeFit*), w unused.
+    uvec4 modes;
+    // x = 1 / cascadeFade: the tight fit's blend band, the last cascadeFade of a slice's view depth;
+    // y, z = scale and bias of the squared-distance fade (kShadowFadeSquared, shadow_fade.h); w unused.
+    vec4 depthSelection;
 };
-PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1264)
+PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1424)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cullingSpheres, 1024)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascadeData, 1088)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lights, 1152)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, fade, 1216)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, config, 1232)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, atlasSize, 1248)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightBias, 1264)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightDirections, 1328)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, modes, 1392)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, depthSelection, 1408)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

@@ -86,6 +86,9 @@ struct Measurements {
     std::map<std::string, Series> cpu;
     Series frame;
     std::vector<AtlasDrawStats> atlases;  // of the last timed frame
+    std::string raster, rasterChoice;     // of the last timed frame
+    uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
+    Series tilesRendered, tilesReused;
     void add(const FrameStats& stats) {
         for (const PassTiming& t : stats.gpuTimings) passes[t.name].values.push_back(t.milliseconds);
         cpu["plan"].values.push_back(stats.cpu.plan);
@@ -95,6 +98,13 @@ struct Measurements {
         cpu["submit"].values.push_back(stats.cpu.submit);
         frame.values.push_back(stats.submitToFenceMilliseconds);
         atlases = stats.atlases;
+        tilesRendered.values.push_back(stats.tilesRendered);
+        tilesReused.values.push_back(stats.tilesReused);
+        raster = stats.shadowRaster;
+        rasterLarge = stats.rasterLargeTriangles;
+        rasterChunks = stats.rasterChunks;
+        rasterDropped = stats.rasterDropped;
+        rasterChoice = stats.shadowRasterChoice;
     }
 };
 
@@ -178,6 +188,10 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     json["allocationsAfterWarmup"] = {{"gpuObjects", run.after.objectsCreated - run.before.objectsCreated},
                                       {"vkAllocateMemory", run.after.memoryAllocations - run.before.memoryAllocations}};
     json["validationMessages"] = device.validationMessageCount();
+    json["tiles"] = {{"rendered", measured.tilesRendered.median()}, {"reused", measured.tilesReused.median()}};
+    json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice},
+                            {"largePieces", measured.rasterLarge}, {"chunks", measured.rasterChunks},
+                            {"dropped", measured.rasterDropped}};
     if (bench.varyPeriod > 0) json["vary"] = variationJson(bench.varyPeriod, run.samples);
     return json;
 }
@@ -193,16 +207,21 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
     std::printf("%-28s %10s %10s %10s\n", "", "median ms", "p95 ms", "min ms");
     double gpuTotal = 0.0;
     for (const auto& [name, series] : measured.passes) {
-        gpuTotal += series.median();
+        if (name.find('/') == std::string::npos) gpuTotal += series.median();  // "pass/step" is inside "pass"
         std::printf("gpu %-24s %10.4f %10.4f %10.4f\n", name.c_str(), series.median(), series.p95(), series.minimum());
     }
-    std::printf("gpu %-24s %10.4f\n", "sum of medians", gpuTotal);
+    std::printf("gpu %-24s %10.4f\n", "sum of pass medians", gpuTotal);
     for (const auto& [name, series] : measured.cpu)
         std::printf("cpu %-24s %10.4f %10.4f\n", name.c_str(), series.median(), series.p95());
     std::printf("frame (submit to fence)      %10.4f %10.4f\n", measured.frame.median(), measured.frame.p95());
     for (const AtlasDrawStats& atlas : measured.atlases)
         std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     (unsigned long long)atlas.triangles);
+    std::printf("shadow raster: %s (%s), %llu large pieces in %llu chunks, %llu dropped\n", measured.raster.c_str(),
+                measured.rasterChoice.c_str(), (unsigned long long)measured.rasterLarge,
+                (unsigned long long)measured.rasterChunks, (unsigned long long)measured.rasterDropped);
+    std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
+                measured.tilesReused.median());
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,
                 run.deviceLast);
     std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n",

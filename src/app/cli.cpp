@@ -32,6 +32,8 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("--settings", options.settingsPath, "settings JSON file (DESIGN.md: the pipeline asset)");
     command.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
     command.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
+    command.add_option("--raster", options.raster, "shadow-map rasterizer: hw | compute | auto (= shadows.raster)")
+        ->check(CLI::IsMember({"hw", "compute", "auto"}));
     command.add_flag("--validation", options.validation, "enable the Vulkan validation layers");
     command.add_option("--light", options.light, "light index (in the KHR_lights_punctual array) for AOVs and comparisons");
 }
@@ -56,12 +58,19 @@ int runCli(int argc, char** argv) {
     addRenderOptions(*reference, referenceOptions);
     reference->add_option("-o,--output", referenceOptions.outputPath, "output PNG (shadow AOV convention)")->default_val("reference.png");
     reference->add_option("--mask", referenceOptions.maskPath, "write the validity mask PNG");
+    reference->add_option("--soft", referenceOptions.softSamples,
+                          "trace the light as a disk of its shadowLightSize with N shadow rays per pixel (pcss truth)")
+        ->check(CLI::Range(1u, 4096u));
 
     RenderOptions compareOptions;
     CLI::App* compare = app.add_subcommand("compare", "compare the rasterized shadow AOV with the ray-traced reference");
     addRenderOptions(*compare, compareOptions);
     compare->add_option("--diff", compareOptions.diffPath, "write a diff image: false shadow and false lit in two colours");
     compare->add_flag("--json", compareOptions.json, "print the metrics as JSON");
+    compare->add_option("--soft", compareOptions.softSamples, "compare with the area-light reference of N rays per pixel")
+        ->check(CLI::Range(1u, 4096u));
+    compare->add_flag("--shimmer", compareOptions.shimmer,
+                      "also render and trace with the camera 2 cm to its right: % of pixels that flip in ours only");
 
     RenderOptions benchOptions;
     BenchOptions benchSettings;
@@ -76,6 +85,12 @@ int runCli(int argc, char** argv) {
                     "long run: change atlas sizes, cascades, filters and the shadowed lights every --vary-every frames");
     bench->add_option("--vary-every", benchSettings.varyEvery, "frames between changes of --vary-settings (default 100)")
         ->check(CLI::Range(1u, 1000000u));
+
+    RenderOptions exportOptions;
+    CLI::App* exporter = app.add_subcommand("export", "write a scene (file, demo or gen:) as glTF 2.0 (.gltf or .glb)");
+    exporter->add_option("scene", exportOptions.scenePath, "scene to write; the built-in demo scene if omitted");
+    exporter->add_option("--model", exportOptions.model, "the glTF that gen:field copies");
+    exporter->add_option("-o,--output", exportOptions.outputPath, "output .gltf or .glb")->required();
 
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
@@ -104,6 +119,7 @@ int runCli(int argc, char** argv) {
             return runBenchCommand(benchOptions, benchSettings);
         }
         if (*devices) return runDevicesCommand();
+        if (*exporter) return runExportCommand(exportOptions);
         if (*diff) return runDiffCommand(diffA, diffB);
     } catch (const Error& e) {
         printError("", e.what());

@@ -21,6 +21,7 @@ struct RenderOptions {
     std::string settingsPath;
     std::vector<std::string> overrides;
     std::string device = "auto";
+    std::string raster;  // --raster: shorthand for --set shadows.raster=...
     bool validation = false;
     uint32_t light = 0;
     std::string outputPath;
@@ -30,6 +31,8 @@ struct RenderOptions {
     std::string maskPath;
     std::string diffPath;
     bool json = false;
+    bool shimmer = false;  // compare: also measure shimmer with the camera moved 2 cm to its right
+    uint32_t softSamples = 0;  // reference / compare: trace the light as a disk with N rays per pixel
 };
 
 // `penumbra bench` only.
@@ -58,6 +61,8 @@ int runReferenceCommand(const RenderOptions& options);
 int runCompareCommand(const RenderOptions& options);
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench);
 int runDevicesCommand();
+// Writes the scene the options name (a file, the demo or a gen: scene) as .gltf or .glb.
+int runExportCommand(const RenderOptions& options);
 int runDiffCommand(const std::string& pathA, const std::string& pathB);
 
 }  // namespace penumbra

@@ -15,11 +15,13 @@ namespace penumbra {
 
 namespace {
 
-ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view) {
+ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view, uint32_t softSamples) {
     ReferenceOptions options;
     // The rasterizer's shadow distance: maxDistance, or the camera's far plane when nearer (seed 000 §3.6).
     options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
     options.distanceFade = settings.shadows.distanceFade;
+    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
+    options.softSamples = softSamples;
     return options;
 }
 
@@ -33,13 +35,31 @@ int runReferenceCommand(const RenderOptions& options) {
     const CameraView view = resolveCameraView(scene, options.width, options.height);
     const Settings settings = withSceneDefaults(userSettings, scene, view);
     const ReferenceImages reference =
-        traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view));
+        traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO), referenceOptionsFor(settings, view, options.softSamples));
     writePng(reference.shadow, options.outputPath);
     if (!options.maskPath.empty()) writePng(reference.validMask, options.maskPath);
     std::printf("reference: light %u, %llu of %llu pixels valid for comparison\n", options.light,
                 (unsigned long long)reference.validPixels, (unsigned long long)(uint64_t(view.width) * view.height));
     return 0;
 }
+
+namespace {
+
+// The shimmer step of issue 13: the camera moved 2 cm sideways between two frames.
+constexpr float kShimmerStepMetres = 0.02f;
+
+ShimmerMetrics measureShimmer(const Scene& scene, const CameraView& view, const RenderOptions& options,
+                              const Settings& settings, Renderer& renderer, const RenderRequest& request,
+                              const Image& ours0, const ReferenceImages& reference0) {
+    const CameraView moved = translatedCameraView(view, kShimmerStepMetres * wsCameraRight(view));
+    const ReferenceImages reference1 =
+        traceReferenceShadow(scene, moved, options.light, false, referenceOptionsFor(settings, moved, options.softSamples));
+    const RenderResult ours1 = renderer.render(request, settings, moved);
+    return compareShimmer(ours0, ours1.image, reference0.shadow, reference1.shadow, reference0.validMask,
+                          reference1.validMask);
+}
+
+}  // namespace
 
 int runCompareCommand(const RenderOptions& options) {
     checkWritable(options.diffPath);
@@ -50,13 +70,16 @@ int runCompareCommand(const RenderOptions& options) {
     // Trace first: it validates the light (exists, casts shadows) before the GPU is touched.
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO) && !options.json,
-                             referenceOptionsFor(settings, view));
+                             referenceOptionsFor(settings, view, options.softSamples));
     Device device(deviceOptionsFor(options));
     Renderer renderer(device, std::move(scene));
     RenderRequest request = makeRenderRequest(options);
     request.output = OutputMode::ShadowAov;
     const RenderResult ours = renderer.render(request, settings, view);
     const CompareMetrics metrics = compareShadowImages(ours.image, reference.shadow, reference.validMask);
+    ShimmerMetrics shimmer;
+    if (options.shimmer)
+        shimmer = measureShimmer(renderer.scene(), view, options, settings, renderer, request, ours.image, reference);
     if (!options.diffPath.empty()) {
         request.output = OutputMode::Color;
         const RenderResult colour = renderer.render(request, settings, view);
@@ -66,7 +89,10 @@ int runCompareCommand(const RenderOptions& options) {
     if (metrics.validPixels == 0)
         std::fprintf(stderr, "penumbra: warning: no pixel is valid for comparison (nothing in view, or no surface "
                              "faces light %u within the shadow distance); the metrics are empty\n", options.light);
-    std::printf("%s\n", options.json ? toJson(metrics).c_str() : toText(metrics).c_str());
+    if (options.json)
+        std::printf("%s\n", (options.shimmer ? toJson(metrics, shimmer) : toJson(metrics)).c_str());
+    else
+        std::printf("%s%s\n", toText(metrics).c_str(), options.shimmer ? toText(shimmer).c_str() : "");
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
     return 0;

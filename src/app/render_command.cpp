@@ -11,6 +11,7 @@
 #include "penumbra/device.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene_loading.h"
+#include "scene/gltf_writer.h"
 
 namespace penumbra {
 
@@ -66,6 +67,7 @@ RenderRequest makeRenderRequest(const RenderOptions& options) {
 Settings loadSettings(const RenderOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
     for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
+    if (!options.raster.empty()) applySettingOverride(settings, "shadows.raster=" + options.raster);
     validateSettings(settings);
     return settings;
 }
@@ -92,6 +94,8 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
                       {"submit", result.stats.cpu.submit}};
     stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
     stats["warnings"] = result.stats.warnings;
+    stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
+    stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
     return stats.dump(2);
 }
 
@@ -121,6 +125,12 @@ int runRenderCommand(const RenderOptions& options) {
     }
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
+    return 0;
+}
+
+int runExportCommand(const RenderOptions& options) {
+    checkWritable(options.outputPath);
+    writeGltfScene(loadSceneFor(options), options.outputPath);
     return 0;
 }
 

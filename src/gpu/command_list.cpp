@@ -171,6 +171,13 @@ void CommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint3
     vkCmdDrawIndexed(native(*this), indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
 }
 
+void CommandList::drawIndexedIndirectCount(BufferHandle commands, uint64_t offset, BufferHandle count,
+                                           uint64_t countOffset, uint32_t maxDraws) {
+    Device::Impl& d = impl(*this);
+    vkCmdDrawIndexedIndirectCount(native(*this), d.buffers.at(commands.id).buffer, offset, d.buffers.at(count.id).buffer,
+                                  countOffset, maxDraws, sizeof(VkDrawIndexedIndirectCommand));
+}
+
 void CommandList::draw(uint32_t vertexCount, uint32_t instanceCount) {
     vkCmdDraw(native(*this), vertexCount, instanceCount, 0, 0);
 }
@@ -179,35 +186,84 @@ void CommandList::dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ)
     vkCmdDispatch(native(*this), groupsX, groupsY, groupsZ);
 }
 
+void CommandList::dispatchIndirect(BufferHandle arguments, uint64_t offset) {
+    vkCmdDispatchIndirect(native(*this), impl(*this).buffers.at(arguments.id).buffer, offset);
+}
+
+void CommandList::fillBuffer(BufferHandle buffer, uint32_t value) { clearBuffer(buffer, value); }
+
+void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& t = d.textures.at(texture.id);
+    recordTransition(native(*this), t, TextureState::Undefined, TextureState::TransferDst);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+    copy.imageExtent = {t.desc.width, t.desc.height, 1};
+    vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &copy);
+    recordTransition(native(*this), t, TextureState::TransferDst, finalState);
+}
+
+void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects,
+                                           TextureState from, TextureState to) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& t = d.textures.at(texture.id);
+    recordTransition(native(*this), t, from, TextureState::TransferDst);
+    std::vector<VkBufferImageCopy> copies;
+    for (const Rect& r : rects) {
+        VkBufferImageCopy copy{};
+        copy.bufferOffset = (uint64_t(r.y) * t.desc.width + uint64_t(r.x)) * bytesPerPixel(t.desc.format);
+        copy.bufferRowLength = t.desc.width;
+        copy.bufferImageHeight = t.desc.height;
+        copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+        copy.imageOffset = {r.x, r.y, 0};
+        copy.imageExtent = {r.width, r.height, 1};
+        copies.push_back(copy);
+    }
+    if (!copies.empty())
+        vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(copies.size()), copies.data());
+    recordTransition(native(*this), t, TextureState::TransferDst, to);
+}
+
+void CommandList::clearDepthRects(std::span<const Rect> rects, float depth) {
+    if (rects.empty()) return;
+    VkClearAttachment attachment{};
+    attachment.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
+    attachment.clearValue.depthStencil.depth = depth;
+    std::vector<VkClearRect> clears;
+    for (const Rect& r : rects) clears.push_back({{{r.x, r.y}, {r.width, r.height}}, 0, 1});
+    vkCmdClearAttachments(native(*this), 1, &attachment, uint32_t(clears.size()), clears.data());
+}
+
 void CommandList::clearBuffer(BufferHandle buffer, uint32_t value) {
     vkCmdFillBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_WHOLE_SIZE, value);
 }
 
 void CommandList::memoryBarrier() {
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(native(*this), &dependency);
+    recordMemoryBarrier(native(*this), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 void CommandList::beginTimer(const std::string& name) {
     Device::Impl& d = impl(*this);
-    PENUMBRA_ASSERT(openTimer == ~0u);
-    if (queryBase == ~0u || (timerNames.size() + 1) * 2 > queryCapacity) return;
-    openTimer = uint32_t(timerNames.size());
+    if (queryBase == ~0u || (timerNames.size() + 1) * 2 > queryCapacity) {
+        openTimers.push_back(~0u);  // no room: this timer records nothing
+        return;
+    }
+    openTimers.push_back(uint32_t(timerNames.size()));
     timerNames.push_back(name);
-    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool, queryBase + openTimer * 2);
+    vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool,
+                         queryBase + openTimers.back() * 2);
 }
 
 void CommandList::endTimer() {
-    if (openTimer == ~0u) return;
+    PENUMBRA_ASSERT(!openTimers.empty());
+    const uint32_t timer = openTimers.back();
+    openTimers.pop_back();
+    if (timer == ~0u) return;
     vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, impl(*this).timestampPool,
-                         queryBase + openTimer * 2 + 1);
-    openTimer = ~0u;
+                         queryBase + timer * 2 + 1);
 }
 
 void CommandList::copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset) {
@@ -226,22 +282,17 @@ void CommandList::copyTextureToBuffer(TextureHandle texture, TextureState state,
     vkCmdCopyImageToBuffer(native(*this), t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers.at(destination.id).buffer,
                            1, &copy);
     recordTransition(native(*this), t, TextureState::TransferSrc, state);
-    // Make the copy visible to the host once the frame's fence signals.
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(native(*this), &dependency);
+    hostReadBarrier();
 }
 
-namespace {
+void CommandList::hostReadBarrier() {
+    recordMemoryBarrier(native(*this), VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
 
-void externalBarrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage,
-                     VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+void recordColorImageBarrier(VkCommandBuffer cb, VkImage image, uint32_t level, VkImageLayout from, VkImageLayout to,
+                             VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                             VkAccessFlags2 dstAccess) {
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     barrier.srcStageMask = srcStage;
     barrier.srcAccessMask = srcAccess;
@@ -251,21 +302,32 @@ void externalBarrier(VkCommandBuffer cb, VkImage image, VkImageLayout from, VkIm
     barrier.newLayout = to;
     barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1};
     VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dependency.imageMemoryBarrierCount = 1;
     dependency.pImageMemoryBarriers = &barrier;
     vkCmdPipelineBarrier2(cb, &dependency);
 }
 
-}  // namespace
+void recordMemoryBarrier(VkCommandBuffer cb, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = srcStage;
+    barrier.srcAccessMask = srcAccess;
+    barrier.dstStageMask = dstStage;
+    barrier.dstAccessMask = dstAccess;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cb, &dependency);
+}
 
 void CommandList::blitToExternal(TextureHandle source, TextureHandle external, const ExternalTarget& target) {
     Device::Impl& d = impl(*this);
     const TextureResource& src = d.textures.at(source.id);
     const VkImage dst = d.textures.at(external.id).image;
     recordTransition(native(*this), src, TextureState::ColorTarget, TextureState::TransferSrc);
-    externalBarrier(native(*this), dst, VkImageLayout(target.initialLayout), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    recordColorImageBarrier(native(*this), dst, 0, VkImageLayout(target.initialLayout), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageBlit blit{};
     blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -274,7 +336,7 @@ void CommandList::blitToExternal(TextureHandle source, TextureHandle external, c
     blit.dstOffsets[1] = {int32_t(target.width), int32_t(target.height), 1};
     vkCmdBlitImage(native(*this), src.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    1, &blit, VK_FILTER_NEAREST);
-    externalBarrier(native(*this), dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VkImageLayout(target.finalLayout),
+    recordColorImageBarrier(native(*this), dst, 0, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VkImageLayout(target.finalLayout),
                     VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                     VK_ACCESS_2_MEMORY_READ_BIT);
 }

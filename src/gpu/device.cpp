@@ -206,8 +206,15 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     // Lets a fragment shader leave some of the vertex shader's outputs unread (the depth prepass and
     // the full-screen resolve) without validation warnings; mandatory in Vulkan 1.3.
     features13.maintenance4 = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 supportedAll{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    supportedAll.pNext = &supported12;
+    vkGetPhysicalDeviceFeatures2(physicalDevice, &supportedAll);
+    if (!supported12.drawIndirectCount)
+        throw Error("no Vulkan device: " + name + " lacks drawIndirectCount (needed for GPU-culled shadow draws)");
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     features12.pNext = &features13;
+    features12.drawIndirectCount = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &features12;
     if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
@@ -381,6 +388,7 @@ uint32_t Device::maxImageSize() const {
 
 uint64_t Device::maxStorageBufferRange() const { return impl_->properties.limits.maxStorageBufferRange; }
 bool Device::lost() const { return impl_->lost; }
+bool Device::hasTimestamps() const { return impl_->timestampsSupported; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);
@@ -398,7 +406,7 @@ void Device::Impl::setDebugName(VkObjectType type, uint64_t handle, const std::s
     info.objectType = type;
     info.objectHandle = handle;
     info.pObjectName = name.c_str();
-    setObjectName(device, &info);
+    if (setObjectName(device, &info) == VK_SUCCESS) ++debugNamesSet;
 }
 
 ObjectCounts Device::objectCounts() const {
@@ -418,6 +426,7 @@ ObjectCounts Device::objectCounts() const {
     counts.objectsCreated = d.objectsCreated;
     counts.submits = d.submits;
     counts.deviceWaits = d.deviceWaits;
+    counts.debugNamesSet = d.debugNamesSet;
     return counts;
 }
 

@@ -33,6 +33,7 @@ public:
     uint32_t maxImageSize() const;            // maxImageDimension2D (or the fault injection's smaller one)
     uint64_t maxStorageBufferRange() const;   // the largest storage buffer a shader may bind
     bool lost() const;                        // a submission or wait returned VK_ERROR_DEVICE_LOST
+    bool hasTimestamps() const;
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,
@@ -48,6 +49,8 @@ public:
     TextureHandle importTexture(const ExternalTarget& target, const std::string& debugName);
     SamplerHandle createSampler(const SamplerDesc& desc);
     TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, SamplerHandle sampler);
+    // One sampler per texture (samplers.size() == textures.size()).
+    TextureTableHandle createTextureTable(std::span<const TextureHandle> textures, std::span<const SamplerHandle> samplers);
     PipelineHandle createGraphicsPipeline(const GraphicsPipelineDesc& desc);
     // The same, built on the device's worker thread; bind it only once pipelineReady() says so.
     PipelineHandle createGraphicsPipelineAsync(const GraphicsPipelineDesc& desc);
@@ -76,8 +79,13 @@ public:
     // Drops the frame being recorded (after an error while recording it): nothing is submitted, the
     // slot is free for the next beginFrame, objects destroyed meanwhile go with the next submission.
     void abandonFrame(CommandList& commands);
+    // Copies `source` (GPU-written, e.g. counters) at the end of this frame's work into memory the host
+    // reads once the frame is done: the bytes arrive in CompletedFrame::readback, in call order.
+    void readBackAtFrameEnd(CommandList& commands, const BufferSlice& source);
     void waitFrame(uint64_t frameIndex);  // returns once that frame has finished on the GPU
     void waitIdle();                      // every submitted frame (fence waits, no vkDeviceWaitIdle)
+    // After waitIdle: frees memory blocks that hold nothing (a renderer's end, say).
+    void trimMemory();
     // Frames finished since the last call, oldest first (timestamps per pass, submit-to-fence time).
     std::vector<CompletedFrame> takeCompletedFrames();
 
@@ -87,6 +95,8 @@ public:
     // Copies a texture (RGBA8 / R8 / R32Float / D32Float) to host memory; the texture must be in
     // `state` and is left there. Float formats come back as 4 bytes per pixel.
     Image readTexture(TextureHandle texture, TextureState state);
+    // Copies a whole buffer to host memory (waits for the GPU; tests and debugging).
+    std::vector<uint8_t> readBuffer(BufferHandle buffer);
 
     ObjectCounts objectCounts() const;
     // Device memory this process uses: VK_EXT_memory_budget's heap usage where the driver has it,

@@ -87,7 +87,8 @@ void Device::Impl::createFrames(uint32_t count) {
 
 void Device::Impl::createUploadRings(Device& owner) {
     for (FrameContext& frame : frames) {
-        frame.uploadBuffer = owner.createBuffer(kInitialUploadBytes, kBufferUniform | kBufferStorage | kBufferTransferSrc,
+        frame.uploadBuffer = owner.createBuffer(kInitialUploadBytes,
+                                                kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst,
                                                 MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = kInitialUploadBytes;
     }
@@ -113,6 +114,7 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         // dropped, its objects freed.
         frame.inFlight = false;
         frame.timerNames.clear();
+        frame.readbackRanges.clear();
         destroyGarbage(frame.garbage);
         return;
     }
@@ -136,6 +138,10 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         for (size_t i = 0; i < frame.timerNames.size(); ++i)
             done.timings.push_back({frame.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
     }
+    const auto* ring = static_cast<const uint8_t*>(buffers.at(frame.uploadBuffer.id).mapped);
+    for (const auto& [offset, size] : frame.readbackRanges)
+        done.readback.insert(done.readback.end(), ring + offset, ring + offset + size);
+    frame.readbackRanges.clear();
     completed.push_back(std::move(done));
     frame.inFlight = false;
     frame.timerNames.clear();
@@ -155,12 +161,13 @@ CommandList Device::beginFrame() {
     const uint32_t slot = uint32_t(d.nextFrameIndex % d.frames.size());
     FrameContext& frame = d.frames[slot];
     d.retireFrame(frame);
-    VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, 0));
+    VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));
     frame.frameIndex = d.nextFrameIndex++;
     frame.uploadUsed = 0;
+    frame.readbackRanges.clear();
     d.recordingSlot = int32_t(slot);
 
     CommandList commands;
@@ -192,7 +199,8 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
             // Data written earlier in this frame lives in the old buffer; keep it until the frame is done.
             frame.garbage.buffers.push_back(d.buffers.remove(frame.uploadBuffer.id));
         }
-        frame.uploadBuffer = createBuffer(capacity, kBufferUniform | kBufferStorage | kBufferTransferSrc,
+        if (!frame.readbackRanges.empty()) throw Error("internal: the upload ring grew after a frame readback");
+        frame.uploadBuffer = createBuffer(capacity, kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst,
                                           MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = capacity;
         offset = 0;
@@ -204,9 +212,19 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
     return allocation;
 }
 
+void Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& source) {
+    Impl& d = *impl_;
+    if (d.recordingSlot < 0) throw Error("internal: readBackAtFrameEnd outside beginFrame/submitFrame");
+    const FrameAllocation target = allocateFrameData(source.size, 16);
+    commands.memoryBarrier();
+    commands.copyBuffer(source, target.slice.buffer, target.slice.offset);
+    commands.hostReadBarrier();
+    d.frames[d.recordingSlot].readbackRanges.emplace_back(target.slice.offset, source.size);
+}
+
 uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) {
     Impl& d = *impl_;
-    PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimer == ~0u);
+    PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimers.empty());
     FrameContext& frame = d.frames[d.recordingSlot];
     VK_CHECK(vkEndCommandBuffer(frame.commandBuffer));
     VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
@@ -257,6 +275,7 @@ void Device::abandonFrame(CommandList& commands) {
     // Resetting the pool returns the command buffer to the initial state, recording or not (even
     // inside a render pass instance).
     vkResetCommandPool(d.device, frame.commandPool, 0);
+    frame.readbackRanges.clear();
     Garbage& garbage = frame.garbage;
     auto append = [](auto& to, auto& from) {
         to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
@@ -270,7 +289,7 @@ void Device::abandonFrame(CommandList& commands) {
     d.recordingSlot = -1;
     commands.nativeCommandBuffer = nullptr;
     commands.timerNames.clear();
-    commands.openTimer = ~0u;
+    commands.openTimers.clear();
 }
 
 void Device::waitFrame(uint64_t frameIndex) {
@@ -289,6 +308,8 @@ void Device::waitIdle() {
     for (FrameContext* frame : inFlight) d.retireFrame(*frame);
     if (d.recordingSlot < 0) d.destroyGarbage(d.pendingGarbage);
 }
+
+void Device::trimMemory() { impl_->memory->releaseEmptyBlocks(); }
 
 std::vector<CompletedFrame> Device::takeCompletedFrames() {
     std::vector<CompletedFrame> frames;
@@ -348,7 +369,7 @@ CommandList Device::beginCommands() {
 }
 
 void Device::submitAndWait(CommandList& commands) {
-    PENUMBRA_ASSERT(commands.openTimer == ~0u);
+    PENUMBRA_ASSERT(commands.openTimers.empty());
     impl_->endImmediate(static_cast<VkCommandBuffer>(commands.nativeCommandBuffer));
     commands.nativeCommandBuffer = nullptr;
 }

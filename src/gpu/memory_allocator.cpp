@@ -116,6 +116,11 @@ void MemoryAllocator::free(MemoryAllocation& allocation) {
     allocation = MemoryAllocation{};
 }
 
+void MemoryAllocator::releaseEmptyBlocks() {
+    for (size_t i = 0; i < blocks_.size(); ++i)
+        if (blocks_[i].memory && !blocks_[i].dedicated && blocks_[i].ranges->empty()) releaseBlock(int32_t(i));
+}
+
 void MemoryAllocator::releaseBlock(int32_t index) {
     Block& block = blocks_.at(index);
     vkFreeMemory(device_, block.memory, nullptr);

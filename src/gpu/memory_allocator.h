@@ -36,6 +36,8 @@ public:
     MemoryAllocation allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags flags, bool linear,
                               const std::string& name);
     void free(MemoryAllocation& allocation);
+    // Gives back every block that holds nothing (free() keeps one empty block of each kind).
+    void releaseEmptyBlocks();
 
     uint32_t blockCount() const;
     VkDeviceSize blockBytes() const;

@@ -311,8 +311,8 @@ void Device::destroy(PipelineHandle handle) {
 PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     Impl& d = *impl_;
     PipelineResource p;
-    createLayout(d, p, desc.bindings, desc.pushConstantSize, TextureTableHandle{});
-    Specialization specialization(desc.specialization, 0);
+    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+    Specialization specialization(desc.specialization, tableSize(d, desc.textureTable));
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;

@@ -19,21 +19,6 @@ void Device::waitIdle() { device_->waitIdle(); }
 uint32_t Device::maxImageSize() const { return device_->maxImageSize(); }
 bool Device::lost() const { return device_->lost(); }
 
-DeviceObjectCounts Device::liveObjects() const {
-    const gpu::ObjectCounts counts = device_->objectCounts();
-    DeviceObjectCounts result;
-    result.buffers = counts.buffers;
-    result.textures = counts.textures;
-    result.samplers = counts.samplers;
-    result.pipelines = counts.pipelines;
-    result.textureTables = counts.textureTables;
-    result.memoryBlocks = counts.memoryBlocks;
-    result.pendingDestroys = counts.pendingDestroys;
-    result.memoryAllocations = counts.memoryAllocations;
-    result.objectsCreated = counts.objectsCreated;
-    result.submits = counts.submits;
-    result.deviceWaits = counts.deviceWaits;
-    return result;
-}
+DeviceObjectCounts Device::liveObjects() const { return device_->objectCounts(); }
 
 }  // namespace penumbra

@@ -189,20 +189,8 @@ void Device::destroy(TextureHandle handle) {
 namespace {
 void mipBarrier(VkCommandBuffer cb, VkImage image, uint32_t level, VkImageLayout from, VkImageLayout to,
                 VkAccessFlags2 srcAccess, VkAccessFlags2 dstAccess) {
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.srcAccessMask = srcAccess;
-    barrier.dstAccessMask = dstAccess;
-    barrier.oldLayout = from;
-    barrier.newLayout = to;
-    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cb, &dependency);
+    recordColorImageBarrier(cb, image, level, from, to, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, srcAccess,
+                            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, dstAccess);
 }
 }  // namespace
 
@@ -249,15 +237,28 @@ void Device::uploadTexture(TextureHandle handle, std::span<const uint8_t> pixels
     });
 }
 
+namespace {
+VkFilter toVkFilter(Filter filter) { return filter == Filter::Linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST; }
+VkSamplerAddressMode toVkAddressMode(AddressMode mode) {
+    switch (mode) {
+        case AddressMode::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        case AddressMode::ClampToBorderWhite: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+        case AddressMode::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+        case AddressMode::Repeat: break;
+    }
+    return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+}  // namespace
+
 SamplerHandle Device::createSampler(const SamplerDesc& desc) {
     Impl& d = *impl_;
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = info.minFilter = desc.filter == Filter::Linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-    info.mipmapMode = desc.filter == Filter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    VkSamplerAddressMode mode = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    if (desc.addressMode == AddressMode::ClampToEdge) mode = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    if (desc.addressMode == AddressMode::ClampToBorderWhite) mode = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
-    info.addressModeU = info.addressModeV = info.addressModeW = mode;
+    info.magFilter = toVkFilter(desc.filter);
+    info.minFilter = toVkFilter(desc.minFilter.value_or(desc.filter));
+    info.mipmapMode = desc.mipmapFilter.value_or(desc.filter) == Filter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR
+                                                                                : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeW = toVkAddressMode(desc.addressMode);
+    info.addressModeV = toVkAddressMode(desc.addressModeV.value_or(desc.addressMode));
     info.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     info.maxLod = desc.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
     info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
@@ -285,7 +286,14 @@ void Device::destroy(TextureTableHandle handle) {
 }
 
 TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> textures, SamplerHandle sampler) {
+    const std::vector<SamplerHandle> samplers(textures.size(), sampler);
+    return createTextureTable(textures, samplers);
+}
+
+TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> textures,
+                                              std::span<const SamplerHandle> samplers) {
     Impl& d = *impl_;
+    PENUMBRA_ASSERT(samplers.size() == textures.size());
     TextureTableResource table;
     table.count = uint32_t(textures.size());
     PENUMBRA_ASSERT(table.count > 0);
@@ -306,8 +314,9 @@ TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> tex
     alloc.pSetLayouts = &table.layout;
     VK_CHECK(vkAllocateDescriptorSets(d.device, &alloc, &table.set));
     std::vector<VkDescriptorImageInfo> images;
-    for (TextureHandle t : textures)
-        images.push_back({d.samplers.at(sampler.id), d.textures.at(t.id).view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+    for (size_t i = 0; i < textures.size(); ++i)
+        images.push_back({d.samplers.at(samplers[i].id), d.textures.at(textures[i].id).view,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = table.set;
     write.descriptorCount = table.count;
@@ -316,6 +325,25 @@ TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> tex
     vkUpdateDescriptorSets(d.device, 1, &write, 0, nullptr);
     ++d.objectsCreated;
     return TextureTableHandle{d.tables.insert(table)};
+}
+
+std::vector<uint8_t> Device::readBuffer(BufferHandle handle) {
+    Impl& d = *impl_;
+    const uint64_t size = d.buffers.at(handle.id).size;
+    const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible, nullptr, "readback");
+    d.immediate([&](VkCommandBuffer cb) {
+        recordMemoryBarrier(cb, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
+        const VkBufferCopy copy{0, 0, size};
+        vkCmdCopyBuffer(cb, d.buffers.at(handle.id).buffer, d.buffers.at(readback.id).buffer, 1, &copy);
+        recordMemoryBarrier(cb, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+    const auto* mapped = static_cast<const uint8_t*>(d.buffers.at(readback.id).mapped);
+    std::vector<uint8_t> bytes(mapped, mapped + size);
+    BufferResource readbackResource = d.buffers.remove(readback.id);
+    d.destroyNow(readbackResource);
+    return bytes;
 }
 
 Image Device::readTexture(TextureHandle handle, TextureState state) {

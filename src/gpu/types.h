@@ -3,9 +3,12 @@
 // render/ talks only in these terms, and src/gpu/*.cpp translates them (Godot RD / Filament backend
 // style). Handles are indices into the Device's pools; 0 is never a valid handle.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "penumbra/device.h"
 
 namespace penumbra::gpu {
 
@@ -32,7 +35,7 @@ enum TextureUsage : uint32_t {
 enum class TextureState { Undefined, ColorTarget, DepthTarget, ShaderRead, Storage, TransferSrc, TransferDst };
 
 enum class Filter { Nearest, Linear };
-enum class AddressMode { Repeat, ClampToEdge, ClampToBorderWhite };
+enum class AddressMode { Repeat, ClampToEdge, ClampToBorderWhite, MirroredRepeat };
 enum class CompareOp { Never, Less, LessOrEqual, Greater, GreaterOrEqual, Always };
 enum class CullMode { None, Back };
 enum class BlendMode { Opaque, Alpha };
@@ -52,6 +55,10 @@ struct SamplerDesc {
     AddressMode addressMode = AddressMode::Repeat;
     bool compare = false;  // depth comparison sampler (hardware PCF)
     CompareOp compareOp = CompareOp::LessOrEqual;
+    // glTF samplers set these apart; unset = `filter` (min and between mip levels) / `addressMode` (V).
+    std::optional<Filter> minFilter;
+    std::optional<Filter> mipmapFilter;
+    std::optional<AddressMode> addressModeV;
 };
 
 // Set 0 of every pipeline is pushed per draw (VK_KHR_push_descriptor); set 1 optionally holds a
@@ -89,6 +96,7 @@ struct ComputePipelineDesc {
     std::string shader;
     std::vector<BindingDesc> bindings;
     uint32_t pushConstantSize = 0;
+    TextureTableHandle textureTable;  // optional set 1
     std::vector<SpecConstant> specialization;
     std::string debugName;
 };
@@ -149,26 +157,15 @@ struct PassTiming {
     double milliseconds = 0.0;
 };
 
-// GPU objects alive on a Device (what a renderer must give back), and cumulative creation counts
-// (what a steady-state frame must not raise).
-struct ObjectCounts {
-    uint32_t buffers = 0, textures = 0, samplers = 0, pipelines = 0, textureTables = 0;
-    uint32_t memoryBlocks = 0;       // VkDeviceMemory objects alive (blocks and dedicated allocations)
-    uint32_t pendingDestroys = 0;    // objects waiting for the GPU to finish with them
-    uint64_t memoryBlockBytes = 0;   // bytes held in those blocks
-    uint64_t memoryUsedBytes = 0;    // bytes suballocated from them
-    uint64_t memoryAllocations = 0;  // vkAllocateMemory calls so far
-    uint64_t objectsCreated = 0;     // buffers, textures, samplers, pipelines, tables created so far
-    uint64_t submits = 0;            // vkQueueSubmit calls so far
-    uint64_t deviceWaits = 0;        // device- or queue-wide waits so far (not per-frame fence waits)
-    uint32_t total() const { return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys; }
-};
+// GPU objects alive on a Device and cumulative counts: the public DeviceObjectCounts.
+using ObjectCounts = penumbra::DeviceObjectCounts;
 
 // A finished frame as the GPU reports it: timestamps per pass and the submit-to-fence time.
 struct CompletedFrame {
     uint64_t frameIndex = 0;
     std::vector<PassTiming> timings;
     double submitToFenceMilliseconds = 0.0;
+    std::vector<uint8_t> readback;  // what Device::readBackAtFrameEnd asked for, in call order
 };
 
 // An image the caller owns on the caller's VkDevice (penumbra/vulkan.h fills this from Vulkan types;

@@ -87,6 +87,7 @@ struct FrameContext {
     BufferHandle uploadBuffer;
     uint64_t uploadCapacity = 0;
     uint64_t uploadUsed = 0;
+    std::vector<std::pair<uint64_t, uint64_t>> readbackRanges;  // (offset, size) in the upload ring
 };
 
 // A graphics pipeline built on the Device's worker thread.
@@ -127,6 +128,7 @@ struct Device::Impl {
     uint64_t objectsCreated = 0;
     uint64_t submits = 0;
     uint64_t deviceWaits = 0;
+    uint64_t debugNamesSet = 0;
 
     // Frames in flight.
     std::vector<FrameContext> frames;
@@ -204,5 +206,12 @@ VkCompareOp toVkCompareOp(CompareOp op);
 bool isDepthFormat(Format format);
 uint32_t bytesPerPixel(Format format);
 void recordTransition(VkCommandBuffer commandBuffer, const TextureResource& texture, TextureState from, TextureState to);
+// One layout transition of mip level `level` (count 1) of a colour image.
+void recordColorImageBarrier(VkCommandBuffer commandBuffer, VkImage image, uint32_t level, VkImageLayout from,
+                             VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                             VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+// A global memory barrier.
+void recordMemoryBarrier(VkCommandBuffer commandBuffer, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
 }  // namespace penumbra::gpu

@@ -48,6 +48,20 @@ bool nearBoundary(const Image& reference, uint32_t x, uint32_t y, float threshol
     return false;
 }
 
+// Whether a shadowed reference pixel has a lit 4-neighbour (in the image): one pixel per unit of edge
+// length, counted on the shadowed side.
+bool onShadowEdge(const Image& reference, uint32_t x, uint32_t y, float threshold) {
+    const bool lit = isLit(reference, x, y, threshold);
+    if (lit) return false;
+    const int offsets[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    for (const auto& d : offsets) {
+        const int nx = int(x) + d[0], ny = int(y) + d[1];
+        if (nx < 0 || ny < 0 || nx >= int(reference.width) || ny >= int(reference.height)) continue;
+        if (isLit(reference, uint32_t(nx), uint32_t(ny), threshold) != lit) return true;
+    }
+    return false;
+}
+
 double percent(uint64_t part, uint64_t whole) { return whole == 0 ? 0.0 : 100.0 * double(part) / double(whole); }
 
 }  // namespace
@@ -67,6 +81,7 @@ CompareMetrics compareShadowImages(const Image& ours, const Image& reference, co
             const bool oursLit = isLit(ours, x, y, threshold);
             const bool interior = !nearBoundary(reference, x, y, threshold);
             m.interiorPixels += interior ? 1 : 0;
+            m.edgePixels += onShadowEdge(reference, x, y, threshold) ? 1 : 0;
             if (referenceLit && !oursLit) {
                 ++m.falseShadow;
                 m.interiorFalseShadow += interior ? 1 : 0;
@@ -81,7 +96,35 @@ CompareMetrics compareShadowImages(const Image& ours, const Image& reference, co
     m.misclassifiedPercent = percent(m.falseShadow + m.falseLit, m.validPixels);
     m.interiorMisclassifiedPercent = percent(m.interiorFalseShadow + m.interiorFalseLit, m.interiorPixels);
     m.meanAbsoluteError = m.validPixels == 0 ? 0.0 : absoluteErrorSum / double(m.validPixels);
+    const uint64_t wrong = m.falseShadow + m.falseLit;
+    m.edgeErrorPixels = m.edgePixels == 0 ? 0.0 : double(wrong) / double(m.edgePixels);
+    m.edgeBalance = wrong == 0 ? 0.0 : (double(m.falseShadow) - double(m.falseLit)) / double(wrong);
     return m;
+}
+
+ShimmerMetrics compareShimmer(const Image& ours0, const Image& ours1, const Image& reference0,
+                              const Image& reference1, const Image& validMask0, const Image& validMask1,
+                              float threshold) {
+    checkInputs(ours0, reference0, validMask0, threshold);
+    checkInputs(ours1, reference1, validMask1, threshold);
+    checkSameSize(reference1, "second reference", reference0, "reference");
+    ShimmerMetrics s;
+    for (uint32_t y = 0; y < reference0.height; ++y) {
+        for (uint32_t x = 0; x < reference0.width; ++x) {
+            if (validMask0.at(x, y, 0) == 0 || validMask1.at(x, y, 0) == 0) continue;
+            ++s.pixels;
+            const bool referenceFlips = isLit(reference0, x, y, threshold) != isLit(reference1, x, y, threshold);
+            const bool oursFlips = isLit(ours0, x, y, threshold) != isLit(ours1, x, y, threshold);
+            s.referenceFlips += referenceFlips ? 1 : 0;
+            s.flickering += oursFlips && !referenceFlips ? 1 : 0;
+            const bool interior = !nearBoundary(reference0, x, y, threshold) && !nearBoundary(reference1, x, y, threshold);
+            s.interiorPixels += interior ? 1 : 0;
+            s.interiorFlickering += interior && oursFlips ? 1 : 0;
+        }
+    }
+    s.shimmerPercent = percent(s.flickering, s.pixels);
+    s.interiorShimmerPercent = percent(s.interiorFlickering, s.interiorPixels);
+    return s;
 }
 
 Image makeDiffImage(const Image& dimBase, const Image& ours, const Image& reference, const Image& validMask,
@@ -111,8 +154,10 @@ Image makeDiffImage(const Image& dimBase, const Image& ours, const Image& refere
     return diff;
 }
 
-std::string toJson(const CompareMetrics& m) {
-    const nlohmann::json json = {
+namespace {
+
+nlohmann::json metricsJson(const CompareMetrics& m) {
+    return {
         {"validPixels", m.validPixels},
         {"falseShadow", m.falseShadow},
         {"falseLit", m.falseLit},
@@ -124,13 +169,43 @@ std::string toJson(const CompareMetrics& m) {
         {"misclassifiedPercent", m.misclassifiedPercent},
         {"interiorMisclassifiedPercent", m.interiorMisclassifiedPercent},
         {"meanAbsoluteError", m.meanAbsoluteError},
+        {"edgePixels", m.edgePixels},
+        {"edgeErrorPixels", m.edgeErrorPixels},
+        {"edgeBalance", m.edgeBalance},
         {"threshold", m.threshold},
     };
+}
+
+}  // namespace
+
+std::string toJson(const CompareMetrics& m) { return metricsJson(m).dump(2); }
+
+std::string toJson(const CompareMetrics& m, const ShimmerMetrics& s) {
+    nlohmann::json json = metricsJson(m);
+    json["shimmerPixels"] = s.pixels;
+    json["shimmerFlickering"] = s.flickering;
+    json["shimmerReferenceFlips"] = s.referenceFlips;
+    json["shimmerPercent"] = s.shimmerPercent;
+    json["shimmerInteriorPixels"] = s.interiorPixels;
+    json["shimmerInteriorFlickering"] = s.interiorFlickering;
+    json["shimmerInteriorPercent"] = s.interiorShimmerPercent;
     return json.dump(2);
 }
 
+std::string toText(const ShimmerMetrics& s) {
+    char buffer[256];
+    std::snprintf(buffer, sizeof(buffer),
+                  "shimmer pixels        %10llu\n"
+                  "shimmer (ours flips)  %10llu  %7.3f %%  (reference flips: %llu, not counted)\n"
+                  "interior shimmer      %10llu  %7.3f %%\n",
+                  (unsigned long long)s.pixels, (unsigned long long)s.flickering, s.shimmerPercent,
+                  (unsigned long long)s.referenceFlips, (unsigned long long)s.interiorFlickering,
+                  s.interiorShimmerPercent);
+    return buffer;
+}
+
 std::string toText(const CompareMetrics& m) {
-    char buffer[768];
+    char buffer[1024];
     std::snprintf(buffer, sizeof(buffer),
                   "valid pixels          %10llu\n"
                   "false shadow          %10llu  %7.3f %%\n"
@@ -139,13 +214,17 @@ std::string toText(const CompareMetrics& m) {
                   "interior pixels       %10llu\n"
                   "interior misclassified%10llu  %7.3f %%  (%llu false shadow, %llu false lit)\n"
                   "mean absolute error   %10.5f\n"
+                  "edge pixels           %10llu\n"
+                  "edge error            %10.3f px (misclassified per reference edge pixel)\n"
+                  "edge balance          %10.3f  (+1 all false shadow, -1 all false lit)\n"
                   "threshold             %10.3f\n",
                   (unsigned long long)m.validPixels, (unsigned long long)m.falseShadow, m.falseShadowPercent,
                   (unsigned long long)m.falseLit, m.falseLitPercent, (unsigned long long)(m.falseShadow + m.falseLit),
                   m.misclassifiedPercent, (unsigned long long)m.interiorPixels,
                   (unsigned long long)(m.interiorFalseShadow + m.interiorFalseLit), m.interiorMisclassifiedPercent,
                   (unsigned long long)m.interiorFalseShadow, (unsigned long long)m.interiorFalseLit,
-                  m.meanAbsoluteError, double(m.threshold));
+                  m.meanAbsoluteError, (unsigned long long)m.edgePixels, m.edgeErrorPixels, m.edgeBalance,
+                  double(m.threshold));
     return buffer;
 }
 

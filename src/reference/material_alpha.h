@@ -7,8 +7,10 @@
 
 namespace penumbra {
 
-// Base colour alpha at `uv`: level 0 of the base colour texture, bilinear, REPEAT wrap, times the
-// factor's alpha. Alpha is linear in glTF (sRGB encodes only RGB), so no decoding is needed.
+// Base colour alpha at `uv`: level 0 of the base colour texture with its sampler's magnification filter
+// and wrap modes (scene/texture_sampler.h, the rule the GPU's sampler follows), times the factor's alpha.
+// Level 0, not a mip level: the material's alpha as a function over the surface is the truth; mipmaps
+// are the rasterizer's approximation of it. Alpha is linear in glTF (sRGB encodes only RGB).
 float baseColorAlpha(const Material& material, const Texture* texture, glm::vec2 uv);
 
 // A deterministic value in [0, 1) from a world-space position: the reference's replacement for the

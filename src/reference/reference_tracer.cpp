@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "reference/area_light.h"
 #include "reference/embree_scene.h"
 
 namespace penumbra {
@@ -21,7 +22,11 @@ namespace {
 constexpr float kMinNDotL = 0.1f;
 constexpr float kCreaseCos = 0.9f;
 constexpr float kDepthStepFootprints = 2.0f;
-constexpr float kOffsetScale = 1e-4f;  // shadow-ray origin offset, relative to the scene's size
+// Shadow-ray origin offset along the geometric normal: a few float ulps of the hit point's coordinates
+// (and of the scene's size, for points near the origin), enough to leave the surface, far below any
+// shadow feature. It used to be 1e-4 of the scene's size: 6 cm on a 600 m ground, which shrank shadows.
+constexpr float kOffsetScale = 1e-6f;
+constexpr float kOffsetPerCoordinate = 8e-6f;
 
 // What the first pass learns about a pixel; the second pass turns it into validity.
 struct PixelSample {
@@ -43,10 +48,16 @@ const Light& shadowedLight(const Scene& scene, uint32_t lightIndex) {
     return light;
 }
 
-// Seed 000 §3.7: strength fades linearly to 0 over the last `distanceFade` of maxShadowDistance.
-float distanceFadeFactor(float viewDepth, const ReferenceOptions& options) {
+// Seed 000 §3.7: strength fades linearly to 0 over the last `distanceFade` of maxShadowDistance, in
+// view depth; or (URP, seed 004) in the squared distance to the camera over the same band.
+float distanceFadeFactor(float viewDepth, float cameraDistance, const ReferenceOptions& options) {
     if (!std::isfinite(options.maxShadowDistance)) return 1.0f;
     const float fade = std::max(options.distanceFade, 1e-6f);
+    if (options.squaredFade) {
+        const float start = options.maxShadowDistance * (1.0f - fade);
+        const float band = options.maxShadowDistance * options.maxShadowDistance - start * start;
+        return 1.0f - std::clamp((cameraDistance * cameraDistance - start * start) / band, 0.0f, 1.0f);
+    }
     return std::clamp((1.0f - viewDepth / options.maxShadowDistance) / fade, 0.0f, 1.0f);
 }
 
@@ -101,18 +112,33 @@ public:
         sample.viewDepth = hit->t * cosForward;
         const glm::vec3 wsShadingNormal = facing * hit->wsShadingNormal;
 
-        const float epsilon = std::max(epsilon_, 1e-6f * glm::length(hit->wsPosition));
+        const glm::vec3 a = glm::abs(hit->wsPosition);
+        const float epsilon = std::max(epsilon_, kOffsetPerCoordinate * std::max({a.x, a.y, a.z}));
         const glm::vec3 wsOrigin = hit->wsPosition + sample.wsNormal * epsilon;
         const LightRay toLight = lightRay(light_, wsOrigin, epsilon);
-        const float fade = distanceFadeFactor(sample.viewDepth, options_);
+        const float fade = distanceFadeFactor(sample.viewDepth, hit->t, options_);
         sample.surfaceValid = toLight.inside && fade >= 1.0f &&
                               glm::dot(sample.wsNormal, toLight.wsToLight) >= kMinNDotL &&
                               glm::dot(wsShadingNormal, toLight.wsToLight) >= kMinNDotL;
 
         if (!hit->material->receiveShadows || fade <= 0.0f) return 255;
-        const bool visible = !scene_.occluded(wsOrigin, toLight.wsToLight, 0.0f, toLight.tFar);
-        const float value = visible ? 1.0f : 1.0f - light_.shadowStrength * fade;
+        const float visibility = options_.softSamples > 0 ? areaVisibility(wsOrigin, epsilon, x, y)
+                                 : scene_.occluded(wsOrigin, toLight.wsToLight, 0.0f, toLight.tFar) ? 0.0f : 1.0f;
+        const float value = 1.0f - light_.shadowStrength * fade * (1.0f - visibility);
         return uint8_t(std::lround(255.0f * std::clamp(value, 0.0f, 1.0f)));
+    }
+
+    // The fraction of softSamples shadow rays to the light's disk that reach it; the spiral turns by a
+    // per-pixel angle so that neighbouring pixels don't share its pattern.
+    float areaVisibility(const glm::vec3& wsOrigin, float epsilon, uint32_t x, uint32_t y) const {
+        const uint32_t n = options_.softSamples;
+        const float rotation = 6.2831853f * float((x * 73856093u ^ y * 19349663u) % 1024u) / 1024.0f;
+        uint32_t visible = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            const AreaLightRay ray = areaLightRay(light_, wsOrigin, vogelDiskSample(i, n, rotation), epsilon);
+            visible += scene_.occluded(wsOrigin, ray.wsDirection, 0.0f, ray.tFar) ? 0u : 1u;
+        }
+        return float(visible) / float(n);
     }
 
     // Second pass: a surface-valid pixel stays valid unless a neighbour is across a discontinuity.

@@ -12,7 +12,8 @@
 namespace penumbra {
 
 struct ReferenceImages {
-    // 1 channel: round(255 × (1 - strength × fade × (1 - visibility))), visibility 0 or 1;
+    // 1 channel: round(255 × (1 - strength × fade × (1 - visibility))), visibility 0 or 1 (or the
+    // fraction of visible rays with softSamples);
     // 255 where no geometry is visible or the surface doesn't receive shadows.
     Image shadow;
     // 1 channel: 255 = the pixel takes part in comparisons, 0 = excluded (see traceReferenceShadow).
@@ -26,6 +27,13 @@ struct ReferenceImages {
 struct ReferenceOptions {
     float maxShadowDistance = std::numeric_limits<float>::infinity();  // view depth where shadows end
     float distanceFade = 0.1f;  // fraction of maxShadowDistance over which shadows fade out
+    // false: linear in view depth (seed 000 §3.7); true: linear in the squared camera distance (URP,
+    // seed 004; the setting shadows.fadeMode = squared), over the same band.
+    bool squaredFade = false;
+    // 0: one shadow ray to the light's centre (a point light). N > 0: the light is a disk of
+    // shadowLightSize (area_light.h) and each pixel's shadow term is the fraction of N rays to it that
+    // reach it: the truth for pcss shadows (penumbra reference --soft N).
+    uint32_t softSamples = 0;
 };
 
 // Traces light `lightIndex`'s shadow as seen by `view`. A pixel is valid when all of these hold:

@@ -11,6 +11,7 @@ struct FrameTargetSizes {
     uint32_t otherAtlas = 1;        // 1 when no spot/point light is reserved
     uint32_t width = 1, height = 1;
     gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+    bool computeRaster = false;     // the compute rasterizer's depth buffers
     bool operator==(const FrameTargetSizes&) const = default;
 };
 
@@ -28,7 +29,12 @@ public:
     gpu::BufferHandle otherReadback();
 
     const FrameTargetSizes& sizes() const { return sizes_; }
-    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;
+    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;  // color: the one of sizes().colorFormat
+    // sizes().computeRaster: the compute rasterizer's depth (uint per texel) of each atlas; kept across
+    // frames with the atlases, since cached tiles keep their depth there too.
+    gpu::BufferHandle directionalRasterDepth, otherRasterDepth;
+    // Bumped whenever the atlas (or its raster depth) is re-made: its cached tiles are gone.
+    uint64_t directionalGeneration = 0, otherGeneration = 0;
 
 private:
     gpu::BufferHandle readbackBuffer(gpu::BufferHandle& buffer, uint64_t size, const char* name);
@@ -38,6 +44,8 @@ private:
     FrameTargetSizes sizes_;
     bool made_ = false;
     gpu::BufferHandle colorReadback_, directionalReadback_, otherReadback_;
+    // One colour target per format, so frames that alternate colour and AOV outputs re-make nothing.
+    gpu::TextureHandle colorSrgb_, colorUnorm_;
 };
 
 }  // namespace penumbra

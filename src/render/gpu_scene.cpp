@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
-
 #include "core/error.h"
+#include "cull_structs.h"
 #include "penumbra/image.h"
 #include "scene_structs.h"
 
@@ -42,6 +42,15 @@ gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance
     return data;
 }
 
+gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshSlot) {
+    gpu_data::CullInstance data{};
+    const bool casts = instance.castShadows && instance.wsBounds.valid() && meshSlot != ~0u;
+    data.wsMin = glm::vec4(casts ? instance.wsBounds.min : glm::vec3(0.0f), 0.0f);
+    data.wsMax = glm::vec4(casts ? instance.wsBounds.max : glm::vec3(0.0f), 0.0f);
+    data.info = glm::uvec4(casts ? meshSlot : 0u, casts ? gpu_data::kCullInstanceCasts : 0u, 0u, 0u);
+    return data;
+}
+
 // Sorted, deduplicated indices grouped into runs of consecutive entries: one copy per run.
 template <typename Visit>
 void forEachRun(std::vector<uint32_t>& indices, Visit&& visit) {
@@ -63,7 +72,31 @@ void checkBufferSize(const char* what, uint64_t bytes, uint64_t maxStorageBuffer
                     ", more than the device's largest storage buffer (" + mib(maxStorageBufferRange) + ")");
 }
 
+gpu::AddressMode addressMode(TextureWrap wrap) {
+    switch (wrap) {
+        case TextureWrap::ClampToEdge: return gpu::AddressMode::ClampToEdge;
+        case TextureWrap::MirroredRepeat: return gpu::AddressMode::MirroredRepeat;
+        case TextureWrap::Repeat: break;
+    }
+    return gpu::AddressMode::Repeat;
+}
+
+gpu::Filter filter(TextureFilter f) { return f == TextureFilter::Nearest ? gpu::Filter::Nearest : gpu::Filter::Linear; }
+
 }  // namespace
+
+// The Vulkan sampler that applies scene/texture_sampler.h's rule: the hardware's texel addressing is
+// that rule; mipmaps only when the glTF minFilter asks for them (maxLod 0 otherwise).
+gpu::SamplerDesc samplerDesc(const TextureSampler& sampler) {
+    gpu::SamplerDesc desc;
+    desc.filter = filter(sampler.magFilter);
+    desc.minFilter = filter(sampler.minFilter);
+    desc.mipmaps = sampler.mipmaps != MipmapMode::None;
+    desc.mipmapFilter = sampler.mipmaps == MipmapMode::Nearest ? gpu::Filter::Nearest : gpu::Filter::Linear;
+    desc.addressMode = addressMode(sampler.wrapS);
+    desc.addressModeV = addressMode(sampler.wrapT);
+    return desc;
+}
 
 void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange) {
     if (totals.indices > UINT32_MAX)
@@ -97,6 +130,7 @@ void GpuScene::create(const Scene& scene) {
     totals.materials = std::max<size_t>(scene.materials.size(), 1);
     checkGpuSceneLimits(totals, device_.maxStorageBufferRange());
 
+    gpu::Device& device = device_;
     std::vector<gpu_data::VertexData> vertices;
     std::vector<uint32_t> indices;
     struct MeshRange { uint32_t firstIndex, indexCount; int32_t vertexOffset; };
@@ -116,12 +150,42 @@ void GpuScene::create(const Scene& scene) {
         draws_.push_back({i, r.firstIndex, r.indexCount, r.vertexOffset, scene.meshes[instance.meshIndex].materialIndex});
         triangles_ += r.indexCount / 3;
     }
+    // Culling: a slot per mesh with geometry; its instances get consecutive places in a tile's list.
+    std::vector<gpu_data::CullMesh> cullMeshes;
+    meshSlotOfMesh_.assign(scene.meshes.size(), ~0u);
+    for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
+        if (ranges[m].indexCount == 0) continue;
+        meshSlotOfMesh_[m] = uint32_t(cullMeshes.size());
+        gpu_data::CullMesh mesh{};
+        mesh.draw = glm::uvec4(ranges[m].indexCount, ranges[m].firstIndex, uint32_t(ranges[m].vertexOffset),
+                               scene.meshes[m].materialIndex);
+        cullMeshes.push_back(mesh);
+    }
+    std::vector<gpu_data::CullInstance> cullInstances;
+    for (const Instance& instance : scene.instances) {
+        const uint32_t slot = meshSlotOfMesh_[instance.meshIndex];
+        if (slot != ~0u) ++cullMeshes[slot].counts.y;
+        cullInstances.push_back(packCullInstance(instance, slot));
+    }
+    uint32_t firstSlot = 0;
+    for (gpu_data::CullMesh& mesh : cullMeshes) {
+        mesh.counts.x = firstSlot;
+        firstSlot += mesh.counts.y;
+        const uint32_t batches = (mesh.draw.x / 3 + gpu_data::kRasterBatch - 1) / gpu_data::kRasterBatch;
+        mesh.counts.z = rasterWorkItems_;
+        mesh.counts.w = batches;
+        rasterWorkItems_ += mesh.counts.y * batches;
+    }
+    if (cullMeshes.empty()) cullMeshes.push_back({});
+    if (cullInstances.empty()) cullInstances.push_back({});
+    instanceCount_ = uint32_t(scene.instances.size());
+    meshSlotCount_ = uint32_t(cullMeshes.size());
+
     std::vector<gpu_data::MaterialData> materials;
     for (const Material& m : scene.materials) materials.push_back(packMaterial(m));
     if (materials.empty()) materials.push_back(packMaterial(Material{}));
 
     using gpu::MemoryKind;
-    gpu::Device& device = device_;
     vertices_ = device.createBuffer(vertices.size() * sizeof(vertices[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
                                     vertices.data(), "vertices");
     indices_ = device.createBuffer(indices.size() * sizeof(uint32_t), gpu::kBufferIndex | gpu::kBufferStorage,
@@ -130,14 +194,33 @@ void GpuScene::create(const Scene& scene) {
                                      instances.data(), "instances");
     materials_ = device.createBuffer(materials.size() * sizeof(materials[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
                                      materials.data(), "materials");
+    cullInstances_ = device.createBuffer(cullInstances.size() * sizeof(cullInstances[0]), gpu::kBufferStorage,
+                                         MemoryKind::DeviceLocal, cullInstances.data(), "cull instances");
+    cullMeshes_ = device.createBuffer(cullMeshes.size() * sizeof(cullMeshes[0]), gpu::kBufferStorage,
+                                      MemoryKind::DeviceLocal, cullMeshes.data(), "cull meshes");
 
-    // Base-colour textures (sRGB, mipmapped). An empty scene still gets one white texel so the
-    // table is never empty.
+    // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
+    // one white texel so the table is never empty.
+    std::vector<gpu::SamplerHandle> samplerOfTexture;
+    std::vector<TextureSampler> made;  // one VkSampler per distinct sampler, samplers_[i] for made[i]
+    auto upload = [&](const Image& rgba, const TextureSampler& sampler, const std::string& name) {
+        gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0,
+                              "baseColor " + name};
+        const gpu::TextureHandle texture = device.createTexture(desc);
+        textures_.push_back(texture);  // before the upload, so a failed upload still destroys it
+        device.uploadTexture(texture, rgba.pixels);
+        const auto found = std::find(made.begin(), made.end(), sampler);
+        if (found == made.end()) {
+            made.push_back(sampler);
+            samplers_.push_back(device.createSampler(samplerDesc(sampler)));
+        }
+        samplerOfTexture.push_back(samplers_[size_t(std::find(made.begin(), made.end(), sampler) - made.begin())]);
+    };
     for (size_t i = 0; i < scene.textures.size(); ++i) {
         const Texture& t = scene.textures[i];
         const uint32_t limit = device.maxImageSize();
         if (t.rgba.width <= limit && t.rgba.height <= limit) {
-            uploadTexture(t.rgba, t.name);
+            upload(t.rgba, t.sampler, t.name);
             continue;
         }
         const Image fitted = downscaleToFit(t.rgba, limit);
@@ -145,30 +228,21 @@ void GpuScene::create(const Scene& scene) {
                             std::to_string(t.rgba.width) + "x" + std::to_string(t.rgba.height) +
                             ", larger than the device's " + std::to_string(limit) + " texel limit: downscaled to " +
                             std::to_string(fitted.width) + "x" + std::to_string(fitted.height));
-        uploadTexture(fitted, t.name);
+        upload(fitted, t.sampler, t.name);
     }
-    if (textures_.empty()) uploadTexture(Image(1, 1, 4, 255), "white");
-    sampler_ = device.createSampler({gpu::Filter::Linear, true, gpu::AddressMode::Repeat});
-    textureTable_ = device.createTextureTable(textures_, sampler_);
-}
-
-void GpuScene::uploadTexture(const Image& rgba, const std::string& name) {
-    const gpu::TextureDesc desc{rgba.width, rgba.height, gpu::Format::RGBA8Srgb, gpu::kTextureSampled, 0,
-                                "baseColor " + name};
-    const gpu::TextureHandle texture = device_.createTexture(desc);
-    textures_.push_back(texture);  // before the upload, so a failed upload still destroys it
-    device_.uploadTexture(texture, rgba.pixels);
+    if (textures_.empty()) upload(Image(1, 1, 4, 255), TextureSampler{}, "white");
+    textureTable_ = device.createTextureTable(textures_, samplerOfTexture);
 }
 
 void GpuScene::destroyAll() {
     device_.destroy(textureTable_);
-    device_.destroy(sampler_);
+    for (gpu::SamplerHandle sampler : samplers_) device_.destroy(sampler);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
-    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_}) device_.destroy(b);
     textureTable_ = {};
-    sampler_ = {};
+    samplers_.clear();
     textures_.clear();
-    vertices_ = indices_ = instances_ = materials_ = {};
+    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = {};
 }
 
 GpuScene::~GpuScene() { destroyAll(); }
@@ -189,7 +263,15 @@ uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene)
         auto* out = static_cast<gpu_data::InstanceData*>(staging.mapped);
         for (uint32_t i = 0; i < count; ++i) out[i] = packInstance(scene, scene.instances[first + i]);
         commands.copyBuffer(staging.slice, instances_, uint64_t(first) * sizeof(gpu_data::InstanceData));
-        bytes += size;
+        const uint64_t cullSize = uint64_t(count) * sizeof(gpu_data::CullInstance);
+        const gpu::FrameAllocation cullStaging = device_.allocateFrameData(cullSize, 16);
+        auto* cullOut = static_cast<gpu_data::CullInstance*>(cullStaging.mapped);
+        for (uint32_t i = 0; i < count; ++i) {
+            const Instance& instance = scene.instances[first + i];
+            cullOut[i] = packCullInstance(instance, meshSlotOfMesh_[instance.meshIndex]);
+        }
+        commands.copyBuffer(cullStaging.slice, cullInstances_, uint64_t(first) * sizeof(gpu_data::CullInstance));
+        bytes += size + cullSize;
     });
     forEachRun(dirtyMaterials_, [&](uint32_t first, uint32_t count) {
         const uint64_t size = uint64_t(count) * sizeof(gpu_data::MaterialData);

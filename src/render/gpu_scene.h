@@ -28,6 +28,8 @@ struct GpuSceneTotals {
 // index values), more than 2^31 - 1 vertices (32-bit signed vertexOffset), or a packed buffer larger
 // than the device's maxStorageBufferRange.
 void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange);
+// The GPU sampler of a glTF texture sampler (filters, mipmap mode, wrap modes).
+gpu::SamplerDesc samplerDesc(const TextureSampler& sampler);
 
 class GpuScene {
 public:
@@ -43,6 +45,14 @@ public:
     gpu::BufferHandle instanceBuffer() const { return instances_; }
     gpu::BufferHandle materialBuffer() const { return materials_; }
     gpu::TextureTableHandle textureTable() const { return textureTable_; }
+    // The GPU culling pass's view (cull_structs.h): per instance its bounds and mesh slot, per mesh
+    // with geometry its draw and where its instances go in a tile's visible list.
+    gpu::BufferHandle cullInstanceBuffer() const { return cullInstances_; }
+    gpu::BufferHandle cullMeshBuffer() const { return cullMeshes_; }
+    uint32_t instanceCount() const { return instanceCount_; }
+    uint32_t meshSlotCount() const { return meshSlotCount_; }
+    // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's triangle batches.
+    uint32_t rasterWorkItems() const { return rasterWorkItems_; }
     uint64_t triangleCount() const { return triangles_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -57,14 +67,15 @@ public:
 private:
     void create(const Scene& scene);
     void destroyAll();
-    void uploadTexture(const Image& rgba, const std::string& name);
 
     gpu::Device& device_;
     std::vector<DrawItem> draws_;
     uint64_t triangles_ = 0;
-    gpu::BufferHandle vertices_, indices_, instances_, materials_;
+    gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_;
+    std::vector<uint32_t> meshSlotOfMesh_;  // per Scene::meshes entry: its CullMesh slot, ~0u without geometry
+    uint32_t instanceCount_ = 0, meshSlotCount_ = 0, rasterWorkItems_ = 0;
     std::vector<gpu::TextureHandle> textures_;
-    gpu::SamplerHandle sampler_;
+    std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler
     gpu::TextureTableHandle textureTable_;
     std::vector<uint32_t> dirtyInstances_, dirtyMaterials_;
     std::vector<std::string> warnings_;

@@ -18,6 +18,8 @@ std::vector<gpu::BindingDesc> shadedSceneBindings() {
     bindings.push_back({7, DescriptorType::UniformBuffer});
     bindings.push_back({8, DescriptorType::SampledTexture});
     bindings.push_back({9, DescriptorType::SampledTexture});
+    bindings.push_back({12, DescriptorType::SampledTexture});  // the atlases as raw depth
+    bindings.push_back({13, DescriptorType::SampledTexture});
     return bindings;
 }
 

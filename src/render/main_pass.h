@@ -21,7 +21,8 @@
 namespace penumbra {
 
 // Everything set 0 of the scene passes binds: the scene buffers (0-4), the shadow data and atlases
-// (5-8) and the screen-space shadow texture (9); shadedSceneBindings() lists them.
+// (5-8), the screen-space shadow texture (9) and the atlases as raw depth (12, 13);
+// shadedSceneBindings() lists them.
 struct MainPassInputs {
     std::vector<gpu::DescriptorWrite> writes;
 };

@@ -4,20 +4,29 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <optional>
 
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "render/compute_raster_pass.h"
+#include "render/frame_data.h"
 #include "render/frame_targets.h"
 #include "render/gpu_scene.h"
 #include "render/light_packing.h"
 #include "render/main_pass.h"
+#include "render/raster_choice.h"
 #include "render/readback_images.h"
+#include "render/tile_cache.h"
 #include "render/screen_space_shadow_pass.h"
 #include "render/shadow_caster_pass.h"
+#include "render/shadow_culling_pass.h"
 #include "render/shadow_stats_json.h"
+#include "render/visible_surface_pass.h"
 #include "scene/scene_edits.h"
 #include "scene/scene_validation.h"
 #include "scene_structs.h"
+#include "cull_structs.h"
+#include "shadows/cull_packing.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -46,12 +55,7 @@ const std::vector<gpu::SpecConstant> kGenericLitSpecialization = {
 
 gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
                                   const Settings& settings, bool screenSpaceShadows) {
-    gpu_data::FrameData frame{};
-    frame.clipFromWorld = view.clipFromWorld;
-    frame.viewFromWorld = view.viewFromWorld;
-    frame.worldFromClip = glm::inverse(view.clipFromWorld);
-    frame.wsCameraPosition = glm::vec4(view.wsPosition, 1.0f);
-    frame.viewport = glm::vec4(float(view.width), float(view.height), 1.0f / float(view.width), 1.0f / float(view.height));
+    gpu_data::FrameData frame = cameraFrameData(view);
     uint32_t mode = gpu_data::kOutputColor;
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
@@ -79,7 +83,97 @@ constexpr size_t kMaxImportedImages = 8;
 struct PendingFrame {
     uint64_t frameIndex = 0;
     FrameStats stats;
+    ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
+    bool computeRaster = false;
+    bool autoRaster = false;  // shadows.raster = auto and still measuring: its timings feed the choice
+    bool visibleReadback = false;  // the tight fit's depth subsample is in the readback, for later frames
+    CameraView view;
+    ShadowRaster rasterSetting = ShadowRaster::Auto;
 };
+
+double shadowPassMilliseconds(const FrameStats& stats) {
+    double total = 0.0;
+    for (const PassTiming& t : stats.gpuTimings)
+        if (t.name == "shadows.directional" || t.name == "shadows.other") total += t.milliseconds;
+    return total;
+}
+
+// What the GPU culling pass reports per tile, turned into the frame's atlas stats and the
+// planner stats JSON's casters per tile.
+// The compute rasterizer's counters of both atlas passes, after the cull stats in the readback;
+// `needed` gets the most large pieces and chunks one pass asked for.
+void applyRasterCounters(FrameStats& stats, const ShadowFrame& plan, const std::vector<uint8_t>& readback,
+                         glm::uvec2& needed) {
+    const size_t offset = (plan.directional.tiles.size() + plan.other.tiles.size()) * sizeof(gpu_data::CullTileStats);
+    for (size_t pass = 0; pass < 2; ++pass) {
+        gpu_data::RasterCounters counters{};
+        const size_t at = std::max<size_t>(offset, sizeof(gpu_data::CullTileStats)) + pass * sizeof(counters);
+        if (readback.size() < at + sizeof(counters)) return;
+        std::memcpy(&counters, readback.data() + at, sizeof(counters));
+        stats.rasterLargeTriangles += counters.counts.x;
+        stats.rasterChunks += counters.counts.y;
+        stats.rasterDropped += counters.counts.z + counters.counts.w;
+        needed = glm::max(needed, glm::uvec2(counters.counts.x, counters.counts.y));
+    }
+    if (stats.rasterDropped > 0)
+        stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
+                                 " large pieces or chunks were not drawn in frame " + std::to_string(stats.frameIndex) +
+                                 "; the queues grow for the next frames");
+}
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+// A caller's CameraView (render(request, settings, view), submitFrame) is checked like a scene camera.
+void checkCameraView(const CameraView& view) {
+    if (!finite(view.clipFromWorld) || !finite(view.worldFromView) || !finite(view.viewFromWorld))
+        throw Error("camera view: a matrix has a non-finite element");
+    if (!(view.yfov > 0.0f && view.yfov < 3.14159265f)) throw Error("camera view: yfov must be in (0, pi)");
+    if (!(std::isfinite(view.zNear) && view.zNear > 0.0f && view.zFar > view.zNear))
+        throw Error("camera view: needs 0 < zNear < zFar");
+}
+
+// The largest power of two that is <= limit (limit >= 1).
+uint32_t powerOfTwoAtMost(uint32_t limit) {
+    uint32_t size = 1;
+    while (size <= limit / 2) size *= 2;
+    return size;
+}
+
+// The shadow settings this device can hold: an atlas over the device's largest image side is made as
+// large as it allows, with a warning.
+ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, std::vector<std::string>& warnings) {
+    ShadowSettings fitted = requested;
+    const uint32_t largest = powerOfTwoAtMost(maxImageSize);
+    auto fit = [&](uint32_t& atlasSize, const char* key) {
+        if (atlasSize <= largest) return;
+        warnings.push_back(std::string(key) + " = " + std::to_string(atlasSize) + " is larger than the device's largest image (" +
+                           std::to_string(maxImageSize) + "): using " + std::to_string(largest));
+        atlasSize = largest;
+    };
+    fit(fitted.directional.atlasSize, "shadows.directional.atlasSize");
+    fit(fitted.spot.atlasSize, "shadows.spot.atlasSize");
+    return fitted;
+}
+
+void applyCullStats(FrameStats& stats, const ShadowFrame& plan, const std::vector<uint8_t>& readback) {
+    const size_t tileCount = plan.directional.tiles.size() + plan.other.tiles.size();
+    std::vector<gpu_data::CullTileStats> tiles(tileCount);
+    if (readback.size() >= tileCount * sizeof(gpu_data::CullTileStats) && tileCount > 0)
+        std::memcpy(tiles.data(), readback.data(), tileCount * sizeof(gpu_data::CullTileStats));
+    std::vector<uint32_t> casters;
+    for (size_t i = 0; i < tileCount; ++i) {
+        AtlasDrawStats& atlas = stats.atlases[i < plan.directional.tiles.size() ? 0 : 1];
+        atlas.draws += tiles[i].counts.x;
+        atlas.triangles += tiles[i].counts.z;
+        casters.push_back(tiles[i].counts.y);
+    }
+    stats.shadowStatsJson = shadowStatsJson(plan, &casters);
+}
 
 }  // namespace
 
@@ -88,9 +182,19 @@ struct Renderer::State {
     Scene scene;
     RendererOptions options;
     GpuScene gpuScene;
+    ShadowCullingPass culling;
     MainPass mainPass;
     ShadowCasterPass casterPass;
     ScreenSpaceShadowPass screenSpacePass;
+    VisibleSurfacePass visiblePass;
+    ComputeRasterPass computeRaster;
+    RasterChoice rasterChoice;
+    std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
+    glm::uvec2 latestVisibleSize{0};
+    glm::uvec2 rasterNeeded{0};  // the most large pieces / chunks a finished frame asked the compute rasterizer for
+    TileCache directionalCache, otherCache;
+    uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
+    uint64_t sceneVersion = 0;   // bumped by every change to the casters (transforms, cast flags, materials)
     FrameTargets targets;
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
@@ -99,8 +203,10 @@ struct Renderer::State {
     std::vector<FrameStats> completed;
 
     State(gpu::Device& d, Scene s, const RendererOptions& o)
-        : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), mainPass(d, gpuScene, o.warmup),
-          casterPass(d, gpuScene, scene), screenSpacePass(d, mainPass), targets(d) {
+        : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
+          mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
+          visiblePass(d, gpuScene, mainPass),
+          computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
         try {
             // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
             shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
@@ -166,75 +272,12 @@ struct Renderer::State {
         return imported.back().texture;
     }
 
-    // What recording one frame needs; `stage` names the part being recorded.
-    struct FrameRecording {
-        const RenderRequest& request;
-        const Settings& settings;
-        const CameraView& view;
-        const ShadowFrame& plan;
-        const PackedLights& lights;
-        const FrameTargetSizes& sizes;
-        FrameStats& stats;
-        Stopwatch& phase;
-        const char* stage = "begin";
-    };
-
+    // oneShot: the caller waits for this frame (render()): the tight fit reduces this very view's depth.
     void checkRequest(const RenderRequest& request, const CameraView& view) const;
     uint64_t submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
-                    const ExternalImage* target, bool readback, bool captureAtlas);
-    void record(gpu::CommandList& commands, FrameRecording& recording, const ExternalImage* target, bool readback,
-                bool captureAtlas);
+                    const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot);
     void collectCompleted();
 };
-
-namespace {
-
-bool finite(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-// A caller's CameraView (render(request, settings, view), submitFrame) is checked like a scene camera.
-void checkCameraView(const CameraView& view) {
-    if (!finite(view.clipFromWorld) || !finite(view.worldFromView) || !finite(view.viewFromWorld))
-        throw Error("camera view: a matrix has a non-finite element");
-    if (!(view.yfov > 0.0f && view.yfov < 3.14159265f)) throw Error("camera view: yfov must be in (0, pi)");
-    if (!(std::isfinite(view.zNear) && view.zNear > 0.0f && view.zFar > view.zNear))
-        throw Error("camera view: needs 0 < zNear < zFar");
-}
-
-gpu::ExternalTarget externalTargetOf(const ExternalImage& target) {
-    return {target.vkImage,         target.vkFormat,        target.width,
-            target.height,          target.vkInitialLayout, target.vkFinalLayout,
-            target.vkWaitSemaphore, target.vkWaitStageMask, target.vkSignalSemaphore};
-}
-
-// The largest power of two that is <= limit (limit >= 1).
-uint32_t powerOfTwoAtMost(uint32_t limit) {
-    uint32_t size = 1;
-    while (size <= limit / 2) size *= 2;
-    return size;
-}
-
-// The shadow settings this device can hold: an atlas over the device's largest image side is made as
-// large as it allows, with a warning.
-ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, std::vector<std::string>& warnings) {
-    ShadowSettings fitted = requested;
-    const uint32_t largest = powerOfTwoAtMost(maxImageSize);
-    auto fit = [&](uint32_t& atlasSize, const char* key) {
-        if (atlasSize <= largest) return;
-        warnings.push_back(std::string(key) + " = " + std::to_string(atlasSize) + " is larger than the device's largest image (" +
-                           std::to_string(maxImageSize) + "): using " + std::to_string(largest));
-        atlasSize = largest;
-    };
-    fit(fitted.directional.atlasSize, "shadows.directional.atlasSize");
-    fit(fitted.spot.atlasSize, "shadows.spot.atlasSize");
-    return fitted;
-}
-
-}  // namespace
 
 void Renderer::State::checkRequest(const RenderRequest& request, const CameraView& view) const {
     if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
@@ -250,17 +293,41 @@ void Renderer::State::checkRequest(const RenderRequest& request, const CameraVie
     checkCameraView(view);
 }
 
-uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
-                                 const ExternalImage* target, bool readback, bool captureAtlas) {
-    validateSettings(settings);
+uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& requestedSettings,
+                                 const CameraView& view, const ExternalImage* target, bool readback, bool captureAtlas,
+                                 bool oneShot) {
+    validateSettings(requestedSettings);
     checkRequest(request, view);
     PendingFrame frame;
     FrameStats& stats = frame.stats;
     stats.warnings = gpuScene.warnings();
-    const ShadowSettings shadows = fitShadowSettings(settings.shadows, device.maxImageSize(), stats.warnings);
+    // The settings this device can hold (an atlas over its largest image is shrunk, with a warning).
+    Settings fittedSettings = requestedSettings;
+    fittedSettings.shadows = fitShadowSettings(requestedSettings.shadows, device.maxImageSize(), stats.warnings);
+    const Settings& settings = fittedSettings;
+    const uint64_t frameIndex = device.nextFrameIndex();
+    const auto failed = [&](const char* stage, const Error& error) {
+        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
+    };
 
     Stopwatch phase;
-    const ShadowFrame plan = ShadowPlanner::plan(scene, view, shadows);
+    PlanOptions planOptions;
+    planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
+    // The tight cascade fit's depth reduction (issue 13 item 8): this view's, waited for, when the
+    // caller waits anyway or nothing earlier matches; else the latest finished frame's.
+    const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
+    const glm::uvec2 viewSize(view.width, view.height);
+    std::optional<VisibleSurfaces> visible;
+    if (tight && (oneShot || !latestVisible || latestVisibleSize != viewSize)) {
+        try {
+            visible = visiblePass.now(scene, view);
+        } catch (const Error& error) {
+            throw failed("the tight fit's visible surfaces", error);
+        }
+    }
+    const VisibleSurfaces* planVisible = !tight ? nullptr : visible ? &*visible : &*latestVisible;
+    frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions);
+    const ShadowFrame& plan = frame.plan;
     const PackedLights lights = packLights(scene, [&](uint32_t i) {
         const bool directional = scene.lights[i].type == LightType::Directional;
         const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
@@ -270,7 +337,6 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
     stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
-    stats.shadowStatsJson = shadowStatsJson(plan);
 
     FrameTargetSizes sizes;
     sizes.directionalAtlas = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
@@ -278,10 +344,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     sizes.width = view.width;
     sizes.height = view.height;
     sizes.colorFormat = colorFormatOf(request.output);
-    const uint64_t frameIndex = device.nextFrameIndex();
-    const auto failed = [&](const char* stage, const Error& error) {
-        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
-    };
+    sizes.computeRaster = settings.shadows.raster != ShadowRaster::Hw;
     try {
         targets.ensure(sizes);
     } catch (const Error& error) {
@@ -290,20 +353,149 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
 
     phase.restart();
     gpu::CommandList commands = device.beginFrame();
-    FrameRecording recording{request, settings, view, plan, lights, sizes, stats, phase};
+    // A failure from here to the submission drops the frame (the next one starts clean) and names the
+    // part being recorded.
+    const char* stage = "scene updates";
     try {
-        record(commands, recording, target, readback, captureAtlas);
+        phase.restart();  // the wait for the slot's previous frame is not CPU work
+        stats.sceneBytesUploaded = gpuScene.recordUpdates(commands, scene);
+        stage = "frame data upload";
+        const bool screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
+        const gpu_data::FrameData frameData = makeFrameData(view, lights, request, settings, screenSpace);
+        const gpu::BufferSlice frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
+        const gpu::BufferSlice lightSlice =
+            uploadFrameData(device, lights.lights.data(), lights.lights.size() * sizeof(gpu_data::LightData));
+        const gpu::BufferSlice directionalSlice =
+            uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
+        const gpu::BufferSlice otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
+        const uint32_t directionalTiles = uint32_t(plan.directional.tiles.size());
+        const uint32_t cullTiles = directionalTiles + uint32_t(plan.other.tiles.size());
+        frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
+        // Cached tiles: each atlas draws only the tiles that changed.
+        std::vector<TileSignature> directionalSignatures, otherSignatures;
+        for (const ShadowTile& tile : plan.directional.tiles) directionalSignatures.push_back(directionalTileSignature(tile, plan.directional));
+        for (const ShadowTile& tile : plan.other.tiles) otherSignatures.push_back(otherTileSignature(tile));
+        const bool freshDirectional = targets.directionalGeneration != directionalGenerationDrawn;
+        const bool freshOther = targets.otherGeneration != otherGenerationDrawn;
+        const std::vector<uint32_t> drawDirectional =
+            directionalCache.tilesToDraw(directionalSignatures, targets.directionalGeneration, frame.computeRaster,
+                                         sceneVersion, settings.shadows.cacheTiles);
+        const std::vector<uint32_t> drawOther = otherCache.tilesToDraw(otherSignatures, targets.otherGeneration,
+                                                                       frame.computeRaster, sceneVersion,
+                                                                       settings.shadows.cacheTiles);
+        directionalGenerationDrawn = targets.directionalGeneration;
+        otherGenerationDrawn = targets.otherGeneration;
+        stats.tilesRendered = uint32_t(drawDirectional.size() + drawOther.size());
+        stats.tilesReused = directionalCache.reused() + otherCache.reused();
+        gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+        std::vector<uint32_t> rasterTiles = drawDirectional;
+        for (uint32_t i : drawOther) rasterTiles.push_back(directionalTiles + i);
+        packRasterTiles(cullFrame, rasterTiles);
+        const gpu::BufferSlice cullSlice = uploadFrameData(device, &cullFrame, sizeof(cullFrame));
+        stats.cpu.upload = phase.milliseconds();
+        static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
+
+        phase.restart();
+        const std::vector<gpu::DescriptorWrite> casterWrites = sceneDescriptorWrites(gpuScene, frameSlice, lightSlice);
+        stage = "shadows.culling";
+        commands.beginTimer("shadows.culling");
+        culling.record(commands, cullSlice, cullTiles);
+        commands.endTimer();
+        frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
+        frame.rasterSetting = settings.shadows.raster;
+        // Twice what a frame asked for: a moving camera rarely needs another growth (each is one allocation).
+        if (frame.computeRaster) computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y);
+        stats.shadowRaster = frame.computeRaster ? "compute" : "hw";
+        auto drawAtlas = [&](const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& draw, bool fresh,
+                             uint32_t firstTile, uint32_t listOffset, gpu::TextureHandle atlas, uint32_t size,
+                             gpu::BufferHandle rasterDepth, const std::string& name) {
+            if (frame.computeRaster) {
+                ComputeRasterPass::AtlasTiles atlasTiles;
+                atlasTiles.listOffset = listOffset;
+                atlasTiles.freshAtlas = fresh;
+                for (uint32_t i : draw)
+                    atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
+                                                tiles[i].rect.size, tiles[i].rect.size});
+                computeRaster.record(commands, casterWrites, cullSlice, culling, atlasTiles, atlas, size, rasterDepth,
+                                     "shadows." + name);
+                device.readBackAtFrameEnd(commands, computeRaster.counters());
+            } else {
+                casterPass.record(commands, tiles, draw, fresh, firstTile, atlas, size, casterWrites, culling);
+            }
+        };
+        device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));  // before the raster counters, see applyRasterCounters
+        stage = "shadows.directional";
+        commands.beginTimer("shadows.directional");
+        drawAtlas(plan.directional.tiles, drawDirectional, freshDirectional, 0, 0, targets.directionalAtlas,
+                  sizes.directionalAtlas, targets.directionalRasterDepth, "directional");
+        commands.endTimer();
+        stage = "shadows.other";
+        commands.beginTimer("shadows.other");
+        drawAtlas(plan.other.tiles, drawOther, freshOther, directionalTiles, uint32_t(drawDirectional.size()),
+                  targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth, "other");
+        commands.endTimer();
+        stats.atlases = {{"shadows.directional", directionalTiles, 0, 0}, {"shadows.other", cullTiles - directionalTiles, 0, 0}};
+
+        MainPassInputs inputs;
+        inputs.writes = casterWrites;
+        inputs.writes.push_back({5, directionalSlice});
+        inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
+        inputs.writes.push_back({7, otherSlice});
+        inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
+        // 12, 13: the same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
+        inputs.writes.push_back({12, {}, targets.directionalAtlas, pointSampler});
+        inputs.writes.push_back({13, {}, targets.otherAtlas, pointSampler});
+        inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
+        stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
+        if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, view, inputs, 0);
+
+        stage = "main";
+        commands.beginTimer("main");
+        commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+        commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+        MainPass::Target main;
+        main.color = targets.color;
+        main.depth = targets.depth;
+        main.width = view.width;
+        main.height = view.height;
+        main.variant = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+        main.genericSpecialization = kGenericLitSpecialization;
+        if (options.forceGenericVariants) main.variant.specialization = kGenericLitSpecialization;
+        // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
+        if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+        mainPass.record(commands, scene, view, inputs, main);
+        commands.endTimer();
+        if (tight && !oneShot) {
+            visiblePass.recordSubsample(commands, targets.depth, view);
+            frame.visibleReadback = true;
+            frame.view = view;
+        }
+
+        stage = "readback";
+        if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
+        if (captureAtlas) {
+            commands.copyTextureToBuffer(targets.directionalAtlas, gpu::TextureState::ShaderRead, targets.directionalReadback());
+            commands.copyTextureToBuffer(targets.otherAtlas, gpu::TextureState::ShaderRead, targets.otherReadback());
+        }
+        gpu::ExternalTarget sync;
+        if (target) {
+            sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
+                    target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
+            commands.blitToExternal(targets.color, importedTexture(*target), sync);
+        }
+        stats.cpu.record = phase.milliseconds();
+
+        phase.restart();
+        stage = "submit";
+        frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);  // its errors name the frame
     } catch (const Error& error) {
         device.abandonFrame(commands);
-        throw failed(recording.stage, error);
-    }
-    const gpu::ExternalTarget sync = target ? externalTargetOf(*target) : gpu::ExternalTarget{};
-    phase.restart();
-    try {
-        frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);  // its errors name the frame
-    } catch (const Error&) {
-        device.abandonFrame(commands);
-        throw;
+        // The tile caches counted this frame's tiles as drawn: draw every tile of the next frame.
+        directionalCache.invalidate();
+        otherCache.invalidate();
+        directionalGenerationDrawn = otherGenerationDrawn = ~0ull;
+        if (std::string(stage) == "submit") throw;
+        throw failed(stage, error);
     }
     gpuScene.updatesSubmitted();
     stats.cpu.submit = phase.milliseconds();
@@ -313,84 +505,36 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& s
     return pending.back().frameIndex;
 }
 
-// Records the frame's passes; `r.stage` names the one being recorded, for the error of a failure.
-void Renderer::State::record(gpu::CommandList& commands, FrameRecording& r, const ExternalImage* target, bool readback,
-                             bool captureAtlas) {
-    r.stage = "scene updates";
-    r.phase.restart();  // the wait for the slot's previous frame is not CPU work
-    gpuScene.recordUpdates(commands, scene);
-    r.stage = "frame data upload";
-    const bool screenSpace = r.settings.shadows.screenSpace && !r.plan.directional.lights.empty();
-    const gpu_data::FrameData frameData = makeFrameData(r.view, r.lights, r.request, r.settings, screenSpace);
-    const gpu::BufferSlice frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
-    const gpu::BufferSlice lightSlice =
-        uploadFrameData(device, r.lights.lights.data(), r.lights.lights.size() * sizeof(gpu_data::LightData));
-    const gpu::BufferSlice directionalSlice =
-        uploadFrameData(device, &r.plan.directional.gpu, sizeof(r.plan.directional.gpu));
-    const gpu::BufferSlice otherSlice = uploadFrameData(device, &r.plan.other.gpu, sizeof(r.plan.other.gpu));
-    r.stats.cpu.upload = r.phase.milliseconds();
-    static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
-
-    r.phase.restart();
-    const std::vector<gpu::DescriptorWrite> casterWrites = sceneDescriptorWrites(gpuScene, frameSlice, lightSlice);
-    r.stage = "shadows.directional";
-    commands.beginTimer("shadows.directional");
-    r.stats.atlases.push_back(casterPass.record(commands, scene, r.plan.directional.tiles, targets.directionalAtlas,
-                                                r.sizes.directionalAtlas, casterWrites, "shadows.directional"));
-    commands.endTimer();
-    r.stage = "shadows.other";
-    commands.beginTimer("shadows.other");
-    r.stats.atlases.push_back(casterPass.record(commands, scene, r.plan.other.tiles, targets.otherAtlas,
-                                                r.sizes.otherAtlas, casterWrites, "shadows.other"));
-    commands.endTimer();
-
-    MainPassInputs inputs;
-    inputs.writes = casterWrites;
-    inputs.writes.push_back({5, directionalSlice});
-    inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
-    inputs.writes.push_back({7, otherSlice});
-    inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
-    inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});
-    r.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
-    if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, r.view, inputs, 0);
-
-    r.stage = "main";
-    commands.beginTimer("main");
-    commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-    commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
-    MainPass::Target main;
-    main.color = targets.color;
-    main.depth = targets.depth;
-    main.width = r.view.width;
-    main.height = r.view.height;
-    main.variant = litVariant(r.sizes.colorFormat, r.plan.other.specializationMode, uint32_t(r.settings.shadows.spot.filter));
-    main.genericSpecialization = kGenericLitSpecialization;
-    // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
-    if (r.request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
-    mainPass.record(commands, scene, r.view, inputs, main);
-    commands.endTimer();
-
-    r.stage = "readback";
-    if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
-    if (captureAtlas) {
-        commands.copyTextureToBuffer(targets.directionalAtlas, gpu::TextureState::ShaderRead, targets.directionalReadback());
-        commands.copyTextureToBuffer(targets.otherAtlas, gpu::TextureState::ShaderRead, targets.otherReadback());
-    }
-    if (target) {
-        r.stage = "blit to the caller's image";
-        commands.blitToExternal(targets.color, importedTexture(*target), externalTargetOf(*target));
-    }
-    r.stats.cpu.record = r.phase.milliseconds();
-    r.stage = "submit";
-}
-
 void Renderer::State::collectCompleted() {
     for (gpu::CompletedFrame& done : device.takeCompletedFrames()) {
         while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.pop_front();  // not ours
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
         FrameStats stats = std::move(pending.front().stats);
+        applyCullStats(stats, pending.front().plan, done.readback);
+        if (pending.front().computeRaster) applyRasterCounters(stats, pending.front().plan, done.readback, rasterNeeded);
+        if (stats.rasterDropped > 0) {  // those tiles are incomplete: draw them all again
+            directionalCache.invalidate();
+            otherCache.invalidate();
+        }
+        const bool computeRasterFrame = pending.front().computeRaster, autoFrame = pending.front().autoRaster;
+        const ShadowRaster rasterSetting = pending.front().rasterSetting;
+        if (pending.front().visibleReadback) {
+            const PendingFrame& finished = pending.front();
+            // After the cull stats (one per tile, at least one) and the compute rasterizer's two counters.
+            const size_t tiles = finished.plan.directional.tiles.size() + finished.plan.other.tiles.size();
+            const size_t offset = std::max<size_t>(tiles, 1) * sizeof(gpu_data::CullTileStats) +
+                                  (finished.computeRaster ? 2 * sizeof(gpu_data::RasterCounters) : 0);
+            if (done.readback.size() >= offset + VisibleSurfacePass::readbackBytes(finished.view)) {
+                latestVisible = VisibleSurfacePass::fromReadback(done.readback.data() + offset, finished.view);
+                latestVisibleSize = glm::uvec2(finished.view.width, finished.view.height);
+            }
+        }
         pending.pop_front();
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
+        if (autoFrame) rasterChoice.measured(computeRasterFrame, shadowPassMilliseconds(stats));
+        stats.shadowRasterChoice = rasterSetting == ShadowRaster::Auto
+                                       ? "auto: " + rasterChoice.describe()
+                                       : std::string("shadows.raster = ") + shadowRasterName(rasterSetting);
         stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
         completed.push_back(std::move(stats));
     }
@@ -414,12 +558,22 @@ Renderer::Renderer(Device& device, Scene scene, const RendererOptions& options) 
         throw Error(std::string("putting the scene on the GPU: ") + error.what());
     }
 }
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+    gpu::Device& device = state_->device;
+    state_.reset();  // the passes and targets hand their objects to the device's deferred destruction
+    try {
+        device.waitIdle();  // nothing of this renderer's is in flight any more: destroyed now
+        device.trimMemory();
+    } catch (const Error&) {
+        // A lost device: its objects go when the device does.
+    }
+}
 
 const Scene& Renderer::scene() const { return state_->scene; }
 
 void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
     setInstanceWorldTransform(state_->scene, instance, worldFromObject);
+    ++state_->sceneVersion;
     state_->gpuScene.instanceChanged(instance);
 }
 
@@ -427,7 +581,9 @@ void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
     if (instance >= state_->scene.instances.size())
         throw Error("instance " + std::to_string(instance) + " does not exist (the scene has " +
                     std::to_string(state_->scene.instances.size()) + ")");
-    state_->scene.instances[instance].castShadows = castShadows;  // read by the planner only
+    state_->scene.instances[instance].castShadows = castShadows;
+    state_->gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
+    ++state_->sceneVersion;
 }
 
 void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state_->scene, light, value); }
@@ -435,6 +591,7 @@ void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state
 void Renderer::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(state_->scene, material, value);
     state_->gpuScene.materialChanged(material);
+    ++state_->sceneVersion;
 }
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings) {
@@ -443,15 +600,20 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
     State& s = *state_;
-    const uint64_t frameIndex = s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas);
-    s.device.waitFrame(frameIndex);
-    s.collectCompleted();
     RenderResult result;
-    const auto found = std::find_if(s.completed.begin(), s.completed.end(),
-                                    [&](const FrameStats& f) { return f.frameIndex == frameIndex; });
-    if (found != s.completed.end()) {
-        result.stats = std::move(*found);
-        s.completed.erase(found);
+    // A frame whose compute-raster queues overflowed is drawn again once they have grown.
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        const uint64_t frameIndex =
+            s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas, true);
+        s.device.waitFrame(frameIndex);
+        s.collectCompleted();
+        const auto found = std::find_if(s.completed.begin(), s.completed.end(),
+                                        [&](const FrameStats& f) { return f.frameIndex == frameIndex; });
+        if (found != s.completed.end()) {
+            result.stats = std::move(*found);
+            s.completed.erase(found);
+        }
+        if (result.stats.rasterDropped == 0) break;
     }
     const FrameTargetSizes& sizes = s.targets.sizes();
     if (request.readback)
@@ -468,7 +630,7 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
 
 uint64_t Renderer::submitFrame(const RenderRequest& request, const Settings& settings, const CameraView& view,
                                const ExternalImage* target) {
-    return state_->submit(request, settings, view, target, false, false);
+    return state_->submit(request, settings, view, target, false, false, false);
 }
 
 std::vector<FrameStats> Renderer::takeCompletedFrames() {

@@ -4,8 +4,29 @@
 
 namespace penumbra {
 
-std::string shadowStatsJson(const ShadowFrame& plan) {
+namespace {
+
+// Casters per tile of `tiles`, the culling tiles from `first` on (GPU counts) or the CPU lists.
+std::vector<uint32_t> castersPerTile(const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>* gpu, size_t first) {
+    std::vector<uint32_t> counts;
+    for (size_t i = 0; i < tiles.size(); ++i)
+        counts.push_back(gpu && first + i < gpu->size() ? (*gpu)[first + i] : uint32_t(tiles[i].casterInstances.size()));
+    return counts;
+}
+
+uint32_t sum(const std::vector<uint32_t>& values) {
+    uint32_t total = 0;
+    for (uint32_t v : values) total += v;
+    return total;
+}
+
+}  // namespace
+
+std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>* castersPerCullTile) {
     const ShadowStats& stats = plan.stats;
+    const std::vector<uint32_t> directionalCasters = castersPerTile(plan.directional.tiles, castersPerCullTile, 0);
+    const std::vector<uint32_t> otherCasters =
+        castersPerTile(plan.other.tiles, castersPerCullTile, plan.directional.tiles.size());
     nlohmann::json json;
     nlohmann::json directional;
     directional["lightsConsidered"] = stats.directionalLightsConsidered;
@@ -14,9 +35,23 @@ std::string shadowStatsJson(const ShadowFrame& plan) {
     directional["tiles"] = plan.directional.atlas.tileCount;
     directional["split"] = plan.directional.atlas.split;
     directional["tileSize"] = plan.directional.atlas.tileSize;
-    directional["castersPerTile"] = stats.castersPerTile;
-    directional["casterDraws"] = stats.casterDraws;
+    directional["castersPerTile"] = directionalCasters;
+    directional["casterDraws"] = sum(directionalCasters);
     directional["skippedByCascadeBlendCulling"] = stats.skippedByBlendCulling;
+    // Depth range per tile in metres (near + far distance) and how far casters reach in front of it.
+    // World texel size per tile (the tight fit's gain shows here) and each cascade's split.
+    std::vector<float> depthRange, pancakedDepth, texelSize, splits;
+    for (const ShadowTile& tile : plan.directional.tiles) {
+        depthRange.push_back(tile.nearDistance + tile.farDistance);
+        pancakedDepth.push_back(tile.pancakedDepth);
+        texelSize.push_back(tile.wsTexelSize);
+    }
+    for (const CascadeSphere& cascade : plan.directional.cascades) splits.push_back(cascade.vsFar);
+    directional["texelSizeMetres"] = texelSize;
+    directional["cascadeSplits"] = splits;
+    directional["fit"] = plan.directional.tight ? "tight" : "sphere";
+    directional["depthRangeMetres"] = depthRange;
+    directional["pancakedDepthMetres"] = pancakedDepth;
     json["directional"] = directional;
 
     // Spot and point lights (seed 001): a spot light takes 1 tile, a point light 6, at most 16 tiles.
@@ -24,13 +59,8 @@ std::string shadowStatsJson(const ShadowFrame& plan) {
     nlohmann::json other;
     other["lightsConsidered"] = otherPlan.lightsConsidered;
     other["lightsReserved"] = otherPlan.lights.size();
-    std::vector<uint32_t> reservedLights, castersPerTile;
+    std::vector<uint32_t> reservedLights;
     for (const ReservedOtherLight& light : otherPlan.lights) reservedLights.push_back(light.sceneLightIndex);
-    uint32_t casterDraws = 0;
-    for (const ShadowTile& tile : otherPlan.tiles) {
-        castersPerTile.push_back(uint32_t(tile.casterInstances.size()));
-        casterDraws += uint32_t(tile.casterInstances.size());
-    }
     other["reservedLights"] = reservedLights;
     other["lightsDropped"] = otherPlan.droppedLights.size();
     other["droppedLights"] = otherPlan.droppedLights;
@@ -40,8 +70,8 @@ std::string shadowStatsJson(const ShadowFrame& plan) {
     other["split"] = otherPlan.atlas.split;
     other["tileSize"] = otherPlan.atlas.tileSize;
     other["tileBorder"] = otherPlan.atlas.border;
-    other["castersPerTile"] = castersPerTile;
-    other["casterDraws"] = casterDraws;
+    other["castersPerTile"] = otherCasters;
+    other["casterDraws"] = sum(otherCasters);
     json["other"] = other;
     json["shadowCasters"] = stats.shadowCasters;
     return json.dump();

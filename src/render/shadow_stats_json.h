@@ -5,5 +5,7 @@
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
-std::string shadowStatsJson(const ShadowFrame& plan);
+// castersPerCullTile: casters drawn per culling tile (directional tiles, then spot/point) as the GPU
+// culling pass counted them; null = the plan's own CPU lists.
+std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>* castersPerCullTile = nullptr);
 }

@@ -49,6 +49,17 @@ CameraView makeCameraView(const Camera& camera, uint32_t width, uint32_t height)
     return view;
 }
 
+CameraView translatedCameraView(const CameraView& view, const glm::vec3& wsOffset) {
+    CameraView moved = view;
+    moved.worldFromView[3] += glm::vec4(wsOffset, 0.0f);
+    moved.viewFromWorld = glm::inverse(moved.worldFromView);
+    moved.clipFromWorld = moved.clipFromView * moved.viewFromWorld;
+    moved.wsPosition = glm::vec3(moved.worldFromView[3]);
+    return moved;
+}
+
+glm::vec3 wsCameraRight(const CameraView& view) { return glm::normalize(glm::vec3(view.worldFromView[0])); }
+
 Camera autoFramingCamera(const Aabb& wsBounds) {
     Camera camera;
     camera.name = "auto";

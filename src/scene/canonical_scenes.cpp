@@ -7,58 +7,12 @@
 
 #include "core/error.h"
 #include "penumbra/scene_builder.h"
+#include "scene/canonical_scene_parts.h"
 
 namespace penumbra {
 namespace {
 
-glm::mat4 at(glm::vec3 wsPosition) { return glm::translate(glm::mat4(1.0f), wsPosition); }
-
-glm::mat4 rotated(glm::mat4 pose, float degrees, glm::vec3 axis) {
-    return glm::rotate(pose, glm::radians(degrees), axis);
-}
-
-Material colored(const char* name, glm::vec3 rgb) {
-    Material material;
-    material.name = name;
-    material.baseColorFactor = glm::vec4(rgb, 1.0f);
-    material.metallic = 0.0f;
-    material.roughness = 0.8f;
-    return material;
-}
-
-// A sun `elevation` degrees above the horizon; azimuth 0 puts it straight behind a camera that looks
-// along -Z (shadows point away from the camera), positive azimuths move it toward +X.
-Light sunFrom(float elevationDegrees, float azimuthDegrees) {
-    const float e = glm::radians(elevationDegrees), a = glm::radians(azimuthDegrees);
-    const glm::vec3 wsToSun(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
-    Light sun = makeDirectionalLight(-wsToSun, 3.0f, {1.0f, 0.96f, 0.9f});
-    sun.name = "sun";
-    sun.shadows = LightShadows::Soft;
-    return sun;
-}
-
-void setCamera(SceneBuilder& builder, glm::vec3 wsEye, glm::vec3 wsTarget, float yfovDegrees) {
-    Camera camera = makeLookAtCamera(wsEye, wsTarget, glm::radians(yfovDegrees));
-    camera.name = "camera";
-    builder.setCamera(camera);
-}
-
-// A square ground of side `size` centred at (0, 0, zCentre), receiving and casting shadows.
-void addGround(SceneBuilder& builder, float size, float zCentre = 0.0f) {
-    const uint32_t gray = builder.addMaterial(colored("ground", glm::vec3(0.6f)));
-    builder.addInstance(builder.addMesh(makePlaneMesh({size, size}, gray, size / 2.0f)), at({0, 0, zCentre}), true,
-                        "ground");
-}
-
-uint32_t addBox(SceneBuilder& builder, glm::vec3 halfExtents, uint32_t material, const glm::mat4& pose,
-                const std::string& name) {
-    return builder.addInstance(builder.addMesh(makeBoxMesh(halfExtents, material)), pose, true, name);
-}
-
-uint32_t addPole(SceneBuilder& builder, float radius, float height, uint32_t material, glm::vec3 wsBase,
-                 const std::string& name) {
-    return builder.addInstance(builder.addMesh(makeCylinderMesh(radius, height, material, 16)), at(wsBase), true, name);
-}
+using namespace canonical;
 
 // Casters at 2, 10, 40, 90 and 140 m: every cascade (and the distance fade) sees one. Each distance has
 // a cube, a pole beside it and, from 40 m on, a wall behind it facing the camera, so that far shadows
@@ -220,7 +174,7 @@ void addRoomObjects(SceneBuilder& builder) {
     addBox(builder, {0.4f, 1.2f, 0.4f}, blue, at({2.0f, 1.2f, -6.0f}), "block");
     addBox(builder, {2.5f, 1.5f, 0.1f}, red, at({0.0f, 1.5f, -9.5f}), "wall");
     addPole(builder, 0.08f, 2.5f, blue, {0.5f, 0.0f, -3.0f}, "pole");
-    builder.addInstance(builder.addMesh(makeSphereMesh(0.6f, blue, 32, 16)), at({-2.5f, 0.6f, -7.0f}), true, "sphere");
+    addSphere(builder, 0.6f, blue, {-2.5f, 0.6f, -7.0f}, "sphere");
 }
 
 // Two shadowed spot lights over boxes, a pole, a sphere and a wall; the second with hard shadows.
@@ -272,6 +226,21 @@ const std::vector<Entry>& entries() {
         {{"low_sun", "sun at 8° elevation: long shadows over a grazing ground"}, makeLowSun},
         {{"spot_lights", "two shadowed spot lights (soft and hard)"}, makeSpotLightsScene},
         {{"point_light", "one shadowed point light among boxes"}, makePointLightScene},
+        {{"far_field", "boxes and spheres from 3 to 145 m under a 40° sun, every cascade (maxDistance 150)"},
+         makeFarField},
+        {{"thin_slabs", "2 and 5 cm walls, 2-5 cm poles, a 1 cm slab 2 cm above the floor"}, makeThinSlabs},
+        {{"grazing_sun", "sun at 10°: slabs tilted 4-16° on a floor, spheres and a cylinder (terminators)"},
+         makeGrazingSun},
+        {{"fence", "alpha-masked picket fence and leaf cards, NEAREST-sampled textures"}, makeFence},
+        {{"field_of_objects", "576 small boxes, spheres and poles over 70 m x 100 m"}, makeFieldOfObjects},
+        {{"cube", "a 2 m cube on a plane under a 45° sun"}, makeCube},
+        {{"cad_engine", "the 2CylinderEngine CAD model (121k triangles, cracks): light 0 a 35° sun, light 1 a spot",
+          true},
+         makeCadEngine},
+        {{"spot_shelf", "three spot lights (two soft, one hard) over a box, a ball, a pole and a wall shelf"},
+         makeSpotShelf},
+        {{"pcss_contact", "contact-hardening soft shadows: a 3° pcss sun (light 0) and a pcss spot with a 15 cm emitter"},
+         makePcssContact},
     };
     return kEntries;
 }
@@ -285,6 +254,12 @@ const std::vector<CanonicalSceneInfo>& canonicalScenes() {
         return infos;
     }();
     return kInfos;
+}
+
+std::string canonicalSceneFileName(const std::string& name) {
+    for (const Entry& entry : entries())
+        if (entry.info.name == name) return entry.info.fileName();
+    return name + ".gltf";
 }
 
 Scene makeCanonicalScene(const std::string& name) {

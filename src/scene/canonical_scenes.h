@@ -13,10 +13,19 @@ namespace penumbra {
 struct CanonicalSceneInfo {
     std::string name;         // file stem under tests/scenes/
     std::string description;  // one line: what it stresses
+    bool binary = false;      // written as NAME.glb (large meshes) instead of NAME.gltf
+    std::string fileName() const { return name + (binary ? ".glb" : ".gltf"); }
 };
 
-// In a fixed order: directional-light scenes first, then spot_lights and point_light.
+// The installed glTF sample model that the CAD scene places (Debian package assimp-testmodels).
+inline constexpr const char* kCadEngineSamplePath =
+    "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+
+// In a fixed order: the first eight scenes (directional-light scenes, then spot_lights and point_light),
+// then those of issue 13.
 const std::vector<CanonicalSceneInfo>& canonicalScenes();
+// The file name under tests/scenes/ of the scene named `name` (NAME.gltf or NAME.glb).
+std::string canonicalSceneFileName(const std::string& name);
 
 // Builds the scene named `name`; throws penumbra::Error for an unknown name.
 Scene makeCanonicalScene(const std::string& name);

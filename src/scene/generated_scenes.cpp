@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "penumbra/scene_builder.h"
+#include "scene/canonical_scene_parts.h"
 
 namespace penumbra {
 
@@ -27,26 +28,37 @@ uint32_t parseCount(const std::string& text, const std::string& source, const ch
     return uint32_t(value);
 }
 
-Material matte(const char* name, glm::vec3 rgb) {
-    Material material;
-    material.name = name;
-    material.baseColorFactor = glm::vec4(rgb, 1.0f);
-    material.metallic = 0.0f;
-    material.roughness = 0.8f;
-    return material;
+// The nearest camera along `wsDirection` from the origin whose view (at aspect 1, so every wider
+// output sees it too) holds every corner of `wsBounds` with a small margin.
+Camera framingCamera(const Aabb& wsBounds, const glm::vec3& wsDirection, float yfov) {
+    for (float distance = 1.0f;; distance *= 1.05f) {
+        Camera camera = makeLookAtCamera(distance * glm::normalize(wsDirection), glm::vec3(0.0f), yfov, 0.1f);
+        const glm::mat4 viewFromWorld = glm::inverse(camera.worldFromView);
+        const float limit = 0.95f * std::tan(0.5f * yfov);
+        bool inside = true;
+        for (int corner = 0; corner < 8 && inside; ++corner) {
+            const glm::vec3 p((corner & 1) ? wsBounds.max.x : wsBounds.min.x, (corner & 2) ? wsBounds.max.y : wsBounds.min.y,
+                              (corner & 4) ? wsBounds.max.z : wsBounds.min.z);
+            const glm::vec3 v = glm::vec3(viewFromWorld * glm::vec4(p, 1.0f));
+            inside = -v.z > 0.1f && std::abs(v.x) <= limit * -v.z && std::abs(v.y) <= limit * -v.z;
+        }
+        if (inside) return camera;
+    }
 }
 
 // A ground of `halfSize` around the origin, a sun from the upper left, a camera looking down on the
-// square [-halfSize, halfSize]^2 from its front-left corner.
-void addGroundSunCamera(SceneBuilder& builder, float halfSize) {
-    const uint32_t ground = builder.addMaterial(matte("ground", glm::vec3(0.55f, 0.55f, 0.5f)));
+// square [-halfSize, halfSize]^2 (and `height` above it) from its front-left corner.
+void addGroundSunCamera(SceneBuilder& builder, float halfSize, float height) {
+    const uint32_t ground = builder.addMaterial(canonical::colored("ground", glm::vec3(0.55f, 0.55f, 0.5f)));
     const float side = 2.0f * halfSize + 4.0f;
     builder.addInstance(builder.addMesh(makePlaneMesh(glm::vec2(side), ground)), glm::mat4(1.0f), true, "ground");
     Light sun = makeDirectionalLight(glm::vec3(-0.45f, -1.0f, -0.35f), 3.0f);
     sun.name = "sun";
     builder.addLight(sun);
-    const float distance = 1.15f * halfSize + 4.0f;
-    Camera camera = makeLookAtCamera(glm::vec3(-distance, 0.9f * distance, distance), glm::vec3(0.0f), 0.9f, 0.1f);
+    Aabb field;
+    field.extend(glm::vec3(-halfSize, 0.0f, -halfSize));
+    field.extend(glm::vec3(halfSize, height, halfSize));
+    Camera camera = framingCamera(field, glm::vec3(-1.0f, 0.9f, 1.0f), 0.9f);
     camera.name = "camera";
     builder.setCamera(camera);
 }
@@ -95,7 +107,7 @@ Scene makeFieldScene(const Scene& model, uint32_t copies, uint32_t spotLights) {
             builder.addInstance(instance.meshIndex, place * instance.worldFromObject, instance.castShadows,
                                 "copy" + std::to_string(copy) + "/" + instance.nodeName);
     }
-    addGroundSunCamera(builder, halfSize);
+    addGroundSunCamera(builder, halfSize, kModelSize);
     // Spot lights on a grid over the field, 6 m up, each aimed at the ground a little off vertical.
     const uint32_t spotSide = uint32_t(std::ceil(std::sqrt(double(std::max(spotLights, 1u)))));
     const float spotSpacing = 2.0f * halfSize / float(spotSide);
@@ -117,7 +129,7 @@ Scene makeBoxesScene(uint32_t boxes) {
     const glm::vec3 colors[4] = {{0.8f, 0.3f, 0.25f}, {0.3f, 0.6f, 0.8f}, {0.85f, 0.75f, 0.3f}, {0.45f, 0.75f, 0.4f}};
     uint32_t meshes[4];
     for (uint32_t i = 0; i < 4; ++i)
-        meshes[i] = builder.addMesh(makeBoxMesh(glm::vec3(0.3f, 0.5f, 0.3f), builder.addMaterial(matte("box", colors[i]))));
+        meshes[i] = builder.addMesh(makeBoxMesh(glm::vec3(0.3f, 0.5f, 0.3f), builder.addMaterial(canonical::colored("box", colors[i]))));
     const uint32_t side = uint32_t(std::ceil(std::sqrt(double(boxes))));
     const float halfSize = 0.5f * kBoxSpacing * float(side);
     for (uint32_t i = 0; i < boxes; ++i) {
@@ -131,7 +143,7 @@ Scene makeBoxesScene(uint32_t boxes) {
         worldFromObject = glm::scale(worldFromObject, glm::vec3(1.0f, height, 1.0f));
         builder.addInstance(meshes[i % 4], worldFromObject, true, "");
     }
-    addGroundSunCamera(builder, halfSize);
+    addGroundSunCamera(builder, halfSize, 1.6f);
     return builder.build();
 }
 

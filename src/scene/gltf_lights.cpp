@@ -9,13 +9,16 @@ namespace {
 constexpr float kHalfPi = 1.5707963268f;
 
 void readShadowExtras(const LoadContext& ctx, const tinygltf::Value& extras, const std::string& object, Light& light) {
-    if (auto mode = extraEnum(ctx, extras, object, "shadows", {"none", "hard", "soft"}))
+    if (auto mode = extraEnum(ctx, extras, object, "shadows", {"none", "hard", "soft", "pcss"}))
         light.shadows = LightShadows(*mode);
     if (auto v = extraNumber(ctx, extras, object, "shadowStrength", 0.0f, 1.0f)) light.shadowStrength = *v;
     const float kInf = INFINITY;
     if (auto v = extraNumber(ctx, extras, object, "shadowBias", 0.0f, kInf)) light.shadowBias = *v;
     if (auto v = extraNumber(ctx, extras, object, "shadowNormalBias", 0.0f, kInf)) light.shadowNormalBias = *v;
     if (auto v = extraNumber(ctx, extras, object, "shadowNearPlane", 0.0f, kInf)) light.shadowNearPlane = *v;
+    light.shadowLightSize = defaultShadowLightSize(light.type);
+    const float maxSize = light.type == LightType::Directional ? 20.0f : kInf;  // degrees: a sun-like disk
+    if (auto v = extraNumber(ctx, extras, object, "shadowLightSize", 0.0f, maxSize)) light.shadowLightSize = *v;
 }
 
 Light convertLight(const LoadContext& ctx, size_t index) {

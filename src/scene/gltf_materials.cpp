@@ -2,11 +2,31 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/texture_sampler.h"
 #include "scene/gltf_internal.h"
 #include "scene/scene_validation.h"
 
 namespace penumbra::gltf {
 namespace {
+
+TextureSampler convertSampler(const LoadContext& ctx, int index, const std::string& textureName) {
+    TextureSampler sampler;
+    if (index < 0) return sampler;  // glTF: no sampler = repeat wrapping, filtering left to us (linear, mipmapped)
+    if (size_t(index) >= ctx.model.samplers.size())
+        ctx.fail(textureName + ": sampler " + std::to_string(index) + " is out of range (the file has " +
+                 std::to_string(ctx.model.samplers.size()) + ")");
+    const tinygltf::Sampler& source = ctx.model.samplers[size_t(index)];
+    const std::string object = describe("sampler", size_t(index), source.name);
+    if (!setGltfMagFilter(sampler, source.magFilter))
+        ctx.fail(object + ": magFilter " + std::to_string(source.magFilter) + " is not 9728 (NEAREST) or 9729 (LINEAR)");
+    if (!setGltfMinFilter(sampler, source.minFilter))
+        ctx.fail(object + ": minFilter " + std::to_string(source.minFilter) + " is not one of glTF's 9728, 9729, 9984-9987");
+    if (!gltfWrap(source.wrapS, sampler.wrapS))
+        ctx.fail(object + ": wrapS " + std::to_string(source.wrapS) + " is not 33071, 33648 or 10497");
+    if (!gltfWrap(source.wrapT, sampler.wrapT))
+        ctx.fail(object + ": wrapT " + std::to_string(source.wrapT) + " is not 33071, 33648 or 10497");
+    return sampler;
+}
 
 Texture convertTexture(const LoadContext& ctx, size_t index) {
     const tinygltf::Texture& source = ctx.model.textures[index];
@@ -26,6 +46,7 @@ Texture convertTexture(const LoadContext& ctx, size_t index) {
     texture.rgba.height = uint32_t(image.height);
     texture.rgba.channels = 4;
     texture.rgba.pixels = image.image;
+    texture.sampler = convertSampler(ctx, source.sampler, object);
     return texture;
 }
 

@@ -1,15 +1,16 @@
+#include "scene/texture_sampler.h"
 #include "scene/gltf_writer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 #include <stb_image_write.h>
 
 #include "core/error.h"
+#include "core/files.h"
 
 namespace penumbra {
 namespace {
@@ -127,7 +128,7 @@ json writeMaterial(const Material& material) {
 
 json writeLight(const Light& light) {
     static const char* kTypes[] = {"directional", "spot", "point"};
-    static const char* kShadows[] = {"none", "hard", "soft"};
+    static const char* kShadows[] = {"none", "hard", "soft", "pcss"};
     json out = {{"name", light.name},
                 {"type", kTypes[int(light.type)]},
                 {"color", toJson(light.color)},
@@ -138,6 +139,7 @@ json writeLight(const Light& light) {
                   {"shadowBias", light.shadowBias},
                   {"shadowNormalBias", light.shadowNormalBias},
                   {"shadowNearPlane", light.shadowNearPlane}}}};
+    if (light.shadows == LightShadows::Pcss) out["extras"]["shadowLightSize"] = light.shadowLightSize;
     if (light.range > 0.0f && light.type != LightType::Directional) out["range"] = light.range;
     if (light.type == LightType::Spot)
         out["spot"] = {{"innerConeAngle", light.innerConeAngle}, {"outerConeAngle", light.outerConeAngle}};
@@ -169,7 +171,8 @@ json writeCamera(const Camera& camera) {
 
 void writeTextures(const Scene& scene, json& root, BufferWriter& buffer) {
     if (scene.textures.empty()) return;
-    root["samplers"] = json::array({{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}});
+    root["samplers"] = json::array();
+    std::vector<TextureSampler> samplers;  // one glTF sampler per distinct TextureSampler
     root["images"] = json::array();
     root["textures"] = json::array();
     for (const Texture& texture : scene.textures) {
@@ -184,7 +187,16 @@ void writeTextures(const Scene& scene, json& root, BufferWriter& buffer) {
             throw Error("cannot encode texture '" + texture.name + "' as PNG");
         const int view = buffer.addView(png.data(), png.size(), 0);
         root["images"].push_back({{"name", texture.name}, {"bufferView", view}, {"mimeType", "image/png"}});
-        root["textures"].push_back({{"name", texture.name}, {"sampler", 0}, {"source", root["images"].size() - 1}});
+        size_t sampler = 0;
+        while (sampler < samplers.size() && !(samplers[sampler] == texture.sampler)) ++sampler;
+        if (sampler == samplers.size()) {
+            samplers.push_back(texture.sampler);
+            root["samplers"].push_back({{"magFilter", gltfMagFilterCode(texture.sampler)},
+                                        {"minFilter", gltfMinFilterCode(texture.sampler)},
+                                        {"wrapS", gltfWrapCode(texture.sampler.wrapS)},
+                                        {"wrapT", gltfWrapCode(texture.sampler.wrapT)}});
+        }
+        root["textures"].push_back({{"name", texture.name}, {"sampler", sampler}, {"source", root["images"].size() - 1}});
     }
 }
 
@@ -270,16 +282,13 @@ void writeGltfScene(const Scene& scene, const std::string& path) {
         root.erase("bufferViews");
         root.erase("accessors");
     }
-    std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    if (!file) throw Error(path + ": cannot write file");
+    // Whole or not at all (temporary name, then rename): a failed export leaves no half file.
     if (binary) {
         const std::vector<uint8_t> glb = makeGlb(root.dump(), bin);
-        file.write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
+        writeFileAtomically(path, glb.data(), glb.size());
     } else {
-        const std::string text = root.dump(1);
-        file.write(text.data(), std::streamsize(text.size()));
+        writeTextFile(path, root.dump(1));
     }
-    if (!file) throw Error(path + ": cannot write file");
 }
 
 }  // namespace penumbra

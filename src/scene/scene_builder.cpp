@@ -79,6 +79,7 @@ Light makeSpotLight(glm::vec3 wsPosition, glm::vec3 wsDirection, float intensity
     light.outerConeAngle = outerConeRadians;
     light.innerConeAngle = innerConeRadians;
     light.shadowNearPlane = 0.1f;
+    light.shadowLightSize = defaultShadowLightSize(LightType::Spot);
     return light;
 }
 
@@ -89,6 +90,7 @@ Light makePointLight(glm::vec3 wsPosition, float intensityCandela, float range) 
     light.intensity = intensityCandela;
     light.range = range;
     light.shadowNearPlane = 0.1f;
+    light.shadowLightSize = defaultShadowLightSize(LightType::Point);
     return light;
 }
 

@@ -83,7 +83,7 @@ void validateInstance(const Scene& scene, const Instance& instance, const std::s
 
 void validateLight(const Light& light, const std::string& what) {
     if (int(light.type) < 0 || int(light.type) > int(LightType::Point)) invalid(what, "unknown type");
-    if (int(light.shadows) < 0 || int(light.shadows) > int(LightShadows::Soft)) invalid(what, "unknown shadow mode");
+    if (int(light.shadows) < 0 || int(light.shadows) > int(LightShadows::Pcss)) invalid(what, "unknown shadow mode");
     if (!finite(light.wsPosition) || !finite(light.wsDirection) || !finite(light.color))
         invalid(what, "position, direction and colour must be finite");
     if (glm::any(glm::greaterThan(glm::abs(light.wsPosition), glm::vec3(kMaxWorldCoordinate))))
@@ -98,6 +98,7 @@ void validateLight(const Light& light, const std::string& what) {
     checkRange(what, "shadowBias", light.shadowBias, 0.0f, kHuge);
     checkRange(what, "shadowNormalBias", light.shadowNormalBias, 0.0f, kHuge);
     checkRange(what, "shadowNearPlane", light.shadowNearPlane, 0.0f, kHuge);
+    checkRange(what, "shadowLightSize", light.shadowLightSize, 0.0f, light.type == LightType::Directional ? 20.0f : kHuge);
 }
 
 void validateMaterial(const Material& material, size_t textureCount, const std::string& what) {

@@ -52,18 +52,33 @@ bool readBool(const std::string& key, const json& value) {
     return value.get<bool>();
 }
 
-ShadowFilter readFilter(const std::string& key, const json& value) {
+// A string setting that names an enumerator: parse(name) or an error listing `allowed`.
+template <typename E>
+E readNamed(const std::string& key, const json& value, std::optional<E> (*parse)(const std::string&),
+            const char* allowed) {
     if (!value.is_string()) failType(key, value, "a string");
-    const auto filter = parseShadowFilter(value.get<std::string>());
-    if (!filter) fail(key + " = " + show(value) + " is out of range (allowed PCF2x2, PCF3x3, PCF5x5, PCF7x7)");
-    return *filter;
+    const std::optional<E> parsed = parse(value.get<std::string>());
+    if (!parsed) fail(key + " = " + show(value) + " is out of range (allowed " + allowed + ")");
+    return *parsed;
+}
+
+ShadowFilter readFilter(const std::string& key, const json& value) {
+    return readNamed(key, value, parseShadowFilter, "PCF2x2, PCF3x3, PCF5x5, PCF7x7");
+}
+
+ShadowRaster readRaster(const std::string& key, const json& value) {
+    if (!value.is_string()) failType(key, value, "a string");
+    const auto raster = parseShadowRaster(value.get<std::string>());
+    if (!raster) fail(key + " = " + show(value) + " is out of range (allowed hw, compute, auto)");
+    return *raster;
 }
 
 CascadeBlend readBlend(const std::string& key, const json& value) {
-    if (!value.is_string()) failType(key, value, "a string");
-    const auto blend = parseCascadeBlend(value.get<std::string>());
-    if (!blend) fail(key + " = " + show(value) + " is out of range (allowed hard, soft, dither)");
-    return *blend;
+    return readNamed(key, value, parseCascadeBlend, "hard, soft, dither");
+}
+
+ShadowBiasMode readBiasMode(const std::string& key, const json& value) {
+    return readNamed(key, value, parseShadowBiasMode, "normal, scaledNormal, receiverPlane");
 }
 
 std::array<float, 3> readRatios(const std::string& key, const json& value) {
@@ -81,6 +96,9 @@ struct LeafKey {
 
 // Every leaf of the settings JSON (DESIGN.md "Settings" plus the "render" block).
 const LeafKey kLeafKeys[] = {
+    {"shadows.bias", [](Settings& s, const std::string& k, const json& v) { s.shadows.bias = readBiasMode(k, v); }},
+    {"shadows.fadeMode", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.fadeMode = readNamed(k, v, parseShadowFadeMode, "linear, squared"); }},
     {"shadows.maxDistance", [](Settings& s, const std::string& k, const json& v) { s.shadows.maxDistance = readFloat(k, v); }},
     {"shadows.distanceFade", [](Settings& s, const std::string& k, const json& v) { s.shadows.distanceFade = readFloat(k, v); }},
     {"shadows.screenSpace", [](Settings& s, const std::string& k, const json& v) { s.shadows.screenSpace = readBool(k, v); }},
@@ -95,6 +113,14 @@ const LeafKey kLeafKeys[] = {
          s.shadows.directional.cascadeFade = readFloat(k, v); }},
     {"shadows.directional.cascadeBlend", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.directional.cascadeBlend = readBlend(k, v); }},
+    {"shadows.cacheTiles", [](Settings& s, const std::string& k, const json& v) { s.shadows.cacheTiles = readBool(k, v); }},
+    {"shadows.raster", [](Settings& s, const std::string& k, const json& v) { s.shadows.raster = readRaster(k, v); }},
+    {"shadows.directional.fit", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.fit = readNamed(k, v, parseCascadeFit, "sphere, tight"); }},
+    {"shadows.directional.cascadeSplits", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.cascadeSplits = readNamed(k, v, parseCascadeSplitMode, "manual, log, practical"); }},
+    {"shadows.directional.splitLambda", [](Settings& s, const std::string& k, const json& v) {
+         s.shadows.directional.splitLambda = readFloat(k, v); }},
     {"shadows.spot.atlasSize", [](Settings& s, const std::string& k, const json& v) {
          s.shadows.spot.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
     {"shadows.spot.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.filter = readFilter(k, v); }},

@@ -42,19 +42,47 @@ CascadeSphere frustumSliceSphere(const CameraView& camera, float vsNear, float v
     return sphere;
 }
 
-std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings) {
-    const DirectionalShadowSettings& directional = settings.directional;
+std::vector<float> cascadeSplitDistances(const CameraView& camera, float vsNear, float vsFar,
+                                         const DirectionalShadowSettings& settings, float shadowDistance) {
+    if (settings.cascadeSplits == CascadeSplitMode::Manual) {
+        std::vector<float> splits =
+            cascadeSplitDistances(camera, shadowDistance, settings.cascadeCount, settings.cascadeRatios);
+        splits.back() = std::max(std::min(vsFar, shadowDistance), camera.zNear);
+        for (float& split : splits) split = std::min(split, splits.back());
+        return splits;
+    }
+    const uint32_t count = settings.cascadeCount;
+    PENUMBRA_ASSERT(count >= 1 && count <= 4);
+    const float n = std::max(vsNear, camera.zNear), f = std::max(vsFar, n * 1.0001f);
+    const float lambda = settings.cascadeSplits == CascadeSplitMode::Log ? 1.0f : settings.splitLambda;
+    std::vector<float> splits(count);
+    for (uint32_t i = 1; i <= count; ++i) {
+        const float t = float(i) / float(count);
+        const float logSplit = n * std::pow(f / n, t);
+        const float uniformSplit = n + (f - n) * t;
+        splits[i - 1] = lambda * logSplit + (1.0f - lambda) * uniformSplit;
+    }
+    splits.back() = f;
+    return splits;
+}
+
+std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings,
+                                                 float vsNear, float vsFar) {
     const float distance = shadowDistance(camera, settings.maxDistance);
-    const std::vector<float> splits =
-        cascadeSplitDistances(camera, distance, directional.cascadeCount, directional.cascadeRatios);
+    const std::vector<float> splits = cascadeSplitDistances(camera, vsNear, std::min(vsFar, distance),
+                                                            settings.directional, distance);
     std::vector<CascadeSphere> spheres;
     spheres.reserve(splits.size());
-    float vsNear = camera.zNear;
-    for (float vsFar : splits) {
-        spheres.push_back(frustumSliceSphere(camera, vsNear, vsFar));
-        vsNear = vsFar;
+    float sliceNear = camera.zNear;
+    for (float sliceFar : splits) {
+        spheres.push_back(frustumSliceSphere(camera, sliceNear, sliceFar));
+        sliceNear = sliceFar;
     }
     return spheres;
+}
+
+std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings) {
+    return computeCascadeSpheres(camera, settings, camera.zNear, shadowDistance(camera, settings.maxDistance));
 }
 
 glm::mat4 lightRotationFromWorld(const glm::vec3& wsDirection) {
@@ -70,17 +98,19 @@ glm::mat4 lightRotationFromWorld(const glm::vec3& wsDirection) {
     return m;
 }
 
-CascadeLightView fitCascadeLightView(const glm::mat4& lightRotation, const CascadeSphere& sphere,
-                                     uint32_t tileSize) {
-    PENUMBRA_ASSERT(tileSize > 0);
+namespace {
+
+// The light view centred on rsCenter (light rotation space) rounded to whole texels in x and y: world
+// geometry keeps its sub-texel position while the centre moves, so static shadows don't shimmer.
+// Round (not floor): the fitted region sticks out of the box by at most half a texel, which the
+// margins (the sphere's filter-size shrink, seed 000 §4.6; the tight box's texels) more than cover.
+CascadeLightView snappedLightView(const glm::mat4& lightRotation, const glm::vec3& rsCenter, float halfExtent,
+                                  uint32_t tileSize) {
     CascadeLightView view;
-    view.halfExtent = sphere.radius;
-    view.wsTexelSize = 2.0f * sphere.radius / float(tileSize);
-    const glm::vec3 rsCenter = glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f));
+    view.halfExtent = halfExtent;
+    view.wsTexelSize = 2.0f * halfExtent / float(tileSize);
     glm::vec3 snapped = rsCenter;
     if (view.wsTexelSize > 0.0f) {
-        // Round (not floor): the sphere then sticks out of the box by at most half a texel, which the
-        // filter-size shrink of the sampled sphere (seed 000 §4.6) more than covers.
         snapped.x = std::floor(rsCenter.x / view.wsTexelSize + 0.5f) * view.wsTexelSize;
         snapped.y = std::floor(rsCenter.y / view.wsTexelSize + 0.5f) * view.wsTexelSize;
     }
@@ -88,6 +118,37 @@ CascadeLightView fitCascadeLightView(const glm::mat4& lightRotation, const Casca
     translation[3] = glm::vec4(-snapped, 1.0f);
     view.lightFromWorld = translation * lightRotation;
     view.lsSphereCenter = rsCenter - snapped;
+    return view;
+}
+
+}  // namespace
+
+CascadeLightView fitCascadeLightView(const glm::mat4& lightRotation, const CascadeSphere& sphere,
+                                     uint32_t tileSize) {
+    PENUMBRA_ASSERT(tileSize > 0);
+    const glm::vec3 rsCenter = glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f));
+    CascadeLightView view = snappedLightView(lightRotation, rsCenter, sphere.radius, tileSize);
+    view.receiversNear = sphere.radius + view.lsSphereCenter.z;
+    view.receiversFar = sphere.radius - view.lsSphereCenter.z;
+    return view;
+}
+
+float quantizedHalfExtent(float halfExtent) {
+    PENUMBRA_ASSERT(halfExtent > 0.0f);
+    return std::exp2(std::ceil(std::log2(halfExtent) * 8.0f - 1e-4f) / 8.0f);
+}
+
+CascadeLightView fitTightLightView(const glm::mat4& lightRotation, const Aabb& rsBounds, uint32_t tileSize,
+                                   float marginTexels) {
+    PENUMBRA_ASSERT(tileSize > 0 && rsBounds.valid() && 2.0f * marginTexels < float(tileSize));
+    const glm::vec3 extent = rsBounds.extent();
+    // h grown by marginTexels texels of its own size: h' = h + marginTexels * 2 h' / tileSize.
+    const float half = std::max(0.5f * std::max(extent.x, extent.y), 1e-4f);
+    const float halfExtent = quantizedHalfExtent(half / (1.0f - 2.0f * marginTexels / float(tileSize)));
+    CascadeLightView view = snappedLightView(lightRotation, rsBounds.center(), halfExtent, tileSize);
+    // lsSphereCenter.z is 0 (z is not snapped): the box's z faces lie at +- extent.z / 2 around it.
+    view.receiversNear = 0.5f * extent.z + marginTexels * view.wsTexelSize;
+    view.receiversFar = 0.5f * extent.z + marginTexels * view.wsTexelSize;
     return view;
 }
 

@@ -40,6 +40,17 @@ std::vector<float> cascadeSplitDistances(const CameraView& camera, float distanc
 // moves the centre but never resizes the sphere, which keeps texels stable.
 CascadeSphere frustumSliceSphere(const CameraView& camera, float vsNear, float vsFar);
 
+// Far split of each cascade by the settings' cascadeSplits (issue 13 item 8): manual = the ratios
+// above; log = vsNear (f / n)^(i / N); practical = lambda log + (1 - lambda) uniform, over [vsNear,
+// vsFar] (the camera's near plane and the shadow distance, or the visible depth range of a tight fit).
+// The last split is vsFar.
+std::vector<float> cascadeSplitDistances(const CameraView& camera, float vsNear, float vsFar,
+                                         const DirectionalShadowSettings& settings, float shadowDistance);
+
+// One culling sphere per slice; vsNear / vsFar bound the split range (see cascadeSplitDistances), the
+// slices start at the camera's near plane.
+std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings,
+                                                 float vsNear, float vsFar);
 std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings);
 
 // World -> light view rotation for a light travelling along wsDirection (no translation).
@@ -50,12 +61,25 @@ glm::mat4 lightRotationFromWorld(const glm::vec3& wsDirection);
 // always lands on the same sub-texel position while the camera moves and static shadows don't shimmer.
 struct CascadeLightView {
     glm::mat4 lightFromWorld{1.0f};
-    glm::vec3 lsSphereCenter{0.0f};  // sphere centre in this light view: within half a texel of the origin
+    glm::vec3 lsSphereCenter{0.0f};  // sphere (or box) centre in this light view: within half a texel of the origin
     float halfExtent = 0.0f;         // the ortho box is [-halfExtent, halfExtent]^2 = the sphere radius
     float wsTexelSize = 0.0f;        // 2r / tileSize
+    // Light-view distances from the origin to the receivers' side toward the light (+z) and away from
+    // it (-z): the sphere's, or the tight box's. The planner adds its margins to the first.
+    float receiversNear = 0.0f;
+    float receiversFar = 0.0f;
 };
 CascadeLightView fitCascadeLightView(const glm::mat4& lightRotation, const CascadeSphere& sphere,
                                      uint32_t tileSize);
+
+// The light view of a tight cascade (issue 13 item 8): the visible receivers' box rsBounds (light
+// rotation space) grown by marginTexels texels per side, its half-size rounded up to the next 1/8
+// octave (so it changes only when the view changes by more than that, not every frame) and its centre
+// snapped to whole texels of that size, as the sphere fit does.
+CascadeLightView fitTightLightView(const glm::mat4& lightRotation, const Aabb& rsBounds, uint32_t tileSize,
+                                   float marginTexels);
+// The 1/8-octave step a tight half-size is rounded up to.
+float quantizedHalfExtent(float halfExtent);
 
 // Orthographic Vulkan projection of the box [-h, h]^2 x z in [-farDistance, nearDistance]
 // (light view z grows toward the light): depth = (nearDistance - z) / (nearDistance + farDistance).

@@ -63,14 +63,64 @@ bool insideScaledSphere(const Aabb& wsBounds, const CascadeSphere& sphere, float
     return glm::dot(farthest, farthest) <= radius * radius;
 }
 
+std::vector<Aabb> shadowReceiverBounds(const Scene& scene) {
+    std::vector<Aabb> bounds;
+    for (const Instance& instance : scene.instances) {
+        if (!instance.wsBounds.valid() || instance.meshIndex >= scene.meshes.size()) continue;
+        const uint32_t material = scene.meshes[instance.meshIndex].materialIndex;
+        if (material < scene.materials.size() && !scene.materials[material].receiveShadows) continue;
+        bounds.push_back(instance.wsBounds);
+    }
+    return bounds;
+}
+
+Aabb shadowOnReceiver(const Aabb& wsCaster, const glm::vec3& wsLightDirection, const Aabb& wsReceiver) {
+    // The sweep wsCaster + t * direction (t >= 0) overlaps the receiver on each axis for t in an
+    // interval; the shadow can reach the receiver for t in the intersection [t0, t1] of the three.
+    float t0 = 0.0f, t1 = INFINITY;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float d = wsLightDirection[axis];
+        if (std::abs(d) < 1e-12f) {
+            if (wsCaster.min[axis] > wsReceiver.max[axis] || wsCaster.max[axis] < wsReceiver.min[axis]) return Aabb{};
+            continue;
+        }
+        float enter = (wsReceiver.min[axis] - wsCaster.max[axis]) / d;
+        float leave = (wsReceiver.max[axis] - wsCaster.min[axis]) / d;
+        if (enter > leave) std::swap(enter, leave);
+        t0 = std::max(t0, enter);
+        t1 = std::min(t1, leave);
+    }
+    if (!(t0 <= t1)) return Aabb{};
+    Aabb swept;
+    for (float t : {t0, t1}) {
+        swept.extend(wsCaster.min + t * wsLightDirection);
+        swept.extend(wsCaster.max + t * wsLightDirection);
+    }
+    Aabb clipped{glm::max(swept.min, wsReceiver.min), glm::min(swept.max, wsReceiver.max)};
+    return clipped.valid() ? clipped : Aabb{};
+}
+
+bool shadowInsideScaledSphere(const Aabb& wsCaster, const glm::vec3& wsLightDirection,
+                              const std::vector<Aabb>& wsReceivers, const CascadeSphere& sphere, float factor) {
+    for (const Aabb& receiver : wsReceivers) {
+        const Aabb shadow = shadowOnReceiver(wsCaster, wsLightDirection, receiver);
+        if (shadow.valid() && !insideScaledSphere(shadow, sphere, factor)) return false;
+    }
+    return true;
+}
+
 TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& casters,
                             const std::vector<Aabb>& rsBounds, const CascadeLightView& view,
                             const std::vector<CascadeSphere>& spheres, uint32_t cascadeIndex,
-                            float cullingFactor) {
+                            const BlendCulling& blendCulling) {
     PENUMBRA_ASSERT(casters.size() == rsBounds.size() && cascadeIndex < spheres.size());
     // lightFromWorld = translate(t) * rotation, so light-view bounds are the rotated bounds shifted by t.
     const glm::vec3 translation(view.lightFromWorld[3]);
-    const float farDistance = spheres[cascadeIndex].radius - view.lsSphereCenter.z;
+    const float farDistance = view.receiversFar;
+    // The light travels along -Z of its view: the third row of the rotation, negated.
+    const glm::vec3 wsLightDirection = -glm::vec3(view.lightFromWorld[0][2], view.lightFromWorld[1][2],
+                                                  view.lightFromWorld[2][2]);
+    const float cullingFactor = blendCulling.wsReceivers ? blendCulling.factor : 0.0f;
     TileCasters result;
     for (size_t i = 0; i < casters.size(); ++i) {
         const Aabb ls{rsBounds[i].min + translation, rsBounds[i].max + translation};
@@ -78,7 +128,9 @@ TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& cas
         const Aabb& ws = scene.instances[casters[i]].wsBounds;
         bool coveredBySmaller = false;
         for (uint32_t j = 0; j < cascadeIndex && cullingFactor > 0.0f && !coveredBySmaller; ++j) {
-            coveredBySmaller = insideScaledSphere(ws, spheres[j], cullingFactor);
+            coveredBySmaller = insideScaledSphere(ws, spheres[j], cullingFactor) &&
+                               shadowInsideScaledSphere(ws, wsLightDirection, *blendCulling.wsReceivers, spheres[j],
+                                                        cullingFactor);
         }
         if (coveredBySmaller) {
             ++result.skippedByBlendCulling;

@@ -37,18 +37,39 @@ float cascadeBlendCullingFactor(float cascadeFade);
 // Whether wsBounds lies wholly inside the sphere with its radius scaled by factor.
 bool insideScaledSphere(const Aabb& wsBounds, const CascadeSphere& sphere, float factor);
 
+// Bounds of every instance whose material receives shadows, in scene order: where shadows can land.
+std::vector<Aabb> shadowReceiverBounds(const Scene& scene);
+
+// The part of a receiver's bounds that a caster's shadow can reach: the caster's bounds swept along
+// the light (wsLightDirection, the way it travels) over the stretch where the sweep overlaps the
+// receiver's bounds, clipped to those bounds. Invalid (empty) when the sweep misses the receiver.
+Aabb shadowOnReceiver(const Aabb& wsCaster, const glm::vec3& wsLightDirection, const Aabb& wsReceiver);
+
+// Whether everything a caster's shadow can reach on the receivers lies inside the sphere scaled by
+// factor: only then may cascade blend culling drop the caster from bigger cascades (issue 13 defect 1:
+// the seed's test of the caster's own bounds drops posts whose long shadows leave the smaller cascade).
+bool shadowInsideScaledSphere(const Aabb& wsCaster, const glm::vec3& wsLightDirection,
+                              const std::vector<Aabb>& wsReceivers, const CascadeSphere& sphere, float factor);
+
 struct TileCasters {
     std::vector<uint32_t> instances;  // indices into Scene::instances, scene order
     uint32_t skippedByBlendCulling = 0;
     float lsMaxZ = -INFINITY;  // highest light-view z (closest to the light) of the kept casters
 };
 
+// What cascade blend culling (seed 000 §4.9) needs: the factor and where shadows can land.
+struct BlendCulling {
+    float factor = 0.0f;                       // cascadeBlendCullingFactor; 0 culls nothing
+    const std::vector<Aabb>* wsReceivers = nullptr;  // shadowReceiverBounds(scene)
+};
+
 // Casters of cascade `cascadeIndex` of one light: those meeting the cascade's caster box, minus those
-// wholly inside a smaller cascade's culling sphere scaled by cullingFactor (seed 000 §4.9).
+// that, with all of their shadow (shadowInsideScaledSphere), lie inside a smaller cascade's culling
+// sphere scaled by the blend-culling factor (seed 000 §4.9, made safe for long shadows).
 // rsBounds[i] are the rotated bounds of casters[i] (rotatedCasterBounds with the light's rotation).
 TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& casters,
                             const std::vector<Aabb>& rsBounds, const CascadeLightView& view,
                             const std::vector<CascadeSphere>& spheres, uint32_t cascadeIndex,
-                            float cullingFactor);
+                            const BlendCulling& blendCulling);
 
 }  // namespace penumbra

@@ -1,5 +1,7 @@
 #include "shadows/light_reservation.h"
 
+#include <cmath>
+
 #include "shadows/caster_culling.h"
 
 namespace penumbra {
@@ -45,6 +47,9 @@ std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& sce
         entry.firstTile = uint32_t(reserved.size()) * cascadeCount;  // seed 000 §3.2
         entry.normalBias = light.shadowNormalBias;
         entry.slopeScaleBias = light.shadowBias;
+        entry.soft = light.shadows != LightShadows::Hard;
+        if (light.shadows == LightShadows::Pcss)
+            entry.pcssTanRadius = std::tan(0.5f * glm::radians(light.shadowLightSize));
         entry.nearPlaneOffset = light.shadowNearPlane;
         entry.wsDirection = glm::normalize(light.wsDirection);
         reserved.push_back(entry);

@@ -8,27 +8,67 @@ float fadedShadowStrength(float distance, float scale, float fade) {
     return std::clamp((1.0f - distance * scale) * fade, 0.0f, 1.0f);
 }
 
-CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
-                               float viewDepth) {
-    CascadeSelection selection;
-    selection.strength = fadedShadowStrength(viewDepth, data.fade.x, data.fade.y);
+glm::vec2 squaredFadeScaleBias(float shadowDistance, float distanceFade) {
+    const float maxSquared = shadowDistance * shadowDistance;
+    const float start = shadowDistance * (1.0f - distanceFade);
+    const float range = std::max(maxSquared - start * start, 1e-12f);
+    return {1.0f / range, -start * start / range};
+}
+
+float distanceFadeStrength(ShadowFadeMode mode, float shadowDistance, float distanceFade, float viewDepth,
+                           float cameraDistanceSquared) {
+    if (mode == ShadowFadeMode::Squared) {
+        const glm::vec2 scaleBias = squaredFadeScaleBias(shadowDistance, distanceFade);
+        return 1.0f - std::clamp(cameraDistanceSquared * scaleBias.x + scaleBias.y, 0.0f, 1.0f);
+    }
+    return fadedShadowStrength(viewDepth, 1.0f / shadowDistance, 1.0f / distanceFade);
+}
+
+namespace {
+
+// The cascade holding the point and its own fade (1 inside, 0 at its edge): see shadows.glsl
+// selectDirectionalCascade. cascadeIndex == count when none does.
+std::pair<uint32_t, float> cascadeAndFade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
+                                          float viewDepth) {
     const uint32_t count = data.config.x;
-    uint32_t i = 0;
-    for (; i < count; ++i) {
+    const bool tight = data.modes.z == gpu_data::kCascadeFitTight;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (tight) {
+            const float split = data.cascadeData[i].w;
+            if (viewDepth < split) return {i, fadedShadowStrength(viewDepth, 1.0f / split, data.depthSelection.x)};
+            continue;
+        }
         const glm::vec4 sphere = data.cullingSpheres[i];
         const glm::vec3 d = wsPosition - glm::vec3(sphere);
         const float distanceSqr = glm::dot(d, d);
-        if (distanceSqr < sphere.w) {
-            const float fade = fadedShadowStrength(distanceSqr, data.cascadeData[i].x, data.fade.z);
-            if (i == count - 1) {
-                selection.strength *= fade;
-            } else {
-                selection.cascadeBlend = fade;
-            }
-            break;
-        }
+        if (distanceSqr < sphere.w) return {i, fadedShadowStrength(distanceSqr, data.cascadeData[i].x, data.fade.z)};
     }
+    return {count, 0.0f};
+}
+
+}  // namespace
+
+CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
+                               float viewDepth, const glm::vec3& wsCamera) {
+    CascadeSelection selection;
+    const glm::vec3 fromCamera = wsPosition - wsCamera;
+    if (data.modes.y == gpu_data::kShadowFadeSquared) {
+        const float d2 = glm::dot(fromCamera, fromCamera);
+        selection.strength = 1.0f - std::clamp(d2 * data.depthSelection.y + data.depthSelection.z, 0.0f, 1.0f);
+    } else {
+        selection.strength = fadedShadowStrength(viewDepth, data.fade.x, data.fade.y);
+    }
+    const uint32_t count = data.config.x;
+    const auto [i, fade] = cascadeAndFade(data, wsPosition, viewDepth);
     if (i == count) selection.strength = 0.0f;  // seed 000 §3.5: beyond the last cascade
+    else if (i == count - 1) selection.strength *= fade;
+    else selection.cascadeBlend = fade;
+    // Blend only toward a next cascade whose sphere holds the point (spheres need not nest).
+    if (selection.cascadeBlend < 1.0f && i + 1 < count && data.modes.z == gpu_data::kCascadeFitSphere) {
+        const glm::vec4 next = data.cullingSpheres[i + 1];
+        const glm::vec3 d = wsPosition - glm::vec3(next);
+        if (!(glm::dot(d, d) < next.w)) selection.cascadeBlend = 1.0f;
+    }
     selection.cascadeIndex = i;
     return selection;
 }

@@ -6,11 +6,22 @@
 #include <glm/glm.hpp>
 
 #include "shadow_structs.h"
+#include "penumbra/shadow_settings.h"
 
 namespace penumbra {
 
 // saturate((1 - distance * scale) * fade) (seed 000 §3.7 FadedShadowStrength).
 float fadedShadowStrength(float distance, float scale, float fade);
+
+// URP's squared-distance fade (seed 004 _MainLightShadowParams.zw, GetShadowFadeScaleAndBias): with
+// start = shadowDistance (1 - distanceFade), fade = saturate(d^2 scale + bias) rises from 0 at start to
+// 1 at the shadow distance, and the shadow's strength is 1 - fade.
+glm::vec2 squaredFadeScaleBias(float shadowDistance, float distanceFade);
+
+// The distance fade's strength at wsPosition (1 = full shadow): by view depth (seed 000 §3.7) or by
+// the squared distance to the camera (URP), as the shaders' distanceFadeStrength.
+float distanceFadeStrength(ShadowFadeMode mode, float shadowDistance, float distanceFade, float viewDepth,
+                           float cameraDistanceSquared);
 
 struct CascadeSelection {
     uint32_t cascadeIndex = 0;  // == cascade count when outside every sphere
@@ -19,8 +30,10 @@ struct CascadeSelection {
 };
 
 // GetShadowData of seed 000 §4.7 (before the hard/dither keyword handling): the first culling sphere
-// containing wsPosition, the distance fade from the view depth and the cascade fade.
+// containing wsPosition (tight fit: the first slice whose split lies beyond viewDepth), the distance fade
+// (the packed fade mode; wsCamera for the squared one) and the cascade fade; no blend (1) where the next
+// cascade's sphere does not hold the point.
 CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
-                               float viewDepth);
+                               float viewDepth, const glm::vec3& wsCamera = glm::vec3(0.0f));
 
 }  // namespace penumbra

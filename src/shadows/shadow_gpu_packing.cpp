@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "shadows/shadow_fade.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -15,7 +16,8 @@ namespace penumbra {
 // the over-bias of the wide filters: on the canonical scenes PCF7x7 misclassified 2.25 -> 1.47 % and
 // interior 0.28 -> 0.00 % on thin_wall, near_far_casters 2.05 -> 1.27 % / 0.49 -> 0.22 %.
 // sqrt(1 + filterSize) (2 for PCF7x7) left faint acne on the 60° plane; one texel for all filters, much.
-float directionalNormalBiasTexels(ShadowFilter filter) { return 1.0f + 0.5f * filterSize(filter); }
+// The rule is gpu_data::normalOffsetFootprint (shadow_structs.h), shared with the shaders and, since
+// issue 13, with spot and point lights (which used 1 + filter before).
 
 void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter, glm::vec4& cullingSphere,
                  glm::vec4& cascadeData) {
@@ -25,9 +27,8 @@ void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter fi
     const float radius = std::max(sphere.radius - filterWorldSize, 1e-6f);
     const float radiusSqr = radius * radius;
     cullingSphere = glm::vec4(sphere.wsCenter, radiusSqr);
-    // sqrt(2): the bias covers the texel's diagonal (seed 000 §4.3).
-    const float normalBiasUnit = texelSize * directionalNormalBiasTexels(filter) * 1.4142136f;
-    cascadeData = glm::vec4(1.0f / radiusSqr, normalBiasUnit, texelSize, 0.0f);
+    const float normalBiasUnit = texelSize * gpu_data::normalOffsetFootprint(uint32_t(filter));
+    cascadeData = glm::vec4(1.0f / radiusSqr, normalBiasUnit, texelSize, sphere.vsFar);
 }
 
 gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShadowPlan& plan,
@@ -43,7 +44,14 @@ gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShado
     for (size_t i = 0; i < plan.lights.size(); ++i) {
         const ReservedDirectionalLight& light = plan.lights[i];
         data.lights[i] = glm::vec4(light.strength, float(light.firstTile), light.normalBias, float(light.sceneLightIndex));
+        const ShadowFilter filter = light.soft ? directional.filter : ShadowFilter::PCF2x2;  // seed 004's soft flag
+        data.lightBias[i] = glm::vec4(light.normalBias, light.slopeScaleBias, float(uint32_t(filter)), light.pcssTanRadius);
+        data.lightDirections[i] = glm::vec4(-light.wsDirection, 0.0f);
     }
+    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode),
+                            plan.tight ? gpu_data::kCascadeFitTight : gpu_data::kCascadeFitSphere, 0u);
+    const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
+    data.depthSelection = glm::vec4(1.0f / directional.cascadeFade, squaredFade, 0.0f);
     const float fade = directional.cascadeFade;
     data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade,
                           1.0f / (1.0f - (1.0f - fade) * (1.0f - fade)), shadowDistance);

@@ -17,16 +17,47 @@ struct TileInputs {
     const std::vector<Aabb>& rsBounds;  // casters' bounds in the light's rotation-only space
     const std::vector<CascadeSphere>& spheres;
     const AtlasLayout& atlas;
-    float cullingFactor;
+    BlendCulling blendCulling;
+    ShadowFilter filter;
+    const VisibleSurfaces* visible;  // the tight fit's receivers; null = the sphere fit
+    float cascadeFade;
+    bool cullCasters;
 };
+
+// How far toward the light the lit pass may look up a receiver of this cascade: the normal bias moves
+// the lookup by up to normalBias units (shadow_gpu_packing.h), plus one texel of rounding.
+float nearPlaneMargin(const ReservedDirectionalLight& light, float wsTexelSize, ShadowFilter filter) {
+    return wsTexelSize * (1.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter)));
+}
+
+// The texels a lookup may reach beyond a receiver: the filter's taps plus the normal offset, plus one.
+float lookupReachTexels(const ReservedDirectionalLight& light, ShadowFilter filter) {
+    const float taps = light.pcssTanRadius > 0.0f ? gpu_data::kPcssMaxRadiusTexels : filterSize(filter);
+    return taps + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter));
+}
+
+// The cascade's light view: around its culling sphere, or (tight fit) around the visible points of its
+// slice, which reaches back over the previous cascade's blend band (those points sample it too).
+CascadeLightView fitLightView(const TileInputs& in, const ReservedDirectionalLight& light,
+                              const glm::mat4& lightRotation, uint32_t cascadeIndex) {
+    const CascadeSphere& sphere = in.spheres[cascadeIndex];
+    if (!in.visible) return fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
+    const float vsNear = cascadeIndex == 0 ? 0.0f : sphere.vsNear * (1.0f - in.cascadeFade);
+    Aabb rsBounds = rotatedVisibleBounds(*in.visible, lightRotation, vsNear, sphere.vsFar);
+    if (!rsBounds.valid()) {  // nothing visible in this slice: a minimal tile that nothing samples
+        const glm::vec3 rsCenter = glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f));
+        rsBounds = Aabb{rsCenter - 1e-3f, rsCenter + 1e-3f};
+    }
+    return fitTightLightView(lightRotation, rsBounds, in.atlas.tileSize, lookupReachTexels(light, in.filter));
+}
 
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
                     uint32_t slot, uint32_t cascadeIndex, ShadowStats& stats) {
-    const CascadeSphere& sphere = in.spheres[cascadeIndex];
-    const CascadeLightView view = fitCascadeLightView(lightRotation, sphere, in.atlas.tileSize);
+    const CascadeLightView view = fitLightView(in, light, lightRotation, cascadeIndex);
     const Stopwatch cullingTime;
-    TileCasters casters =
-        cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.cullingFactor);
+    TileCasters casters;
+    if (in.cullCasters)
+        casters = cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
     stats.cullingMilliseconds += cullingTime.milliseconds();
     stats.skippedByBlendCulling += casters.skippedByBlendCulling;
 
@@ -36,16 +67,20 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     const uint32_t tileIndex = light.firstTile + cascadeIndex;
     tile.rect = tileRect(in.atlas, tileIndex);
     tile.lightFromWorld = view.lightFromWorld;
+    tile.lsHalfExtent = view.halfExtent;
     tile.wsTexelSize = view.wsTexelSize;
-    // The near plane goes back toward the light far enough to hold every kept caster, including those
-    // outside the camera's view, plus the light's near-plane offset (seed 000 §4.5); depthClamp still
-    // pancakes anything in front. The far plane is the sphere's far side: nothing behind it is sampled.
-    tile.farDistance = sphere.radius - view.lsSphereCenter.z;
-    tile.nearDistance = std::max(sphere.radius + view.lsSphereCenter.z, casters.lsMaxZ) + light.nearPlaneOffset;
+    // The depth range fits the receivers (seed 000 §4.5, issue 13 defect 2): from the sphere's (or the
+    // tight box's) side toward the light, plus what the normal bias may add, to its far side; nothing
+    // outside it is sampled. Casters in front of the near plane are pancaked onto it by depth clamp, per
+    // fragment (no clipping, no distortion of triangles that cross the plane); shadowNearPlane pulls
+    // the near plane back.
+    tile.farDistance = view.receiversFar;
+    tile.nearDistance = view.receiversNear + nearPlaneMargin(light, view.wsTexelSize, in.filter) + light.nearPlaneOffset;
+    tile.pancakedDepth = std::max(0.0f, casters.lsMaxZ - tile.nearDistance);
     tile.clipFromLight = orthoClipFromLight(view.halfExtent, tile.nearDistance, tile.farDistance);
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = atlasFromClip(in.atlas, tileIndex) * tile.clipFromWorld;
-    tile.slopeScaleBias = light.slopeScaleBias;
+    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (shadow_bias.glsl)
     tile.depthClamp = true;
     tile.casterInstances = std::move(casters.instances);
     return tile;
@@ -53,25 +88,42 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
 
 }  // namespace
 
-ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings) {
+ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                                const VisibleSurfaces* visible, const PlanOptions& options) {
     ShadowFrame frame;
     DirectionalShadowPlan& directional = frame.directional;
     const DirectionalShadowSettings& config = settings.directional;
     const float distance = shadowDistance(camera, settings.maxDistance);
 
-    directional.cascades = computeCascadeSpheres(camera, settings);
+    // The tight fit needs the frame's visible surfaces; without them (or with none) it is the sphere fit.
+    const bool tight = config.fit == CascadeFit::Tight && visible && !visible->empty();
+    directional.tight = tight;
+    // The last split just beyond the farthest visible point (cascades select by depth < split).
+    directional.cascades = tight ? computeCascadeSpheres(camera, settings, visible->vsMinDepth,
+                                                         visible->vsMaxDepth * 1.001f + 1e-3f)
+                                 : computeCascadeSpheres(camera, settings);
     const std::vector<uint32_t> casters = shadowCasterInstances(scene);
     directional.lights = reserveDirectionalShadows(scene, directional.cascades, casters, config.cascadeCount);
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
     directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
 
-    const float cullingFactor = cascadeBlendCullingFactor(config.cascadeFade);
+    // Blend culling asks where a caster's shadow can land: anywhere in the receivers' common bounds (one
+    // box, so the same rule costs O(1) per caster on the CPU and in the GPU culling pass). It reasons
+    // about culling spheres; the tight fit selects cascades by view depth, so it draws every caster that
+    // meets a cascade's box.
+    for (const Aabb& receiver : shadowReceiverBounds(scene)) directional.wsReceiverBounds.extend(receiver);
+    directional.blendCullingFactor = tight ? 0.0f : cascadeBlendCullingFactor(config.cascadeFade);
+    const std::vector<Aabb> receivers = {directional.wsReceiverBounds};
+    const BlendCulling blendCulling{directional.blendCullingFactor,
+                                    directional.wsReceiverBounds.valid() ? &receivers : nullptr};
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
-        const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
-        const TileInputs inputs{scene, casters, rsBounds, directional.cascades, directional.atlas, cullingFactor};
+        const std::vector<Aabb> rsBounds =
+            options.cullCasters ? rotatedCasterBounds(scene, casters, rotation) : std::vector<Aabb>{};
+        const TileInputs inputs{scene,         casters, rsBounds, directional.cascades, directional.atlas, blendCulling,
+                                config.filter, tight ? visible : nullptr, config.cascadeFade, options.cullCasters};
         for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
             directional.tiles.push_back(
                 planTile(inputs, light, rotation, slot, cascade, frame.stats));
@@ -87,7 +139,7 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
         stats.casterDraws += uint32_t(tile.casterInstances.size());
     }
     directional.gpu = packDirectionalShadowData(directional, settings, distance);
-    frame.other = planOtherShadows(scene, camera, settings, casters, distance);
+    frame.other = planOtherShadows(scene, camera, settings, casters, distance, options.cullCasters);
     stats.cullingMilliseconds += frame.other.cullingMilliseconds;
     return frame;
 }

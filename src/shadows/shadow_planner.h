@@ -9,8 +9,10 @@
 //   draw casters with depth test LESS, sample with compare op LESS_OR_EQUAL (fragment <= stored -> lit);
 // - pancaking (seed 000 §4.5): tiles with depthClamp set must be drawn with depthClampEnable so casters
 //   in front of the near plane flatten onto it instead of being clipped;
-// - slope-scale bias: depthBiasSlopeFactor = slopeScaleBias (the light's shadowBias, seed 000 §4.4),
-//   constant bias 0; the lit pass adds the normal bias instead (seed 000 §4.3).
+// - no rasterizer depth bias: the caster pass writes the casters' exact depth (clamped to [0, 1] by
+//   depth clamp). Every bias, the light's slope-scale shadowBias (seed 000 §4.4) included, is applied
+//   by the lit pass to the receiver (shaders/shadow_bias.glsl), so a compute rasterizer has only the
+//   depth to reproduce.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,6 +29,7 @@
 #include "penumbra/shadow_settings.h"
 #include "shadows/spot_atlas_layout.h"
 #include "shadows/spot_reservation.h"
+#include "shadows/visible_surfaces.h"
 
 namespace penumbra {
 
@@ -43,9 +46,17 @@ struct ShadowTile {
     float wsTexelSize = 0.0f;        // world size of one texel of this tile (perspective: at distance 1)
     float nearDistance = 0.0f;       // light-view distance from the sphere centre to the near plane
     float farDistance = 0.0f;        // ... and to the far plane (the sphere radius)
-    float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor
+    // Directional tiles: how far the kept casters reach in front of the near plane (pancaked onto it by
+    // depth clamp); the depth range would have to grow by this much to hold them all.
+    float pancakedDepth = 0.0f;
+    float slopeScaleBias = 0.0f;     // depthBiasSlopeFactor: 0 (biases are the lit pass's, see above)
     bool depthClamp = true;          // pancaking: draw with depthClampEnable
-    std::vector<uint32_t> casterInstances;  // indices into Scene::instances, scene order
+    bool perspective = false;        // spot / point face (else a directional cascade)
+    float lsHalfExtent = 0.0f;       // directional: the ortho box is [-h, h]^2 in light view
+    glm::vec3 wsApex{0.0f};          // perspective: the light's position
+    // Indices into Scene::instances, scene order; empty when the plan leaves culling to the GPU
+    // (PlanOptions::cullCasters false).
+    std::vector<uint32_t> casterInstances;
 };
 
 struct ShadowStats {
@@ -64,7 +75,10 @@ struct DirectionalShadowPlan {
     std::vector<CascadeSphere> cascades;           // shared by every light (seed 000 §3.3)
     std::vector<ShadowTile> tiles;                 // tile i = light slot * cascadeCount + cascade
     std::vector<int32_t> slotOfSceneLight;         // per Scene::lights entry: slot, or -1
+    bool tight = false;  // tight cascade fit (cascades selected by view depth), else culling spheres
     gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
+    Aabb wsReceiverBounds;                         // every shadow receiver: how far shadows can reach
+    float blendCullingFactor = 0.0f;               // seed 000 §4.9, cascadeBlendCullingFactor
 };
 
 // Spot and point light shadows (seed 001) in their own atlas, planned by shadows/spot_shadow_planner.
@@ -87,10 +101,19 @@ struct ShadowFrame {
     ShadowStats stats;
 };
 
+struct PlanOptions {
+    // Fill ShadowTile::casterInstances by culling every caster against every tile on the CPU. The
+    // renderer culls on the GPU (render/shadow_culling_pass) and turns this off; tests keep it as the
+    // reference the GPU lists are compared with.
+    bool cullCasters = true;
+};
+
 class ShadowPlanner {
 public:
-    // Settings must be valid (validateShadowSettings); scene and camera are read only.
-    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings);
+    // Settings must be valid (validateShadowSettings); scene and camera are read only. `visible` (the
+    // frame's depth reduction) serves shadows.directional.fit = tight; without it the fit is the sphere.
+    static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                            const VisibleSurfaces* visible = nullptr, const PlanOptions& options = {});
 };
 
 }  // namespace penumbra

@@ -11,6 +11,24 @@ namespace {
 
 constexpr const char* kFilterNames[] = {"PCF2x2", "PCF3x3", "PCF5x5", "PCF7x7"};
 constexpr const char* kBlendNames[] = {"hard", "soft", "dither"};
+constexpr const char* kRasterNames[] = {"hw", "compute", "auto"};
+constexpr const char* kBiasModeNames[] = {"normal", "scaledNormal", "receiverPlane"};
+constexpr const char* kFitNames[] = {"sphere", "tight"};
+constexpr const char* kFadeModeNames[] = {"linear", "squared"};
+constexpr const char* kSplitModeNames[] = {"manual", "log", "practical"};
+
+// The name of enumerator `value` in `names`, "?" when out of range; and back.
+template <size_t N>
+const char* enumName(const char* const (&names)[N], int value) {
+    return value >= 0 && value < int(N) ? names[value] : "?";
+}
+template <typename E, size_t N>
+std::optional<E> parseEnum(const char* const (&names)[N], const std::string& name) {
+    for (size_t i = 0; i < N; ++i) {
+        if (name == names[i]) return E(i);
+    }
+    return std::nullopt;
+}
 
 std::string formatValue(float value) {
     std::ostringstream out;
@@ -41,34 +59,45 @@ void checkEnum(const std::string& key, int value, int count) {
 
 }  // namespace
 
-const char* shadowFilterName(ShadowFilter filter) {
-    const int i = int(filter);
-    return i >= 0 && i < 4 ? kFilterNames[i] : "?";
+const char* shadowFilterName(ShadowFilter filter) { return enumName(kFilterNames, int(filter)); }
+const char* cascadeBlendName(CascadeBlend blend) { return enumName(kBlendNames, int(blend)); }
+const char* shadowBiasModeName(ShadowBiasMode mode) { return enumName(kBiasModeNames, int(mode)); }
+const char* shadowFadeModeName(ShadowFadeMode mode) { return enumName(kFadeModeNames, int(mode)); }
+std::optional<ShadowFadeMode> parseShadowFadeMode(const std::string& name) {
+    return parseEnum<ShadowFadeMode>(kFadeModeNames, name);
+}
+const char* cascadeFitName(CascadeFit fit) { return enumName(kFitNames, int(fit)); }
+const char* cascadeSplitModeName(CascadeSplitMode mode) { return enumName(kSplitModeNames, int(mode)); }
+
+std::optional<ShadowFilter> parseShadowFilter(const std::string& name) { return parseEnum<ShadowFilter>(kFilterNames, name); }
+std::optional<CascadeBlend> parseCascadeBlend(const std::string& name) { return parseEnum<CascadeBlend>(kBlendNames, name); }
+std::optional<ShadowBiasMode> parseShadowBiasMode(const std::string& name) {
+    return parseEnum<ShadowBiasMode>(kBiasModeNames, name);
+}
+std::optional<CascadeFit> parseCascadeFit(const std::string& name) { return parseEnum<CascadeFit>(kFitNames, name); }
+std::optional<CascadeSplitMode> parseCascadeSplitMode(const std::string& name) {
+    return parseEnum<CascadeSplitMode>(kSplitModeNames, name);
 }
 
-const char* cascadeBlendName(CascadeBlend blend) {
-    const int i = int(blend);
-    return i >= 0 && i < 3 ? kBlendNames[i] : "?";
+const char* shadowRasterName(ShadowRaster raster) {
+    const int i = int(raster);
+    return i >= 0 && i < 3 ? kRasterNames[i] : "?";
 }
 
-std::optional<ShadowFilter> parseShadowFilter(const std::string& name) {
-    for (int i = 0; i < 4; ++i) {
-        if (name == kFilterNames[i]) return ShadowFilter(i);
-    }
-    return std::nullopt;
-}
-
-std::optional<CascadeBlend> parseCascadeBlend(const std::string& name) {
+std::optional<ShadowRaster> parseShadowRaster(const std::string& name) {
     for (int i = 0; i < 3; ++i) {
-        if (name == kBlendNames[i]) return CascadeBlend(i);
+        if (name == kRasterNames[i]) return ShadowRaster(i);
     }
     return std::nullopt;
 }
 
 void validateShadowSettings(const ShadowSettings& settings) {
     constexpr float kHuge = 3.0e38f;
+    checkEnum("shadows.bias", int(settings.bias), 3);
+    checkEnum("shadows.fadeMode", int(settings.fadeMode), 2);
     checkFloatRange("shadows.maxDistance", settings.maxDistance, 0.001f, kHuge, ">= 0.001");
     checkFloatRange("shadows.distanceFade", settings.distanceFade, 0.001f, 1.0f, "0.001..1");
+    checkEnum("shadows.raster", int(settings.raster), 3);
     const DirectionalShadowSettings& directional = settings.directional;
     checkAtlasSize("shadows.directional.atlasSize", directional.atlasSize);
     checkEnum("shadows.directional.filter", int(directional.filter), 4);
@@ -87,6 +116,9 @@ void validateShadowSettings(const ShadowSettings& settings) {
                     formatValue(ratios[1]) + ", " + formatValue(ratios[2]) + "] must not decrease");
     checkFloatRange("shadows.directional.cascadeFade", directional.cascadeFade, 0.001f, 1.0f, "0.001..1");
     checkEnum("shadows.directional.cascadeBlend", int(directional.cascadeBlend), 3);
+    checkEnum("shadows.directional.fit", int(directional.fit), 2);
+    checkEnum("shadows.directional.cascadeSplits", int(directional.cascadeSplits), 3);
+    checkFloatRange("shadows.directional.splitLambda", directional.splitLambda, 0.0f, 1.0f, "0..1");
     checkAtlasSize("shadows.spot.atlasSize", settings.spot.atlasSize);
     checkEnum("shadows.spot.filter", int(settings.spot.filter), 4);
     checkFloatRange("shadows.spot.depthBias", settings.spot.depthBias, 0.0f, 1.0f, "0..1");

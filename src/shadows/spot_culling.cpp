@@ -32,18 +32,42 @@ Aabb perspectiveFrustumBounds(const glm::mat4& clipFromWorld, const glm::vec3& w
     return bounds;
 }
 
-std::vector<uint32_t> frustumCasters(const Scene& scene, const std::vector<uint32_t>& casters,
-                                     const glm::mat4& clipFromWorld, const glm::vec3& wsApex) {
+namespace {
+
+// Calls keep(index) for each listed caster meeting the frustum until keep returns false.
+template <typename Keep>
+void forEachFrustumCaster(const Scene& scene, const std::vector<uint32_t>& casters, const glm::mat4& clipFromWorld,
+                          const glm::vec3& wsApex, Keep&& keep) {
     const std::array<glm::vec4, 5> planes = clipFrustumPlanes(clipFromWorld);
     const Aabb frustum = perspectiveFrustumBounds(clipFromWorld, wsApex);
-    std::vector<uint32_t> inside;
     for (uint32_t index : casters) {
         const Aabb& b = scene.instances[index].wsBounds;
         const bool overlaps = glm::all(glm::lessThanEqual(b.min, frustum.max)) &&
                               glm::all(glm::greaterThanEqual(b.max, frustum.min));
-        if (overlaps && aabbMeetsPlanes(b, planes)) inside.push_back(index);
+        if (overlaps && aabbMeetsPlanes(b, planes) && !keep(index)) return;
     }
+}
+
+}  // namespace
+
+std::vector<uint32_t> frustumCasters(const Scene& scene, const std::vector<uint32_t>& casters,
+                                     const glm::mat4& clipFromWorld, const glm::vec3& wsApex) {
+    std::vector<uint32_t> inside;
+    forEachFrustumCaster(scene, casters, clipFromWorld, wsApex, [&](uint32_t index) {
+        inside.push_back(index);
+        return true;
+    });
     return inside;
+}
+
+bool anyFrustumCaster(const Scene& scene, const std::vector<uint32_t>& casters, const glm::mat4& clipFromWorld,
+                      const glm::vec3& wsApex) {
+    bool found = false;
+    forEachFrustumCaster(scene, casters, clipFromWorld, wsApex, [&](uint32_t) {
+        found = true;
+        return false;
+    });
+    return found;
 }
 
 }  // namespace penumbra

@@ -65,7 +65,7 @@ bool anyCasterInShadowFrustum(const Scene& scene, const std::vector<uint32_t>& c
     const float tanHalf = std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
     const glm::mat4 clipFromWorld = perspectiveClipFromLight(tanHalf, near, far) *
                                     perspectiveLightFromWorld(light.wsPosition, light.wsDirection);
-    return !frustumCasters(scene, casters, clipFromWorld, light.wsPosition).empty();
+    return anyFrustumCaster(scene, casters, clipFromWorld, light.wsPosition);
 }
 
 std::string lightName(const Scene& scene, uint32_t index) {
@@ -86,7 +86,8 @@ OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& 
         ReservedOtherLight entry;
         entry.sceneLightIndex = i;
         entry.point = light.type == LightType::Point;
-        entry.soft = light.shadows == LightShadows::Soft;
+        entry.soft = light.shadows != LightShadows::Hard;
+        if (light.shadows == LightShadows::Pcss) entry.pcssRadius = light.shadowLightSize;
         entry.strength = std::min(light.shadowStrength, 1.0f);
         entry.normalBias = light.shadowNormalBias;
         entry.slopeScaleBias = light.shadowBias;

@@ -25,9 +25,10 @@ struct ReservedOtherLight {
     uint32_t sceneLightIndex = 0;
     bool point = false;       // 6 tiles (cube faces) instead of 1
     bool soft = true;         // LightShadows::Soft: spot.filter; Hard: one hardware 2x2 PCF tap
+    float pcssRadius = 0.0f;  // LightShadows::Pcss: the emitter's radius (shadowLightSize), else 0
     float strength = 1.0f;
     float normalBias = 1.0f;      // Light::shadowNormalBias, in filter texels at the fragment's distance
-    float slopeScaleBias = 0.0f;  // Light::shadowBias -> depthBiasSlopeFactor
+    float slopeScaleBias = 0.0f;  // Light::shadowBias: slope-scale bias, applied by the lit pass
     float nearDistance = 0.1f;    // shadowNearPlane, at least kMinOtherNearPlane
     float farDistance = 1.0f;     // range, or the scene bounds' farthest corner when the range is infinite
     float influence = 0.0f;       // screenInfluence, the priority

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/stopwatch.h"
+#include "shadows/shadow_fade.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
 
@@ -33,7 +34,7 @@ LightTiles lightTileShape(const Light& light, const ReservedOtherLight& reserved
 
 ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& casters, const SpotAtlasLayout& layout,
                          const ReservedOtherLight& reserved, const LightTiles& shape, uint32_t slot, uint32_t face,
-                         const glm::vec3& wsDirection, double& cullingMilliseconds) {
+                         const glm::vec3& wsDirection, bool cullCasters, double& cullingMilliseconds) {
     const Light& light = scene.lights[reserved.sceneLightIndex];
     const uint32_t tileIndex = reserved.firstTile + face;
     ShadowTile tile;
@@ -48,31 +49,34 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = spotAtlasFromClip(layout, tileIndex) * tile.clipFromWorld;
     tile.wsTexelSize = 2.0f * shape.tanHalfFov / float(layout.tileSize);
-    tile.slopeScaleBias = reserved.slopeScaleBias;
+    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (shadow_bias.glsl)
     tile.depthClamp = true;  // pancaking onto the near plane, as for directional tiles
+    tile.perspective = true;
+    tile.wsApex = light.wsPosition;
     const Stopwatch cullingTime;
-    tile.casterInstances = frustumCasters(scene, casters, tile.clipFromWorld, light.wsPosition);
+    if (cullCasters) tile.casterInstances = frustumCasters(scene, casters, tile.clipFromWorld, light.wsPosition);
     cullingMilliseconds += cullingTime.milliseconds();
     return tile;
 }
 
 void packLight(gpu_data::OtherShadowData& data, const Light& light, const ReservedOtherLight& reserved,
-               const LightTiles& shape, const SpotAtlasLayout& layout, float depthBias, uint32_t slot) {
+               const LightTiles& shape, const SpotAtlasLayout& layout, const ShadowSettings& settings, uint32_t slot) {
     data.lights[slot] = glm::vec4(reserved.strength, float(reserved.firstTile), reserved.soft ? 1.0f : 0.0f,
                                   reserved.point ? 1.0f : 0.0f);
     // World texel size grows linearly with the distance d along the tile's axis: 2 d tan(fov/2) / tileSize.
-    // The normal bias pushes the surface by normalBias filter texels along the diagonal (seed 000 §4.3,
-    // §4.6 scale it the same way for cascades).
+    // The lit pass scales its biases by it, with the directional lights' rule (shadow_bias.glsl).
     const float texelPerDistance = 2.0f * shape.tanHalfFov / float(layout.tileSize);
-    const float normalBiasPerDistance = reserved.normalBias * shape.reach * 1.4142136f * texelPerDistance;
-    data.lightPositions[slot] = glm::vec4(light.wsPosition, normalBiasPerDistance);
-    data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), depthBias);
+    const ShadowFilter filter = reserved.soft ? settings.spot.filter : ShadowFilter::PCF2x2;
+    data.lightPositions[slot] = glm::vec4(light.wsPosition, 0.0f);
+    data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), settings.spot.depthBias);
+    data.lightBias[slot] = glm::vec4(reserved.normalBias, reserved.slopeScaleBias, texelPerDistance, float(uint32_t(filter)));
+    data.pcss[slot] = glm::vec4(reserved.pcssRadius, reserved.nearDistance, reserved.farDistance, 0.0f);
 }
 
 }  // namespace
 
 OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
-                                 const std::vector<uint32_t>& casters, float shadowDistance) {
+                                 const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters) {
     OtherShadowPlan plan;
     OtherLightReservation reservation = reserveOtherShadows(scene, camera, casters);
     plan.lights = std::move(reservation.lights);
@@ -92,15 +96,17 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
         for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
             const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
             ShadowTile tile = planOtherTile(scene, casters, plan.atlas, reserved, shape, slot, face, direction,
-                                            plan.cullingMilliseconds);
+                                            cullCasters, plan.cullingMilliseconds);
             const uint32_t tileIndex = reserved.firstTile + face;
             data.atlasFromWorld[tileIndex] = tile.atlasFromWorld;
             data.tileBounds[tileIndex] = spotTileSampleBounds(plan.atlas, tileIndex, shape.reach);
             plan.tiles.push_back(std::move(tile));
         }
-        packLight(data, light, reserved, shape, plan.atlas, settings.spot.depthBias, slot);
+        packLight(data, light, reserved, shape, plan.atlas, settings, slot);
     }
-    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, 0.0f, shadowDistance);
+    const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
+    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, squaredFade);
+    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode), 0u, 0u);
     data.config = glm::uvec4(uint32_t(plan.lights.size()), uint32_t(settings.spot.filter), plan.atlas.tileCount,
                              plan.atlas.split);
     const float atlasSize = float(std::max(plan.atlas.atlasSize, 1u));

@@ -16,6 +16,6 @@ float otherShadowFilterReach(bool soft, ShadowFilter filter);
 // casters = shadowCasterInstances(scene). shadowDistance drives the distance fade, as for directional
 // lights (seed 000 §3.6-§3.7).
 OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
-                                 const std::vector<uint32_t>& casters, float shadowDistance);
+                                 const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters = true);
 
 }  // namespace penumbra

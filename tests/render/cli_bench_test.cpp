@@ -58,6 +58,8 @@ TEST(CliBench, JsonHasEveryDocumentedKey) {
     EXPECT_GT(json["memory"]["host_rss_mb"]["first"].get<double>(), 1.0);
     EXPECT_GT(json["atlases"]["shadows.directional"]["draws"].get<uint32_t>(), 0u);
     EXPECT_EQ(json["validationMessages"], 0);
+    for (const char* key : {"rendered", "reused"}) EXPECT_TRUE(json["tiles"][key].is_number()) << key;
+    EXPECT_EQ(json["shadowRaster"]["dropped"], 0);
 }
 
 TEST(CliBench, SteadyStateFramesMakeNoGpuObject) {
@@ -75,6 +77,13 @@ TEST(CliBench, PrintsATableOfPassesPhasesAndMemory) {
         EXPECT_NE(run.out.find(line), std::string::npos) << line << " missing from:\n" << run.out;
     // Not a terminal: no progress bar.
     EXPECT_EQ(run.out.find('\r'), std::string::npos);
+}
+
+TEST(CliBench, StillCameraReusesEveryShadowTile) {
+    const nlohmann::json json = runBenchJson("--frames 4 --warmup 2 --camera static");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_EQ(json["tiles"]["rendered"], 0);
+    EXPECT_EQ(json["tiles"]["reused"], 6);  // 4 cascades and 2 spot tiles
 }
 
 TEST(CliBench, MeasuresTheBuiltInBoxesScene) {

@@ -10,6 +10,7 @@
 #include "reference/compare.h"
 #include "reference/reference_tracer.h"
 #include "penumbra/camera.h"
+#include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"
 
 using namespace penumbra;
@@ -18,7 +19,7 @@ using namespace penumbra::test;
 namespace {
 
 std::string scenePath(const std::string& name) {
-    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + name + ".gltf";
+    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + canonicalSceneFileName(name);
 }
 
 std::string deviceArgs() {
@@ -80,4 +81,27 @@ TEST(CliCompare, ReferenceImageComparedWithItselfIsExact) {
     EXPECT_GT(self.validPixels, 1000u);
     EXPECT_EQ(self.falseShadow + self.falseLit, 0u);
     EXPECT_EQ(self.meanAbsoluteError, 0.0);
+}
+
+TEST(CliCompare, ShimmerFlagAddsTheTwoFrameMeasurement) {
+    const CliRun run = runPenumbra("compare " + scenePath("low_sun") + " --width 128 --height 72 --json --shimmer" +
+                                   deviceArgs());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json m = nlohmann::json::parse(run.out);
+    const auto pixels = m.at("shimmerPixels").get<uint64_t>();
+    EXPECT_GT(pixels, m.at("validPixels").get<uint64_t>() / 2);  // a 2 cm step keeps most pixels valid
+    EXPECT_NEAR(m.at("shimmerPercent").get<double>(),
+                100.0 * double(m.at("shimmerFlickering").get<uint64_t>()) / double(pixels), 1e-9);
+    EXPECT_GT(m.at("shimmerReferenceFlips").get<uint64_t>(), 0u) << "the truth moves at the shadow edges";
+    EXPECT_TRUE(m.contains("edgeBalance"));
+}
+
+TEST(CliCompare, SoftComparesWithTheAreaLightReference) {
+    const std::string args = "compare " + scenePath("pcss_contact") + " --width 96 --height 54 --json" + deviceArgs();
+    const CliRun hard = runPenumbra(args), soft = runPenumbra(args + " --soft 32");
+    ASSERT_EQ(hard.exitCode, 0) << hard.err;
+    ASSERT_EQ(soft.exitCode, 0) << soft.err;
+    // The pcss sun's shadow against a point-sun truth has more error than against its area truth.
+    EXPECT_LT(nlohmann::json::parse(soft.out).at("meanAbsoluteError").get<double>(),
+              nlohmann::json::parse(hard.out).at("meanAbsoluteError").get<double>());
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_process.h"
+#include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/gltf_writer.h"
 #include "penumbra/scene_builder.h"
@@ -18,7 +19,7 @@ using namespace penumbra::test;
 namespace {
 
 std::string sceneArg(const std::string& name) {
-    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + name + ".gltf";
+    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + canonicalSceneFileName(name);
 }
 
 std::string deviceArgs() {

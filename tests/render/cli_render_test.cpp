@@ -1,5 +1,6 @@
 // `penumbra render` as a user runs it: the demo scene, a real glTF sample, and every kind of bad
 // input ending in one line on stderr and a non-zero exit, never a crash.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -119,3 +120,30 @@ TEST(CliRender, TexturedSampleKeepsItsTexture) {
     EXPECT_GT(colours.size(), 50u);
 }
 
+
+TEST(CliRender, BuiltInFieldSceneRendersShadowsOfItsSpots) {
+    const fs::path out = tempPath("field.png");
+    const CliRun result = runPenumbra("render gen:field:4:2 --device cpu --validation --width 96 --height 54 --aov shadow "
+                                      "--light 1 -o " + out.string());
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const Image aov = readPng(out.string(), 1);
+    EXPECT_LT(*std::min_element(aov.pixels.begin(), aov.pixels.end()), 128);  // the spot's shadows are there
+}
+
+TEST(CliRender, MalformedBuiltInSceneIsOneLineError) {
+    expectOneLineError(runPenumbra("render gen:field:zero --device cpu -o " + tempPath("bad.png").string()), "gen:field:zero");
+}
+
+TEST(CliExport, ExportedBuiltInSceneRendersLikeTheBuiltInScene) {
+    const fs::path glb = tempPath("boxes.glb"), a = tempPath("boxes_a.png"), b = tempPath("boxes_b.png");
+    ASSERT_EQ(runPenumbra("export gen:boxes:50 -o " + glb.string()).exitCode, 0);
+    ASSERT_EQ(runPenumbra("render gen:boxes:50 --device cpu --width 64 --height 36 -o " + a.string()).exitCode, 0);
+    ASSERT_EQ(runPenumbra("render " + glb.string() + " --device cpu --width 64 --height 36 -o " + b.string()).exitCode, 0);
+    const CliRun diff = runPenumbra("diff " + a.string() + " " + b.string());
+    ASSERT_EQ(diff.exitCode, 0) << diff.err;
+    EXPECT_EQ(nlohmann::json::parse(diff.out)["pixelsOver1"], 0) << diff.out;
+}
+
+TEST(CliExport, UnknownExtensionIsOneLineError) {
+    expectOneLineError(runPenumbra("export -o " + tempPath("scene.obj").string()), "scene.obj");
+}

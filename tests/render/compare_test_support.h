@@ -11,6 +11,7 @@
 #include "reference/reference_tracer.h"
 #include "render_test_support.h"
 #include "penumbra/camera.h"
+#include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"
 
 namespace penumbra::test {
@@ -20,7 +21,7 @@ constexpr uint32_t kCompareWidth = 256;
 constexpr uint32_t kCompareHeight = 144;
 
 inline std::string canonicalScenePath(const std::string& name) {
-    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + name + ".gltf";
+    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + canonicalSceneFileName(name);
 }
 
 // Loaded once per test program: the tests read the same files a user passes to `penumbra compare`.
@@ -36,6 +37,7 @@ inline ReferenceOptions referenceOptionsFor(const Settings& settings, const Came
     ReferenceOptions options;
     options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
     options.distanceFade = settings.shadows.distanceFade;
+    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
     return options;
 }
 
@@ -75,17 +77,5 @@ protected:
         return result;
     }
 };
-
-// Spot and point light shadows arrive with issue 5. Until then the renderer leaves their AOV all lit
-// and its stats name directional shadows only; a test of such a light is skipped, not failed. Once
-// the stats report other-light shadows, the skip no longer applies and the thresholds hold.
-inline bool otherLightShadowsMissing(const RenderResult& ours) {
-    for (uint8_t value : ours.image.pixels)
-        if (value != 255) return false;
-    const nlohmann::json stats = nlohmann::json::parse(ours.stats.shadowStatsJson);
-    for (const auto& [key, value] : stats.items())
-        if (key != "directional" && key != "shadowCasters") return false;
-    return true;
-}
 
 }  // namespace penumbra::test

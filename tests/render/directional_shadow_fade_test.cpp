@@ -113,3 +113,56 @@ TEST_F(DirectionalShadowTest, LastCascadeFadesOutTowardItsSphereRim) {
     }
     EXPECT_GT(cascadeFaded, 300u);
 }
+
+// URP's fade (seed 004, issue 13 item 10: shadows.fadeMode = squared): linear in the squared distance
+// to the camera, 1 - saturate(d^2 scale + bias) over the band from maxDistance (1 - distanceFade) to
+// maxDistance. Off the view axis the camera distance exceeds the view depth, so it fades earlier there
+// than the seed's view-depth fade.
+TEST_F(DirectionalShadowTest, SquaredFadeFollowsTheSquaredCameraDistance) {
+    const Scene scene = groundUnderRoof();
+    Settings settings = fadeSettings();
+    settings.shadows.fadeMode = ShadowFadeMode::Squared;
+    const Image aov = renderShadowAov(scene, settings, kSize);
+    const CameraView view = resolveCameraView(scene, kSize, kSize);
+    const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);
+    uint32_t partial = 0, differsFromLinear = 0;
+    for (const GroundPixel& p : groundPixels(view)) {
+        const float d2 = glm::dot(p.wsPosition - view.wsPosition, p.wsPosition - view.wsPosition);
+        const float fade = distanceFadeStrength(ShadowFadeMode::Squared, kMaxDistance, kDistanceFade, p.viewDepth, d2);
+        const float linear = distanceFadeStrength(ShadowFadeMode::Linear, kMaxDistance, kDistanceFade, p.viewDepth, d2);
+        const CascadeSelection selection = selectCascade(plan.directional.gpu, p.wsPosition, p.viewDepth, view.wsPosition);
+        if (std::abs(selection.strength - fade) > 1e-4f || fade <= 0.05f || fade >= 0.95f) continue;  // cascade fade too
+        ++partial;
+        differsFromLinear += std::abs(fade - linear) > 0.1f ? 1 : 0;
+        EXPECT_NEAR(float(aov.at(p.x, p.y)), 255.0f * (1.0f - fade), 1.5f) << "camera distance " << std::sqrt(d2);
+    }
+    EXPECT_GT(partial, 200u);
+    EXPECT_GT(differsFromLinear, 50u) << "the test should tell the two fades apart";
+}
+
+// The reference traces the same squared fade: the AOV agrees with it in the band.
+TEST_F(DirectionalShadowTest, SquaredFadeMatchesTheReference) {
+    const Scene scene = groundUnderRoof();
+    Settings settings = fadeSettings();
+    settings.shadows.fadeMode = ShadowFadeMode::Squared;
+    const CompareMetrics m = compareWithReference(scene, renderShadowAov(scene, settings, kSize), settings);
+    EXPECT_GT(m.validPixels, 2000u);
+    EXPECT_LT(m.meanAbsoluteError, 0.01) << toText(m);
+}
+
+// Seed 004's per-light soft flag for directional lights too (issue 13 item 10): a "hard" light takes
+// one hardware 2x2 PCF tap whatever directional.filter says.
+TEST_F(DirectionalShadowTest, HardDirectionalLightUsesOneTapWhateverTheFilter) {
+    Scene scene = boxesInDepthScene();
+    Settings settings = shadowSettings(40.0f, 4, 1024, ShadowFilter::PCF7x7);
+    const Image soft7x7 = renderShadowAov(scene, settings, kSize);
+    scene.lights[0].shadows = LightShadows::Hard;
+    const Image hard7x7 = renderShadowAov(scene, settings, kSize);
+    settings.shadows.directional.filter = ShadowFilter::PCF2x2;
+    const Image hard2x2 = renderShadowAov(scene, settings, kSize);
+    // The penumbra (pixels strictly between 12 and 243) is the 2x2 tap's, not the 7x7 tent's. (The images
+    // differ in a few pixels: the culling spheres shrink by directional.filter's footprint either way.)
+    const double hard = countBetween(hard7x7, 12, 243), tap = countBetween(hard2x2, 12, 243);
+    EXPECT_NEAR(hard, tap, 0.05 * tap);
+    EXPECT_GT(double(countBetween(soft7x7, 12, 243)), 2.0 * hard);
+}

@@ -32,13 +32,20 @@ bool nearEdge(const Image& image, int x, int y, int radius) {
 }  // namespace
 
 TEST_F(RenderTest, SixteenSpotLightsEachCastTheirBoxShadowAtOnce) {
-    Scene scene = spotGridScene(16);
+    // Each light 1.5 m to the side of its box, so the box's shadow lies beside it, in the camera's view.
+    Scene scene = spotGridScene(16, LightShadows::Soft, {1.5f, 0.0f, 0.0f});
     for (uint32_t i = 0; i < 16; i += 2) scene.lights[i].shadows = LightShadows::Hard;  // both variants in one pass
     Renderer renderer(sharedDevice(), scene);
     for (uint32_t light : {0u, 5u, 10u, 15u}) {
-        const RenderResult ours = renderer.render(shadowAov(light, 96), gridSettings());
-        const ReferenceImages reference = traceReferenceShadow(scene, resolveCameraView(scene, 96, 96), light, false);
+        const RenderResult ours = renderer.render(shadowAov(light, 128), gridSettings());
+        const ReferenceImages reference = traceReferenceShadow(scene, resolveCameraView(scene, 128, 128), light, false);
         const CompareMetrics m = compareShadowImages(ours.image, reference.shadow, reference.validMask);
+        // Each light's box shadow is in view, and ours covers it: an all-lit AOV (no shadow drawn in
+        // this light's tile) misses every truly shadowed pixel and fails here.
+        const CompareMetrics allLit = compareShadowImages(Image(128, 128, 1, 255), reference.shadow, reference.validMask);
+        const uint64_t trulyShadowed = allLit.falseLit;
+        EXPECT_GT(trulyShadowed, 20u) << "light " << light;
+        EXPECT_LT(double(m.falseLit), 0.4 * double(trulyShadowed)) << "light " << light;  // edges: 20 % measured
         EXPECT_GT(m.validPixels, 30u) << "light " << light;
         EXPECT_LT(m.interiorMisclassifiedPercent, 1.0) << "light " << light;
         EXPECT_LT(m.misclassifiedPercent, 10.0) << "light " << light;

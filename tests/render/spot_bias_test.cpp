@@ -37,9 +37,11 @@ struct BiasResult {
     double peterPanningPercent = 0.0;  // reference shadowed, ours lit
 };
 
-BiasResult measure(float normalBias, float depthBias, LightShadows shadows) {
+BiasResult measure(float normalBias, float depthBias, LightShadows shadows,
+                   ShadowBiasMode mode = ShadowBiasMode::Normal) {
     const Scene scene = grazingSpot(normalBias, shadows);
     Settings settings = smallSpotAtlas(1024);
+    settings.shadows.bias = mode;
     settings.shadows.spot.depthBias = depthBias;
     Renderer renderer(sharedDevice(), scene);
     const RenderResult ours = renderer.render(shadowAov(0, 128), settings);
@@ -57,10 +59,23 @@ BiasResult measure(float normalBias, float depthBias, LightShadows shadows) {
 //   depth bias 0.0005       0.02 / 0.03    0.03 / 0.02
 //   depth bias 0.002        0.02 / 0.03    0.02 / 0.03
 //   depth bias 0.005        0.02 / 0.27    0.02 / 0.25
+// (all in the seed's bias mode, shadows.bias = normal; measure() defaults to it).
 // Both remove the acne; here the constant clip-space bias keeps contact shadows slightly better, but the
 // point light of tests/scenes/point_light.gltf keeps faint acne up to depth bias 0.003 (MAE 0.031 vs
 // 0.0067 with normal bias 1), and at 0.005 this scene peter-pans more than with the normal bias. So the
 // normal bias stays the default (numbers and reasons: SpotShadowSettings::depthBias).
+
+// Issue 13: the default receiver-plane bias (shadow_bias.glsl) removes the acne with no tuning, even at
+// shadowNormalBias 0, and peter-pans less than the normal bias.
+TEST_F(RenderTest, ReceiverPlaneBiasRemovesSpotAcneWithLessPeterPanningThanTheNormalBias) {
+    const BiasResult normal = measure(1.0f, 0.0f, LightShadows::Hard);
+    for (LightShadows shadows : {LightShadows::Hard, LightShadows::Soft})
+        for (float normalBias : {0.0f, 1.0f}) {
+            const BiasResult plane = measure(normalBias, 0.0f, shadows, ShadowBiasMode::ReceiverPlane);
+            EXPECT_LT(plane.acnePercent, 0.1) << "normal bias " << normalBias;
+            EXPECT_LT(plane.peterPanningPercent, normal.peterPanningPercent) << "normal bias " << normalBias;
+        }
+}
 
 TEST_F(RenderTest, SpotShadowsWithoutBiasShowAcneOnGrazingGround) {
     EXPECT_GT(measure(0.0f, 0.0f, LightShadows::Hard).acnePercent, 10.0);

@@ -64,3 +64,28 @@ TEST_F(RenderTest, PointLightShadowFallsWhereTheReferenceSaysHard) {
     EXPECT_LT(m.metrics.misclassifiedPercent, kMaxMisclassifiedPercent);
     EXPECT_LT(m.metrics.interiorMisclassifiedPercent, kMaxInteriorMisclassifiedPercent);
 }
+
+// Seed 001 §2.3: a spot light's shadowStrength scales its shadow: 0.5 leaves 255 x 0.5 in the shadow's
+// interior, where the reference (which applies strength too) is shadowed (issue 13, defect 5).
+TEST_F(RenderTest, SpotShadowStrengthScalesTheShadowedValue) {
+    for (LightType type : {LightType::Spot, LightType::Point}) {
+        Light light = type == LightType::Spot ? testSpot(LightShadows::Hard) : testPoint(LightShadows::Hard);
+        light.shadowStrength = 0.5f;
+        const Scene scene = boxUnderLight(light);
+        const Image aov = renderScene(scene, shadowAov(0), smallSpotAtlas()).image;
+        const ReferenceImages reference = traceReferenceShadow(scene, resolveCameraView(scene, 128, 128), 0, false);
+        uint32_t interior = 0;
+        for (uint32_t y = 2; y + 2 < 128; ++y)
+            for (uint32_t x = 2; x + 2 < 128; ++x) {
+                bool deepInShadow = true;
+                for (int dy = -2; dy <= 2; ++dy)
+                    for (int dx = -2; dx <= 2; ++dx)
+                        deepInShadow = deepInShadow && reference.validMask.at(x + dx, y + dy) != 0 &&
+                                       reference.shadow.at(x + dx, y + dy) < 200;
+                if (!deepInShadow) continue;
+                ++interior;
+                EXPECT_NEAR(int(aov.at(x, y)), 128, 2) << "pixel " << x << ", " << y;
+            }
+        EXPECT_GT(interior, 50u) << (type == LightType::Spot ? "spot" : "point");
+    }
+}

@@ -17,7 +17,7 @@ using penumbra::testing::TempDir;
 namespace {
 
 std::string committedPath(const std::string& name) {
-    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + name + ".gltf";
+    return std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/" + canonicalSceneFileName(name);
 }
 
 }  // namespace
@@ -27,10 +27,10 @@ TEST(CanonicalScenes, CommittedFilesAreWhatTheGeneratorWrites) {
     for (const CanonicalSceneInfo& info : canonicalScenes()) {
         SCOPED_TRACE(info.name);
         ASSERT_TRUE(std::filesystem::exists(committedPath(info.name)));
-        const std::string fresh = dir.file(info.name + ".gltf");
+        const std::string fresh = dir.file(info.fileName());
         writeGltfScene(makeCanonicalScene(info.name), fresh);
         EXPECT_TRUE(penumbra::testing::readFile(fresh) == penumbra::testing::readFile(committedPath(info.name)))
-            << "tests/scenes/" << info.name << ".gltf is stale: run ./build/tests/make_test_scenes tests/scenes";
+            << "tests/scenes/" << info.fileName() << " is stale: run ./build/tests/make_test_scenes tests/scenes";
     }
 }
 

@@ -37,6 +37,63 @@ TEST(CascadeSplits, AreRatiosTimesTheShadowDistanceWithTheLastAtTheFullDistance)
     EXPECT_FLOAT_EQ(splits[3], 100.0f);
 }
 
+TEST(CascadeSplits, LogSplitsGrowGeometricallyOverTheRange) {
+    const CameraView camera = cameraLookingAt({0, 2, 0}, {0, 2, -1});
+    DirectionalShadowSettings settings;
+    settings.cascadeSplits = CascadeSplitMode::Log;
+    const std::vector<float> splits = cascadeSplitDistances(camera, 1.0f, 81.0f, settings, 100.0f);
+    ASSERT_EQ(splits.size(), 4u);
+    EXPECT_NEAR(splits[0], 3.0f, 1e-4f);  // 1 * 81^(1/4)
+    EXPECT_NEAR(splits[1], 9.0f, 1e-4f);
+    EXPECT_NEAR(splits[2], 27.0f, 1e-3f);
+    EXPECT_FLOAT_EQ(splits[3], 81.0f);
+}
+
+TEST(CascadeSplits, PracticalSplitsBlendLogAndUniformByLambda) {
+    const CameraView camera = cameraLookingAt({0, 2, 0}, {0, 2, -1});
+    DirectionalShadowSettings settings;
+    settings.cascadeSplits = CascadeSplitMode::Practical;
+    settings.splitLambda = 0.25f;
+    const std::vector<float> splits = cascadeSplitDistances(camera, 1.0f, 81.0f, settings, 100.0f);
+    EXPECT_NEAR(splits[0], 0.25f * 3.0f + 0.75f * 21.0f, 1e-3f);
+    EXPECT_NEAR(splits[1], 0.25f * 9.0f + 0.75f * 41.0f, 1e-3f);
+}
+
+TEST(CascadeSplits, ManualSplitsKeepTheRatiosAndEndAtTheRangesFarEnd) {
+    const CameraView camera = cameraLookingAt({0, 2, 0}, {0, 2, -1});
+    DirectionalShadowSettings settings;
+    settings.cascadeSplits = CascadeSplitMode::Manual;
+    const std::vector<float> splits = cascadeSplitDistances(camera, 1.0f, 30.0f, settings, 100.0f);
+    EXPECT_EQ(splits, (std::vector<float>{10.0f, 25.0f, 30.0f, 30.0f}));
+}
+
+TEST(TightFit, HalfSizesRoundUpToAnEighthOfAnOctave) {
+    EXPECT_FLOAT_EQ(quantizedHalfExtent(8.0f), 8.0f);
+    EXPECT_NEAR(quantizedHalfExtent(8.1f), 8.0f * std::exp2(0.125f), 1e-4f);
+    EXPECT_EQ(quantizedHalfExtent(8.2f), quantizedHalfExtent(8.6f));  // small changes keep the texel size
+}
+
+TEST(TightFit, BoxHoldsTheBoundsWithTheMarginAndSnapsToWholeTexels) {
+    const glm::mat4 rotation = lightRotationFromWorld(glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f)));
+    const Aabb rsBounds{{-3.2f, 1.1f, -7.0f}, {2.9f, 4.0f, 2.0f}};
+    const CascadeLightView view = fitTightLightView(rotation, rsBounds, 512, 6.0f);
+    // Every corner of the bounds lies inside the ortho box by at least the 6-texel margin.
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 rs((i & 1) ? rsBounds.max.x : rsBounds.min.x, (i & 2) ? rsBounds.max.y : rsBounds.min.y,
+                           (i & 4) ? rsBounds.max.z : rsBounds.min.z);
+        const glm::vec3 ls = glm::vec3(view.lightFromWorld * glm::inverse(rotation) * glm::vec4(rs, 1.0f));
+        EXPECT_LE(std::abs(ls.x), view.halfExtent - 6.0f * view.wsTexelSize + 1e-4f);
+        EXPECT_LE(std::abs(ls.y), view.halfExtent - 6.0f * view.wsTexelSize + 1e-4f);
+        EXPECT_LE(ls.z, view.receiversNear + 1e-4f);
+        EXPECT_GE(ls.z, -view.receiversFar - 1e-4f);
+    }
+    EXPECT_LT(view.halfExtent, 3.05f / (1.0f - 12.0f / 512.0f) * std::exp2(0.125f));  // no bigger than needed
+    // The origin of the light view sits on a whole texel of the rotation space.
+    const glm::vec3 translation(view.lightFromWorld[3]);
+    EXPECT_NEAR(translation.x / view.wsTexelSize, std::round(translation.x / view.wsTexelSize), 1e-3f);
+    EXPECT_NEAR(translation.y / view.wsTexelSize, std::round(translation.y / view.wsTexelSize), 1e-3f);
+}
+
 TEST(CascadeSplits, ShadowDistanceIsLimitedByTheCameraFarPlane) {
     EXPECT_FLOAT_EQ(shadowDistance(cameraLookingAt({0, 0, 0}, {0, 0, -1}, 40.0f), 100.0f), 40.0f);
     EXPECT_FLOAT_EQ(shadowDistance(cameraLookingAt({0, 0, 0}, {0, 0, -1}, INFINITY), 100.0f), 100.0f);
@@ -83,7 +140,7 @@ TEST(CullingSphere, RadiusIsInvariantUnderCameraRotation) {
 TEST(CullingSphere, IsIndependentOfTheLight) {
     Scene scene;  // no light enters computeCascadeSpheres at all: only camera and settings
     const CameraView camera = cameraLookingAt({0, 5, 10}, {0, 0, 0});
-    const std::vector<CascadeSphere> spheres = computeCascadeSpheres(camera, ShadowSettings{});
+    const std::vector<CascadeSphere> spheres = computeCascadeSpheres(camera, seedCascadeSettings());
     ASSERT_EQ(spheres.size(), 4u);
     EXPECT_FLOAT_EQ(spheres[1].vsNear, 10.0f);
     EXPECT_FLOAT_EQ(spheres[1].vsFar, 25.0f);

@@ -106,6 +106,69 @@ TEST(CompareShadowImages, ThresholdOutsideTheUnitIntervalIsAnError) {
     EXPECT_THROW(compareShadowImages(halfShadowed(), halfShadowed(), kAllValid, 1.5f), Error);
 }
 
+// halfShadowed() with its edge moved by `shift` columns (positive: the shadow grows to the right).
+Image edgeAt(int shift) {
+    Image image(16, 16, 1, 255);
+    for (uint32_t y = 0; y < 16; ++y)
+        for (int x = 0; x < 8 + shift; ++x) image.at(uint32_t(x), y) = 0;
+    return image;
+}
+
+TEST(CompareShadowImages, EdgePixelsAreTheShadowedSideOfTheReferenceEdge) {
+    const CompareMetrics m = compareShadowImages(halfShadowed(), halfShadowed(), kAllValid);
+    EXPECT_EQ(m.edgePixels, 16u);  // column 7, one per row
+    EXPECT_EQ(m.edgeErrorPixels, 0.0);
+    EXPECT_EQ(m.edgeBalance, 0.0);
+}
+
+TEST(CompareShadowImages, EdgeErrorIsTheDisplacementOfAShiftedEdgeInPixels) {
+    EXPECT_DOUBLE_EQ(compareShadowImages(edgeAt(2), halfShadowed(), kAllValid).edgeErrorPixels, 2.0);
+    EXPECT_DOUBLE_EQ(compareShadowImages(edgeAt(-3), halfShadowed(), kAllValid).edgeErrorPixels, 3.0);
+}
+
+TEST(CompareShadowImages, EdgeBalanceIsPositiveForGrownShadowsAndNegativeForShrunkOnes) {
+    EXPECT_DOUBLE_EQ(compareShadowImages(edgeAt(1), halfShadowed(), kAllValid).edgeBalance, 1.0);
+    EXPECT_DOUBLE_EQ(compareShadowImages(edgeAt(-1), halfShadowed(), kAllValid).edgeBalance, -1.0);
+    Image mixed = halfShadowed();
+    for (uint32_t y = 0; y < 4; ++y) mixed.at(8, y) = 0;    // 4 false shadow
+    for (uint32_t y = 0; y < 12; ++y) mixed.at(7, y) = 255; // 12 false lit
+    EXPECT_DOUBLE_EQ(compareShadowImages(mixed, halfShadowed(), kAllValid).edgeBalance, (4.0 - 12.0) / 16.0);
+}
+
+TEST(CompareShimmer, CountsPixelsThatFlipInOursButNotInTheReference) {
+    const Image reference = halfShadowed();
+    Image ours1 = reference;
+    ours1.at(12, 3) = 0;  // ours flips, the truth does not: shimmer
+    Image reference1 = reference;
+    reference1.at(8, 5) = 0;  // the truth moved here, and ours with it: not shimmer
+    ours1.at(8, 5) = 0;
+    const ShimmerMetrics s = compareShimmer(reference, ours1, reference, reference1, kAllValid, kAllValid);
+    EXPECT_EQ(s.pixels, 256u);
+    EXPECT_EQ(s.flickering, 1u);
+    EXPECT_EQ(s.referenceFlips, 1u);
+    EXPECT_DOUBLE_EQ(s.shimmerPercent, 100.0 / 256.0);
+}
+
+TEST(CompareShimmer, InteriorShimmerCountsFlipsAwayFromTheTruthsEdges) {
+    Image ours1 = halfShadowed();
+    ours1.at(13, 3) = 0;  // 5 columns from the edge: interior
+    ours1.at(8, 5) = 0;   // next to the edge: not interior
+    const ShimmerMetrics s = compareShimmer(halfShadowed(), ours1, halfShadowed(), halfShadowed(), kAllValid, kAllValid);
+    EXPECT_EQ(s.interiorPixels, 256u - 4u * 16u);
+    EXPECT_EQ(s.interiorFlickering, 1u);
+    EXPECT_EQ(s.flickering, 2u);
+}
+
+TEST(CompareShimmer, OnlyPixelsValidInBothFramesCount) {
+    Image ours1 = halfShadowed();
+    ours1.at(12, 3) = 0;
+    Image mask1 = kAllValid;
+    mask1.at(12, 3) = 0;
+    const ShimmerMetrics s = compareShimmer(halfShadowed(), ours1, halfShadowed(), halfShadowed(), kAllValid, mask1);
+    EXPECT_EQ(s.pixels, 255u);
+    EXPECT_EQ(s.flickering, 0u);
+}
+
 TEST(MakeDiffImage, MarksFalseShadowRedAndFalseLitCyanOverTheDimmedBase) {
     const Image reference = halfShadowed();
     Image ours = reference;
@@ -152,6 +215,12 @@ TEST(CompareMetricsReport, JsonHoldsEveryCount) {
     EXPECT_DOUBLE_EQ(json.at("misclassifiedPercent").get<double>(), 20.0);
     EXPECT_TRUE(json.contains("meanAbsoluteError"));
     EXPECT_TRUE(json.contains("interiorMisclassifiedPercent"));
+    EXPECT_TRUE(json.contains("edgeErrorPixels"));
+    EXPECT_TRUE(json.contains("edgeBalance"));
+    EXPECT_FALSE(json.contains("shimmerPercent"));
+    ShimmerMetrics shimmer;
+    shimmer.shimmerPercent = 0.25;
+    EXPECT_DOUBLE_EQ(nlohmann::json::parse(toJson(m, shimmer)).at("shimmerPercent").get<double>(), 0.25);
 }
 
 TEST(CompareMetricsReport, TextNamesTheMisclassifiedShare) {

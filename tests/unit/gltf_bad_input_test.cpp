@@ -38,6 +38,21 @@ TEST(GltfBadInput, TruncatedGlb) {
     }
 }
 
+TEST(GltfBadInput, UnknownSamplerFilterNamesTheSampler) {
+    const std::string box = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    if (!std::filesystem::exists(box)) GTEST_SKIP() << "sample model not installed";
+    TempDir dir;
+    std::string text = readFile(box);
+    const size_t at = text.find("\"minFilter\": 9986");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 17, "\"minFilter\": 1234");
+    const std::string path = dir.file("BoxTextured.gltf");
+    writeFile(path, text);
+    std::filesystem::copy(std::filesystem::path(box).parent_path() / "BoxTextured0.bin", dir.file("BoxTextured0.bin"));
+    std::filesystem::copy(std::filesystem::path(box).parent_path() / "CesiumLogoFlat.png", dir.file("CesiumLogoFlat.png"));
+    expectLoadError(path, "sampler 0: minFilter 1234");
+}
+
 TEST(GltfBadInput, MalformedJson) {
     TempDir dir;
     const std::string path = dir.file("malformed.gltf");

@@ -68,6 +68,23 @@ TEST(GltfExtras, ReadsLightShadowProperties) {
     EXPECT_FLOAT_EQ(light.shadowNearPlane, 0.3f);
 }
 
+// Issue 13 item 9: shadows "pcss" with the light's size: angular diameter in degrees for the sun (default
+// 0.53), emitter radius in metres for spot and point lights (default 0.05).
+TEST(GltfExtras, PcssLightsReadTheirSizeWithTypeDefaults) {
+    TestGltf gltf = withLightExtras({{"shadows", "pcss"}, {"shadowLightSize", 0.2}});
+    const Scene scene = load(gltf);
+    EXPECT_EQ(scene.lights[1].shadows, LightShadows::Pcss);
+    EXPECT_FLOAT_EQ(scene.lights[1].shadowLightSize, 0.2f);
+    EXPECT_FLOAT_EQ(scene.lights[0].shadowLightSize, 0.53f);
+    TestGltf defaults = withLightExtras(json::object());
+    EXPECT_FLOAT_EQ(load(defaults).lights[1].shadowLightSize, 0.05f);
+}
+
+TEST(GltfExtras, NegativeLightSizeIsAnError) {
+    TestGltf gltf = withLightExtras({{"shadowLightSize", -0.1}});
+    EXPECT_NE(loadError(gltf).find("shadowLightSize"), std::string::npos);
+}
+
 TEST(GltfExtras, LightShadowsNoneIsRead) {
     TestGltf gltf = withLightExtras({{"shadows", "none"}});
     EXPECT_EQ(load(gltf).lights[1].shadows, LightShadows::None);

@@ -46,6 +46,18 @@ TEST(GltfLoader, LoadsTexturedBoxWithDecodedTexture) {
     EXPECT_TRUE(scene.wsBounds.valid());
 }
 
+TEST(GltfLoader, ReadsTheTexturesSampler) {
+    const std::string path = kSamples + "BoxTextured-glTF/BoxTextured.gltf";
+    REQUIRE_SAMPLE(path);
+    const TextureSampler& sampler = loadGltfScene(path).textures.at(0).sampler;
+    // magFilter 9729, minFilter 9986 (NEAREST_MIPMAP_LINEAR), wrapS 33648, wrapT 33071.
+    EXPECT_EQ(sampler.magFilter, TextureFilter::Linear);
+    EXPECT_EQ(sampler.minFilter, TextureFilter::Nearest);
+    EXPECT_EQ(sampler.mipmaps, MipmapMode::Linear);
+    EXPECT_EQ(sampler.wrapS, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(sampler.wrapT, TextureWrap::ClampToEdge);
+}
+
 TEST(GltfLoader, DecodesTextureStoredInGlbBufferView) {
     const std::string path = kSamples + "BoxTextured-glTF-Binary/BoxTextured.glb";
     REQUIRE_SAMPLE(path);

@@ -103,7 +103,10 @@ void expectRoundTrip(const Scene& scene, const std::string& path) {
     expectSameMaterials(scene, loaded);
     expectSameGeometry(scene, loaded);
     ASSERT_EQ(loaded.textures.size(), scene.textures.size());
-    for (size_t i = 0; i < scene.textures.size(); ++i) EXPECT_EQ(loaded.textures[i].rgba.pixels, scene.textures[i].rgba.pixels);
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        EXPECT_EQ(loaded.textures[i].rgba.pixels, scene.textures[i].rgba.pixels);
+        EXPECT_TRUE(loaded.textures[i].sampler == scene.textures[i].sampler) << "texture " << i;
+    }
     ASSERT_TRUE(loaded.camera.has_value());
     expectMatNear(loaded.camera->worldFromView, scene.camera->worldFromView);
     EXPECT_EQ(loaded.camera->yfov, scene.camera->yfov);
@@ -121,6 +124,22 @@ TEST(GltfWriter, DemoSceneRoundTripsThroughGltf) {
 TEST(GltfWriter, DemoSceneRoundTripsThroughGlb) {
     TempDir dir;
     expectRoundTrip(makeDemoScene(), dir.file("demo.glb"));
+}
+
+TEST(GltfWriter, TextureSamplersRoundTrip) {
+    Scene scene = makeDemoScene();
+    Texture nearest;
+    nearest.name = "nearest";
+    nearest.rgba = Image(2, 2, 4, 255);
+    nearest.sampler = {TextureFilter::Nearest, TextureFilter::Nearest, MipmapMode::None, TextureWrap::ClampToEdge,
+                       TextureWrap::MirroredRepeat};
+    Texture trilinear = nearest;
+    trilinear.name = "trilinear";
+    trilinear.sampler = {TextureFilter::Linear, TextureFilter::Nearest, MipmapMode::Nearest, TextureWrap::Repeat,
+                         TextureWrap::ClampToEdge};
+    scene.textures = {nearest, trilinear, nearest};
+    TempDir dir;
+    expectRoundTrip(scene, dir.file("samplers.gltf"));
 }
 
 TEST(GltfWriter, GltfIsASingleSelfContainedFile) {

@@ -178,5 +178,18 @@ TEST(ReferenceMaterialAlpha, BilinearAlphaWrapsAroundTheTextureEdges) {
     EXPECT_NEAR(baseColorAlpha(m, nullptr, {0.75f, 0.5f}), 0.5f, 1e-6f);
 }
 
+TEST(ReferenceMaterialAlpha, NearestClampedSamplerGivesTheTexelUnderTheSample) {
+    Material m;
+    Texture texture;
+    texture.rgba = Image(2, 1, 4, 255);
+    texture.rgba.at(1, 0, 3) = 0;
+    texture.sampler.magFilter = TextureFilter::Nearest;
+    texture.sampler.wrapS = TextureWrap::ClampToEdge;
+    EXPECT_EQ(baseColorAlpha(m, &texture, {0.49f, 0.5f}), 1.0f);  // bilinear would give 0.52
+    EXPECT_EQ(baseColorAlpha(m, &texture, {0.51f, 0.5f}), 0.0f);
+    EXPECT_EQ(baseColorAlpha(m, &texture, {-0.2f, 0.5f}), 1.0f);  // clamped to texel 0, not wrapped to 1
+    EXPECT_EQ(baseColorAlpha(m, &texture, {1.2f, 0.5f}), 0.0f);
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -62,6 +62,30 @@ TEST(ReferenceTracer, BoxShadowMatchesTheAnalyticShadowToThePixel) {
     EXPECT_GT(countBelow(result.shadow, 128), 150);  // the shadow is there to be checked (179 pixels)
 }
 
+// The shadow ray's start just off the surface must not depend on the size of the scene: with a ground
+// 600 m wide (the canonical near_far_casters), an offset of 1e-4 of the scene (6 cm) lifted every
+// shadow test point and shrank the reference's shadows by several centimetres (issue 13 measurements).
+TEST(ReferenceTracer, ShadowEdgesStayPutInAVeryLargeScene) {
+    Scene scene = emptyScene();
+    addObject(scene, horizontalQuad(0.0f, -300.0f, 300.0f, -300.0f, 300.0f));
+    addObject(scene, boxMesh(kBoxLo, kBoxHi));
+    scene.lights.push_back(sunLight({0.8f, -1.5f, 0.35f}));
+    scene.camera = topDownCamera({1.2f, 5.0f, 0.3f}, glm::radians(30.0f));  // ~3 cm per pixel
+    const CameraView view = makeCameraView(*scene.camera, 96, 96);
+    const ReferenceImages result = traceReferenceShadow(scene, view, 0, false);
+    const glm::vec3 wsToLight = -scene.lights[0].wsDirection;
+    int mismatches = 0, shadowed = 0;
+    for (uint32_t y = 0; y < view.height; ++y)
+        for (uint32_t x = 0; x < view.width; ++x) {
+            const glm::vec3 dir = wsRayDirection(view, float(x) + 0.5f, float(y) + 0.5f);
+            const uint8_t expected = expectedBoxShadow(view.wsPosition, dir, wsToLight);
+            mismatches += result.shadow.at(x, y) != expected ? 1 : 0;
+            shadowed += expected == 0 ? 1 : 0;
+        }
+    EXPECT_GT(shadowed, 500);
+    EXPECT_LE(mismatches, 2);
+}
+
 TEST(ReferenceTracer, ShadowStrengthScalesTheShadowedValue) {
     Scene scene = boxOnGround({0.8f, -1.5f, 0.35f});
     scene.lights[0].shadowStrength = 0.6f;

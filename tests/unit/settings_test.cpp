@@ -123,6 +123,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadValueCase{R"({"shadows": {"directional": {"cascadeBlend": "smooth"}}})",
                      "shadows.directional.cascadeBlend = \"smooth\" is out of range (allowed hard, soft, dither)"},
         BadValueCase{R"({"shadows": {"directional": 4}})", "shadows.directional = 4 has the wrong type (expected an object)"},
+        BadValueCase{R"({"shadows": {"directional": {"fit": "loose"}}})",
+                     "shadows.directional.fit = \"loose\" is out of range (allowed sphere, tight)"},
+        BadValueCase{R"({"shadows": {"directional": {"cascadeSplits": "even"}}})",
+                     "shadows.directional.cascadeSplits = \"even\" is out of range (allowed manual, log, practical)"},
+        BadValueCase{R"({"shadows": {"directional": {"splitLambda": 1.5}}})",
+                     "shadows.directional.splitLambda = 1.5 is out of range (allowed 0..1)"},
+        BadValueCase{R"({"shadows": {"bias": "slope"}})",
+                     "shadows.bias = \"slope\" is out of range (allowed normal, scaledNormal, receiverPlane)"},
+        BadValueCase{R"({"shadows": {"fadeMode": "cubic"}})", "shadows.fadeMode = \"cubic\" is out of range (allowed linear, squared)"},
         BadValueCase{R"({"shadows": {"spot": {"atlasSize": 300}}})", "shadows.spot.atlasSize = 300 is out of range"},
         BadValueCase{R"({"shadows": {"spot": {"filter": "soft"}}})", "shadows.spot.filter = \"soft\" is out of range"},
         BadValueCase{R"({"render": {"exposure": 0}})", "render.exposure = 0 is out of range (allowed > 0)"},
@@ -130,6 +139,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadValueCase{R"({"render": {"gamma": 2.2}})", "unknown key render.gamma"}));
 
 TEST(SettingsValidation, DefaultsAreValid) { EXPECT_NO_THROW(validateSettings(Settings{})); }
+
+TEST(SettingsJson, ParsesTheKeysOfIssue13) {
+    const Settings s = parseSettingsJson(R"({"shadows": {"bias": "scaledNormal", "fadeMode": "squared",
+        "directional": {"fit": "tight", "cascadeSplits": "practical", "splitLambda": 0.4}}})", "test.json");
+    EXPECT_EQ(s.shadows.bias, ShadowBiasMode::ScaledNormal);
+    EXPECT_EQ(s.shadows.fadeMode, ShadowFadeMode::Squared);
+    EXPECT_EQ(s.shadows.directional.fit, CascadeFit::Tight);
+    EXPECT_EQ(s.shadows.directional.cascadeSplits, CascadeSplitMode::Practical);
+    EXPECT_FLOAT_EQ(s.shadows.directional.splitLambda, 0.4f);
+}
 
 TEST(SettingsValidation, BadStructValueIsNamed) {
     Settings settings;

@@ -24,7 +24,8 @@ struct CullingFixture {
         const std::vector<uint32_t> casters = shadowCasterInstances(scene);
         const std::vector<Aabb> rsBounds = rotatedCasterBounds(scene, casters, rotation);
         const CascadeLightView view = fitCascadeLightView(rotation, spheres[cascade], 512);
-        return cullTileCasters(scene, casters, rsBounds, view, spheres, cascade, factor);
+        const std::vector<Aabb> receivers = shadowReceiverBounds(scene);
+        return cullTileCasters(scene, casters, rsBounds, view, spheres, cascade, BlendCulling{factor, &receivers});
     }
 };
 
@@ -87,4 +88,29 @@ TEST(CasterCulling, BlendCullingKeepsACasterInTheSmallerCascadesFadeBand) {
     const uint32_t box = addBox(f.scene, {3.8f, 0, 0}, {4.2f, 0.2f, 0.2f});  // beyond 0.7 x 5 = 3.5
     EXPECT_TRUE(contains(f.cull(1, 0.7f).instances, box));
     EXPECT_TRUE(contains(f.cull(1, 0.0f).instances, box));  // factor 0 culls nothing
+}
+
+TEST(CasterCulling, ShadowOnAFlatGroundIsTheCastersFootprintMovedAlongTheLight) {
+    const Aabb post{{0, 0, 0}, {0.1f, 1, 0.1f}};
+    const Aabb ground{{-50, -0.1f, -50}, {50, 0, 50}};
+    const Aabb shadow = shadowOnReceiver(post, glm::normalize(glm::vec3(1, -0.5f, 0)), ground);
+    ASSERT_TRUE(shadow.valid());
+    EXPECT_NEAR(shadow.min.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(shadow.max.x, 0.1f + 2.2f, 1e-4f);  // the top of the post lands 2 m further, at y = -0.1
+    EXPECT_NEAR(shadow.min.y, -0.1f, 1e-6f);
+    EXPECT_NEAR(shadow.max.z, 0.1f, 1e-6f);
+}
+
+TEST(CasterCulling, ShadowMissesAReceiverTheSweepDoesNotMeet) {
+    const Aabb box{{0, 1, 0}, {1, 2, 1}};
+    EXPECT_FALSE(shadowOnReceiver(box, {0, -1, 0}, Aabb{{5, -1, 5}, {6, 0, 6}}).valid());  // beside it
+    EXPECT_FALSE(shadowOnReceiver(box, {0, -1, 0}, Aabb{{0, 3, 0}, {1, 4, 1}}).valid());   // toward the light
+}
+
+TEST(CasterCulling, BlendCullingKeepsACasterWhoseShadowLeavesTheSmallerSphere) {
+    CullingFixture f;
+    f.rotation = lightRotationFromWorld(glm::normalize(glm::vec3(1, -0.2f, 0)));  // a low sun toward +X
+    addBox(f.scene, {-30, -0.1f, -30}, {30, 0, 30});                       // ground, a receiver
+    const uint32_t post = addBox(f.scene, {0, 0, 0}, {0.1f, 1, 0.1f});      // inside 0.7 x sphere 0
+    EXPECT_TRUE(contains(f.cull(1, 0.7f).instances, post)) << "its 5 m shadow ends outside sphere 0";
 }

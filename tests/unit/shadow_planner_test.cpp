@@ -15,7 +15,7 @@ namespace {
 struct PlannerFixture {
     Scene scene = baseScene();
     CameraView camera = cameraLookingAt({0, 6, 15}, {0, 0, 0});
-    ShadowSettings settings;
+    ShadowSettings settings = seedCascadeSettings();
 
     PlannerFixture() {
         settings.maxDistance = 40.0f;
@@ -88,17 +88,45 @@ TEST(ShadowPlanner, CasterIsCloserToTheLightThanTheGroundItShadows) {
     EXPECT_LE(ground.z, 1.0f);
 }
 
-TEST(ShadowPlanner, EveryKeptCasterLiesWithinTheDepthRange) {
+// Issue 13 defect 2: the depth range fits the receivers, the sphere's depth span, whatever the casters;
+// casters toward the light are pancaked onto the near plane by depth clamp, and shadowNearPlane pulls
+// the near plane back by its length.
+TEST(ShadowPlanner, DirectionalDepthRangeFitsTheReceiversNotTheCasters) {
     PlannerFixture f;
     addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
-    f.scene.lights[0].shadowNearPlane = 1.0f;
+    addBox(f.scene, {-1, 500, -1}, {1, 502, 1});  // far toward the light
     const ShadowFrame frame = f.plan();
     for (const ShadowTile& tile : frame.directional.tiles) {
-        for (uint32_t instance : tile.casterInstances) {
-            const Aabb clip = f.scene.instances[instance].wsBounds.transformed(tile.clipFromWorld);
-            EXPECT_GE(clip.min.z, 0.0f - 1e-5f) << "tile " << tile.cascadeIndex;
-        }
-        EXPECT_GE(tile.nearDistance, tile.farDistance + 1.0f);  // near plane offset applied
+        const CascadeSphere& sphere = frame.directional.cascades[tile.cascadeIndex];
+        const float depthRange = tile.nearDistance + tile.farDistance;
+        EXPECT_GE(depthRange, 2.0f * sphere.radius) << "tile " << tile.cascadeIndex;
+        EXPECT_LE(depthRange, 2.0f * sphere.radius + 8.0f * tile.wsTexelSize) << "tile " << tile.cascadeIndex;
+    }
+}
+
+TEST(ShadowPlanner, CastersInFrontOfTheNearPlaneArePancakedOntoIt) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    const glm::vec3 above = f.plan().directional.cascades[0].wsCenter - 400.0f * f.scene.lights[0].wsDirection;
+    const uint32_t high = addBox(f.scene, above - 1.0f, above + 1.0f);  // on the light's ray through cascade 0
+    const ShadowFrame frame = f.plan();
+    const ShadowTile& tile = frame.directional.tiles[0];
+    ASSERT_TRUE(rendersInstance(tile, high));
+    const Aabb clip = f.scene.instances[high].wsBounds.transformed(tile.clipFromWorld);
+    EXPECT_LT(clip.max.z, 0.0f) << "the box lies in front of the near plane";
+    EXPECT_TRUE(tile.depthClamp) << "so it must be drawn with depth clamp";
+    EXPECT_GT(tile.pancakedDepth, 390.0f);  // what the depth range no longer spans
+}
+
+TEST(ShadowPlanner, ShadowNearPlanePullsTheNearPlaneBackByItsLength) {
+    PlannerFixture f;
+    addDirectionalLight(f.scene, {0.3f, -1, 0.2f});
+    const ShadowFrame without = f.plan();
+    f.scene.lights[0].shadowNearPlane = 5.0f;
+    const ShadowFrame with = f.plan();
+    for (size_t i = 0; i < with.directional.tiles.size(); ++i) {
+        EXPECT_NEAR(with.directional.tiles[i].nearDistance, without.directional.tiles[i].nearDistance + 5.0f, 1e-4f);
+        EXPECT_EQ(with.directional.tiles[i].farDistance, without.directional.tiles[i].farDistance);
     }
 }
 
@@ -122,13 +150,31 @@ TEST(ShadowPlanner, PointsInACullingSphereMapInsideTheirTile) {
     }
 }
 
-TEST(ShadowPlanner, TilesCarryTheLightsSlopeBiasAndPancaking) {
+// The caster pass writes exact depth: the light's slope-scale bias goes to the lit pass (with its normal
+// bias and filter), so a second rasterizer has only depth and depth clamp to reproduce.
+TEST(ShadowPlanner, TilesWriteExactDepthAndTheLitPassGetsTheLightsBiases) {
     PlannerFixture f;
     addDirectionalLight(f.scene, {0, -1, 0});
     f.scene.lights[0].shadowBias = 0.8f;
+    f.scene.lights[0].shadowNormalBias = 1.5f;
+    f.settings.directional.filter = ShadowFilter::PCF5x5;
     const ShadowFrame frame = f.plan();
-    EXPECT_EQ(frame.directional.tiles[2].slopeScaleBias, 0.8f);
+    EXPECT_EQ(frame.directional.tiles[2].slopeScaleBias, 0.0f);
     EXPECT_TRUE(frame.directional.tiles[2].depthClamp);
+    EXPECT_EQ(frame.directional.gpu.lightBias[0], glm::vec4(1.5f, 0.8f, float(gpu_data::kShadowFilterPcf5x5), 0.0f));
+    EXPECT_EQ(frame.directional.gpu.lightDirections[0], glm::vec4(0, 1, 0, 0));
+}
+
+// Seed 004's per-light soft flag for directional lights too (issue 13 item 10): "hard" = one hardware
+// 2x2 PCF tap, "soft" = directional.filter.
+TEST(ShadowPackedData, HardDirectionalLightsUseOneHardwarePcfTap) {
+    PlannerFixture f;
+    f.settings.directional.filter = ShadowFilter::PCF7x7;
+    addDirectionalLight(f.scene, {0.3f, -1, 0}, 1.0f, LightShadows::Hard);
+    addDirectionalLight(f.scene, {-0.3f, -1, 0}, 1.0f, LightShadows::Soft);
+    const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
+    EXPECT_EQ(gpu.lightBias[0].z, float(gpu_data::kShadowFilterPcf2x2));
+    EXPECT_EQ(gpu.lightBias[1].z, float(gpu_data::kShadowFilterPcf7x7));
 }
 
 TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
@@ -151,11 +197,12 @@ TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
     }
 }
 
-TEST(ShadowPackedData, NormalBiasUnitGrowsByHalfATexelPerFilterStep) {
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF2x2), 1.0f);
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF3x3), 1.5f);
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF5x5), 2.0f);
-    EXPECT_EQ(directionalNormalBiasTexels(ShadowFilter::PCF7x7), 2.5f);
+TEST(ShadowPackedData, NormalBiasUnitGrowsByHalfATexelDiagonalPerFilterStep) {
+    const float diagonal = std::sqrt(2.0f);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf2x2), 1.0f * diagonal);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf3x3), 1.5f * diagonal);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf5x5), 2.0f * diagonal);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(gpu_data::kShadowFilterPcf7x7), 2.5f * diagonal);
 }
 
 TEST(ShadowPackedData, HoldsLightsConfigAtlasAndMatrices) {
@@ -215,4 +262,53 @@ TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
     const CascadeSelection faded = selectCascade(gpu, inBand, 1.0f);
     ASSERT_EQ(faded.cascadeIndex, 3u);
     EXPECT_NEAR(faded.strength, 0.5f, 1e-3f);
+}
+
+// Issue 13 defect 1: a 1 m post 4 m in front of the camera under an 8° sun from the side lies inside
+// 0.7 x cascade 0's sphere, but its 7 m shadow reaches ground that samples cascade 1: cascade 1 must
+// draw it.
+TEST(ShadowPlanner, CasterWhoseShadowLeavesTheSmallerCascadeIsDrawnInTheBiggerOne) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -100}, {60, 0, 10});  // ground
+    const uint32_t post = addBox(scene, {-0.05f, 0, -4.05f}, {0.05f, 1, -3.95f});
+    const float elevation = glm::radians(8.0f), azimuth = glm::radians(30.0f);
+    const glm::vec3 wsHorizontal(std::cos(azimuth), 0.0f, std::sin(azimuth));  // toward +X, a little toward the camera
+    addDirectionalLight(scene, std::cos(elevation) * wsHorizontal - glm::vec3(0.0f, std::sin(elevation), 0.0f));
+    const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
+    ShadowSettings settings = seedCascadeSettings();  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, settings);
+    const CascadeSphere& sphere0 = frame.directional.cascades[0];
+    ASSERT_LT(glm::length(glm::vec3(0, 0.5f, -4.0f) - sphere0.wsCenter) + 0.5f, 0.7f * sphere0.radius)
+        << "the post should be inside 0.7 x cascade 0";
+    const glm::vec3 shadowTip = glm::vec3(0.0f, 0.0f, -4.0f) + wsHorizontal / std::tan(elevation);
+    ASSERT_GT(glm::length(shadowTip - sphere0.wsCenter), sphere0.radius) << "its shadow should leave cascade 0";
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], post));
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[1], post));
+}
+
+// The culling still works where it is safe: a small box on the ground under a high sun, its shadow
+// at its foot, is left out of the bigger cascades.
+TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBiggerOnes) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -100}, {60, 0, 10});
+    const uint32_t box = addBox(scene, {-0.2f, 0, -4.2f}, {0.2f, 0.4f, -3.8f});
+    addDirectionalLight(scene, {0.2f, -1.0f, 0.1f});
+    const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, seedCascadeSettings());
+    EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], box));
+    EXPECT_FALSE(rendersInstance(frame.directional.tiles[1], box));
+    EXPECT_FALSE(rendersInstance(frame.directional.tiles[2], box));
+    EXPECT_GE(frame.stats.skippedByBlendCulling, 2u);
+}
+
+TEST(ShadowFade, NoBlendTowardANextCascadeWhoseSphereMissesThePoint) {
+    gpu_data::DirectionalShadowData data{};
+    data.config = glm::uvec4(2, 0, uint32_t(CascadeBlend::Soft), 1);
+    data.fade = glm::vec4(0.0f, 1.0f, 1.0f / (1.0f - 0.8f * 0.8f), 100.0f);  // cascade fade 0.2
+    data.cullingSpheres[0] = glm::vec4(0, 0, 0, 100);   // radius 10 around the origin
+    data.cullingSpheres[1] = glm::vec4(20, 0, 0, 144);  // radius 12 around x = 20
+    data.cascadeData[0].x = 1.0f / 100.0f;
+    data.cascadeData[1].x = 1.0f / 144.0f;
+    EXPECT_LT(selectCascade(data, {9.5f, 0, 0}, 1.0f).cascadeBlend, 1.0f);   // in the band, inside sphere 1
+    EXPECT_EQ(selectCascade(data, {-9.5f, 0, 0}, 1.0f).cascadeBlend, 1.0f);  // in the band, outside sphere 1
 }

@@ -4,6 +4,7 @@
 
 #include "penumbra/camera.h"
 #include "penumbra/scene.h"
+#include "penumbra/shadow_settings.h"
 
 namespace penumbra::shadow_test {
 
@@ -39,6 +40,15 @@ inline uint32_t addDirectionalLight(Scene& scene, glm::vec3 wsDirection, float s
     light.shadows = shadows;
     scene.lights.push_back(light);
     return uint32_t(scene.lights.size() - 1);
+}
+
+// Shadow settings with the seed's cascades (culling spheres, manual ratios), which most planner tests
+// check; the tight fit and log splits (the defaults) have their own tests.
+inline ShadowSettings seedCascadeSettings() {
+    ShadowSettings settings;
+    settings.directional.fit = CascadeFit::Sphere;
+    settings.directional.cascadeSplits = CascadeSplitMode::Manual;
+    return settings;
 }
 
 inline CameraView cameraLookingAt(glm::vec3 eye, glm::vec3 target, float zFar = 1000.0f, uint32_t width = 64,

@@ -1,3 +1,4 @@
+#include <cmath>
 // The spot/point part of the shadow plan: tiles, matrices into the right tile, packed GPU data.
 #include <gtest/gtest.h>
 
@@ -77,11 +78,24 @@ TEST(SpotShadowPlan, PackedLightDataCarriesStrengthKindAndBias) {
     EXPECT_EQ(plan.gpu.lights[1], glm::vec4(0.5f, 1.0f, 1.0f, 0.0f));
     EXPECT_EQ(plan.specializationMode, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft);
     EXPECT_EQ(plan.gpu.config, glm::uvec4(2u, uint32_t(ShadowFilter::PCF3x3), 2u, 2u));
-    // Normal bias per unit distance = normalBias x reach x sqrt(2) x 2 tan(fov/2) / tileSize.
-    const float texel = plan.tiles[1].wsTexelSize;
-    EXPECT_NEAR(plan.gpu.lightPositions[1].w, 2.0f * 2.0f * 1.4142136f * texel, 1e-6f);
-    EXPECT_NEAR(plan.gpu.lightPositions[0].w, 1.0f * 1.0f * 1.4142136f * plan.tiles[0].wsTexelSize, 1e-6f);
+    // Biases: normal-bias multiplier, slope-scale bias, world texel per unit distance (2 tan(fov/2) /
+    // tileSize), the light's filter: spot.filter when soft, PCF2x2 when hard.
+    EXPECT_EQ(plan.gpu.lightBias[1], glm::vec4(2.0f, 0.0f, plan.tiles[1].wsTexelSize, float(gpu_data::kShadowFilterPcf3x3)));
+    EXPECT_EQ(plan.gpu.lightBias[0], glm::vec4(1.0f, 0.0f, plan.tiles[0].wsTexelSize, float(gpu_data::kShadowFilterPcf2x2)));
     EXPECT_EQ(plan.slotOfSceneLight, (std::vector<int32_t>{0, 1}));
+}
+
+// Issue 13 defect 4: one normal-bias rule. The lit pass's unit is normalOffsetFootprint(filter) x the
+// world texel at the fragment for every light type; a soft spot with the directional filter gets the
+// directional unit, not the old 1 + filter.
+TEST(SpotShadowPlan, SpotNormalBiasUnitIsTheDirectionalRule) {
+    Scene scene = spotGridScene(1);
+    ShadowSettings settings;
+    settings.spot.filter = ShadowFilter::PCF5x5;
+    const OtherShadowPlan plan = planFor(scene, settings).other;
+    const uint32_t filter = uint32_t(plan.gpu.lightBias[0].w);
+    EXPECT_EQ(filter, gpu_data::kShadowFilterPcf5x5);
+    EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(filter), 2.0f * std::sqrt(2.0f));  // not (1 + 2) sqrt(2)
 }
 
 TEST(SpotShadowPlan, NoShadowedOtherLightGivesNoTilesAndModeZero) {

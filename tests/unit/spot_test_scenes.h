@@ -9,7 +9,10 @@ namespace penumbra::test {
 
 // count spot lights on a 4-wide grid (spacing 4 m) at height 4, pointing down, 30° cone, range 10,
 // each with a 0.8 m box 1 m above the ground under it. Camera 24 m above the grid's centre.
-inline Scene spotGridScene(uint32_t count, LightShadows shadows = LightShadows::Soft) {
+// lightOffset moves each light sideways (it still aims at the ground under its box), so that the box's
+// shadow falls beside the box where the camera above sees it.
+inline Scene spotGridScene(uint32_t count, LightShadows shadows = LightShadows::Soft,
+                           glm::vec3 lightOffset = glm::vec3(0.0f)) {
     SceneBuilder builder;
     Material white;
     white.metallic = 0.0f;
@@ -23,8 +26,8 @@ inline Scene spotGridScene(uint32_t count, LightShadows shadows = LightShadows::
         glm::mat4 transform(1.0f);
         transform[3] = glm::vec4(base + glm::vec3(0.0f, 1.0f, 0.0f), 1.0f);
         builder.addInstance(box, transform, true, "box" + std::to_string(i));
-        Light light = makeSpotLight(base + glm::vec3(0.0f, 4.0f, 0.0f), {0.0f, -1.0f, 0.0f}, 50.0f, 10.0f,
-                                    0.5235988f, 0.4f);
+        const glm::vec3 wsLight = base + glm::vec3(0.0f, 4.0f, 0.0f) + lightOffset;
+        Light light = makeSpotLight(wsLight, base - wsLight, 50.0f, 10.0f, 0.5235988f, 0.4f);
         light.shadows = shadows;
         light.name = "spot" + std::to_string(i);
         builder.addLight(light);

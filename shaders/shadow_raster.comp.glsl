@@ -1,0 +1,68 @@
+#version 460
+// Compute rasterizer, pass 1 (shadow_raster.glsl): one workgroup per batch of kRasterBatch triangles
+// of a slot of a tile's visible list (the GPU culling pass's output), its threads over the triangles. Small pieces are
+// rasterized by their thread; large ones are queued, set up, for the chunked passes.
+#include "shadow_raster.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(set = 0, binding = 12, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = 0, binding = 13, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+
+shared mat4 clipFromObject;
+
+// Rasterizes a small piece at once; queues a large one, set up, for passes 2 and 3.
+void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
+    t.materialIndex = mesh.draw.w;
+    t.alphaTested = isAlphaTested(mesh);
+    if (boundsArea(t.bounds) > kRasterSmallArea) {
+        uint queued = atomicAdd(counters.counts.x, 1u);
+        if (queued < raster.capacity.x) largePieces[queued] = packPiece(t, slopeBias);
+        else atomicAdd(counters.counts.z, 1u);
+        return;
+    }
+    for (int y = t.bounds.y; y <= t.bounds.w; ++y)
+        for (int x = t.bounds.x; x <= t.bounds.z; ++x) rasterizeTexel(t, slopeBias, x, y);
+}
+
+// The mesh slot whose work items (instances x batches) hold work item `item`, in mesh order.
+uint meshOfWorkItem(uint item, uint meshCount) {
+    uint lo = 0u, hi = meshCount - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi + 1u) / 2u;
+        if (cullMeshes[mid].counts.z <= item) lo = mid;
+        else hi = mid - 1u;
+    }
+    return lo;
+}
+
+void main() {
+    uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
+    uint tileIndex = rasterTile(raster.pass.x + gl_WorkGroupID.z);
+    uint instanceCount = cull.counts.y, meshCount = cull.counts.z;
+    uint meshSlot = meshOfWorkItem(item, meshCount);
+    CullMesh mesh = cullMeshes[meshSlot];
+    uint local = item - mesh.counts.z;
+    if (mesh.counts.w == 0u || local >= mesh.counts.y * mesh.counts.w) return;  // past the last item
+    uint instanceInMesh = local / mesh.counts.w, batch = local % mesh.counts.w;
+    if (instanceInMesh >= listCounts[tileIndex * meshCount + meshSlot]) return;  // culled slot
+    uint instance = visibleInstances[tileIndex * instanceCount + mesh.counts.x + instanceInMesh];
+    CullTile tile = cull.tiles[tileIndex];
+    float slopeBias = tile.wsLightDirection.w;
+    if (gl_LocalInvocationID.x == 0u) clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;
+    barrier();
+    uint lastTriangle = min((batch + 1u) * kRasterBatch, mesh.draw.x / 3u);
+    for (uint triangle = batch * kRasterBatch + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
+        RasterVertex v[3];
+        fetchTriangle(mesh, triangle, clipFromObject, v);
+        RasterTriangleSetup t;
+        if (!needsClipping(v)) {  // nearly always: no polygon array, nothing in local memory
+            if (setupTriangle(tile, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh, slopeBias);
+            continue;
+        }
+        RasterVertex polygon[kMaxClipped];
+        int vertexCount = clipTriangle(v, polygon);
+        for (int i = 1; i + 1 < vertexCount; ++i)
+            if (setupTriangle(tile, polygon[0], polygon[i], polygon[i + 1], t)) rasterizeOrQueue(t, mesh, slopeBias);
+    }
+}

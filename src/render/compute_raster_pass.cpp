@@ -1,0 +1,152 @@
+#include "render/compute_raster_pass.h"
+
+#include <algorithm>
+
+#include "cull_structs.h"
+#include "render/main_pass.h"
+
+namespace penumbra {
+
+namespace {
+
+constexpr uint32_t kFarDepthBits = 0x3f800000u;  // floatBitsToUint(1.0): nothing cast
+
+}  // namespace
+
+ComputeRasterPass::ComputeRasterPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t largeQueue,
+                                     uint32_t chunkQueue)
+    : device_(device), scene_(gpuScene) {
+    try {
+        create(largeQueue, chunkQueue);
+    } catch (...) {
+        destroyAll();  // a failed allocation half-way: the destructor does not run
+        throw;
+    }
+}
+
+void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue) {
+    gpu::Device& device = device_;
+    const GpuScene& gpuScene = scene_;
+    using gpu::DescriptorType;
+    gpu::ComputePipelineDesc desc;
+    desc.bindings = sceneBindings();
+    desc.bindings.push_back({5, DescriptorType::UniformBuffer});
+    for (uint32_t binding = 6; binding <= 13; ++binding) desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
+    desc.pushConstantSize = 2 * sizeof(glm::uvec4);
+    desc.textureTable = gpuScene.textureTable();
+    for (auto [pipeline, shader] : {std::pair{&clear_, "shadow_raster_clear.comp"}, std::pair{&small_, "shadow_raster.comp"},
+                                    std::pair{&bin_, "shadow_raster_bin.comp"}, std::pair{&chunks_, "shadow_raster_chunks.comp"}}) {
+        desc.shader = shader;
+        desc.debugName = shader;
+        *pipeline = device.createComputePipeline(desc);
+    }
+    gpu::ComputePipelineDesc args;
+    args.shader = "shadow_raster_args.comp";
+    args.bindings = {{9, DescriptorType::StorageBuffer}};
+    args.pushConstantSize = 2 * sizeof(glm::uvec4);
+    args.debugName = "shadow raster dispatch sizes";
+    args_ = device.createComputePipeline(args);
+    using gpu::MemoryKind;
+    counters_ = device.createBuffer(sizeof(gpu_data::RasterCounters), gpu::kBufferStorage | gpu::kBufferIndirect,
+                                    MemoryKind::DeviceLocal, nullptr, "shadow raster counters");
+    reserve(largeQueue ? largeQueue : gpu_data::kRasterInitialLarge, chunkQueue ? chunkQueue : gpu_data::kRasterInitialChunks);
+}
+
+void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks) {
+    // Queues as large as the most a frame asked for (capped: 4M pieces = 448 MB), grown by 2x steps.
+    const uint32_t large = std::min(std::max(largeCapacity_, largePieces), kMaxLargeCapacity);
+    const uint32_t chunkCount = std::min(std::max(chunkCapacity_, chunks), kMaxChunkCapacity);
+    if (large_ && large == largeCapacity_ && chunkCount == chunkCapacity_) return;
+    device_.destroy(large_);
+    device_.destroy(chunkList_);
+    large_ = device_.createBuffer(uint64_t(large) * sizeof(gpu_data::RasterPiece), gpu::kBufferStorage,
+                                  gpu::MemoryKind::DeviceLocal, nullptr, "shadow raster large pieces");
+    chunkList_ = device_.createBuffer(uint64_t(chunkCount) * 8, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal, nullptr,
+                                      "shadow raster chunks");
+    largeCapacity_ = large;
+    chunkCapacity_ = chunkCount;
+}
+
+ComputeRasterPass::~ComputeRasterPass() { destroyAll(); }
+
+void ComputeRasterPass::destroyAll() {
+    for (gpu::PipelineHandle p : {clear_, small_, bin_, chunks_, args_}) device_.destroy(p);
+    for (gpu::BufferHandle b : {counters_, large_, chunkList_}) device_.destroy(b);
+}
+
+void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+                               const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling,
+                               const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
+                               gpu::BufferHandle depth, const std::string& timerPrefix) {
+    if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the atlas stays as it is
+        commands.memoryBarrier();
+        commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
+        commands.memoryBarrier();
+        return;
+    }
+    const uint32_t tileCount = uint32_t(tiles.rects.size());
+    std::vector<gpu::DescriptorWrite> rasterWrites = writes;
+    rasterWrites.push_back({5, cullFrame});
+    rasterWrites.push_back({6, scene_.cullMeshBuffer(), {}, {}});
+    rasterWrites.push_back({7, scene_.indexBuffer(), {}, {}});
+    rasterWrites.push_back({8, gpu::BufferSlice{depth, 0, uint64_t(atlasSize) * atlasSize * 4}});
+    rasterWrites.push_back({9, counters_, {}, {}});
+    rasterWrites.push_back({10, large_, {}, {}});
+    rasterWrites.push_back({11, chunkList_, {}, {}});
+    rasterWrites.push_back({12, culling.listCounts(), {}, {}});
+    rasterWrites.push_back({13, culling.visibleInstances(), {}, {}});
+    const glm::uvec4 constants[2] = {{tiles.listOffset, tileCount, atlasSize, 0}, {largeCapacity_, chunkCapacity_, 0, 0}};
+    auto bind = [&](gpu::PipelineHandle pipeline) {
+        commands.bindPipeline(pipeline);
+        commands.pushDescriptors(rasterWrites);
+        commands.bindTextureTable(scene_.textureTable());
+        commands.pushConstants(constants, sizeof(constants));
+    };
+
+    // The previous atlas pass (or frame) may still read these buffers.
+    commands.beginTimer(timerPrefix + "/clear");
+    commands.memoryBarrier();
+    if (tiles.freshAtlas) commands.fillBuffer(depth, kFarDepthBits);
+    commands.fillBuffer(counters_, 0);
+    if (!tiles.freshAtlas && tileCount > 0) {
+        uint32_t largest = 0;
+        for (const gpu::Rect& r : tiles.rects) largest = std::max({largest, r.width, r.height});
+        commands.memoryBarrier();
+        bind(clear_);
+        commands.dispatch((largest + 15) / 16, (largest + 15) / 16, tileCount);
+    }
+    commands.memoryBarrier();
+    commands.endTimer();
+    if (tileCount > 0) {
+        auto sizeDispatch = [&](uint32_t which) {
+            commands.memoryBarrier();
+            commands.bindPipeline(args_);
+            commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{9, counters_, {}, {}}});
+            const glm::uvec4 selector[2] = {{which, 0, 0, 0}, {largeCapacity_, chunkCapacity_, 0, 0}};
+            commands.pushConstants(selector, sizeof(selector));
+            commands.dispatch(1, 1);
+            commands.memoryBarrier();
+        };
+        const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
+        commands.beginTimer(timerPrefix + "/instances");
+        bind(small_);
+        commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
+                          (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth, tileCount);
+        commands.endTimer();
+        commands.beginTimer(timerPrefix + "/chunks");
+        sizeDispatch(0);
+        bind(bin_);
+        commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
+        sizeDispatch(1);
+        bind(chunks_);
+        commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
+        commands.endTimer();
+    }
+    commands.beginTimer(timerPrefix + "/copy");
+    commands.memoryBarrier();
+    if (tiles.freshAtlas) commands.copyBufferToTexture(depth, atlas, gpu::TextureState::ShaderRead);
+    else commands.copyBufferToTextureRects(depth, atlas, tiles.rects, gpu::TextureState::ShaderRead, gpu::TextureState::ShaderRead);
+    commands.endTimer();
+}
+
+}  // namespace penumbra

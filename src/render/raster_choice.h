@@ -1,0 +1,37 @@
+#pragma once
+// shadows.raster = auto (issue 10): which shadow-map rasterizer a device runs faster, by measurement.
+// The first frames alternate: kWarmup + kSamples frames with the hardware path, as many with the
+// compute path; the shadow passes' GPU time (timestamps) decides, and later frames use the faster.
+// Without timestamps a table decides: compute on
+// datacenter NVIDIA GPUs (H100, H200, A100, GH200, B200: few SMs run graphics, measured 7-100x
+// slower raster there, docs/performance.md), the hardware path elsewhere. No GPU here: unit-tested.
+#include <string>
+#include <vector>
+
+#include "penumbra/shadow_settings.h"
+
+namespace penumbra {
+
+class RasterChoice {
+public:
+    static constexpr int kWarmup = 1, kSamples = 3;
+
+    RasterChoice(bool timestamps, const std::string& deviceName);
+
+    // Whether the next frame draws its shadow maps with the compute path.
+    bool useCompute(ShadowRaster setting) const;
+    // A finished auto frame: which path drew it and its shadow passes' GPU milliseconds.
+    void measured(bool compute, double shadowMilliseconds);
+    bool decided() const { return phase_ == Phase::Decided; }
+    // For the stats: "measuring", or the choice with its reason.
+    std::string describe() const;
+
+private:
+    enum class Phase { MeasureHw, MeasureCompute, Decided };
+    Phase phase_;
+    bool compute_ = false;
+    std::string reason_;
+    std::vector<double> hw_, compute__;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,139 @@
+#include "render/shadow_culling_pass.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "cull_structs.h"
+
+namespace penumbra {
+
+namespace {
+
+constexpr uint32_t kDrawCommandBytes = 5 * sizeof(uint32_t);  // VkDrawIndexedIndirectCommand
+
+uint32_t groupsFor(uint32_t count) { return (count + gpu_data::kCullWorkgroupSize - 1) / gpu_data::kCullWorkgroupSize; }
+
+}  // namespace
+
+ShadowCullingPass::ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {
+    try {
+        create();
+    } catch (...) {
+        destroyAll();  // a failed allocation half-way: the destructor does not run
+        throw;
+    }
+}
+
+void ShadowCullingPass::create() {
+    gpu::Device& device = device_;
+    const GpuScene& gpuScene = scene_;
+    using gpu::DescriptorType;
+    gpu::ComputePipelineDesc desc;
+    desc.shader = "shadow_cull.comp";
+    desc.bindings = {{0, DescriptorType::UniformBuffer}, {1, DescriptorType::StorageBuffer},
+                     {2, DescriptorType::StorageBuffer}, {3, DescriptorType::StorageBuffer},
+                     {4, DescriptorType::StorageBuffer}, {5, DescriptorType::StorageBuffer}};
+    desc.debugName = "shadow caster culling";
+    cull_ = device.createComputePipeline(desc);
+    desc.shader = "shadow_draws.comp";
+    desc.bindings = {{0, DescriptorType::UniformBuffer}, {2, DescriptorType::StorageBuffer},
+                     {3, DescriptorType::StorageBuffer}, {4, DescriptorType::StorageBuffer},
+                     {6, DescriptorType::StorageBuffer}, {7, DescriptorType::StorageBuffer},
+                     {8, DescriptorType::StorageBuffer}};
+    desc.debugName = "shadow draw lists";
+    buildDraws_ = device.createComputePipeline(desc);
+
+    const uint64_t tiles = gpu_data::kMaxCullTiles, meshes = gpuScene.meshSlotCount();
+    const uint64_t instances = std::max(gpuScene.instanceCount(), 1u);
+    using gpu::MemoryKind;
+    listCounts_ = device.createBuffer(tiles * meshes * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
+                                      "shadow cull list counts");
+    visible_ = device.createBuffer(tiles * instances * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
+                                   "shadow visible instances");
+    drawCommands_ = device.createBuffer(tiles * gpu_data::kCasterKinds * meshes * kDrawCommandBytes,
+                                        gpu::kBufferStorage | gpu::kBufferIndirect, MemoryKind::DeviceLocal, nullptr,
+                                        "shadow draw commands");
+    drawCounts_ = device.createBuffer(tiles * gpu_data::kCasterKinds * 4, gpu::kBufferStorage | gpu::kBufferIndirect,
+                                      MemoryKind::DeviceLocal, nullptr, "shadow draw counts");
+    tileStats_ = device.createBuffer(tiles * sizeof(gpu_data::CullTileStats), gpu::kBufferStorage,
+                                     MemoryKind::DeviceLocal, nullptr, "shadow tile stats");
+}
+
+ShadowCullingPass::~ShadowCullingPass() { destroyAll(); }
+
+void ShadowCullingPass::destroyAll() {
+    device_.destroy(cull_);
+    device_.destroy(buildDraws_);
+    for (gpu::BufferHandle b : {listCounts_, visible_, drawCommands_, drawCounts_, tileStats_}) device_.destroy(b);
+}
+
+void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount) {
+    // Earlier frames may still draw from these lists: the clears wait for them.
+    commands.memoryBarrier();
+    commands.clearBuffer(listCounts_, 0);
+    commands.clearBuffer(drawCounts_, 0);
+    commands.clearBuffer(tileStats_, 0);
+    commands.memoryBarrier();
+    if (tileCount == 0) return;
+    commands.bindPipeline(cull_);
+    const std::vector<gpu::DescriptorWrite> cullWrites = {
+        {0, cullFrame},
+        {1, scene_.cullInstanceBuffer(), {}, {}},
+        {2, scene_.cullMeshBuffer(), {}, {}},
+        {3, scene_.materialBuffer(), {}, {}},
+        {4, listCounts_, {}, {}},
+        {5, visible_, {}, {}}};
+    commands.pushDescriptors(cullWrites);
+    commands.dispatch(groupsFor(scene_.instanceCount()), tileCount);
+    commands.memoryBarrier();
+    commands.bindPipeline(buildDraws_);
+    const std::vector<gpu::DescriptorWrite> drawWrites = {
+        {0, cullFrame},
+        {2, scene_.cullMeshBuffer(), {}, {}},
+        {3, scene_.materialBuffer(), {}, {}},
+        {4, listCounts_, {}, {}},
+        {6, drawCommands_, {}, {}},
+        {7, drawCounts_, {}, {}},
+        {8, tileStats_, {}, {}}};
+    commands.pushDescriptors(drawWrites);
+    commands.dispatch(groupsFor(scene_.meshSlotCount()), tileCount);
+    commands.memoryBarrier();  // the draws read the commands (indirect) and the lists (vertex shader)
+}
+
+ShadowCullingPass::DrawList ShadowCullingPass::drawList(uint32_t tile, uint32_t kind) const {
+    const uint32_t list = tile * gpu_data::kCasterKinds + kind;
+    DrawList draws;
+    draws.commands = drawCommands_;
+    draws.offset = uint64_t(list) * scene_.meshSlotCount() * kDrawCommandBytes;
+    draws.count = drawCounts_;
+    draws.countOffset = uint64_t(list) * 4;
+    draws.maxDraws = scene_.meshSlotCount();
+    return draws;
+}
+
+std::vector<std::vector<uint32_t>> ShadowCullingPass::readVisibleLists(uint32_t tileCount) {
+    auto words = [&](gpu::BufferHandle buffer) {
+        const std::vector<uint8_t> bytes = device_.readBuffer(buffer);
+        std::vector<uint32_t> values(bytes.size() / 4);
+        std::memcpy(values.data(), bytes.data(), values.size() * 4);
+        return values;
+    };
+    const std::vector<uint32_t> counts = words(listCounts_), visible = words(visible_), meshes = words(scene_.cullMeshBuffer());
+    const uint32_t meshCount = scene_.meshSlotCount(), instanceCount = scene_.instanceCount();
+    std::vector<std::vector<uint32_t>> lists(tileCount);
+    for (uint32_t tile = 0; tile < tileCount; ++tile) {
+        for (uint32_t mesh = 0; mesh < meshCount; ++mesh) {
+            const uint32_t first = meshes[mesh * 8 + 4];  // CullMesh::counts.x
+            for (uint32_t i = 0; i < counts[tile * meshCount + mesh]; ++i)
+                lists[tile].push_back(visible[size_t(tile) * instanceCount + first + i]);
+        }
+        std::sort(lists[tile].begin(), lists[tile].end());
+    }
+    return lists;
+}
+
+gpu::BufferSlice ShadowCullingPass::tileStats(uint32_t tileCount) const {
+    return {tileStats_, 0, std::max<uint64_t>(tileCount, 1) * sizeof(gpu_data::CullTileStats)};
+}
+
+}  // namespace penumbra

@@ -1,0 +1,51 @@
+#pragma once
+// GPU culling of the shadow casters (issue 10, cull_structs.h): each frame one compute pass tests
+// every instance against every shadow tile of both atlases and a second turns the survivors into
+// compacted indirect draws per tile and caster kind. The CPU planner computes lights, matrices and
+// tiles only; its caster culling (PlanOptions::cullCasters) is the reference tests compare with.
+#include <vector>
+
+#include "gpu/device.h"
+#include "render/gpu_scene.h"
+#include "shadows/shadow_planner.h"
+
+namespace penumbra {
+
+class ShadowCullingPass {
+public:
+    ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene);
+    ~ShadowCullingPass();
+    ShadowCullingPass(const ShadowCullingPass&) = delete;
+    ShadowCullingPass& operator=(const ShadowCullingPass&) = delete;
+
+    // Culls for every tile of `plan` (directional tiles first, then spot/point) and leaves the draw
+    // lists for drawTile; `cullFrame` is packCullFrame(plan) in this frame's upload ring.
+    void record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount);
+
+    // The indirect draws of culling tile `tile` and caster kind (0 opaque, 1 alpha-tested).
+    struct DrawList {
+        gpu::BufferHandle commands;
+        uint64_t offset = 0;
+        gpu::BufferHandle count;
+        uint64_t countOffset = 0;
+        uint32_t maxDraws = 0;
+    };
+    DrawList drawList(uint32_t tile, uint32_t kind) const;
+    gpu::BufferHandle visibleInstances() const { return visible_; }
+    gpu::BufferHandle listCounts() const { return listCounts_; }
+    // Per-tile stats (CullTileStats), GPU-written; read them back with Device::readBackAtFrameEnd.
+    gpu::BufferSlice tileStats(uint32_t tileCount) const;
+    // Tests and debugging (waits for the GPU): the instances each of the first `tileCount` tiles
+    // kept in the last recorded culling, sorted.
+    std::vector<std::vector<uint32_t>> readVisibleLists(uint32_t tileCount);
+
+private:
+    void create();
+    void destroyAll();
+    gpu::Device& device_;
+    const GpuScene& scene_;
+    gpu::PipelineHandle cull_, buildDraws_;
+    gpu::BufferHandle listCounts_, visible_, drawCommands_, drawCounts_, tileStats_;
+};
+
+}  // namespace penumbra

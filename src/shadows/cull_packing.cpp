@@ -1,0 +1,71 @@
+#include "shadows/cull_packing.h"
+
+#include "core/error.h"
+#include "shadows/spot_culling.h"
+
+namespace penumbra {
+
+namespace {
+
+// What the compute rasterizer needs of every tile: its projection, viewport and scissor, the bias.
+void packRaster(gpu_data::CullTile& packed, const ShadowTile& tile) {
+    packed.clipFromWorld = tile.clipFromWorld;
+    packed.viewport = glm::vec4(float(tile.rect.offset.x), float(tile.rect.offset.y), float(tile.rect.size),
+                                float(tile.rect.size));
+    const uint32_t inset = tile.scissorInset;
+    packed.scissor = glm::uvec4(tile.rect.offset.x + inset, tile.rect.offset.y + inset,
+                                tile.rect.offset.x + tile.rect.size - inset, tile.rect.offset.y + tile.rect.size - inset);
+    packed.wsLightDirection.w = tile.slopeScaleBias;
+}
+
+gpu_data::CullTile directionalTile(const ShadowTile& tile, float blendCullingFactor) {
+    gpu_data::CullTile packed{};
+    packed.lightFromWorld = tile.lightFromWorld;
+    packed.frustumMin.w = float(gpu_data::kCullTileDirectional);
+    packed.params = glm::vec4(tile.lsHalfExtent, tile.farDistance, float(tile.cascadeIndex), blendCullingFactor);
+    // The light travels along -Z of its view: the third row of the rotation, negated (as caster_culling.cpp).
+    packed.wsLightDirection = glm::vec4(-tile.lightFromWorld[0][2], -tile.lightFromWorld[1][2], -tile.lightFromWorld[2][2], 0.0f);
+    packRaster(packed, tile);
+    return packed;
+}
+
+gpu_data::CullTile perspectiveTile(const ShadowTile& tile) {
+    gpu_data::CullTile packed{};
+    const std::array<glm::vec4, 5> planes = clipFrustumPlanes(tile.clipFromWorld);
+    for (size_t i = 0; i < planes.size(); ++i) packed.planes[i] = planes[i];
+    const Aabb bounds = perspectiveFrustumBounds(tile.clipFromWorld, tile.wsApex);
+    packed.frustumMin = glm::vec4(bounds.min, float(gpu_data::kCullTilePerspective));
+    packed.frustumMax = glm::vec4(bounds.max, 0.0f);
+    packRaster(packed, tile);
+    return packed;
+}
+
+}  // namespace
+
+gpu_data::CullFrame packCullFrame(const ShadowFrame& frame, uint32_t instanceCount, uint32_t meshCount) {
+    gpu_data::CullFrame packed{};
+    const auto& directional = frame.directional;
+    const size_t tileCount = directional.tiles.size() + frame.other.tiles.size();
+    if (tileCount > gpu_data::kMaxCullTiles)
+        throw Error("internal: " + std::to_string(tileCount) + " shadow tiles exceed the culling pass's " +
+                    std::to_string(gpu_data::kMaxCullTiles));
+    // No receiver: nothing to blend-cull for (as cullTileCasters: factor 0 culls nothing).
+    const bool receivers = directional.wsReceiverBounds.valid();
+    const float blendCullingFactor = receivers ? directional.blendCullingFactor : 0.0f;
+    uint32_t t = 0;
+    for (const ShadowTile& tile : directional.tiles) packed.tiles[t++] = directionalTile(tile, blendCullingFactor);
+    for (const ShadowTile& tile : frame.other.tiles) packed.tiles[t++] = perspectiveTile(tile);
+    for (size_t i = 0; i < directional.cascades.size() && i < 4; ++i)
+        packed.spheres[i] = glm::vec4(directional.cascades[i].wsCenter, directional.cascades[i].radius);
+    packed.wsReceiverMin = glm::vec4(receivers ? directional.wsReceiverBounds.min : glm::vec3(0.0f), 0.0f);
+    packed.wsReceiverMax = glm::vec4(receivers ? directional.wsReceiverBounds.max : glm::vec3(0.0f), 0.0f);
+    packed.counts = glm::uvec4(uint32_t(tileCount), instanceCount, meshCount, 0);
+    return packed;
+}
+
+void packRasterTiles(gpu_data::CullFrame& frame, const std::vector<uint32_t>& tiles) {
+    PENUMBRA_ASSERT(tiles.size() <= gpu_data::kMaxCullTiles);
+    for (size_t i = 0; i < tiles.size() && i < gpu_data::kMaxCullTiles; ++i) frame.rasterTiles[i / 4][i % 4] = tiles[i];
+}
+
+}  // namespace penumbra

@@ -1,0 +1,34 @@
+#pragma once
+// The surfaces a frame shows, from its depth buffer: the depth reduction of sample distribution shadow
+// maps (SDSM, Lauritzen et al. 2011) that the tight cascade fit needs (issue 13 item 8): the view-depth
+// range of the visible surfaces, and their bounds in a light's space per cascade slice.
+#include <limits>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "penumbra/image.h"
+#include "penumbra/camera.h"
+#include "penumbra/scene.h"
+
+namespace penumbra {
+
+struct VisibleSurfaces {
+    std::vector<glm::vec3> wsPoints;  // one per covered pixel
+    std::vector<float> vsDepths;      // their view depths
+    float vsMinDepth = std::numeric_limits<float>::infinity();
+    float vsMaxDepth = 0.0f;
+    bool empty() const { return wsPoints.empty(); }
+};
+
+// depth: the main view's reversed-Z depth as Device::readTexture gives a D32 target (4 bytes of float
+// per pixel, 0 = nothing drawn), view.width x view.height; or, with stride > 1, every stride-th pixel
+// of it in x and y (ceil(width / stride) x ceil(height / stride), pixel (x, y) = view pixel
+// (x * stride, y * stride)), as the real-time path reads it back.
+VisibleSurfaces visibleSurfacesFromDepth(const Image& depth, const CameraView& view, uint32_t stride = 1);
+
+// Bounds in the light's rotation-only space (lightRotationFromWorld) of the visible points whose view
+// depth lies in [vsNear, vsFar]; invalid when there are none.
+Aabb rotatedVisibleBounds(const VisibleSurfaces& visible, const glm::mat4& lightRotation, float vsNear, float vsFar);
+
+}  // namespace penumbra

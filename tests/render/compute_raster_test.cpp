@@ -1,0 +1,198 @@
+// The compute rasterizer of shadow depth (issue 10) against the hardware rasterizer: the shadow term
+// of every light of every canonical scene, and the atlases themselves, must agree.
+#include <cmath>
+
+#include <array>
+
+#include "penumbra/scene_builder.h"
+#include "penumbra/scene_loading.h"
+#include "render_test_support.h"
+#include "scene/canonical_scenes.h"
+#include "shadows/shadow_planner.h"
+
+namespace penumbra::test {
+namespace {
+
+class ComputeRasterTest : public RenderTest {
+protected:
+    RenderResult render(Renderer& renderer, ShadowRaster raster, uint32_t light, Settings settings, bool atlas = false) {
+        settings.shadows.raster = raster;
+        RenderRequest request;
+        request.width = 160;
+        request.height = 90;
+        request.output = OutputMode::ShadowAov;
+        request.aovLight = light;
+        request.captureAtlas = atlas;
+        return renderer.render(request, settings);
+    }
+    // Pixels whose lit / shadowed class (at 0.5) differs.
+    static double classDifference(const Image& a, const Image& b) {
+        size_t differ = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) differ += (a.pixels[i] >= 128) != (b.pixels[i] >= 128);
+        return double(differ) / double(a.pixels.size());
+    }
+};
+
+TEST_F(ComputeRasterTest, ShadowTermOfEveryCanonicalSceneMatchesTheHardwarePath) {
+    double worst = 0.0;
+    for (const CanonicalSceneInfo& info : canonicalScenes()) {
+        const Scene scene = makeCanonicalScene(info.name);
+        Renderer renderer(device(), scene);
+        Settings settings;
+        settings.shadows.maxDistance = 150.0f;
+        settings.shadows.directional.atlasSize = 512;  // lavapipe runs compute shaders on the CPU: keep it small
+        settings.shadows.spot.atlasSize = 512;
+        for (uint32_t light = 0; light < scene.lights.size(); ++light) {
+            if (scene.lights[light].shadows == LightShadows::None) continue;
+            const RenderResult hw = render(renderer, ShadowRaster::Hw, light, settings);
+            const RenderResult compute = render(renderer, ShadowRaster::Compute, light, settings);
+            EXPECT_EQ(hw.stats.shadowRaster, "hw");
+            EXPECT_EQ(compute.stats.shadowRaster, "compute");
+            const double difference = classDifference(hw.image, compute.image);
+            worst = std::max(worst, difference);
+            EXPECT_LT(difference, 0.0005) << info.name << " light " << light;
+        }
+    }
+    std::printf("worst class difference hw vs compute: %.4f %%\n", 100.0 * worst);
+}
+
+TEST_F(ComputeRasterTest, AtlasDepthMatchesTheHardwarePathTexelForTexel) {
+    // The demo: a ground larger than every tile (large, clipped triangles), boxes, spheres, an
+    // alpha-clipped quad, a dithered sphere, two spots.
+    Renderer renderer(device(), makeDemoScene());
+    Settings settings;
+    settings.shadows.directional.atlasSize = 512;
+    settings.shadows.spot.atlasSize = 512;
+    const Image hw = render(renderer, ShadowRaster::Hw, 0, settings, true).atlas;
+    const Image compute = render(renderer, ShadowRaster::Compute, 0, settings, true).atlas;
+    ASSERT_EQ(hw.pixels.size(), compute.pixels.size());
+    size_t differ = 0, written = 0;
+    for (size_t i = 0; i < hw.pixels.size(); ++i) {
+        differ += std::abs(int(hw.pixels[i]) - int(compute.pixels[i])) > 1;
+        written += hw.pixels[i] < 255;
+    }
+    EXPECT_GT(written, hw.pixels.size() / 10) << "the atlases hold casters";
+    EXPECT_LT(double(differ) / double(hw.pixels.size()), 0.0005) << differ << " texels differ";
+}
+
+TEST_F(ComputeRasterTest, BuiltInFieldMatchesTheHardwarePath) {
+    Renderer renderer(device(), loadScene("gen:field:4:4"));
+    Settings settings;
+    settings.shadows.directional.atlasSize = 512;
+    settings.shadows.spot.atlasSize = 512;
+    for (uint32_t light : {0u, 1u, 3u}) {
+        const double difference = classDifference(render(renderer, ShadowRaster::Hw, light, settings).image,
+                                                  render(renderer, ShadowRaster::Compute, light, settings).image);
+        EXPECT_LT(difference, 0.0005) << "light " << light;
+    }
+}
+
+TEST_F(ComputeRasterTest, AutoMeasuresBothPathsThenKeepsTheFaster) {
+    Renderer renderer(device(), makeDemoScene());
+    const CameraView view = resolveCameraView(renderer.scene(), 64, 36);
+    RenderRequest request;
+    request.width = 64;
+    request.height = 36;
+    Settings settings;  // shadows.raster = auto by default
+    settings.shadows.directional.atlasSize = 256;
+    settings.shadows.spot.atlasSize = 256;
+    std::vector<FrameStats> frames;
+    for (int i = 0; i < 16; ++i) {
+        renderer.submitFrame(request, settings, view);
+        renderer.waitIdle();
+        for (FrameStats& f : renderer.takeCompletedFrames()) frames.push_back(std::move(f));
+    }
+    ASSERT_EQ(frames.size(), 16u);
+    EXPECT_EQ(frames[0].shadowRaster, "hw");
+    bool sawCompute = false;
+    for (const FrameStats& f : frames) sawCompute |= f.shadowRaster == "compute";
+    EXPECT_TRUE(sawCompute) << "auto measures the compute path too";
+    const std::string choice = frames.back().shadowRasterChoice;
+    EXPECT_NE(choice.find("measured"), std::string::npos) << choice;
+    EXPECT_EQ(choice.rfind("auto: " + frames.back().shadowRaster, 0), 0u) << "the last frame uses the choice: " << choice;
+}
+
+// A horizontal quad whose corners land exactly on texel centres of cascade 0: both rasterizers must
+// cover exactly the texels of Vulkan's top-left rule, columns i0 <= i < i1 and rows j0 <= j < j1.
+Scene quadOnTexelCentres(const std::array<int, 4>& window, const CameraView& view, const Settings& settings) {
+    auto build = [&](const std::array<glm::vec3, 4>& corners) {
+        SceneBuilder builder;
+        Material matte;
+        const uint32_t material = builder.addMaterial(matte);
+        Mesh quad;
+        for (const glm::vec3& corner : corners) quad.vertices.push_back({corner, glm::vec3(0, 1, 0), glm::vec2(0.0f)});
+        quad.indices = {0, 1, 2, 0, 2, 3};
+        quad.materialIndex = material;
+        builder.addInstance(builder.addMesh(quad), glm::mat4(1.0f));
+        builder.addLight(makeDirectionalLight(glm::vec3(0.3f, -1.0f, 0.2f), 3.0f));
+        return builder.build();
+    };
+    constexpr float kHeight = 1.0f;
+    const Scene probe = build({glm::vec3(-1, kHeight, -1), glm::vec3(1, kHeight, -1), glm::vec3(1, kHeight, 1),
+                               glm::vec3(-1, kHeight, 1)});
+    // Tile 0's projection does not depend on the casters: invert its affine map of the plane y = kHeight.
+    const ShadowTile tile = ShadowPlanner::plan(probe, view, settings.shadows).directional.tiles.at(0);
+    auto windowOf = [&](glm::vec3 ws) {
+        const glm::vec4 clip = tile.clipFromWorld * glm::vec4(ws, 1.0f);
+        return glm::dvec2(tile.rect.offset) + (glm::dvec2(clip) / double(clip.w) * 0.5 + 0.5) * double(tile.rect.size);
+    };
+    const glm::dvec2 origin = windowOf({0, kHeight, 0});
+    const glm::dmat2 map(windowOf({1, kHeight, 0}) - origin, windowOf({0, kHeight, 1}) - origin);
+    const glm::dmat2 inverse = glm::inverse(map);
+    auto worldAt = [&](double x, double y) {
+        const glm::dvec2 xz = inverse * (glm::dvec2(x + 0.5, y + 0.5) - origin);
+        return glm::vec3(float(xz.x), kHeight, float(xz.y));
+    };
+    return build({worldAt(window[0], window[1]), worldAt(window[2], window[1]), worldAt(window[2], window[3]),
+                  worldAt(window[0], window[3])});
+}
+
+TEST_F(ComputeRasterTest, BothRasterizersFollowTheTopLeftRuleOnTexelCentres) {
+    Settings settings;
+    settings.shadows.directional.atlasSize = 256;
+    settings.shadows.directional.cascadeCount = 1;
+    Camera camera = makeLookAtCamera(glm::vec3(0, 6, 6), glm::vec3(0), 0.9f);
+    const CameraView view = makeCameraView(camera, 64, 64);
+    const std::array<int, 4> window = {100, 90, 140, 150};  // texel centres (i0, j0) .. (i1, j1)
+    Scene scene = quadOnTexelCentres(window, view, settings);
+    scene.camera = camera;
+    Renderer renderer(device(), scene);
+    for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+        settings.shadows.raster = raster;
+        RenderRequest request;
+        request.width = request.height = 64;
+        request.captureAtlas = true;
+        const Image atlas = renderer.render(request, settings).atlas;
+        size_t covered = 0, outside = 0;
+        for (uint32_t y = 0; y < 256; ++y)
+            for (uint32_t x = 0; x < 256; ++x) {
+                if (atlas.at(x, y) == 255) continue;
+                const bool inside = int(x) >= window[0] && int(x) < window[2] && int(y) >= window[1] && int(y) < window[3];
+                (inside ? covered : outside)++;
+            }
+        EXPECT_EQ(covered, size_t(window[2] - window[0]) * size_t(window[3] - window[1])) << shadowRasterName(raster);
+        EXPECT_EQ(outside, 0u) << shadowRasterName(raster);
+    }
+}
+
+}  // namespace
+}  // namespace penumbra::test
+
+
+namespace penumbra::test {
+namespace {
+
+TEST_F(ComputeRasterTest, OverflowingQueuesGrowAndTheFrameIsDrawnAgain) {
+    RendererOptions tiny;
+    tiny.rasterLargeQueue = 4;  // the demo's ground alone needs more
+    tiny.rasterChunkQueue = 8;
+    Renderer small(device(), makeDemoScene(), tiny), normal(device(), makeDemoScene());
+    Settings settings;
+    const RenderResult grown = render(small, ShadowRaster::Compute, 0, settings);
+    EXPECT_EQ(grown.stats.rasterDropped, 0u) << "render() drew the frame again with larger queues";
+    EXPECT_GT(grown.stats.rasterLargeTriangles, 4u);
+    EXPECT_TRUE(grown.image.pixels == render(normal, ShadowRaster::Compute, 0, settings).image.pixels);
+}
+
+}  // namespace
+}  // namespace penumbra::test

@@ -1,0 +1,293 @@
+// The renderer as a real-time engine (issue 8): frames through the persistent path equal one-shot
+// renders, steady-state frames allocate nothing and submit once, a renderer gives back everything it
+// made, and scene changes between frames show up in the next frame.
+#include <filesystem>
+#include <unistd.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "penumbra/error.h"
+
+#include "penumbra/scene_loading.h"
+#include "render_test_support.h"
+#include "spot_render_scenes.h"
+
+namespace penumbra::test {
+namespace {
+
+RenderRequest request(OutputMode output, uint32_t width = 96, uint32_t height = 54) {
+    RenderRequest r;
+    r.width = width;
+    r.height = height;
+    r.output = output;
+    return r;
+}
+
+// The settings of frame `i` of a run that changes atlas sizes, cascade count, filters, blends, the
+// spot atlas and the screen-space resolve every frame.
+Settings varyingSettings(uint32_t i) {
+    Settings settings;
+    const uint32_t sizes[] = {256, 512, 1024};
+    settings.shadows.directional.atlasSize = sizes[i % 3];
+    settings.shadows.spot.atlasSize = sizes[(i / 3) % 3];
+    settings.shadows.directional.cascadeCount = 1 + i % 4;
+    settings.shadows.directional.filter = ShadowFilter(i % 4);
+    settings.shadows.spot.filter = ShadowFilter((i / 2) % 4);
+    settings.shadows.directional.cascadeBlend = CascadeBlend((i / 5) % 3);
+    settings.shadows.screenSpace = i % 7 == 3;
+    return settings;
+}
+
+class PersistentFrameTest : public RenderTest {};
+
+TEST_F(PersistentFrameTest, FrameAfterManyOthersEqualsAOneShotRender) {
+    const Scene scene = makeDemoScene();
+    Settings final;
+    final.shadows.directional.filter = ShadowFilter::PCF5x5;
+    final.shadows.directional.cascadeBlend = CascadeBlend::Soft;
+    for (OutputMode output : {OutputMode::Color, OutputMode::ShadowAov, OutputMode::CascadesAov}) {
+        Renderer oneShot(device(), scene);
+        const Image expected = oneShot.render(request(output), final).image;
+        Renderer persistent(device(), scene);
+        const CameraView view = resolveCameraView(scene, 96, 54);
+        for (uint32_t i = 0; i < 12; ++i) persistent.submitFrame(request(OutputMode(i % 3)), varyingSettings(i), view);
+        const Image actual = persistent.render(request(output), final).image;
+        ASSERT_EQ(actual.pixels.size(), expected.pixels.size());
+        EXPECT_TRUE(actual.pixels == expected.pixels) << "output " << int(output);
+    }
+}
+
+TEST_F(PersistentFrameTest, SubmittedFramesReportTheirStatsOnceFinished) {
+    Renderer renderer(device(), makeDemoScene());
+    const CameraView view = resolveCameraView(renderer.scene(), 96, 54);
+    std::vector<uint64_t> submitted;
+    for (int i = 0; i < 5; ++i) submitted.push_back(renderer.submitFrame(request(OutputMode::Color), {}, view));
+    renderer.waitIdle();
+    const std::vector<FrameStats> finished = renderer.takeCompletedFrames();
+    ASSERT_EQ(finished.size(), submitted.size());
+    for (size_t i = 0; i < finished.size(); ++i) {
+        EXPECT_EQ(finished[i].frameIndex, submitted[i]);
+        EXPECT_GT(finished[i].submitToFenceMilliseconds, 0.0);
+        ASSERT_EQ(finished[i].atlases.size(), 2u);
+        EXPECT_GT(finished[i].atlases[0].draws, 0u);
+    }
+    EXPECT_TRUE(renderer.takeCompletedFrames().empty());
+}
+
+TEST_F(PersistentFrameTest, SteadyStateFramesMakeNothingWaitForNothingAndSubmitOnce) {
+    Renderer renderer(device(), makeDemoScene());
+    const CameraView view = resolveCameraView(renderer.scene(), 96, 54);
+    Settings settings;
+    settings.shadows.screenSpace = true;
+    for (int i = 0; i < 3; ++i) renderer.submitFrame(request(OutputMode::Color), settings, view);
+    const DeviceObjectCounts before = device().liveObjects();
+    for (int i = 0; i < 8; ++i) renderer.submitFrame(request(OutputMode::Color), settings, view);
+    const DeviceObjectCounts after = device().liveObjects();
+    EXPECT_EQ(after.objectsCreated, before.objectsCreated);
+    EXPECT_EQ(after.memoryAllocations, before.memoryAllocations);
+    EXPECT_EQ(after.submits, before.submits + 8);
+    EXPECT_EQ(after.deviceWaits, before.deviceWaits);
+    EXPECT_EQ(after.total(), before.total());
+}
+
+TEST_F(PersistentFrameTest, TargetsAreRemadeOnlyWhenTheirSizeChanges) {
+    Renderer renderer(device(), makeDemoScene());
+    Settings settings;
+    renderer.render(request(OutputMode::Color), settings);
+    const uint64_t made = device().liveObjects().objectsCreated;
+    renderer.render(request(OutputMode::Color), settings);
+    EXPECT_EQ(device().liveObjects().objectsCreated, made);
+    settings.shadows.directional.atlasSize = 2048;
+    renderer.render(request(OutputMode::Color), settings);
+    // The directional atlas and the compute rasterizer's depth buffer, sized by the larger atlas.
+    EXPECT_EQ(device().liveObjects().objectsCreated, made + 2);
+}
+
+TEST_F(PersistentFrameTest, TwoHundredChangingFramesLeaveNoDeviceObjectOnceTheRendererIsGone) {
+    const DeviceObjectCounts before = device().liveObjects();
+    {
+        Renderer renderer(device(), makeDemoScene());
+        const CameraView view = resolveCameraView(renderer.scene(), 48, 27);
+        const std::vector<Light> lights = renderer.scene().lights;
+        for (uint32_t i = 0; i < 200; ++i) {
+            // The number of shadowed lights changes too: lights drop in and out of the shadow budget.
+            for (uint32_t l = 0; l < lights.size(); ++l) {
+                Light light = lights[l];
+                if ((i / 10 + l) % 3 == 0) light.shadows = LightShadows::None;
+                if ((i / 20 + l) % 4 == 1) light.shadows = LightShadows::Hard;
+                renderer.setLight(l, light);
+            }
+            if (i % 50 == 49) renderer.render(request(OutputMode::ShadowAov, 48, 27), varyingSettings(i));
+            else renderer.submitFrame(request(OutputMode(i % 3), 48, 27), varyingSettings(i), view);
+        }
+    }
+    const DeviceObjectCounts after = device().liveObjects();
+    EXPECT_EQ(after.buffers, before.buffers);
+    EXPECT_EQ(after.textures, before.textures);
+    EXPECT_EQ(after.samplers, before.samplers);
+    EXPECT_EQ(after.pipelines, before.pipelines);
+    EXPECT_EQ(after.textureTables, before.textureTables);
+    EXPECT_EQ(after.memoryBlocks, before.memoryBlocks);
+    EXPECT_EQ(after.pendingDestroys, 0u);
+}
+
+TEST_F(PersistentFrameTest, GpuObjectsCarryDebugNames) {
+    const uint64_t before = device().liveObjects().debugNamesSet;
+    Renderer renderer(device(), makeDemoScene());
+    renderer.render(request(OutputMode::Color), {});
+    // The validation layer brings VK_EXT_debug_utils: every buffer, image, view and pipeline is named.
+    EXPECT_GT(device().liveObjects().debugNamesSet, before + 20);
+}
+
+// ---- scene changes between frames
+
+class SceneUpdateTest : public RenderTest {
+protected:
+    Image shadowOf(Renderer& renderer, uint32_t light = 0) {
+        return renderer.render(shadowAov(light, 96), smallSpotAtlas()).image;
+    }
+};
+
+TEST_F(SceneUpdateTest, MovedCasterRendersAsAFreshSceneWithItMoved) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    Renderer renderer(device(), scene);
+    const Image before = shadowOf(renderer);
+    const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.5f, 0.4f));
+    renderer.setInstanceTransform(1, moved);
+    const Image after = shadowOf(renderer);
+    scene.instances[1].worldFromObject = moved;
+    scene.instances[1].wsBounds = scene.meshes[scene.instances[1].meshIndex].osBounds.transformed(moved);
+    Renderer fresh(device(), scene);
+    EXPECT_TRUE(after.pixels == shadowOf(fresh).pixels);
+    EXPECT_FALSE(after.pixels == before.pixels);
+}
+
+TEST_F(SceneUpdateTest, OnlyTheChangedInstanceIsUploaded) {
+    Renderer renderer(device(), boxUnderLight(testSpot(LightShadows::Soft)));
+    const RenderResult first = renderer.render(shadowAov(0, 32), {});
+    EXPECT_EQ(first.stats.sceneBytesUploaded, 0u);
+    renderer.setInstanceTransform(2, glm::translate(glm::mat4(1.0f), glm::vec3(1, 0.75f, 1)));
+    EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 144u + 48u);  // one InstanceData and its CullInstance
+    EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 0u);
+}
+
+TEST_F(SceneUpdateTest, TurnedLightRendersAsAFreshSceneWithItTurned) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Hard));
+    Renderer renderer(device(), scene);
+    shadowOf(renderer);
+    Light turned = scene.lights[0];
+    turned.wsDirection = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+    turned.wsPosition = glm::vec3(-1.0f, 4.5f, -0.5f);
+    renderer.setLight(0, turned);
+    scene.lights[0] = turned;
+    Renderer fresh(device(), scene);
+    EXPECT_TRUE(shadowOf(renderer).pixels == shadowOf(fresh).pixels);
+}
+
+TEST_F(SceneUpdateTest, MaterialShadowModeOffRemovesTheShadowOnTheNextFrame) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    Renderer renderer(device(), scene);
+    const Image shadowed = shadowOf(renderer);
+    Material off = scene.materials[0];
+    off.shadows = MaterialShadowMode::Off;
+    renderer.setMaterial(0, off);
+    const Image unshadowed = shadowOf(renderer);
+    EXPECT_FALSE(shadowed.pixels == unshadowed.pixels);
+    EXPECT_EQ(*std::min_element(unshadowed.pixels.begin(), unshadowed.pixels.end()), 255);
+}
+
+TEST_F(SceneUpdateTest, InstanceThatStopsCastingLeavesNoShadow) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    Renderer renderer(device(), scene);
+    shadowOf(renderer);
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) renderer.setInstanceCastShadows(i, false);
+    const Image image = shadowOf(renderer);
+    EXPECT_EQ(*std::min_element(image.pixels.begin(), image.pixels.end()), 255);
+}
+
+TEST_F(SceneUpdateTest, BadChangesAreRefusedWithAnError) {
+    Renderer renderer(device(), boxUnderLight(testSpot(LightShadows::Soft)));
+    EXPECT_THROW(renderer.setInstanceTransform(99, glm::mat4(1.0f)), Error);
+    Light bad = renderer.scene().lights[0];
+    bad.wsDirection = glm::vec3(0.0f);
+    EXPECT_THROW(renderer.setLight(0, bad), Error);
+    EXPECT_THROW(renderer.setInstanceCastShadows(99, false), Error);
+}
+
+// ---- pipeline variants
+
+class PipelineVariantTest : public RenderTest {};
+
+TEST_F(PipelineVariantTest, GenericVariantGivesTheSpecializedImage) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    scene.lights.push_back(testPoint(LightShadows::Hard));
+    RendererOptions generic;
+    generic.forceGenericVariants = true;
+    Renderer specialized(device(), scene), fallback(device(), scene, generic);
+    for (ShadowFilter filter : {ShadowFilter::PCF2x2, ShadowFilter::PCF3x3, ShadowFilter::PCF7x7}) {
+        Settings settings = smallSpotAtlas();
+        settings.shadows.spot.filter = filter;
+        for (uint32_t light : {0u, 1u})
+            EXPECT_TRUE(specialized.render(shadowAov(light, 96), settings).image.pixels ==
+                        fallback.render(shadowAov(light, 96), settings).image.pixels)
+                << "filter " << int(filter) << " light " << light;
+        RenderRequest colour = shadowAov(0, 96);
+        colour.output = OutputMode::Color;
+        EXPECT_TRUE(specialized.render(colour, settings).image.pixels == fallback.render(colour, settings).image.pixels);
+    }
+}
+
+TEST_F(PipelineVariantTest, AfterBackgroundWarmupNoSettingChangeBuildsAPipeline) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    scene.lights.push_back(testPoint(LightShadows::Hard));
+    RendererOptions options;
+    options.warmup = PipelineWarmup::Background;
+    Renderer renderer(device(), scene, options);
+    renderer.buildAllPipelines();
+    EXPECT_EQ(renderer.pipelineBuildsPending(), 0u);
+    const CameraView view = resolveCameraView(renderer.scene(), 32, 32);
+    uint64_t made = 0;
+    for (uint32_t i = 0; i < 48; ++i) {
+        if (i == 24) made = device().liveObjects().objectsCreated;  // the first round made the targets
+        Settings settings = varyingSettings(i);
+        settings.shadows.spot.atlasSize = 1024;
+        settings.shadows.directional.atlasSize = 1024;
+        Light spot = renderer.scene().lights[0];
+        spot.shadows = LightShadows(i % 3);  // none, hard, soft: every spot/point specialization
+        renderer.setLight(0, spot);
+        renderer.submitFrame(request(OutputMode(i % 3), 32, 32), settings, view);
+    }
+    renderer.waitIdle();
+    EXPECT_EQ(device().liveObjects().objectsCreated, made);
+}
+
+TEST_F(PipelineVariantTest, PipelineCacheIsWrittenToTheCacheFolder) {
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() / ("penumbra_cache_test_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(folder);
+    {
+        DeviceOptions options = testDeviceOptions();
+        options.pipelineCache = folder.string();
+        Device own(options);
+        Renderer renderer(own, makeDemoScene());
+        renderer.render(request(OutputMode::Color, 16, 16), {});
+    }
+    ASSERT_TRUE(std::filesystem::is_directory(folder));
+    size_t files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        EXPECT_EQ(entry.path().extension(), ".bin");
+        EXPECT_GE(entry.file_size(), 16u);  // at least the header the driver checks on load
+        ++files;
+    }
+    EXPECT_EQ(files, 1u);
+    {
+        DeviceOptions options = testDeviceOptions();
+        options.pipelineCache = folder.string();
+        Device again(options);  // reads it back
+        EXPECT_EQ(again.validationMessageCount(), 0u);
+    }
+    std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace penumbra::test

@@ -1,0 +1,95 @@
+// GPU shadow-caster culling (issue 10) against the CPU planner's culling, its reference: on every
+// canonical scene, the demo and the built-in scale scenes, every tile keeps the same instances.
+#include <algorithm>
+#include <cstring>
+
+#include "penumbra/scene_loading.h"
+#include "render/gpu_scene.h"
+#include "render/shadow_culling_pass.h"
+#include "render_test_support.h"
+#include "scene/canonical_scenes.h"
+#include "shadows/cull_packing.h"
+
+namespace penumbra::test {
+namespace {
+
+class ShadowCullingTest : public RenderTest {
+protected:
+    // Per tile of the plan (directional, then spot/point): the GPU's visible instances and the CPU's.
+    struct Lists {
+        std::vector<std::vector<uint32_t>> gpu, cpu;
+    };
+    Lists cull(const Scene& scene, const Settings& settings, uint32_t width = 160, uint32_t height = 90) {
+        gpu::Device& gpu = device().backend();
+        const CameraView view = resolveCameraView(scene, width, height);
+        const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);  // CPU lists kept
+        GpuScene gpuScene(gpu, scene);
+        ShadowCullingPass culling(gpu, gpuScene);
+        const gpu_data::CullFrame packed = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+        const gpu::BufferHandle frame = gpu.createBuffer(sizeof(packed), gpu::kBufferUniform, gpu::MemoryKind::HostVisible,
+                                                         &packed, "test cull frame");
+        const uint32_t tiles = uint32_t(plan.directional.tiles.size() + plan.other.tiles.size());
+        gpu::CommandList commands = gpu.beginCommands();
+        culling.record(commands, {frame, 0, sizeof(packed)}, tiles);
+        gpu.submitAndWait(commands);
+        Lists lists;
+        lists.gpu = culling.readVisibleLists(tiles);
+        for (const auto* tileList : {&plan.directional.tiles, &plan.other.tiles})
+            for (const ShadowTile& tile : *tileList) {
+                std::vector<uint32_t> instances = tile.casterInstances;
+                std::sort(instances.begin(), instances.end());
+                lists.cpu.push_back(instances);
+            }
+        gpu.destroy(frame);
+        return lists;
+    }
+
+    void expectSameLists(const Scene& scene, const Settings& settings, const std::string& what) {
+        const Lists lists = cull(scene, settings);
+        ASSERT_EQ(lists.gpu.size(), lists.cpu.size()) << what;
+        ASSERT_FALSE(lists.cpu.empty()) << what << ": no shadow tile to compare";
+        size_t kept = 0;
+        for (size_t tile = 0; tile < lists.cpu.size(); ++tile) {
+            EXPECT_EQ(lists.gpu[tile], lists.cpu[tile]) << what << ", tile " << tile;
+            kept += lists.cpu[tile].size();
+        }
+        EXPECT_GT(kept, 0u) << what;
+    }
+};
+
+TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsOnEveryCanonicalScene) {
+    for (const CanonicalSceneInfo& info : canonicalScenes()) {
+        Settings settings;
+        settings.shadows.maxDistance = 150.0f;
+        expectSameLists(makeCanonicalScene(info.name), settings, info.name);
+    }
+}
+
+TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsWithEveryCascadeCountAndBlendCulling) {
+    const Scene scene = makeDemoScene();
+    for (uint32_t cascades = 1; cascades <= 4; ++cascades) {
+        for (float fade : {0.05f, 0.1f, 0.5f}) {
+            Settings settings;
+            settings.shadows.directional.cascadeCount = cascades;
+            settings.shadows.directional.cascadeFade = fade;  // blend culling factor 0.75, 0.7, 0.3
+            expectSameLists(scene, settings, "demo, " + std::to_string(cascades) + " cascades, fade " + std::to_string(fade));
+        }
+    }
+}
+
+TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsOnManyObjects) {
+    Settings settings;
+    settings.shadows.maxDistance = 300.0f;
+    expectSameLists(loadScene("gen:boxes:3000"), settings, "gen:boxes:3000");
+    expectSameLists(loadScene("gen:field:9:6"), Settings{}, "gen:field:9:6");
+}
+
+TEST_F(ShadowCullingTest, NonCastingNodesAndShadowlessMaterialsAreNeverListed) {
+    Scene scene = makeDemoScene();
+    for (uint32_t i = 0; i < scene.instances.size(); i += 2) scene.instances[i].castShadows = false;
+    scene.materials[0].shadows = MaterialShadowMode::Off;
+    expectSameLists(scene, Settings{}, "demo with half the casters off");
+}
+
+}  // namespace
+}  // namespace penumbra::test

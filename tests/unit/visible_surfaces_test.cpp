@@ -1,0 +1,110 @@
+// The depth reduction of the tight cascade fit (shadows/visible_surfaces.h) and the plan it drives.
+#include <cstdio>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "shadow_test_scene.h"
+#include "shadows/shadow_fade.h"
+#include "shadows/shadow_planner.h"
+#include "shadows/visible_surfaces.h"
+
+using namespace penumbra;
+using namespace penumbra::shadow_test;
+
+namespace {
+
+// The reversed-Z depth image of the ground plane y = 0 (up to 60 m) seen by `view`; 0 elsewhere.
+Image groundDepth(const CameraView& view) {
+    Image depth(view.width, view.height, 4, 0);
+    for (uint32_t y = 0; y < view.height; ++y)
+        for (uint32_t x = 0; x < view.width; ++x) {
+            const glm::vec3 dir = wsRayDirection(view, float(x) + 0.5f, float(y) + 0.5f);
+            if (dir.y >= -1e-4f) continue;
+            const glm::vec3 p = view.wsPosition + dir * (-view.wsPosition.y / dir.y);
+            if (glm::length(p - view.wsPosition) > 60.0f) continue;
+            const glm::vec4 clip = view.clipFromWorld * glm::vec4(p, 1.0f);
+            const float d = clip.z / clip.w;
+            std::memcpy(&depth.pixels[(size_t(y) * view.width + x) * 4], &d, sizeof(float));
+        }
+    return depth;
+}
+
+}  // namespace
+
+TEST(VisibleSurfaces, ReconstructsTheVisiblePointsAndTheirDepthRange) {
+    const CameraView view = cameraLookingAt({0, 3, 0}, {0, 0, -10}, 1000.0f, 64, 48);
+    const VisibleSurfaces visible = visibleSurfacesFromDepth(groundDepth(view), view);
+    ASSERT_GT(visible.wsPoints.size(), 64u * 10u);
+    for (const glm::vec3& p : visible.wsPoints) EXPECT_NEAR(p.y, 0.0f, 2e-3f * glm::length(p - view.wsPosition));
+    EXPECT_GT(visible.vsMinDepth, 2.0f);  // the nearest ground the 60° view shows
+    EXPECT_LT(visible.vsMaxDepth, 60.0f);
+    EXPECT_GT(visible.vsMaxDepth, 40.0f);
+}
+
+TEST(VisibleSurfaces, EmptyDepthGivesNoPoints) {
+    const CameraView view = cameraLookingAt({0, 3, 0}, {0, 3, -10}, 1000.0f, 16, 16);
+    EXPECT_TRUE(visibleSurfacesFromDepth(Image(16, 16, 4, 0), view).empty());
+}
+
+// The tight fit (issue 13 item 8): every visible point of a cascade's slice lands inside its tile, the
+// cascades are chosen by view depth, and the texels are smaller than the culling sphere's.
+TEST(TightFit, EveryVisiblePointMapsInsideItsCascadesTileWithSmallerTexels) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -60}, {60, 0, 60});
+    addBox(scene, {-1, 0, -8}, {1, 2, -6});
+    addDirectionalLight(scene, {0.4f, -1.0f, 0.3f});
+    const CameraView view = cameraLookingAt({0, 3, 0}, {0, 0, -10}, 1000.0f, 64, 48);
+    const VisibleSurfaces visible = visibleSurfacesFromDepth(groundDepth(view), view);
+    ShadowSettings settings;
+    settings.directional.fit = CascadeFit::Tight;
+    settings.directional.cascadeSplits = CascadeSplitMode::Log;
+    const ShadowFrame tight = ShadowPlanner::plan(scene, view, settings, &visible);
+    settings.directional.fit = CascadeFit::Sphere;
+    const ShadowFrame sphere = ShadowPlanner::plan(scene, view, settings);
+    ASSERT_TRUE(tight.directional.tight);
+    EXPECT_EQ(tight.directional.gpu.modes.z, gpu_data::kCascadeFitTight);
+    const float atlasSize = float(tight.directional.atlas.atlasSize);
+    double tightTexels = 0.0, sphereTexels = 0.0;  // the texel size each visible point is shadowed with
+    for (size_t i = 0; i < visible.wsPoints.size(); ++i) {
+        const CascadeSelection inSphere = selectCascade(sphere.directional.gpu, visible.wsPoints[i], visible.vsDepths[i]);
+        if (inSphere.cascadeIndex < 4) sphereTexels += sphere.directional.tiles[inSphere.cascadeIndex].wsTexelSize;
+        const CascadeSelection selection = selectCascade(tight.directional.gpu, visible.wsPoints[i], visible.vsDepths[i]);
+        ASSERT_LT(selection.cascadeIndex, 4u);
+        const ShadowTile& tile = tight.directional.tiles[selection.cascadeIndex];
+        tightTexels += tile.wsTexelSize;
+        const glm::vec4 p = tile.atlasFromWorld * glm::vec4(visible.wsPoints[i], 1.0f);
+        EXPECT_GE(p.x * atlasSize, float(tile.rect.offset.x) + 2.0f);
+        EXPECT_LE(p.x * atlasSize, float(tile.rect.offset.x + tile.rect.size) - 2.0f);
+        EXPECT_GE(p.y * atlasSize, float(tile.rect.offset.y) + 2.0f);
+        EXPECT_LE(p.y * atlasSize, float(tile.rect.offset.y + tile.rect.size) - 2.0f);
+        EXPECT_GT(p.z, 0.0f);
+        EXPECT_LT(p.z, 1.0f);
+    }
+    for (uint32_t c = 0; c < 4; ++c)
+        EXPECT_FLOAT_EQ(tight.directional.gpu.cascadeData[c].w, tight.directional.cascades[c].vsFar);
+    std::printf("[tight fit] mean texel at the visible points: sphere %.4f m, tight %.4f m\n",
+                sphereTexels / double(visible.wsPoints.size()), tightTexels / double(visible.wsPoints.size()));
+    EXPECT_LT(tightTexels, 0.8 * sphereTexels);
+    EXPECT_LE(tight.directional.cascades[3].vsFar, visible.vsMaxDepth * 1.002f);  // splits over the visible range
+}
+
+TEST(TightFit, WithoutVisibleSurfacesThePlanIsTheSphereFit) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -60}, {60, 0, 60});
+    addDirectionalLight(scene, {0.4f, -1.0f, 0.3f});
+    ShadowSettings settings;
+    settings.directional.fit = CascadeFit::Tight;
+    const ShadowFrame frame = ShadowPlanner::plan(scene, cameraLookingAt({0, 3, 0}, {0, 0, -10}), settings);
+    EXPECT_FALSE(frame.directional.tight);
+    EXPECT_EQ(frame.directional.gpu.modes.z, gpu_data::kCascadeFitSphere);
+}
+
+TEST(ShadowFade, SquaredFadeRunsFromTheBandsStartToTheShadowDistanceInSquaredDistance) {
+    const glm::vec2 scaleBias = squaredFadeScaleBias(100.0f, 0.2f);  // band from 80 m to 100 m
+    EXPECT_NEAR(80.0f * 80.0f * scaleBias.x + scaleBias.y, 0.0f, 1e-5f);
+    EXPECT_NEAR(100.0f * 100.0f * scaleBias.x + scaleBias.y, 1.0f, 1e-5f);
+    const float midSquared = 0.5f * (80.0f * 80.0f + 100.0f * 100.0f);
+    EXPECT_NEAR(distanceFadeStrength(ShadowFadeMode::Squared, 100.0f, 0.2f, 1.0f, midSquared), 0.5f, 1e-5f);
+    EXPECT_NEAR(distanceFadeStrength(ShadowFadeMode::Linear, 100.0f, 0.2f, 90.0f, 0.0f), 0.5f, 1e-5f);
+}
