@@ -49,7 +49,8 @@ TEST(GltfLoader, LoadsTexturedBoxWithDecodedTexture) {
 TEST(GltfLoader, ReadsTheTexturesSampler) {
     const std::string path = kSamples + "BoxTextured-glTF/BoxTextured.gltf";
     REQUIRE_SAMPLE(path);
-    const TextureSampler& sampler = loadGltfScene(path).textures.at(0).sampler;
+    const Scene scene = loadGltfScene(path);
+    const TextureSampler& sampler = scene.textures.at(0).sampler;
     // magFilter 9729, minFilter 9986 (NEAREST_MIPMAP_LINEAR), wrapS 33648, wrapT 33071.
     EXPECT_EQ(sampler.magFilter, TextureFilter::Linear);
     EXPECT_EQ(sampler.minFilter, TextureFilter::Nearest);
