@@ -60,15 +60,17 @@ nlohmann::json variationJson(uint32_t period, const std::vector<MemorySample>& s
         hostMax = std::max(hostMax, s.hostRssMegabytes);
         deviceMax = std::max(deviceMax, s.deviceMegabytes);
     }
-    // Growth: the same step of the first and the last full cycle (the atlas sizes differ from step to
-    // step, so only equal steps compare); 0 when fewer than two cycles ran.
+    // Growth: the same step of the second and the last full cycle. The atlas sizes differ from step to
+    // step, so only equal steps compare; the first cycle is where the memory blocks grow to the
+    // largest step's need, so it is not the baseline. 0 when fewer than three cycles ran.
     const size_t steps = benchVariations().size();
     double hostGrowth = 0.0, deviceGrowth = 0.0;
-    if (samples.size() >= 2 * steps) {
+    if (samples.size() >= 3 * steps) {
         const size_t lastCycle = (samples.size() / steps - 1) * steps;
         for (size_t i = 0; i < steps; ++i) {
-            hostGrowth = std::max(hostGrowth, samples[lastCycle + i].hostRssMegabytes - samples[i].hostRssMegabytes);
-            deviceGrowth = std::max(deviceGrowth, samples[lastCycle + i].deviceMegabytes - samples[i].deviceMegabytes);
+            hostGrowth = std::max(hostGrowth, samples[lastCycle + i].hostRssMegabytes - samples[steps + i].hostRssMegabytes);
+            deviceGrowth =
+                std::max(deviceGrowth, samples[lastCycle + i].deviceMegabytes - samples[steps + i].deviceMegabytes);
         }
     }
     if (!samples.empty()) {

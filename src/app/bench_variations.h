@@ -40,7 +40,8 @@ struct MemorySample {
 };
 
 // The JSON "vary" block: the period, each sample, and first / last / max / growth of host and device
-// memory (growth: the largest increase between the same step of the first and of the last cycle).
+// memory (growth: the largest increase between the same step of the second and of the last cycle;
+// the first cycle is where the memory blocks grow to the largest step's need).
 nlohmann::json variationJson(uint32_t period, const std::vector<MemorySample>& samples);
 
 }  // namespace penumbra
