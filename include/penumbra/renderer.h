@@ -67,6 +67,10 @@ struct FrameStats {
     uint64_t rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
     // Shadow tiles drawn this frame and kept from earlier frames (shadows.cacheTiles).
     uint32_t tilesRendered = 0, tilesReused = 0;
+    // Clustered light culling (render.lightCulling): the spot and point lights per cluster, mean over
+    // all clusters and most in one; 0 when the frame had no spot or point light or culling was off.
+    double lightsPerClusterMean = 0.0;
+    uint32_t lightsPerClusterMax = 0;
     std::vector<AtlasDrawStats> atlases;
     std::vector<std::string> warnings;
     std::string shadowStatsJson = "{}";  // the shadow planner's stats (lights reserved, tiles, casters per tile)

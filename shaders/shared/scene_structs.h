@@ -6,7 +6,7 @@
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
 PENUMBRA_CONST(uint, kMaxDirectionalLights, 4u)
-PENUMBRA_CONST(uint, kMaxOtherLights, 64u)
+PENUMBRA_CONST(uint, kMaxOtherLights, 1024u)  // = 32 x kMaxClusterLightWords
 
 // Debug output of the lit pass (--aov).
 PENUMBRA_CONST(uint, kOutputColor, 0u)

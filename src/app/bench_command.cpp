@@ -89,6 +89,8 @@ struct Measurements {
     std::string raster, rasterChoice;     // of the last timed frame
     uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
+    double lightsPerClusterMean = 0.0;  // of the last timed frame
+    uint32_t lightsPerClusterMax = 0;
     void add(const FrameStats& stats) {
         for (const PassTiming& t : stats.gpuTimings) passes[t.name].values.push_back(t.milliseconds);
         cpu["plan"].values.push_back(stats.cpu.plan);
@@ -105,6 +107,8 @@ struct Measurements {
         rasterChunks = stats.rasterChunks;
         rasterDropped = stats.rasterDropped;
         rasterChoice = stats.shadowRasterChoice;
+        lightsPerClusterMean = stats.lightsPerClusterMean;
+        lightsPerClusterMax = stats.lightsPerClusterMax;
     }
 };
 
@@ -192,6 +196,7 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice},
                             {"largePieces", measured.rasterLarge}, {"chunks", measured.rasterChunks},
                             {"dropped", measured.rasterDropped}};
+    json["lightsPerCluster"] = {{"mean", measured.lightsPerClusterMean}, {"max", measured.lightsPerClusterMax}};
     if (bench.varyPeriod > 0) json["vary"] = variationJson(bench.varyPeriod, run.samples);
     return json;
 }
@@ -222,6 +227,8 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                 (unsigned long long)measured.rasterChunks, (unsigned long long)measured.rasterDropped);
     std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
                 measured.tilesReused.median());
+    std::printf("spot/point lights per cluster: %.2f mean, %u most\n", measured.lightsPerClusterMean,
+                measured.lightsPerClusterMax);
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,
                 run.deviceLast);
     std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n",

@@ -25,7 +25,7 @@ void printError(const std::string& prefix, const char* message) {
 // Options every command that renders shares.
 void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("scene", options.scenePath,
-                       "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S] or gen:boxes:N; the built-in demo scene if omitted");
+                       "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S[:P]] or gen:boxes:N[:P]; the built-in demo scene if omitted");
     command.add_option("--model", options.model, "the glTF that gen:field copies (default: assimp's 2CylinderEngine)");
     command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));

@@ -14,7 +14,7 @@
 namespace penumbra {
 
 struct RenderOptions {
-    std::string scenePath;  // empty: built-in demo scene; gen:field:N[:S], gen:boxes:N: built-in scale scenes
+    std::string scenePath;  // empty: built-in demo scene; gen:field:N[:S[:P]], gen:boxes:N[:P]: built-in scale scenes
     std::string model;      // the glTF gen:field copies (empty: the default engine model)
     uint32_t width = 1280;
     uint32_t height = 720;

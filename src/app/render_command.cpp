@@ -96,6 +96,7 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
     stats["warnings"] = result.stats.warnings;
     stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
     stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
+    stats["lightsPerCluster"] = {{"mean", result.stats.lightsPerClusterMean}, {"max", result.stats.lightsPerClusterMax}};
     return stats.dump(2);
 }
 

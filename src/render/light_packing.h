@@ -1,6 +1,6 @@
 #pragma once
 // Scene lights → the lit pass's LightData array: directional lights first (at most 4), then spot and
-// point lights (at most 64), each carrying its scene index and shadow slot.
+// point lights (at most 1024), each carrying its scene index and shadow slot.
 #include <string>
 #include <vector>
 

@@ -1,5 +1,7 @@
 #include "render/main_pass.h"
 
+#include "light_cluster_structs.h"
+
 #include <algorithm>
 
 namespace penumbra {
@@ -20,6 +22,8 @@ std::vector<gpu::BindingDesc> shadedSceneBindings() {
     bindings.push_back({9, DescriptorType::SampledTexture});
     bindings.push_back({12, DescriptorType::SampledTexture});  // the atlases as raw depth
     bindings.push_back({13, DescriptorType::SampledTexture});
+    bindings.push_back({gpu_data::kBindingLightClusters, DescriptorType::UniformBuffer});  // light_clusters.glsl
+    bindings.push_back({gpu_data::kBindingClusterMasks, DescriptorType::StorageBuffer});
     return bindings;
 }
 

@@ -15,6 +15,8 @@
 #include "render/light_packing.h"
 #include "render/main_pass.h"
 #include "render/raster_choice.h"
+#include "render/light_cluster_pass.h"
+#include "render/light_clusters.h"
 #include "render/readback_images.h"
 #include "render/tile_cache.h"
 #include "render/screen_space_shadow_pass.h"
@@ -86,6 +88,7 @@ struct PendingFrame {
     ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
     bool computeRaster = false;
     bool autoRaster = false;  // shadows.raster = auto and still measuring: its timings feed the choice
+    bool clusterStats = false;     // the light cluster pass's LightClusterStats end the readback
     bool visibleReadback = false;  // the tight fit's depth subsample is in the readback, for later frames
     CameraView view;
     ShadowRaster rasterSetting = ShadowRaster::Auto;
@@ -119,6 +122,15 @@ void applyRasterCounters(FrameStats& stats, const ShadowFrame& plan, const std::
         stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
                                  " large pieces or chunks were not drawn in frame " + std::to_string(stats.frameIndex) +
                                  "; the queues grow for the next frames");
+}
+
+// The light cluster pass's counts, the last bytes of the frame's readback.
+void applyClusterStats(FrameStats& stats, const std::vector<uint8_t>& readback) {
+    gpu_data::LightClusterStats counts{};
+    if (readback.size() < sizeof(counts)) return;
+    std::memcpy(&counts, readback.data() + readback.size() - sizeof(counts), sizeof(counts));
+    stats.lightsPerClusterMean = double(counts.counts.x) / double(gpu_data::kClusterCount);
+    stats.lightsPerClusterMax = counts.counts.y;
 }
 
 bool finite(const glm::mat4& m) {
@@ -188,6 +200,7 @@ struct Renderer::State {
     ScreenSpaceShadowPass screenSpacePass;
     VisibleSurfacePass visiblePass;
     ComputeRasterPass computeRaster;
+    LightClusterPass lightClusters;
     RasterChoice rasterChoice;
     std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
     glm::uvec2 latestVisibleSize{0};
@@ -206,7 +219,7 @@ struct Renderer::State {
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
           mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
           visiblePass(d, gpuScene, mainPass),
-          computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
+          computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
         try {
             // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
             shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
@@ -365,6 +378,10 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         const gpu::BufferSlice frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
         const gpu::BufferSlice lightSlice =
             uploadFrameData(device, lights.lights.data(), lights.lights.size() * sizeof(gpu_data::LightData));
+        const bool clustered = settings.render.lightCulling == LightCulling::Clustered && lights.otherCount > 0;
+        const gpu_data::LightClusterData clusterData =
+            makeLightClusterData(view, scene.wsBounds, lights.directionalCount, lights.otherCount, clustered);
+        const gpu::BufferSlice clusterSlice = uploadFrameData(device, &clusterData, sizeof(clusterData));
         const gpu::BufferSlice directionalSlice =
             uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
         const gpu::BufferSlice otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
@@ -436,8 +453,16 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         commands.endTimer();
         stats.atlases = {{"shadows.directional", directionalTiles, 0, 0}, {"shadows.other", cullTiles - directionalTiles, 0, 0}};
 
+        stage = "light clusters";
+        commands.beginTimer("lightClusters");
+        lightClusters.record(commands, clusterSlice, lightSlice, clustered);
+        commands.endTimer();
+        frame.clusterStats = clustered;
+
         MainPassInputs inputs;
         inputs.writes = casterWrites;
+        inputs.writes.push_back({gpu_data::kBindingLightClusters, clusterSlice});
+        inputs.writes.push_back({gpu_data::kBindingClusterMasks, lightClusters.masks(), {}, {}});
         inputs.writes.push_back({5, directionalSlice});
         inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
         inputs.writes.push_back({7, otherSlice});
@@ -471,6 +496,8 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
             frame.view = view;
         }
 
+        // Last in the readback (collectCompleted reads it from the end).
+        if (clustered) device.readBackAtFrameEnd(commands, lightClusters.stats());
         stage = "readback";
         if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
         if (captureAtlas) {
@@ -511,6 +538,7 @@ void Renderer::State::collectCompleted() {
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
         FrameStats stats = std::move(pending.front().stats);
         applyCullStats(stats, pending.front().plan, done.readback);
+        if (pending.front().clusterStats) applyClusterStats(stats, done.readback);
         if (pending.front().computeRaster) applyRasterCounters(stats, pending.front().plan, done.readback, rasterNeeded);
         if (stats.rasterDropped > 0) {  // those tiles are incomplete: draw them all again
             directionalCache.invalidate();

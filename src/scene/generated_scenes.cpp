@@ -63,6 +63,28 @@ void addGroundSunCamera(SceneBuilder& builder, float halfSize, float height) {
     builder.setCamera(camera);
 }
 
+// `count` unshadowed point lights on a jittered grid over [-halfSize, halfSize]^2, 0.5-1.5 m up, each
+// reaching about 2.5 grid spacings (1.5-8 m), in four colours.
+void addPointLights(SceneBuilder& builder, float halfSize, uint32_t count) {
+    if (count == 0) return;
+    const uint32_t side = uint32_t(std::ceil(std::sqrt(double(count))));
+    const float spacing = 2.0f * halfSize / float(side);
+    const float range = std::clamp(2.5f * spacing, 1.5f, 8.0f);
+    const glm::vec3 colors[4] = {{1.0f, 0.6f, 0.4f}, {0.5f, 0.7f, 1.0f}, {0.6f, 1.0f, 0.6f}, {1.0f, 0.5f, 0.9f}};
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t hash = (i * 2246822519u) ^ (i >> 5);
+        const glm::vec3 jitter(float(hash % 101) / 100.0f - 0.5f, 0.5f + float((hash >> 8) % 101) / 100.0f,
+                               float((hash >> 16) % 101) / 100.0f - 0.5f);
+        const glm::vec3 wsPosition(spacing * (float(i % side) + 0.5f + 0.5f * jitter.x) - halfSize, jitter.y,
+                                   spacing * (float(i / side) + 0.5f + 0.5f * jitter.z) - halfSize);
+        Light point = makePointLight(wsPosition, 2.0f, range);
+        point.name = "point" + std::to_string(i);
+        point.color = colors[i % 4];
+        point.shadows = LightShadows::None;
+        builder.addLight(point);
+    }
+}
+
 }  // namespace
 
 std::optional<GeneratedSceneSpec> parseGeneratedSceneSpec(const std::string& source) {
@@ -71,21 +93,23 @@ std::optional<GeneratedSceneSpec> parseGeneratedSceneSpec(const std::string& sou
     std::stringstream stream(source.substr(4));
     for (std::string part; std::getline(stream, part, ':');) parts.push_back(part);
     GeneratedSceneSpec spec;
-    if (!parts.empty() && parts[0] == "field" && (parts.size() == 2 || parts.size() == 3)) {
+    if (!parts.empty() && parts[0] == "field" && parts.size() >= 2 && parts.size() <= 4) {
         spec.kind = GeneratedSceneSpec::Kind::Field;
         spec.count = parseCount(parts[1], source, "the copy count", 1, kMaxFieldCopies);
-        if (parts.size() == 3) spec.spotLights = parseCount(parts[2], source, "the spot light count", 0, kMaxFieldSpotLights);
+        if (parts.size() >= 3) spec.spotLights = parseCount(parts[2], source, "the spot light count", 0, kMaxFieldSpotLights);
+        if (parts.size() == 4) spec.pointLights = parseCount(parts[3], source, "the point light count", 0, kMaxPointLights);
         return spec;
     }
-    if (!parts.empty() && parts[0] == "boxes" && parts.size() == 2) {
+    if (!parts.empty() && parts[0] == "boxes" && (parts.size() == 2 || parts.size() == 3)) {
         spec.kind = GeneratedSceneSpec::Kind::Boxes;
         spec.count = parseCount(parts[1], source, "the box count", 1, kMaxBoxes);
+        if (parts.size() == 3) spec.pointLights = parseCount(parts[2], source, "the point light count", 0, kMaxPointLights);
         return spec;
     }
-    throw Error("scene " + source + ": unknown built-in scene (use gen:field:N[:S] or gen:boxes:N)");
+    throw Error("scene " + source + ": unknown built-in scene (use gen:field:N[:S[:P]] or gen:boxes:N[:P])");
 }
 
-Scene makeFieldScene(const Scene& model, uint32_t copies, uint32_t spotLights) {
+Scene makeFieldScene(const Scene& model, uint32_t copies, uint32_t spotLights, uint32_t pointLights) {
     if (!model.wsBounds.valid()) throw Error("gen:field: the model has no geometry");
     SceneBuilder builder;
     for (const Texture& texture : model.textures) builder.addTexture(texture);
@@ -121,10 +145,11 @@ Scene makeFieldScene(const Scene& model, uint32_t copies, uint32_t spotLights) {
         spot.color = colors[i % 4];
         builder.addLight(spot);
     }
+    addPointLights(builder, halfSize, pointLights);
     return builder.build();
 }
 
-Scene makeBoxesScene(uint32_t boxes) {
+Scene makeBoxesScene(uint32_t boxes, uint32_t pointLights) {
     SceneBuilder builder;
     const glm::vec3 colors[4] = {{0.8f, 0.3f, 0.25f}, {0.3f, 0.6f, 0.8f}, {0.85f, 0.75f, 0.3f}, {0.45f, 0.75f, 0.4f}};
     uint32_t meshes[4];
@@ -144,6 +169,7 @@ Scene makeBoxesScene(uint32_t boxes) {
         builder.addInstance(meshes[i % 4], worldFromObject, true, "");
     }
     addGroundSunCamera(builder, halfSize, 1.6f);
+    addPointLights(builder, halfSize, pointLights);
     return builder.build();
 }
 

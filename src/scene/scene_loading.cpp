@@ -13,10 +13,10 @@ Scene loadScene(const std::string& source, const SceneSourceOptions& options) {
     } else if (const auto spec = parseGeneratedSceneSpec(source)) {
         if (spec->kind == GeneratedSceneSpec::Kind::Field) {
             const Scene model = loadGltfScene(options.model);
-            scene = makeFieldScene(model, spec->count, spec->spotLights);
+            scene = makeFieldScene(model, spec->count, spec->spotLights, spec->pointLights);
             for (const std::string& warning : model.warnings) scene.warnings.push_back(options.model + ": " + warning);
         } else {
-            scene = makeBoxesScene(spec->count);
+            scene = makeBoxesScene(spec->count, spec->pointLights);
         }
         scene.sourcePath = source;
     } else {

@@ -127,6 +127,8 @@ const LeafKey kLeafKeys[] = {
     {"shadows.spot.depthBias", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.depthBias = readFloat(k, v); }},
     {"render.exposure", [](Settings& s, const std::string& k, const json& v) { s.render.exposure = readFloat(k, v); }},
     {"render.ambient", [](Settings& s, const std::string& k, const json& v) { s.render.ambient = readFloat(k, v); }},
+    {"render.lightCulling", [](Settings& s, const std::string& k, const json& v) {
+         s.render.lightCulling = readNamed(k, v, parseLightCulling, "clustered, none"); }},
 };
 
 const char* const kObjectKeys[] = {"shadows", "shadows.directional", "shadows.spot", "render"};
@@ -183,6 +185,8 @@ void validateRenderSettings(const RenderSettings& render) {
         value << render.ambient;
         fail("render.ambient = " + value.str() + " is out of range (allowed 0..1)");
     }
+    if (int(render.lightCulling) < 0 || int(render.lightCulling) > int(LightCulling::None))
+        fail("render.lightCulling = " + std::to_string(int(render.lightCulling)) + " is out of range (allowed clustered, none)");
 }
 
 // nlohmann's parse error, e.g. "syntax error while parsing object - unexpected end of input; expected

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "penumbra/render_settings.h"
 
 namespace penumbra {
 
@@ -16,6 +17,7 @@ constexpr const char* kBiasModeNames[] = {"normal", "scaledNormal", "receiverPla
 constexpr const char* kFitNames[] = {"sphere", "tight"};
 constexpr const char* kFadeModeNames[] = {"linear", "squared"};
 constexpr const char* kSplitModeNames[] = {"manual", "log", "practical"};
+constexpr const char* kLightCullingNames[] = {"clustered", "none"};
 
 // The name of enumerator `value` in `names`, "?" when out of range; and back.
 template <size_t N>
@@ -65,6 +67,10 @@ const char* shadowBiasModeName(ShadowBiasMode mode) { return enumName(kBiasModeN
 const char* shadowFadeModeName(ShadowFadeMode mode) { return enumName(kFadeModeNames, int(mode)); }
 std::optional<ShadowFadeMode> parseShadowFadeMode(const std::string& name) {
     return parseEnum<ShadowFadeMode>(kFadeModeNames, name);
+}
+const char* lightCullingName(LightCulling culling) { return enumName(kLightCullingNames, int(culling)); }
+std::optional<LightCulling> parseLightCulling(const std::string& name) {
+    return parseEnum<LightCulling>(kLightCullingNames, name);
 }
 const char* cascadeFitName(CascadeFit fit) { return enumName(kFitNames, int(fit)); }
 const char* cascadeSplitModeName(CascadeSplitMode mode) { return enumName(kSplitModeNames, int(mode)); }

@@ -60,6 +60,7 @@ TEST(CliBench, JsonHasEveryDocumentedKey) {
     EXPECT_EQ(json["validationMessages"], 0);
     for (const char* key : {"rendered", "reused"}) EXPECT_TRUE(json["tiles"][key].is_number()) << key;
     EXPECT_EQ(json["shadowRaster"]["dropped"], 0);
+    for (const char* key : {"mean", "max"}) EXPECT_TRUE(json["lightsPerCluster"][key].is_number()) << key;
 }
 
 TEST(CliBench, SteadyStateFramesMakeNoGpuObject) {

@@ -62,6 +62,10 @@ TEST(CliRender, StatsReportDeviceTimingsAndShadowTiles) {
     EXPECT_TRUE(stats["gpuMs"].contains("shadows.directional"));
     EXPECT_EQ(stats["shadows"]["directional"]["lightsReserved"].get<int>(), 1);
     EXPECT_EQ(stats["shadows"]["directional"]["tiles"].get<int>(), 4);
+    EXPECT_TRUE(stats["gpuMs"].contains("lightClusters"));
+    // The demo's two spot lights: each cluster holds at most both, and some hold one.
+    EXPECT_GT(stats["lightsPerCluster"]["mean"].get<double>(), 0.0);
+    EXPECT_LE(stats["lightsPerCluster"]["max"].get<int>(), 2);
 }
 
 TEST(CliRender, MissingSceneFileIsOneLineError) {

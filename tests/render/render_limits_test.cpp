@@ -105,16 +105,17 @@ TEST_F(RenderTest, OutputLargerThanTheDeviceLimitIsAnError) {
 
 TEST_F(RenderTest, LightsBeyondTheShaderArraysAreLeftOutByNameWithAWarning) {
     Scene scene = boxOnGround();
-    for (int i = 0; i < 70; ++i) {
-        Light point = makePointLight({float(i % 10) - 5.0f, 2.0f, float(i / 10) - 3.0f}, 1.0f, 3.0f);
+    for (int i = 0; i < 1030; ++i) {
+        Light point = makePointLight({0.2f * float(i % 40) - 4.0f, 2.0f, 0.2f * float(i / 40) - 3.0f}, 0.01f, 1.0f);
         point.name = "p" + std::to_string(i);
         point.shadows = LightShadows::None;
         scene.lights.push_back(point);
     }
     for (int i = 0; i < 5; ++i) scene.lights.push_back(makeDirectionalLight({0.1f * float(i), -1.0f, 0.0f}, 0.1f));
     const RenderResult result = renderScene(scene, request());
-    EXPECT_TRUE(hasWarning(result.stats, "light 65 'p64' not drawn: more than 64 spot/point lights"));
-    EXPECT_TRUE(hasWarning(result.stats, "light 75 '' not drawn: more than 4 directional lights"));
+    EXPECT_FALSE(hasWarning(result.stats, "light 1024 'p1023' not drawn"));
+    EXPECT_TRUE(hasWarning(result.stats, "light 1025 'p1024' not drawn: more than 1024 spot/point lights"));
+    EXPECT_TRUE(hasWarning(result.stats, "light 1035 '' not drawn: more than 4 directional lights"));
 }
 
 TEST_F(RenderTest, DegenerateTrianglesChangeNoPixel) {

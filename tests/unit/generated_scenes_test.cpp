@@ -55,7 +55,8 @@ TEST(GeneratedSceneSpec, ParsesBoxes) {
 TEST(GeneratedSceneSpec, APathIsNotAGeneratedScene) { EXPECT_FALSE(parseGeneratedSceneSpec("scene.gltf")); }
 
 TEST(GeneratedSceneSpec, MalformedSpecsAreErrorsNamingTheSpec) {
-    for (const char* bad : {"gen:field", "gen:field:", "gen:field:0", "gen:field:x", "gen:field:4:-1", "gen:field:4:1:2",
+    for (const char* bad : {"gen:field", "gen:field:", "gen:field:0", "gen:field:x", "gen:field:4:-1", "gen:field:4:1:2:3",
+                            "gen:field:4:1:1025", "gen:boxes:4:x", "gen:boxes:4:1:1",
                             "gen:boxes:0", "gen:boxes:99999999999", "gen:cubes:4", "gen:"}) {
         try {
             parseGeneratedSceneSpec(bad);
@@ -110,6 +111,28 @@ TEST(BoxesScene, HasOneInstancePerBoxPlusTheGround) {
     EXPECT_EQ(boxes.instances.size(), 1001u);
     EXPECT_EQ(triangles(boxes), 1000u * 12u + 2u);
     EXPECT_EQ(boxes.lights.size(), 1u);
+}
+
+TEST(GeneratedSceneSpec, ParsesPointLightCounts) {
+    EXPECT_EQ(parseGeneratedSceneSpec("gen:field:100:16:1008")->pointLights, 1008u);
+    EXPECT_EQ(parseGeneratedSceneSpec("gen:field:100:16")->pointLights, 0u);
+    EXPECT_EQ(parseGeneratedSceneSpec("gen:boxes:100:400")->pointLights, 400u);
+}
+
+TEST(BoxesScene, PointLightsAreUnshadowedRangedAndOverTheBoxes) {
+    const Scene boxes = makeBoxesScene(100, 400);
+    ASSERT_EQ(boxes.lights.size(), 401u);  // the sun first
+    Aabb spread;
+    for (size_t i = 1; i < boxes.lights.size(); ++i) {
+        const Light& light = boxes.lights[i];
+        EXPECT_EQ(light.type, LightType::Point);
+        EXPECT_EQ(light.shadows, LightShadows::None);
+        EXPECT_GT(light.range, 0.0f);
+        EXPECT_GE(light.wsPosition.y, 0.5f);
+        EXPECT_LE(light.wsPosition.y, 1.5f);
+        spread.extend(light.wsPosition);
+    }
+    EXPECT_GT(spread.extent().x, 0.8f * boxes.wsBounds.extent().x - 4.0f) << "spread over the whole ground";
 }
 
 TEST(BoxesScene, CameraSeesEveryBox) {

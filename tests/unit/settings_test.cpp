@@ -136,7 +136,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadValueCase{R"({"shadows": {"spot": {"filter": "soft"}}})", "shadows.spot.filter = \"soft\" is out of range"},
         BadValueCase{R"({"render": {"exposure": 0}})", "render.exposure = 0 is out of range (allowed > 0)"},
         BadValueCase{R"({"render": {"ambient": 2}})", "render.ambient = 2 is out of range (allowed 0..1)"},
+        BadValueCase{R"({"render": {"lightCulling": "tiled"}})",
+                     "render.lightCulling = \"tiled\" is out of range (allowed clustered, none)"},
         BadValueCase{R"({"render": {"gamma": 2.2}})", "unknown key render.gamma"}));
+
+TEST(SettingsJson, LightCullingIsClusteredUnlessTurnedOff) {
+    EXPECT_EQ(Settings{}.render.lightCulling, LightCulling::Clustered);
+    EXPECT_EQ(parseSettingsJson(R"({"render": {"lightCulling": "none"}})", "test.json").render.lightCulling,
+              LightCulling::None);
+    Settings settings;
+    applySettingOverride(settings, "render.lightCulling=none");
+    EXPECT_EQ(settings.render.lightCulling, LightCulling::None);
+}
 
 TEST(SettingsValidation, DefaultsAreValid) { EXPECT_NO_THROW(validateSettings(Settings{})); }
 

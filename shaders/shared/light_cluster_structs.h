@@ -1,0 +1,57 @@
+// Clustered light culling (issue 11 item 1), shared by C++ (render/light_clusters, the CPU reference,
+// and render/light_cluster_pass) and GLSL (light_cluster.comp, light_clusters.glsl, lit.frag).
+//
+// The view is cut into froxels: kClusterTilesX x kClusterTilesY screen tiles times kClusterSlices
+// depth slices, spaced exponentially in view depth from the camera's near plane to `slicing.y` (the
+// camera's far plane, or the far end of the scene's bounds when the camera's is infinite). Each
+// cluster holds one bit per spot / point light: set when the light's range sphere (and, for a spot,
+// its cone) touches the cluster's view-space bounding box. The test is conservative, so a light whose
+// bit is clear adds exactly nothing to any pixel of the cluster: the clustered image equals the
+// unculled one. Pixels beyond the last slice (possible only when the scene moved outside its
+// bounds) loop over every light. Directional lights are never culled.
+//
+// Mask layout: cluster c = (slice * kClusterTilesY + tileY) * kClusterTilesX + tileX, word w of
+// config.z words lives at c * config.z + w; bit b of word w is spot / point light w * 32 + b, i.e.
+// LightData index config.y + w * 32 + b.
+#ifndef PENUMBRA_LIGHT_CLUSTER_STRUCTS_H
+#define PENUMBRA_LIGHT_CLUSTER_STRUCTS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+PENUMBRA_CONST(uint, kClusterTilesX, 16u)
+PENUMBRA_CONST(uint, kClusterTilesY, 9u)
+PENUMBRA_CONST(uint, kClusterSlices, 24u)
+PENUMBRA_CONST(uint, kClusterCount, 3456u)  // 16 x 9 x 24
+PENUMBRA_CONST(uint, kMaxClusterLightWords, 32u)  // 32 x 32 = 1024 spot / point lights (kMaxOtherLights)
+PENUMBRA_CONST(uint, kClusterWorkgroupSize, 64u)
+// Relative growth of every light's range and of its cone's sine before the tests, so that the
+// shader's float rounding in world space can never light a pixel the view-space test left out.
+PENUMBRA_CONST(float, kClusterBoundsMargin, 1.0e-3f)
+// Set 0 bindings of the lit pass (and of the cluster pass, with the lights at 4 as in bindings.glsl).
+PENUMBRA_CONST(uint, kBindingLightClusters, 14u)  // uniform LightClusterData
+PENUMBRA_CONST(uint, kBindingClusterMasks, 15u)   // storage, the mask words
+PENUMBRA_CONST(uint, kBindingClusterStats, 16u)   // storage, LightClusterStats (cluster pass only)
+
+struct LightClusterData {
+    mat4 viewFromClip;   // inverse projection: froxel corners from NDC
+    mat4 viewFromWorld;  // lights into view space
+    vec4 slicing;        // x = near view depth, y = far view depth, z = kClusterSlices / log(far / near), w unused
+    vec4 tileScale;      // x, y = tiles per pixel (kClusterTilesX / width, kClusterTilesY / height); z, w = width, height
+    uvec4 config;        // x = spot/point light count, y = first spot/point LightData index, z = mask words per
+                         // cluster, w = 1 clustered (0: every pixel loops over every light)
+};
+PENUMBRA_CHECK_SIZE(LightClusterData, 176)
+PENUMBRA_CHECK_LAYOUT(LightClusterData, slicing, 128)
+PENUMBRA_CHECK_LAYOUT(LightClusterData, config, 160)
+
+// What the cluster pass counts for --stats: x = light bits set over all clusters, y = the most lights
+// in one cluster, zw unused.
+struct LightClusterStats {
+    uvec4 counts;
+};
+PENUMBRA_CHECK_SIZE(LightClusterStats, 16)
+
+PENUMBRA_GPU_NAMESPACE_END
+
+#endif

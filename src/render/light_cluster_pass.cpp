@@ -1,0 +1,69 @@
+#include "render/light_cluster_pass.h"
+
+#include <cstring>
+
+#include "light_cluster_structs.h"
+
+namespace penumbra {
+
+LightClusterPass::LightClusterPass(gpu::Device& device) : device_(device) {
+    try {
+        create();
+    } catch (...) {
+        destroyAll();  // a failed allocation half-way: the destructor does not run
+        throw;
+    }
+}
+
+void LightClusterPass::create() {
+    using gpu::DescriptorType;
+    gpu::ComputePipelineDesc desc;
+    desc.shader = "light_cluster.comp";
+    desc.bindings = {{4, DescriptorType::StorageBuffer},
+                     {gpu_data::kBindingLightClusters, DescriptorType::UniformBuffer},
+                     {gpu_data::kBindingClusterMasks, DescriptorType::StorageBuffer},
+                     {gpu_data::kBindingClusterStats, DescriptorType::StorageBuffer}};
+    desc.debugName = "light clusters";
+    pipeline_ = device_.createComputePipeline(desc);
+    const uint64_t maskBytes = uint64_t(gpu_data::kClusterCount) * gpu_data::kMaxClusterLightWords * 4;
+    masks_ = device_.createBuffer(maskBytes, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal, nullptr,
+                                  "light cluster masks");
+    stats_ = device_.createBuffer(sizeof(gpu_data::LightClusterStats), gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal,
+                                  nullptr, "light cluster stats");
+}
+
+LightClusterPass::~LightClusterPass() { destroyAll(); }
+
+void LightClusterPass::destroyAll() {
+    device_.destroy(pipeline_);
+    device_.destroy(masks_);
+    device_.destroy(stats_);
+}
+
+void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice& clusters,
+                              const gpu::BufferSlice& lights, bool clustered) {
+    // The previous frame's lit pass may still read the masks: the clear waits for it.
+    commands.memoryBarrier();
+    commands.clearBuffer(stats_, 0);
+    commands.memoryBarrier();
+    if (!clustered) return;
+    commands.bindPipeline(pipeline_);
+    const std::vector<gpu::DescriptorWrite> writes = {{4, lights},
+                                                      {gpu_data::kBindingLightClusters, clusters},
+                                                      {gpu_data::kBindingClusterMasks, masks_, {}, {}},
+                                                      {gpu_data::kBindingClusterStats, stats_, {}, {}}};
+    commands.pushDescriptors(writes);
+    commands.dispatch((gpu_data::kClusterCount + gpu_data::kClusterWorkgroupSize - 1) / gpu_data::kClusterWorkgroupSize, 1);
+    commands.memoryBarrier();
+}
+
+gpu::BufferSlice LightClusterPass::stats() const { return {stats_, 0, sizeof(gpu_data::LightClusterStats)}; }
+
+std::vector<uint32_t> LightClusterPass::readMasks(uint32_t words) {
+    const std::vector<uint8_t> bytes = device_.readBuffer(masks_);
+    std::vector<uint32_t> masks(size_t(gpu_data::kClusterCount) * words);
+    std::memcpy(masks.data(), bytes.data(), masks.size() * 4);
+    return masks;
+}
+
+}  // namespace penumbra
