@@ -1,25 +1,28 @@
 #version 460
-// Clustered light culling (issue 11 item 1): one invocation per cluster writes its light mask words
-// (light_cluster_structs.h) and adds its light count to the frame's stats.
+// Clustered light culling (issue 11 item 1): one workgroup per cluster, one invocation per mask word
+// (32 lights), writes the cluster's light mask (light_cluster_structs.h) and adds its light count
+// to the frame's stats.
 #include "scene_structs.h"
 #include "lighting.glsl"
 #include "light_clusters.glsl"
 
-layout(local_size_x = kClusterWorkgroupSize) in;
+layout(local_size_x = kMaxClusterLightWords) in;
 
 layout(set = 0, binding = 4, std430) readonly buffer LightBlock { LightData lights[]; };
 layout(set = 0, binding = kBindingClusterMasks, std430) writeonly buffer ClusterMaskBlock { uint clusterMasks[]; };
 layout(set = 0, binding = kBindingClusterStats, std430) buffer ClusterStatsBlock { LightClusterStats clusterStats; };
 
+shared uint clusterLightCount;
+
 void main() {
-    uint cluster = gl_GlobalInvocationID.x;
-    if (cluster >= kClusterCount) return;
-    uvec3 coords = uvec3(cluster % kClusterTilesX, (cluster / kClusterTilesX) % kClusterTilesY,
-                         cluster / (kClusterTilesX * kClusterTilesY));
-    vec3 vsMin, vsMax;
-    clusterViewBox(coords, vsMin, vsMax);
-    uint words = clusters.config.z, count = 0u;
-    for (uint word = 0u; word < words; ++word) {
+    uint cluster = gl_WorkGroupID.x, word = gl_LocalInvocationID.x, words = clusters.config.z;
+    if (word == 0u) clusterLightCount = 0u;
+    barrier();
+    if (word < words) {
+        uvec3 coords = uvec3(cluster % kClusterTilesX, (cluster / kClusterTilesX) % kClusterTilesY,
+                             cluster / (kClusterTilesX * kClusterTilesY));
+        vec3 vsMin, vsMax;
+        clusterViewBox(coords, vsMin, vsMax);
         uint bits = 0u;
         for (uint bit = 0u; bit < 32u; ++bit) {
             uint light = word * 32u + bit;
@@ -27,8 +30,11 @@ void main() {
                 bits |= 1u << bit;
         }
         clusterMasks[cluster * words + word] = bits;
-        count += bitCount(bits);
+        atomicAdd(clusterLightCount, uint(bitCount(bits)));
     }
-    atomicAdd(clusterStats.counts.x, count);
-    atomicMax(clusterStats.counts.y, count);
+    barrier();
+    if (word == 0u) {
+        atomicAdd(clusterStats.counts.x, clusterLightCount);
+        atomicMax(clusterStats.counts.y, clusterLightCount);
+    }
 }

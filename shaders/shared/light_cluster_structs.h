@@ -24,7 +24,6 @@ PENUMBRA_CONST(uint, kClusterTilesY, 9u)
 PENUMBRA_CONST(uint, kClusterSlices, 24u)
 PENUMBRA_CONST(uint, kClusterCount, 3456u)  // 16 x 9 x 24
 PENUMBRA_CONST(uint, kMaxClusterLightWords, 32u)  // 32 x 32 = 1024 spot / point lights (kMaxOtherLights)
-PENUMBRA_CONST(uint, kClusterWorkgroupSize, 64u)
 // Relative growth of every light's range and of its cone's sine before the tests, so that the
 // shader's float rounding in world space can never light a pixel the view-space test left out.
 PENUMBRA_CONST(float, kClusterBoundsMargin, 1.0e-3f)

@@ -53,7 +53,7 @@ void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice
                                                       {gpu_data::kBindingClusterMasks, masks_, {}, {}},
                                                       {gpu_data::kBindingClusterStats, stats_, {}, {}}};
     commands.pushDescriptors(writes);
-    commands.dispatch((gpu_data::kClusterCount + gpu_data::kClusterWorkgroupSize - 1) / gpu_data::kClusterWorkgroupSize, 1);
+    commands.dispatch(gpu_data::kClusterCount, 1);  // a workgroup per cluster, an invocation per mask word
     commands.memoryBarrier();
 }
 

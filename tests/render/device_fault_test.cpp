@@ -220,7 +220,7 @@ TEST(DeviceFaults, DeviceLostAtSubmitNamesTheFrameAndItsPasses) {
         EXPECT_TRUE(oneLine(outcome.error));
         EXPECT_TRUE(contains(outcome.error, "GPU device lost (VK_ERROR_DEVICE_LOST)")) << outcome.error;
         named = contains(outcome.error, "submitting frame ") &&
-                contains(outcome.error, "(passes shadows.culling, shadows.directional, shadows.other, main)");
+                contains(outcome.error, "(passes shadows.culling, shadows.directional, shadows.other, lightClusters, main)");
     }
     EXPECT_TRUE(named);
 }
