@@ -67,7 +67,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
                     " lights");
     state_.view = options.view;
     state_.light = options.light;
-    state_.showPanels = options.screenshotPath.empty();
+    state_.showPanels = options.screenshotPath.empty() || options.panels;
 
     if (!glfwInit()) throw Error("cannot open a window: GLFW found no display (set DISPLAY, or run under xvfb-run)");
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);

@@ -53,6 +53,7 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     app.add_option("--view", view, "first view: final | shadow | cascades | atlas")
         ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas"}));
     app.add_option("--light", options.light, "light (index in KHR_lights_punctual) of the shadow and cascade views");
+    app.add_flag("--panels", options.panels, "with --screenshot: show the panels in it too");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

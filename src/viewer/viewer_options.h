@@ -25,6 +25,7 @@ struct ViewerOptions {
     uint32_t frames = 5;
     ViewMode view = ViewMode::Final;
     uint32_t light = 0;
+    bool panels = false;  // --screenshot: keep the panels (hidden by default so the image is the view alone)
 };
 
 // Parses argv. Returns nullopt after printing --help; throws penumbra::Error with one line on a

@@ -133,6 +133,22 @@ TEST(Viewer, AtlasViewOverlaysTheShadowAtlasBottomLeft) {
     EXPECT_LT(double(topRight) / double(topRightCount), 0.01) << "the atlas view changed the scene outside the overlay";
 }
 
+TEST(Viewer, PanelsDrawOverTheViewWithoutValidationMessages) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "spot_lights.gltf";
+    const Image plain = viewerScreenshot(scene, "plain.png", "", 640, 360, 4);
+    const Image panels = viewerScreenshot(scene, "panels.png", "--panels", 640, 360, 4);
+    ASSERT_EQ(plain.pixels.size(), panels.pixels.size());
+    // The inspector opens at the top left (8, 8), the stats panel at the top right.
+    size_t differ = 0, count = 0;
+    for (uint32_t y = 20; y < 120; ++y)
+        for (uint32_t x = 20; x < 200; ++x, ++count) {
+            const size_t p = (size_t(y) * plain.width + x) * 3;
+            differ += plain.pixels[p] != panels.pixels[p] || plain.pixels[p + 2] != panels.pixels[p + 2];
+        }
+    EXPECT_GT(double(differ) / double(count), 0.5) << "no inspector panel at the top left";
+}
+
 TEST(Viewer, MissingSceneIsOneLineError) {
     if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
     const CliRun run = runProgram(kViewer, "/nonexistent/scene.gltf --screenshot " + tempPath("x.png").string());
