@@ -130,7 +130,10 @@ void ViewerApp::openScene(const std::string& source) {
         renderer_.reset();
         renderer_ = std::make_unique<Renderer>(*device_, std::move(scene), rendererOptions);
         const bool sameScene = source == sceneSource_;
-        if (!sameScene) camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
+        if (!sameScene) {
+            camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
+            sceneCamera_ = -1;
+        }
         sceneSource_ = source;
         sceneTime_ = std::filesystem::is_regular_file(source) ? std::filesystem::last_write_time(source) : sceneTime_;
         if (state_.light >= renderer_->scene().lights.size()) state_.light = 0;
@@ -174,10 +177,19 @@ void ViewerApp::onKey(int key, int action, int mods) {
             camera_->setMode(camera_->mode() == CameraMode::Orbit ? CameraMode::Fly : CameraMode::Orbit);
             break;
         case GLFW_KEY_F: camera_->frameScene(); break;
-        case GLFW_KEY_C: camera_->reset(startCamera(renderer_->scene())); break;
+        case GLFW_KEY_C: nextSceneCamera(); break;
         case GLFW_KEY_F12: screenshotRequested_ = true; break;
         default: break;
     }
+}
+
+// C: the scene's camera, then each glTF camera in node order, then the scene's camera again.
+void ViewerApp::nextSceneCamera() {
+    const std::vector<Camera>& cameras = renderer_->scene().cameras;
+    sceneCamera_ = sceneCamera_ + 1 < int(cameras.size()) ? sceneCamera_ + 1 : -1;
+    camera_->reset(sceneCamera_ < 0 ? startCamera(renderer_->scene()) : cameras[size_t(sceneCamera_)]);
+    state_.status = sceneCamera_ < 0 ? "the scene's camera" : "glTF camera " + std::to_string(sceneCamera_) + " (" +
+                                                                 cameras[size_t(sceneCamera_)].name + ")";
 }
 
 CameraInput ViewerApp::pollCameraInput() {

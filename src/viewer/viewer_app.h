@@ -52,6 +52,7 @@ private:
     CameraInput pollCameraInput();
     void collectStats();
     void recreateSwapchain();
+    void nextSceneCamera();
     void saveScreenshot(const Image& image, const std::string& path);
 
     ViewerOptions options_;
@@ -71,6 +72,7 @@ private:
     std::chrono::steady_clock::time_point lastReloadCheck_{};
     float wheel_ = 0.0f;
     double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+    int sceneCamera_ = -1;  // -1: the scene's camera, else an index into Scene::cameras
     uint32_t screenshotCount_ = 0;
     bool screenshotRequested_ = false;
 };

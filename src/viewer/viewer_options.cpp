@@ -15,7 +15,7 @@ Controls:
   W A S D      fly (fly camera); Q / E down / up; Shift faster; mouse wheel sets the speed
   right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
   O            orbit camera around the scene, F frames the scene (orbit)
-  C            back to the scene's camera (the glTF camera node, else the automatic framing)
+  C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
   1 2 3 4      view: final, shadow term, cascades, atlas overlay; [ / ] previous / next light
   Tab          show / hide the inspector and stats panels
   F12          save a screenshot (penumbra-viewer-N.png)
