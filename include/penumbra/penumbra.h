@@ -12,3 +12,4 @@
 #include <penumbra/scene_builder.h>
 #include <penumbra/scene_loading.h>
 #include <penumbra/settings.h>
+#include <penumbra/settings_keys.h>

@@ -131,7 +131,8 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Instance> instances;
     std::vector<Light> lights;  // in the order of the KHR_lights_punctual `lights` array
-    std::optional<Camera> camera;
+    std::optional<Camera> camera;  // the one DESIGN.md picks (node "camera", else the first camera)
+    std::vector<Camera> cameras;   // every usable perspective camera of the glTF, in node order (the viewer's list)
     Aabb wsBounds;
     std::vector<std::string> warnings;  // one line each: things skipped while loading (e.g. line primitives)
 };

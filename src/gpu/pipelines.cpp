@@ -289,6 +289,13 @@ void Device::Impl::stopWorkerThread() {
 }
 
 void Device::Impl::destroyNow(PipelineResource& p) {
+    if (p.layout) {
+        // A background build may still use the layout (a renderer destroyed while its variants build):
+        // drop the queued ones and let the running one finish first.
+        std::unique_lock lock(jobsMutex);
+        std::erase_if(jobs, [&](const PipelineJob& job) { return job.layout == p.layout; });
+        jobsChanged.wait(lock, [&] { return buildsRunning == 0; });
+    }
     if (p.pipeline) vkDestroyPipeline(device, p.pipeline, nullptr);
     if (p.layout) vkDestroyPipelineLayout(device, p.layout, nullptr);
     if (p.pushSetLayout) vkDestroyDescriptorSetLayout(device, p.pushSetLayout, nullptr);

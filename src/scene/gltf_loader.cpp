@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -290,6 +291,35 @@ private:
         return meshCache_[gltfMesh];
     }
 
+    // The Camera of a candidate node; with `failOnBadValues` a bad projection fails the load, else it
+    // gives nullopt (cameras other than the chosen one are only offered to pick from).
+    std::optional<Camera> cameraOf(const CameraCandidate& candidate, bool failOnBadValues) const {
+        const tinygltf::Node& node = ctx_.model.nodes[candidate.nodeIndex];
+        const tinygltf::PerspectiveCamera& p = ctx_.model.cameras[size_t(node.camera)].perspective;
+        const std::string object = gltf::describe("camera", size_t(node.camera), ctx_.model.cameras[size_t(node.camera)].name);
+        std::string problem;
+        if (!(std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < 3.14159)) problem = object + ": yfov must be in (0, pi)";
+        else if (!(std::isfinite(p.znear) && p.znear > 0.0)) problem = object + ": znear must be > 0";
+        else if (!(p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear)))
+            problem = object + ": zfar must be greater than znear";
+        Camera camera;
+        camera.name = node.name;
+        camera.worldFromView = candidate.worldFromNode;
+        camera.yfov = float(p.yfov);
+        camera.zNear = float(p.znear);
+        camera.zFar = p.zfar == 0.0 ? INFINITY : float(p.zfar);
+        if (problem.empty()) {
+            try {
+                validateCamera(camera, object + " (" + gltf::describe("node", candidate.nodeIndex, node.name) + ")");
+            } catch (const Error& e) {
+                problem = e.what();
+            }
+        }
+        if (problem.empty()) return camera;
+        if (failOnBadValues) ctx_.fail(problem);
+        return std::nullopt;
+    }
+
     void chooseCamera() {
         if (cameras_.empty()) return;
         const CameraCandidate* chosen = nullptr;
@@ -298,25 +328,12 @@ private:
         if (!chosen)
             for (const CameraCandidate& c : cameras_)
                 if (!chosen || c.nodeIndex < chosen->nodeIndex) chosen = &c;
-        const tinygltf::Node& node = ctx_.model.nodes[chosen->nodeIndex];
-        const tinygltf::PerspectiveCamera& p = ctx_.model.cameras[size_t(node.camera)].perspective;
-        const std::string object = gltf::describe("camera", size_t(node.camera), ctx_.model.cameras[size_t(node.camera)].name);
-        if (!(std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < 3.14159)) ctx_.fail(object + ": yfov must be in (0, pi)");
-        if (!(std::isfinite(p.znear) && p.znear > 0.0)) ctx_.fail(object + ": znear must be > 0");
-        if (!(p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear)))
-            ctx_.fail(object + ": zfar must be greater than znear");
-        Camera camera;
-        camera.name = node.name;
-        camera.worldFromView = chosen->worldFromNode;
-        camera.yfov = float(p.yfov);
-        camera.zNear = float(p.znear);
-        camera.zFar = p.zfar == 0.0 ? INFINITY : float(p.zfar);
-        try {
-            validateCamera(camera, object + " (" + gltf::describe("node", chosen->nodeIndex, node.name) + ")");
-        } catch (const Error& e) {
-            ctx_.fail(e.what());
-        }
-        ctx_.scene.camera = camera;
+        ctx_.scene.camera = cameraOf(*chosen, true);
+        std::vector<CameraCandidate> inNodeOrder = cameras_;
+        std::sort(inNodeOrder.begin(), inNodeOrder.end(),
+                  [](const CameraCandidate& a, const CameraCandidate& b) { return a.nodeIndex < b.nodeIndex; });
+        for (const CameraCandidate& c : inNodeOrder)
+            if (std::optional<Camera> camera = cameraOf(c, false)) ctx_.scene.cameras.push_back(*camera);
     }
 
     const LoadContext& ctx_;

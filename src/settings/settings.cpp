@@ -1,5 +1,7 @@
 #include "penumbra/settings.h"
 
+#include "penumbra/settings_keys.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -52,93 +54,32 @@ bool readBool(const std::string& key, const json& value) {
     return value.get<bool>();
 }
 
-// A string setting that names an enumerator: parse(name) or an error listing `allowed`.
-template <typename E>
-E readNamed(const std::string& key, const json& value, std::optional<E> (*parse)(const std::string&),
-            const char* allowed) {
-    if (!value.is_string()) failType(key, value, "a string");
-    const std::optional<E> parsed = parse(value.get<std::string>());
-    if (!parsed) fail(key + " = " + show(value) + " is out of range (allowed " + allowed + ")");
-    return *parsed;
+// A string setting that names one of `key.choices`: its index, or an error listing them.
+double readChoice(const SettingKey& key, const json& value) {
+    if (!value.is_string()) failType(key.key, value, "a string");
+    for (size_t i = 0; i < key.choices.size(); ++i)
+        if (value.get<std::string>() == key.choices[i]) return double(i);
+    fail(std::string(key.key) + " = " + show(value) + " is out of range (allowed " + key.allowed + ")");
 }
 
-ShadowFilter readFilter(const std::string& key, const json& value) {
-    return readNamed(key, value, parseShadowFilter, "PCF2x2, PCF3x3, PCF5x5, PCF7x7");
+// One leaf of the settings JSON into its field, by the table's type (ranges: validateSettings).
+void assignLeaf(Settings& settings, const SettingKey& key, const json& value) {
+    const std::string name = key.key;
+    switch (key.type) {
+        case SettingType::Number: key.set(settings, 0, readFloat(name, value)); break;
+        case SettingType::Integer:
+        case SettingType::PowerOfTwo: key.set(settings, 0, readUint(name, value, key.allowed.c_str())); break;
+        case SettingType::Bool: key.set(settings, 0, readBool(name, value)); break;
+        case SettingType::Choice: key.set(settings, 0, readChoice(key, value)); break;
+        case SettingType::Ratios: {
+            if (!value.is_array() || value.size() != 3) failType(name, value, "an array of 3 numbers");
+            for (size_t i = 0; i < 3; ++i) key.set(settings, i, readFloat(name + "[" + std::to_string(i) + "]", value[i]));
+            break;
+        }
+    }
 }
-
-ShadowRaster readRaster(const std::string& key, const json& value) {
-    if (!value.is_string()) failType(key, value, "a string");
-    const auto raster = parseShadowRaster(value.get<std::string>());
-    if (!raster) fail(key + " = " + show(value) + " is out of range (allowed hw, compute, auto)");
-    return *raster;
-}
-
-CascadeBlend readBlend(const std::string& key, const json& value) {
-    return readNamed(key, value, parseCascadeBlend, "hard, soft, dither");
-}
-
-ShadowBiasMode readBiasMode(const std::string& key, const json& value) {
-    return readNamed(key, value, parseShadowBiasMode, "normal, scaledNormal, receiverPlane");
-}
-
-std::array<float, 3> readRatios(const std::string& key, const json& value) {
-    if (!value.is_array() || value.size() != 3) failType(key, value, "an array of 3 numbers");
-    std::array<float, 3> ratios{};
-    for (size_t i = 0; i < 3; ++i) ratios[i] = readFloat(key + "[" + std::to_string(i) + "]", value[i]);
-    return ratios;
-}
-
-using Setter = void (*)(Settings&, const std::string& key, const json& value);
-struct LeafKey {
-    const char* key;
-    Setter assign;
-};
-
-// Every leaf of the settings JSON (DESIGN.md "Settings" plus the "render" block).
-const LeafKey kLeafKeys[] = {
-    {"shadows.bias", [](Settings& s, const std::string& k, const json& v) { s.shadows.bias = readBiasMode(k, v); }},
-    {"shadows.fadeMode", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.fadeMode = readNamed(k, v, parseShadowFadeMode, "linear, squared"); }},
-    {"shadows.maxDistance", [](Settings& s, const std::string& k, const json& v) { s.shadows.maxDistance = readFloat(k, v); }},
-    {"shadows.distanceFade", [](Settings& s, const std::string& k, const json& v) { s.shadows.distanceFade = readFloat(k, v); }},
-    {"shadows.screenSpace", [](Settings& s, const std::string& k, const json& v) { s.shadows.screenSpace = readBool(k, v); }},
-    {"shadows.directional.atlasSize", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
-    {"shadows.directional.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.directional.filter = readFilter(k, v); }},
-    {"shadows.directional.cascadeCount", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.cascadeCount = readUint(k, v, "1..4"); }},
-    {"shadows.directional.cascadeRatios", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.cascadeRatios = readRatios(k, v); }},
-    {"shadows.directional.cascadeFade", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.cascadeFade = readFloat(k, v); }},
-    {"shadows.directional.cascadeBlend", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.cascadeBlend = readBlend(k, v); }},
-    {"shadows.cacheTiles", [](Settings& s, const std::string& k, const json& v) { s.shadows.cacheTiles = readBool(k, v); }},
-    {"shadows.raster", [](Settings& s, const std::string& k, const json& v) { s.shadows.raster = readRaster(k, v); }},
-    {"shadows.directional.fit", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.fit = readNamed(k, v, parseCascadeFit, "sphere, tight"); }},
-    {"shadows.directional.cascadeSplits", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.cascadeSplits = readNamed(k, v, parseCascadeSplitMode, "manual, log, practical"); }},
-    {"shadows.directional.splitLambda", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.directional.splitLambda = readFloat(k, v); }},
-    {"shadows.spot.atlasSize", [](Settings& s, const std::string& k, const json& v) {
-         s.shadows.spot.atlasSize = readUint(k, v, "a power of two in 256..8192"); }},
-    {"shadows.spot.filter", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.filter = readFilter(k, v); }},
-    {"shadows.spot.depthBias", [](Settings& s, const std::string& k, const json& v) { s.shadows.spot.depthBias = readFloat(k, v); }},
-    {"render.exposure", [](Settings& s, const std::string& k, const json& v) { s.render.exposure = readFloat(k, v); }},
-    {"render.ambient", [](Settings& s, const std::string& k, const json& v) { s.render.ambient = readFloat(k, v); }},
-    {"render.lightCulling", [](Settings& s, const std::string& k, const json& v) {
-         s.render.lightCulling = readNamed(k, v, parseLightCulling, "clustered, none"); }},
-};
 
 const char* const kObjectKeys[] = {"shadows", "shadows.directional", "shadows.spot", "render"};
-
-const LeafKey* findLeaf(const std::string& key) {
-    for (const LeafKey& leaf : kLeafKeys) {
-        if (key == leaf.key) return &leaf;
-    }
-    return nullptr;
-}
 
 bool isObjectKey(const std::string& key) {
     for (const char* objectKey : kObjectKeys) {
@@ -156,8 +97,8 @@ void assignObject(Settings& settings, const std::string& prefix, const json& obj
 }
 
 void assignKey(Settings& settings, const std::string& key, const json& value) {
-    if (const LeafKey* leaf = findLeaf(key)) {
-        leaf->assign(settings, key, value);
+    if (const SettingKey* leaf = findSettingKey(key)) {
+        assignLeaf(settings, *leaf, value);
         if (!settings.userSet(key)) settings.userKeys.push_back(key);
     } else if (isObjectKey(key)) {
         if (!value.is_object()) failType(key, value, "an object");
@@ -172,21 +113,6 @@ std::string trim(const std::string& text) {
     if (begin == std::string::npos) return "";
     const size_t end = text.find_last_not_of(" \t");
     return text.substr(begin, end - begin + 1);
-}
-
-void validateRenderSettings(const RenderSettings& render) {
-    if (!std::isfinite(render.exposure) || render.exposure <= 0.0f) {
-        std::ostringstream value;
-        value << render.exposure;
-        fail("render.exposure = " + value.str() + " is out of range (allowed > 0)");
-    }
-    if (!std::isfinite(render.ambient) || render.ambient < 0.0f || render.ambient > 1.0f) {
-        std::ostringstream value;
-        value << render.ambient;
-        fail("render.ambient = " + value.str() + " is out of range (allowed 0..1)");
-    }
-    if (int(render.lightCulling) < 0 || int(render.lightCulling) > int(LightCulling::None))
-        fail("render.lightCulling = " + std::to_string(int(render.lightCulling)) + " is out of range (allowed clustered, none)");
 }
 
 // nlohmann's parse error, e.g. "syntax error while parsing object - unexpected end of input; expected
@@ -250,11 +176,6 @@ void applySettingOverride(Settings& settings, const std::string& assignment) {
 
 bool Settings::userSet(const std::string& key) const {
     return std::find(userKeys.begin(), userKeys.end(), key) != userKeys.end();
-}
-
-void validateSettings(const Settings& settings) {
-    validateShadowSettings(settings.shadows);
-    validateRenderSettings(settings.render);
 }
 
 }  // namespace penumbra

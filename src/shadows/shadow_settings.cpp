@@ -1,9 +1,5 @@
 #include "penumbra/shadow_settings.h"
 
-#include <cmath>
-#include <sstream>
-
-#include "core/error.h"
 #include "penumbra/render_settings.h"
 
 namespace penumbra {
@@ -30,33 +26,6 @@ std::optional<E> parseEnum(const char* const (&names)[N], const std::string& nam
         if (name == names[i]) return E(i);
     }
     return std::nullopt;
-}
-
-std::string formatValue(float value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-[[noreturn]] void throwOutOfRange(const std::string& key, const std::string& value, const std::string& allowed) {
-    throw Error("settings: " + key + " = " + value + " is out of range (allowed " + allowed + ")");
-}
-
-// Ranges as the seed's inspector attributes give them: [Min(0.001f)] maxDistance, [Range(0.001f, 1f)]
-// fades (seed 000 §3.7, §3.8), [Range(1, 4)] cascadeCount and [Range(0f, 1f)] ratios (seed 000 §3.1).
-void checkFloatRange(const std::string& key, float value, float lo, float hi, const std::string& allowed) {
-    if (!std::isfinite(value) || value < lo || value > hi) throwOutOfRange(key, formatValue(value), allowed);
-}
-
-void checkAtlasSize(const std::string& key, uint32_t size) {
-    const bool powerOfTwo = size != 0 && (size & (size - 1)) == 0;
-    if (!powerOfTwo || size < 256 || size > 8192) {
-        throwOutOfRange(key, std::to_string(size), "a power of two in 256..8192");
-    }
-}
-
-void checkEnum(const std::string& key, int value, int count) {
-    if (value < 0 || value >= count) throwOutOfRange(key, std::to_string(value), "a known enumerator");
 }
 
 }  // namespace
@@ -97,37 +66,6 @@ std::optional<ShadowRaster> parseShadowRaster(const std::string& name) {
     return std::nullopt;
 }
 
-void validateShadowSettings(const ShadowSettings& settings) {
-    constexpr float kHuge = 3.0e38f;
-    checkEnum("shadows.bias", int(settings.bias), 3);
-    checkEnum("shadows.fadeMode", int(settings.fadeMode), 2);
-    checkFloatRange("shadows.maxDistance", settings.maxDistance, 0.001f, kHuge, ">= 0.001");
-    checkFloatRange("shadows.distanceFade", settings.distanceFade, 0.001f, 1.0f, "0.001..1");
-    checkEnum("shadows.raster", int(settings.raster), 3);
-    const DirectionalShadowSettings& directional = settings.directional;
-    checkAtlasSize("shadows.directional.atlasSize", directional.atlasSize);
-    checkEnum("shadows.directional.filter", int(directional.filter), 4);
-    if (directional.cascadeCount < 1 || directional.cascadeCount > 4) {
-        throwOutOfRange("shadows.directional.cascadeCount", std::to_string(directional.cascadeCount), "1..4");
-    }
-    for (size_t i = 0; i < directional.cascadeRatios.size(); ++i) {
-        checkFloatRange("shadows.directional.cascadeRatios[" + std::to_string(i) + "]",
-                        directional.cascadeRatios[i], 0.0f, 1.0f, "0..1");
-    }
-    // Decreasing ratios would make a cascade end before it starts (seed 000 §3.1 leaves them to the
-    // user); an error, not a silent sort, so the user sees which split they asked for.
-    const auto& ratios = directional.cascadeRatios;
-    if (ratios[1] < ratios[0] || ratios[2] < ratios[1])
-        throw Error("settings: shadows.directional.cascadeRatios = [" + formatValue(ratios[0]) + ", " +
-                    formatValue(ratios[1]) + ", " + formatValue(ratios[2]) + "] must not decrease");
-    checkFloatRange("shadows.directional.cascadeFade", directional.cascadeFade, 0.001f, 1.0f, "0.001..1");
-    checkEnum("shadows.directional.cascadeBlend", int(directional.cascadeBlend), 3);
-    checkEnum("shadows.directional.fit", int(directional.fit), 2);
-    checkEnum("shadows.directional.cascadeSplits", int(directional.cascadeSplits), 3);
-    checkFloatRange("shadows.directional.splitLambda", directional.splitLambda, 0.0f, 1.0f, "0..1");
-    checkAtlasSize("shadows.spot.atlasSize", settings.spot.atlasSize);
-    checkEnum("shadows.spot.filter", int(settings.spot.filter), 4);
-    checkFloatRange("shadows.spot.depthBias", settings.spot.depthBias, 0.0f, 1.0f, "0..1");
-}
+// validateShadowSettings: src/settings/settings_keys.cpp, from the table of every key.
 
 }  // namespace penumbra

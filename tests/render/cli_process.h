@@ -1,5 +1,5 @@
 #pragma once
-// Runs the penumbra program (PENUMBRA_CLI_PATH) as a user would and captures its exit code, stdout
+// Runs the penumbra program (PENUMBRA_CLI_PATH), or another of the project's programs, as a user would and captures its exit code, stdout
 // and stderr, for the CLI tests.
 #include <cstdio>
 #include <filesystem>
@@ -19,14 +19,14 @@ struct CliRun {
     std::string err;
 };
 
-// `arguments` is appended to the program path as-is (quote paths with spaces yourself);
-// `environment` is a prefix such as "VK_DRIVER_FILES=/nonexistent.json".
-inline CliRun runPenumbra(const std::string& arguments, const std::string& environment = "") {
+// Runs `program` with `arguments` appended as-is (quote paths with spaces yourself); `environment` is
+// a prefix such as "VK_DRIVER_FILES=/nonexistent.json" (or a wrapper such as "xvfb-run -a").
+inline CliRun runProgram(const std::string& program, const std::string& arguments, const std::string& environment = "") {
     static int counter = 0;
     const std::string errPath = (std::filesystem::temp_directory_path() /
                                  ("penumbra_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
                                     .string();
-    const std::string command = environment + " " + std::string(PENUMBRA_CLI_PATH) + " " + arguments + " 2>" + errPath;
+    const std::string command = environment + " " + program + " " + arguments + " 2>" + errPath;
     CliRun run;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (!pipe) return run;
@@ -41,6 +41,10 @@ inline CliRun runPenumbra(const std::string& arguments, const std::string& envir
     run.err = err.str();
     std::filesystem::remove(errPath);
     return run;
+}
+
+inline CliRun runPenumbra(const std::string& arguments, const std::string& environment = "") {
+    return runProgram(PENUMBRA_CLI_PATH, arguments, environment);
 }
 
 // A one-line user error: exactly one line on stderr, starting with "penumbra: ".

@@ -261,6 +261,18 @@ TEST_F(PipelineVariantTest, AfterBackgroundWarmupNoSettingChangeBuildsAPipeline)
     EXPECT_EQ(device().liveObjects().objectsCreated, made);
 }
 
+// penumbra-viewer reloads a scene by making its renderer again, maybe while variants still build on the
+// worker thread: the pipeline layouts those builds use must outlive them (lavapipe crashed otherwise).
+TEST_F(PipelineVariantTest, RendererDestroyedWhileItsVariantsBuildLeavesNoValidationMessage) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    RendererOptions options;
+    options.warmup = PipelineWarmup::Background;
+    for (int round = 0; round < 6; ++round) {
+        Renderer renderer(device(), scene, options);
+        renderer.submitFrame(request(OutputMode::Color, 16, 16), {}, resolveCameraView(renderer.scene(), 16, 16));
+    }
+}
+
 TEST_F(PipelineVariantTest, PipelineCacheIsWrittenToTheCacheFolder) {
     const std::filesystem::path folder =
         std::filesystem::temp_directory_path() / ("penumbra_cache_test_" + std::to_string(::getpid()));

@@ -203,6 +203,24 @@ TEST(GltfLoader, FirstCameraNodeIsUsedWhenNoneIsNamedCamera) {
     EXPECT_TRUE(std::isinf(scene.camera->zFar));  // no zfar: infinite projection
 }
 
+TEST(GltfLoader, EveryPerspectiveCameraIsListedInNodeOrder) {
+    TempDir dir;
+    TestGltf gltf;
+    gltf.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                           {{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.2}}}},
+                           {{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", -1.0}}}}};
+    gltf.addNode({{"name", "a"}, {"camera", 0}});
+    gltf.addNode({{"name", "camera"}, {"camera", 1}, {"translation", {0, 2, 5}}});
+    gltf.addNode({{"name", "bad"}, {"camera", 2}});  // znear < 0: not offered, and not an error
+    const Scene scene = loadGltfScene(gltf.write(dir, "cameras"));
+    ASSERT_EQ(scene.cameras.size(), 2u);
+    EXPECT_EQ(scene.cameras[0].name, "a");
+    EXPECT_EQ(scene.cameras[1].name, "camera");
+    EXPECT_FLOAT_EQ(scene.cameras[1].yfov, 0.9f);
+    ASSERT_TRUE(scene.camera.has_value());
+    EXPECT_EQ(scene.camera->name, "camera");
+}
+
 TEST(GltfLoader, LightDirectionIsNodeMinusZInWorldSpace) {
     TempDir dir;
     TestGltf gltf;

@@ -1,0 +1,114 @@
+#include "viewer/panels.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <imgui.h>
+#include <nlohmann/json.hpp>
+
+#include "viewer/viewer_app.h"
+
+namespace penumbra::viewer {
+
+namespace {
+
+double totalGpuMs(const FrameStats& stats) {
+    double total = 0.0;
+    for (const PassTiming& timing : stats.gpuTimings)
+        if (timing.name.find('/') == std::string::npos) total += timing.milliseconds;  // nested timers are inside
+    return total;
+}
+
+void drawViewControls(PanelContext& c) {
+    ViewerState& state = c.state;
+    int view = int(state.view);
+    const char* names[] = {"final", "shadow", "cascades", "atlas"};
+    ImGui::Combo("view", &view, names, 4);
+    state.view = ViewMode(view);
+    const int lights = int(c.renderer.scene().lights.size());
+    if (lights > 0) {
+        int light = int(state.light);
+        ImGui::SliderInt("light", &light, 0, lights - 1);
+        state.light = uint32_t(std::clamp(light, 0, lights - 1));
+    }
+    bool orbit = c.camera.mode() == CameraMode::Orbit;
+    if (ImGui::Checkbox("orbit camera", &orbit)) c.camera.setMode(orbit ? CameraMode::Orbit : CameraMode::Fly);
+    ImGui::SameLine();
+    if (ImGui::Button("frame scene (F)")) c.camera.frameScene();
+    ImGui::Text("fly speed %.2f m/s (wheel)", c.camera.speed());
+    const glm::vec3 p = c.camera.wsPosition();
+    ImGui::Text("camera at (%.2f, %.2f, %.2f)", p.x, p.y, p.z);
+}
+
+}  // namespace
+
+void drawPanels(PanelContext& c) {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380, 560), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Penumbra")) {
+        ImGui::TextWrapped("%s on %s", c.sceneSource.empty() ? "demo scene" : c.sceneSource.c_str(), c.deviceName.c_str());
+        if (!c.state.status.empty()) ImGui::TextWrapped("%s", c.state.status.c_str());
+        drawViewControls(c);
+        if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) drawSettingsInspector(c);
+        if (ImGui::CollapsingHeader("Scene")) drawSceneInspector(c);
+    }
+    ImGui::End();
+    drawStatsPanel(c);
+}
+
+void drawStatsPanel(PanelContext& c) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 348, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 420), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Stats") || c.state.history.empty()) {
+        ImGui::End();
+        return;
+    }
+    const FrameStats& last = c.state.history.back();
+    std::vector<float> gpu;
+    for (const FrameStats& stats : c.state.history) gpu.push_back(float(totalGpuMs(stats)));
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "GPU %.2f ms", gpu.back());
+    ImGui::PlotLines("##gpu", gpu.data(), int(gpu.size()), 0, overlay, 0.0f, *std::max_element(gpu.begin(), gpu.end()) * 1.2f,
+                     ImVec2(-1, 60));
+    if (ImGui::BeginTable("passes", 2)) {
+        for (const PassTiming& timing : last.gpuTimings) {
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(timing.name.c_str());
+            ImGui::TableNextColumn();
+            ImGui::Text("%.3f ms", timing.milliseconds);
+        }
+        ImGui::EndTable();
+    }
+    ImGui::Text("CPU ms: plan %.2f  culling %.2f  upload %.2f", last.cpu.plan, last.cpu.culling, last.cpu.upload);
+    ImGui::Text("        record %.2f  submit %.2f", last.cpu.record, last.cpu.submit);
+    ImGui::Text("frame (submit to fence) %.2f ms", last.submitToFenceMilliseconds);
+    ImGui::Text("shadow raster %s; tiles drawn %u, reused %u", last.shadowRaster.c_str(), last.tilesRendered, last.tilesReused);
+    for (const AtlasDrawStats& atlas : last.atlases)
+        ImGui::Text("%s: %u tiles, %u draws, %llu triangles", atlas.pass.c_str(), atlas.tiles, atlas.draws,
+                    static_cast<unsigned long long>(atlas.triangles));
+    const nlohmann::json shadows = nlohmann::json::parse(last.shadowStatsJson, nullptr, false);
+    if (!shadows.is_discarded() && shadows.contains("other")) {
+        ImGui::Text("directional lights reserved %d; spot/point reserved %d, dropped %d",
+                    shadows["directional"].value("lightsReserved", 0), shadows["other"].value("lightsReserved", 0),
+                    shadows["other"].value("lightsDropped", 0));
+        ImGui::TextWrapped("casters per cascade tile: %s", shadows["directional"]["castersPerTile"].dump().c_str());
+        ImGui::TextWrapped("casters per spot/point tile: %s", shadows["other"]["castersPerTile"].dump().c_str());
+    }
+    for (const std::string& warning : last.warnings) ImGui::TextWrapped("warning: %s", warning.c_str());
+    ImGui::End();
+}
+
+void drawAtlasLabels(const std::vector<AtlasTileLabel>& labels, const glm::vec4& windowRect, const glm::vec2& atlasSize) {
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const glm::vec2 origin(windowRect.x, windowRect.y);
+    const glm::vec2 scale = glm::vec2(windowRect.z - windowRect.x, windowRect.w - windowRect.y) / atlasSize;
+    draw->AddRect(ImVec2(windowRect.x, windowRect.y), ImVec2(windowRect.z, windowRect.w), IM_COL32(255, 200, 0, 255));
+    for (const AtlasTileLabel& label : labels) {
+        const glm::vec2 min = origin + label.min * scale, max = origin + label.max * scale;
+        draw->AddRect(ImVec2(min.x, min.y), ImVec2(max.x, max.y), IM_COL32(255, 200, 0, 255));
+        draw->AddText(ImVec2(min.x + 3, min.y + 2), IM_COL32(255, 200, 0, 255), label.text.c_str());
+    }
+}
+
+}  // namespace penumbra::viewer

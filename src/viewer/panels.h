@@ -1,0 +1,36 @@
+#pragma once
+// The viewer's Dear ImGui panels: the view and camera, the stats of the frames the GPU finished, the
+// settings inspector (inspector.cpp) and the scene inspector (lights, materials, nodes), and the
+// atlas overlay's tile labels.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "penumbra/renderer.h"
+#include "penumbra/settings.h"
+#include "viewer/atlas_overlay.h"
+#include "viewer/camera_controller.h"
+
+namespace penumbra::viewer {
+
+struct ViewerState;
+
+struct PanelContext {
+    ViewerState& state;
+    Settings& settings;  // what the next frame renders with
+    Renderer& renderer;  // scene edits go through its setters
+    CameraController& camera;
+    const std::string& deviceName;
+    const std::string& sceneSource;
+};
+
+void drawPanels(PanelContext& context);
+void drawStatsPanel(PanelContext& context);
+// The settings inspector: one widget per key of settingKeys() (penumbra/settings_keys.h).
+void drawSettingsInspector(PanelContext& context);
+void drawSceneInspector(PanelContext& context);
+// Labels over the overlay at `windowRect` (x0, y0, x1, y1) of an atlas image of `atlasSize` pixels.
+void drawAtlasLabels(const std::vector<AtlasTileLabel>& labels, const glm::vec4& windowRect, const glm::vec2& atlasSize);
+
+}  // namespace penumbra::viewer

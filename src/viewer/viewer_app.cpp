@@ -1,0 +1,324 @@
+#include "viewer/viewer_app.h"
+
+#include <cstdio>
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "penumbra/error.h"
+#include "penumbra/scene_loading.h"
+#include "penumbra/vulkan.h"
+#include "viewer/atlas_overlay.h"
+#include "viewer/imgui_layer.h"
+#include "viewer/panels.h"
+#include "viewer/presenter.h"
+#include "viewer/swapchain.h"
+#include "viewer/vulkan_context.h"
+
+namespace penumbra::viewer {
+
+namespace {
+
+constexpr size_t kStatsHistory = 240;
+
+ViewerApp& appOf(GLFWwindow* window) { return *static_cast<ViewerApp*>(glfwGetWindowUserPointer(window)); }
+
+void installCallbacks(GLFWwindow* window) {
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) {
+        if (!ImGui::GetCurrentContext() || !ImGui::GetIO().WantCaptureMouse) appOf(w).onScroll(y);
+    });
+    glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+        if (count > 0) appOf(w).onDrop(paths[0]);
+    });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+        if (!ImGui::GetCurrentContext() || !ImGui::GetIO().WantCaptureKeyboard) appOf(w).onKey(key, action, mods);
+    });
+}
+
+Settings loadUserSettings(const ViewerOptions& options) {
+    Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
+    for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
+    validateSettings(settings);
+    return settings;
+}
+
+Scene loadSceneWithWarnings(const std::string& source) {
+    Scene scene = loadScene(source);
+    for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
+    return scene;
+}
+
+Camera startCamera(const Scene& scene) { return scene.camera ? *scene.camera : autoFramingCamera(scene.wsBounds); }
+
+OutputMode outputOf(ViewMode view) {
+    if (view == ViewMode::Shadow) return OutputMode::ShadowAov;
+    if (view == ViewMode::Cascades) return OutputMode::CascadesAov;
+    return OutputMode::Color;
+}
+
+}  // namespace
+
+ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
+    // Bad input first, so it is one line before any window opens.
+    userSettings_ = loadUserSettings(options);
+    Scene scene = loadSceneWithWarnings(options.scenePath);
+    if ((options.view == ViewMode::Shadow || options.view == ViewMode::Cascades) && options.light >= scene.lights.size())
+        throw Error("--light " + std::to_string(options.light) + ": the scene has " + std::to_string(scene.lights.size()) +
+                    " lights");
+    state_.view = options.view;
+    state_.light = options.light;
+    state_.showPanels = options.screenshotPath.empty() || options.panels;
+
+    if (!glfwInit()) throw Error("cannot open a window: GLFW found no display (set DISPLAY, or run under xvfb-run)");
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    window_ = glfwCreateWindow(int(options.width), int(options.height), "penumbra-viewer", nullptr, nullptr);
+    if (!window_) {
+        glfwTerminate();
+        throw Error("cannot open a window of " + std::to_string(options.width) + "x" + std::to_string(options.height));
+    }
+    glfwSetWindowUserPointer(window_, this);
+    installCallbacks(window_);
+    context_ = std::make_unique<VulkanContext>(window_, options.device, options.validation);
+    const VkPresentModeKHR present = options.present == "mailbox" ? VK_PRESENT_MODE_MAILBOX_KHR : VK_PRESENT_MODE_FIFO_KHR;
+    swapchain_ = std::make_unique<Swapchain>(*context_, present);
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    swapchain_->recreate(uint32_t(width), uint32_t(height));
+    presenter_ = std::make_unique<Presenter>(*context_, *swapchain_);
+    imgui_ = std::make_unique<ImGuiLayer>(*context_, window_, *swapchain_, presenter_->commandPool());
+    atlas_ = std::make_unique<AtlasOverlay>(*context_);
+    DeviceOptions deviceOptions;
+    deviceOptions.framesInFlight = Presenter::kFramesInFlight;
+    device_ = std::make_unique<Device>(externalVulkanDevice(context_->instance, context_->physicalDevice, context_->device,
+                                                            context_->queue, context_->queueFamily),
+                                       deviceOptions);
+    sceneSource_ = options.scenePath;
+    RendererOptions rendererOptions;
+    rendererOptions.warmup = PipelineWarmup::Background;  // a setting change never stalls a frame
+    renderer_ = std::make_unique<Renderer>(*device_, std::move(scene), rendererOptions);
+    camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
+    settings_ = userSettings_;
+    const CameraView view = makeCameraView(camera_->camera(), swapchain_->extent().width, swapchain_->extent().height);
+    for (const std::string& warning : applySceneDefaults(settings_, renderer_->scene(), view))
+        std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
+    if (!sceneSource_.empty() && std::filesystem::is_regular_file(sceneSource_))
+        sceneTime_ = std::filesystem::last_write_time(sceneSource_);
+}
+
+ViewerApp::~ViewerApp() {
+    if (renderer_) renderer_->waitIdle();
+    renderer_.reset();
+    device_.reset();
+    atlas_.reset();
+    imgui_.reset();
+    presenter_.reset();
+    swapchain_.reset();
+    context_.reset();
+    if (window_) glfwDestroyWindow(window_);
+    glfwTerminate();
+}
+
+// A new scene (File > Open, a dropped file, the file changed on disk): the renderer is made again for
+// it; on failure the old scene stays and the panel says why.
+void ViewerApp::openScene(const std::string& source) {
+    try {
+        Scene scene = loadSceneWithWarnings(source);
+        renderer_->waitIdle();
+        vkDeviceWaitIdle(context_->device);
+        RendererOptions rendererOptions;
+        rendererOptions.warmup = PipelineWarmup::Background;
+        renderer_.reset();
+        renderer_ = std::make_unique<Renderer>(*device_, std::move(scene), rendererOptions);
+        const bool sameScene = source == sceneSource_;
+        if (!sameScene) {
+            camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
+            sceneCamera_ = -1;
+        }
+        sceneSource_ = source;
+        sceneTime_ = std::filesystem::is_regular_file(source) ? std::filesystem::last_write_time(source) : sceneTime_;
+        if (state_.light >= renderer_->scene().lights.size()) state_.light = 0;
+        state_.status = "opened " + source;
+    } catch (const Error& error) {
+        state_.status = error.what();
+        std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
+        if (std::filesystem::is_regular_file(source)) sceneTime_ = std::filesystem::last_write_time(source);
+    }
+}
+
+void ViewerApp::reloadIfChanged() {
+    if (!pendingScene_.empty()) {
+        const std::string path = std::move(pendingScene_);
+        pendingScene_.clear();
+        openScene(path);
+        return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (sceneSource_.empty() || now - lastReloadCheck_ < std::chrono::milliseconds(500)) return;
+    lastReloadCheck_ = now;
+    std::error_code error;
+    const auto time = std::filesystem::last_write_time(sceneSource_, error);
+    if (!error && time != sceneTime_) openScene(sceneSource_);
+}
+
+void ViewerApp::onKey(int key, int action, int mods) {
+    (void)mods;
+    if (action != GLFW_PRESS) return;
+    const uint32_t lights = uint32_t(renderer_->scene().lights.size());
+    switch (key) {
+        case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_, GLFW_TRUE); break;
+        case GLFW_KEY_TAB: state_.showPanels = !state_.showPanels; break;
+        case GLFW_KEY_1: state_.view = ViewMode::Final; break;
+        case GLFW_KEY_2: state_.view = ViewMode::Shadow; break;
+        case GLFW_KEY_3: state_.view = ViewMode::Cascades; break;
+        case GLFW_KEY_4: state_.view = ViewMode::Atlas; break;
+        case GLFW_KEY_LEFT_BRACKET: if (lights) state_.light = (state_.light + lights - 1) % lights; break;
+        case GLFW_KEY_RIGHT_BRACKET: if (lights) state_.light = (state_.light + 1) % lights; break;
+        case GLFW_KEY_O:
+            camera_->setMode(camera_->mode() == CameraMode::Orbit ? CameraMode::Fly : CameraMode::Orbit);
+            break;
+        case GLFW_KEY_F: camera_->frameScene(); break;
+        case GLFW_KEY_C: nextSceneCamera(); break;
+        case GLFW_KEY_F12: screenshotRequested_ = true; break;
+        default: break;
+    }
+}
+
+// C: the scene's camera, then each glTF camera in node order, then the scene's camera again.
+void ViewerApp::nextSceneCamera() {
+    const std::vector<Camera>& cameras = renderer_->scene().cameras;
+    sceneCamera_ = sceneCamera_ + 1 < int(cameras.size()) ? sceneCamera_ + 1 : -1;
+    camera_->reset(sceneCamera_ < 0 ? startCamera(renderer_->scene()) : cameras[size_t(sceneCamera_)]);
+    state_.status = sceneCamera_ < 0 ? "the scene's camera" : "glTF camera " + std::to_string(sceneCamera_) + " (" +
+                                                                 cameras[size_t(sceneCamera_)].name + ")";
+}
+
+CameraInput ViewerApp::pollCameraInput() {
+    CameraInput input;
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window_, &x, &y);
+    input.cursorDelta = glm::vec2(float(x - lastCursorX_), float(y - lastCursorY_));
+    lastCursorX_ = x;
+    lastCursorY_ = y;
+    input.wheel = wheel_;
+    wheel_ = 0.0f;
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantCaptureMouse) {
+        input.rotating = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        input.panning = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    }
+    if (!io.WantCaptureKeyboard) {
+        auto down = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS; };
+        input.forward = down(GLFW_KEY_W);
+        input.back = down(GLFW_KEY_S);
+        input.left = down(GLFW_KEY_A);
+        input.right = down(GLFW_KEY_D);
+        input.down = down(GLFW_KEY_Q);
+        input.up = down(GLFW_KEY_E);
+        input.fast = down(GLFW_KEY_LEFT_SHIFT) || down(GLFW_KEY_RIGHT_SHIFT);
+    }
+    return input;
+}
+
+void ViewerApp::collectStats() {
+    for (FrameStats& stats : renderer_->takeCompletedFrames()) {
+        state_.history.push_back(std::move(stats));
+        if (state_.history.size() > kStatsHistory) state_.history.pop_front();
+    }
+}
+
+// One frame: false when the swapchain must be re-made before it can be drawn.
+bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
+    if (!presenter_->beginFrame()) return false;
+    camera_->update(pollCameraInput(), seconds);
+    const VkExtent2D extent = swapchain_->extent();
+    const CameraView view = makeCameraView(camera_->camera(), extent.width, extent.height);
+    RenderRequest request;
+    request.width = extent.width;
+    request.height = extent.height;
+    request.output = outputOf(state_.view);
+    request.aovLight = state_.light;
+    std::vector<AtlasTileLabel> labels;
+    if (state_.view == ViewMode::Atlas) {
+        RenderRequest atlasRequest = request;
+        atlasRequest.captureAtlas = true;
+        atlasRequest.readback = false;
+        const RenderResult atlas = renderer_->render(atlasRequest, settings_, view);
+        atlas_->update(atlas.atlas);
+        labels = atlasTileLabels(atlas.stats.shadowStatsJson, renderer_->scene());
+    }
+    const ExternalImage target = presenter_->sceneTarget(request.output != OutputMode::Color);
+    renderer_->submitFrame(request, settings_, view, &target);
+    collectStats();
+
+    imgui_->newFrame();
+    PanelContext panels{state_, settings_, *renderer_, *camera_, context_->deviceName, sceneSource_};
+    if (state_.view == ViewMode::Atlas && atlas_->ready()) drawAtlasLabels(labels, atlas_->windowRect(extent),
+                                                                            glm::vec2(atlas_->width(), atlas_->height()));
+    if (state_.showPanels) drawPanels(panels);
+    const bool overlay = state_.view == ViewMode::Atlas;
+    const bool presented = presenter_->endFrame(
+        *imgui_,
+        [&](VkCommandBuffer commands, VkImage image, VkExtent2D size) {
+            if (overlay) atlas_->record(commands, image, size);
+        },
+        screenshot);
+    if (!presented) recreateSwapchain();
+    return true;
+}
+
+void ViewerApp::recreateSwapchain() {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    swapchain_->recreate(uint32_t(width), uint32_t(height));
+    imgui_->swapchainRecreated(*swapchain_);
+}
+
+void ViewerApp::saveScreenshot(const Image& image, const std::string& path) {
+    writePng(image, path);
+    state_.status = "saved " + path;
+}
+
+int ViewerApp::run() {
+    auto last = std::chrono::steady_clock::now();
+    glfwGetCursorPos(window_, &lastCursorX_, &lastCursorY_);
+    const bool scripted = !options_.screenshotPath.empty();
+    uint32_t framesDone = 0;
+    while (!glfwWindowShouldClose(window_)) {
+        glfwPollEvents();
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(window_, &width, &height);
+        if (width == 0 || height == 0) {  // minimized: nothing to draw into
+            glfwWaitEvents();
+            continue;
+        }
+        if (uint32_t(width) != swapchain_->extent().width || uint32_t(height) != swapchain_->extent().height)
+            recreateSwapchain();
+        reloadIfChanged();
+        const auto now = std::chrono::steady_clock::now();
+        const float seconds = std::chrono::duration<float>(now - last).count();
+        last = now;
+        const bool lastScripted = scripted && framesDone + 1 == options_.frames;
+        const bool capture = lastScripted || screenshotRequested_;
+        Image shot;
+        if (!renderFrame(seconds, capture ? &shot : nullptr)) {
+            recreateSwapchain();
+            continue;
+        }
+        ++framesDone;
+        if (capture && !lastScripted) {
+            screenshotRequested_ = false;
+            saveScreenshot(shot, "penumbra-viewer-" + std::to_string(screenshotCount_++) + ".png");
+        }
+        if (lastScripted) {
+            saveScreenshot(shot, options_.screenshotPath);
+            break;
+        }
+    }
+    renderer_->waitIdle();
+    VIEWER_VK(vkDeviceWaitIdle(context_->device));
+    if (options_.validation && context_->validationMessages() > 0)
+        throw Error(std::to_string(context_->validationMessages()) + " Vulkan validation messages (see above)");
+    return 0;
+}
+
+}  // namespace penumbra::viewer

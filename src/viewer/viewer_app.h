@@ -1,0 +1,80 @@
+#pragma once
+// penumbra-viewer's window and frame loop: input, camera, the renderer's frames into the swapchain,
+// the views, the panels, screenshots, scene reload and drag-and-drop.
+#include <chrono>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "penumbra/device.h"
+#include "penumbra/renderer.h"
+#include "penumbra/settings.h"
+#include "viewer/camera_controller.h"
+#include "viewer/viewer_options.h"
+
+struct GLFWwindow;
+
+namespace penumbra::viewer {
+
+class AtlasOverlay;
+class ImGuiLayer;
+class Presenter;
+class Swapchain;
+class VulkanContext;
+
+// What the panels show and change; owned by the app, drawn by panels.cpp.
+struct ViewerState {
+    ViewMode view = ViewMode::Final;
+    uint32_t light = 0;
+    bool showPanels = true;
+    std::deque<FrameStats> history;  // the last frames the GPU finished, oldest first
+    std::string status;              // the last reload error or saved file, shown in the panel
+    char settingsSavePath[512] = "penumbra-settings.json";  // the inspector's text field
+};
+
+class ViewerApp {
+public:
+    explicit ViewerApp(const ViewerOptions& options);
+    ~ViewerApp();
+    // The frame loop; returns the exit code (1 after a validation message with --validation).
+    int run();
+
+    // GLFW callbacks' targets.
+    void onScroll(double ticks) { wheel_ += float(ticks); }
+    void onDrop(const std::string& path) { pendingScene_ = path; }
+    void onKey(int key, int action, int mods);
+
+private:
+    void openScene(const std::string& source);
+    void reloadIfChanged();
+    bool renderFrame(float seconds, Image* screenshot);
+    CameraInput pollCameraInput();
+    void collectStats();
+    void recreateSwapchain();
+    void nextSceneCamera();
+    void saveScreenshot(const Image& image, const std::string& path);
+
+    ViewerOptions options_;
+    GLFWwindow* window_ = nullptr;
+    std::unique_ptr<VulkanContext> context_;
+    std::unique_ptr<Swapchain> swapchain_;
+    std::unique_ptr<Presenter> presenter_;
+    std::unique_ptr<ImGuiLayer> imgui_;
+    std::unique_ptr<AtlasOverlay> atlas_;
+    std::unique_ptr<Device> device_;
+    std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<CameraController> camera_;
+    Settings userSettings_, settings_;
+    ViewerState state_;
+    std::string sceneSource_, pendingScene_;
+    std::filesystem::file_time_type sceneTime_{};
+    std::chrono::steady_clock::time_point lastReloadCheck_{};
+    float wheel_ = 0.0f;
+    double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+    int sceneCamera_ = -1;  // -1: the scene's camera, else an index into Scene::cameras
+    uint32_t screenshotCount_ = 0;
+    bool screenshotRequested_ = false;
+};
+
+}  // namespace penumbra::viewer

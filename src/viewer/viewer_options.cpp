@@ -1,0 +1,69 @@
+#include "viewer/viewer_options.h"
+
+#include <CLI/CLI.hpp>
+
+#include "penumbra/error.h"
+
+namespace penumbra::viewer {
+
+namespace {
+
+constexpr const char* kViewNames[] = {"final", "shadow", "cascades", "atlas"};
+
+constexpr const char* kControls = R"(
+Controls:
+  W A S D      fly (fly camera); Q / E down / up; Shift faster; mouse wheel sets the speed
+  right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
+  O            orbit camera around the scene, F frames the scene (orbit)
+  C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
+  1 2 3 4      view: final, shadow term, cascades, atlas overlay; [ / ] previous / next light
+  Tab          show / hide the inspector and stats panels
+  F12          save a screenshot (penumbra-viewer-N.png)
+  Esc          quit
+The scene file reloads when it changes on disk; drop a .gltf / .glb on the window to open it.)";
+
+}  // namespace
+
+const char* viewModeName(ViewMode mode) { return kViewNames[int(mode)]; }
+
+std::optional<ViewMode> parseViewMode(const std::string& name) {
+    for (int i = 0; i < 4; ++i)
+        if (name == kViewNames[i]) return ViewMode(i);
+    return std::nullopt;
+}
+
+std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
+    CLI::App app{"penumbra-viewer: an interactive window on Penumbra's real-time shadows, with an inspector"};
+    app.footer(kControls);
+    ViewerOptions options;
+    std::string view = "final";
+    app.add_option("scene", options.scenePath,
+                   "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S] or gen:boxes:N; the built-in demo scene if omitted");
+    app.add_option("--settings", options.settingsPath, "settings JSON file (the same as penumbra render --settings)");
+    app.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
+    app.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
+    app.add_option("--width", options.width, "window width in pixels")->check(CLI::Range(16u, 16384u));
+    app.add_option("--height", options.height, "window height in pixels")->check(CLI::Range(16u, 16384u));
+    app.add_option("--present", options.present, "present mode: fifo (vsync) | mailbox")
+        ->check(CLI::IsMember({"fifo", "mailbox"}));
+    app.add_flag("--validation", options.validation, "enable the Vulkan validation layers (a message fails the exit code)");
+    app.add_option("--screenshot", options.screenshotPath, "render --frames frames, save the last one as PNG, exit");
+    app.add_option("--frames", options.frames, "frames to render before --screenshot (default 5)")
+        ->check(CLI::Range(1u, 100000u));
+    app.add_option("--view", view, "first view: final | shadow | cascades | atlas")
+        ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas"}));
+    app.add_option("--light", options.light, "light (index in KHR_lights_punctual) of the shadow and cascade views");
+    app.add_flag("--panels", options.panels, "with --screenshot: show the panels in it too");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        app.exit(e);
+        return std::nullopt;
+    } catch (const CLI::ParseError& e) {
+        throw Error(std::string(e.what()) + " (see penumbra-viewer --help)");
+    }
+    options.view = *parseViewMode(view);
+    return options;
+}
+
+}  // namespace penumbra::viewer

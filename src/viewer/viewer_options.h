@@ -1,0 +1,35 @@
+#pragma once
+// The command line of penumbra-viewer: what to open, on which device, and the scripted mode
+// (--screenshot FILE --frames N) that CI runs under Xvfb.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra::viewer {
+
+enum class ViewMode { Final, Shadow, Cascades, Atlas };
+
+const char* viewModeName(ViewMode mode);
+std::optional<ViewMode> parseViewMode(const std::string& name);
+
+struct ViewerOptions {
+    std::string scenePath;  // file, gen:..., or "" for the built-in demo scene
+    std::string settingsPath;
+    std::vector<std::string> overrides;  // --set key=value
+    std::string device = "auto";
+    uint32_t width = 1280, height = 720;
+    std::string present = "fifo";  // fifo | mailbox
+    bool validation = false;
+    std::string screenshotPath;  // scripted: render `frames` frames, save the last one, exit
+    uint32_t frames = 5;
+    ViewMode view = ViewMode::Final;
+    uint32_t light = 0;
+    bool panels = false;  // --screenshot: keep the panels (hidden by default so the image is the view alone)
+};
+
+// Parses argv. Returns nullopt after printing --help; throws penumbra::Error with one line on a
+// bad option.
+std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv);
+
+}  // namespace penumbra::viewer

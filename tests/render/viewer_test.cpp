@@ -1,0 +1,169 @@
+// penumbra-viewer as CI runs it: under Xvfb on lavapipe with the validation layers on (a message makes
+// it exit 1), scripted with --screenshot, and the PNG measured: the window's size, the shadow view
+// against penumbra render --aov shadow for the same camera and size, the atlas overlay.
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cli_process.h"
+#include "penumbra/image.h"
+
+using namespace penumbra;
+using namespace penumbra::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kScenes = std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/";
+
+fs::path tempPath(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / "penumbra_viewer_test";
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+#ifdef PENUMBRA_VIEWER_PATH
+const char* const kViewer = PENUMBRA_VIEWER_PATH;
+#else
+const char* const kViewer = nullptr;
+#endif
+
+bool canRunViewer() { return kViewer && std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+#define SKIP_WITHOUT_XVFB()                                                                           \
+    if (!canRunViewer()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb)"
+
+// The viewer's screenshot after `frames` frames of `scene` at width x height; fails the test on a
+// non-zero exit (a validation message included).
+Image viewerScreenshot(const std::string& scene, const std::string& name, const std::string& options,
+                       uint32_t width = 320, uint32_t height = 180, uint32_t frames = 5) {
+    const fs::path out = tempPath(name);
+    fs::remove(out);
+    const CliRun run = runProgram(kViewer, scene + " --device cpu --validation --width " + std::to_string(width) +
+                                               " --height " + std::to_string(height) + " --frames " +
+                                               std::to_string(frames) + " --screenshot " + out.string() + " " + options,
+                                  "xvfb-run -a");
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_EQ(run.err.find("validation"), std::string::npos) << run.err;
+    if (run.exitCode != 0 || !fs::exists(out)) return Image{};
+    return readPng(out.string());
+}
+
+Image renderedShadowAov(const std::string& scene, uint32_t light, uint32_t width, uint32_t height) {
+    const fs::path out = tempPath("aov_" + std::to_string(light) + ".png");
+    const CliRun run = runPenumbra("render " + scene + " --device cpu --aov shadow --light " + std::to_string(light) +
+                                   " --width " + std::to_string(width) + " --height " + std::to_string(height) + " -o " +
+                                   out.string());
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    return readPng(out.string());
+}
+
+// Fraction of pixels whose lit / shadowed class (at 0.5) differs: the viewer's red channel (its
+// shadow view is gray) against a 1-channel AOV.
+double classDifference(const Image& viewer, const Image& aov) {
+    size_t differ = 0;
+    for (size_t p = 0; p < aov.pixels.size(); ++p) differ += (viewer.pixels[p * 3] >= 128) != (aov.pixels[p] >= 128);
+    return double(differ) / double(aov.pixels.size());
+}
+
+double shadowedFraction(const Image& aov) {
+    size_t shadowed = 0;
+    for (uint8_t v : aov.pixels) shadowed += v < 128;
+    return double(shadowed) / double(aov.pixels.size());
+}
+
+}  // namespace
+
+TEST(Viewer, ScreenshotHasTheWindowsSize) {
+    SKIP_WITHOUT_XVFB();
+    const Image image = viewerScreenshot(kScenes + "cube.gltf", "size.png", "", 336, 200, 2);
+    EXPECT_EQ(image.width, 336u);
+    EXPECT_EQ(image.height, 200u);
+    EXPECT_EQ(image.channels, 3u);
+}
+
+TEST(Viewer, ShadowViewIsTheShadowAovOfPenumbraRender) {
+    SKIP_WITHOUT_XVFB();
+    struct Case {
+        const char* scene;
+        uint32_t light;
+    };
+    for (const Case& c : {Case{"cube.gltf", 0}, Case{"spot_lights.gltf", 1}}) {
+        const std::string scene = kScenes + c.scene;
+        const Image viewer = viewerScreenshot(scene, "shadow.png", "--view shadow --light " + std::to_string(c.light));
+        const Image aov = renderedShadowAov(scene, c.light, 320, 180);
+        ASSERT_EQ(viewer.width, aov.width) << c.scene;
+        ASSERT_EQ(viewer.height, aov.height) << c.scene;
+        EXPECT_GT(shadowedFraction(aov), 0.01) << c.scene << ": the comparison needs shadow in view";
+        const double difference = classDifference(viewer, aov);
+        std::printf("%s light %u: shadow class differs in %.4f %% of pixels\n", c.scene, c.light, 100.0 * difference);
+        EXPECT_LT(difference, 0.001) << c.scene;
+    }
+}
+
+TEST(Viewer, AtlasViewOverlaysTheShadowAtlasBottomLeft) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf";
+    const Image final = viewerScreenshot(scene, "final.png", "--view final");
+    const Image atlas = viewerScreenshot(scene, "atlas.png", "--view atlas");
+    ASSERT_EQ(final.pixels.size(), atlas.pixels.size());
+    // Pixels that differ: the overlay (at most 45 % of the window's height, 8 px from the bottom-left
+    // corner; a square here, the scene has only the directional atlas) against the top-right quadrant,
+    // where only shadow-edge pixels may differ (the atlas view also renders one-shot frames, whose tight
+    // fit reduces their own depth).
+    size_t inside = 0, insideCount = 0, topRight = 0, topRightCount = 0;
+    const uint32_t side = uint32_t(0.4f * float(final.height));
+    for (uint32_t y = 0; y < final.height; ++y)
+        for (uint32_t x = 0; x < final.width; ++x) {
+            const size_t p = (size_t(y) * final.width + x) * 3;
+            const bool differs = final.pixels[p] != atlas.pixels[p] || final.pixels[p + 1] != atlas.pixels[p + 1] ||
+                                 final.pixels[p + 2] != atlas.pixels[p + 2];
+            if (x >= 10 && x < side && y >= final.height - side && y < final.height - 10) {
+                inside += differs;
+                ++insideCount;
+            }
+            if (x >= final.width / 2 && y < final.height / 2) {
+                topRight += differs;
+                ++topRightCount;
+            }
+        }
+    EXPECT_GT(double(inside) / double(insideCount), 0.8) << "the atlas overlay is missing";
+    EXPECT_LT(double(topRight) / double(topRightCount), 0.01) << "the atlas view changed the scene outside the overlay";
+}
+
+TEST(Viewer, PanelsDrawOverTheViewWithoutValidationMessages) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "spot_lights.gltf";
+    const Image plain = viewerScreenshot(scene, "plain.png", "", 640, 360, 4);
+    const Image panels = viewerScreenshot(scene, "panels.png", "--panels", 640, 360, 4);
+    ASSERT_EQ(plain.pixels.size(), panels.pixels.size());
+    // The inspector opens at the top left (8, 8), the stats panel at the top right.
+    size_t differ = 0, count = 0;
+    for (uint32_t y = 20; y < 120; ++y)
+        for (uint32_t x = 20; x < 200; ++x, ++count) {
+            const size_t p = (size_t(y) * plain.width + x) * 3;
+            differ += plain.pixels[p] != panels.pixels[p] || plain.pixels[p + 2] != panels.pixels[p + 2];
+        }
+    EXPECT_GT(double(differ) / double(count), 0.5) << "no inspector panel at the top left";
+}
+
+TEST(Viewer, MissingSceneIsOneLineError) {
+    if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
+    const CliRun run = runProgram(kViewer, "/nonexistent/scene.gltf --screenshot " + tempPath("x.png").string());
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    EXPECT_NE(run.err.find("/nonexistent/scene.gltf"), std::string::npos) << run.err;
+}
+
+TEST(Viewer, BadOptionIsOneLineError) {
+    if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
+    for (const std::string arguments : {"--view sideways", "--frames 0", "--set shadows.directional.cascadeCount=9"}) {
+        const CliRun run = runProgram(kViewer, arguments);
+        EXPECT_EQ(run.exitCode, 1) << arguments;
+        EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
+        EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    }
+}
