@@ -25,17 +25,6 @@ void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
         for (int x = t.bounds.x; x <= t.bounds.z; ++x) rasterizeTexel(t, slopeBias, x, y);
 }
 
-// The mesh slot whose work items (instances x batches) hold work item `item`, in mesh order.
-uint meshOfWorkItem(uint item, uint meshCount) {
-    uint lo = 0u, hi = meshCount - 1u;
-    while (lo < hi) {
-        uint mid = (lo + hi + 1u) / 2u;
-        if (cullMeshes[mid].counts.z <= item) lo = mid;
-        else hi = mid - 1u;
-    }
-    return lo;
-}
-
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
     uint tileIndex = rasterTile(raster.pass.x + gl_WorkGroupID.z);
@@ -56,13 +45,13 @@ void main() {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         RasterTriangleSetup t;
-        if (!needsClipping(v)) {  // nearly always: no polygon array, nothing in local memory
-            if (setupTriangle(tile, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh, slopeBias);
+        if (!needsClipping(v, kShadowClipPlanes)) {  // nearly always: no polygon array, nothing in local memory
+            if (setupTriangle(tile.viewport, tile.scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh, slopeBias);
             continue;
         }
         RasterVertex polygon[kMaxClipped];
-        int vertexCount = clipTriangle(v, polygon);
+        int vertexCount = clipTriangle(v, kShadowClipPlanes, polygon);
         for (int i = 1; i + 1 < vertexCount; ++i)
-            if (setupTriangle(tile, polygon[0], polygon[i], polygon[i + 1], t)) rasterizeOrQueue(t, mesh, slopeBias);
+            if (setupTriangle(tile.viewport, tile.scissor, polygon[0], polygon[i], polygon[i + 1], t)) rasterizeOrQueue(t, mesh, slopeBias);
     }
 }

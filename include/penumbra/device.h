@@ -48,6 +48,9 @@ struct DeviceInfo {
 struct ExternalVulkanDevice {
     uint64_t instance = 0, physicalDevice = 0, device = 0, queue = 0;
     uint32_t queueFamily = 0;
+    // Optional features the caller enabled: shaderInt64 (1.0) and shaderBufferInt64Atomics (1.2) let
+    // render.mainView use the visibility buffer; without them it draws forward.
+    bool bufferInt64Atomics = false;
 };
 
 // What is alive on a device, and what it has done so far (see Device::liveObjects).

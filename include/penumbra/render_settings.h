@@ -11,10 +11,20 @@ enum class LightCulling { Clustered, None };
 const char* lightCullingName(LightCulling culling);
 std::optional<LightCulling> parseLightCulling(const std::string& name);
 
+// How the main view is drawn (issue 11): Forward rasterizes and shades every draw in the graphics
+// pipeline; Visibility rasterizes opaque and alpha-tested triangles in compute into a visibility
+// buffer and shades each pixel once in a compute resolve (the same shading functions, the same image
+// within 2 levels), with blended materials drawn forward afterwards; Auto picks Visibility where the
+// device has 64-bit buffer atomics and the scene's ids fit, Forward otherwise.
+enum class MainView { Forward, Visibility, Auto };
+const char* mainViewName(MainView view);
+std::optional<MainView> parseMainView(const std::string& name);
+
 struct RenderSettings {
     float exposure = 1.0f;  // linear scale applied before sRGB encoding
     float ambient = 0.03f;  // constant ambient light, as a fraction of base colour
     LightCulling lightCulling = LightCulling::Clustered;
+    MainView mainView = MainView::Auto;
 };
 
 }  // namespace penumbra

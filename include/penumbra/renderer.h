@@ -62,6 +62,8 @@ struct FrameStats {
     uint64_t sceneBytesUploaded = 0;         // changed instances and materials copied this frame
     std::string shadowRaster = "hw";         // the rasterizer that drew this frame's shadow maps: hw | compute
     std::string shadowRasterChoice;          // shadows.raster = auto: how it was chosen
+    std::string mainView = "forward";        // how the main view was drawn: forward | visibility
+    std::string mainViewChoice;              // render.mainView = auto: how it was chosen (or "measuring")
     // The compute rasterizer (both atlases): large triangle pieces split into chunks, the chunks, and what
     // its queues could not hold (drawn incompletely: a warning names it).
     uint64_t rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;

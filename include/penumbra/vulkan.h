@@ -7,6 +7,8 @@
 //   features: dynamicRendering, synchronization2, maintenance4 (1.3), drawIndirectCount (1.2),
 //             depthClamp (1.0);
 //   extension: VK_KHR_push_descriptor;
+//   optional: shaderInt64 (1.0) + shaderBufferInt64Atomics (1.2) for the visibility-buffer main view
+//             (say so with externalVulkanDevice's last argument);
 //   a queue whose family supports graphics and compute (Penumbra submits to it: externally
 //   synchronize it with your own submissions, e.g. submit from one thread).
 // The target image needs VK_IMAGE_USAGE_TRANSFER_DST_BIT and a format that is a blit destination.
@@ -25,13 +27,14 @@ inline const char* const* requiredVulkanDeviceExtensions(uint32_t* count) {
 }
 
 inline ExternalVulkanDevice externalVulkanDevice(VkInstance instance, VkPhysicalDevice physicalDevice, VkDevice device,
-                                                 VkQueue queue, uint32_t queueFamily) {
+                                                 VkQueue queue, uint32_t queueFamily, bool bufferInt64Atomics = false) {
     ExternalVulkanDevice external;
     external.instance = reinterpret_cast<uint64_t>(instance);
     external.physicalDevice = reinterpret_cast<uint64_t>(physicalDevice);
     external.device = reinterpret_cast<uint64_t>(device);
     external.queue = reinterpret_cast<uint64_t>(queue);
     external.queueFamily = queueFamily;
+    external.bufferInt64Atomics = bufferInt64Atomics;
     return external;
 }
 

@@ -18,6 +18,7 @@ PENUMBRA_CONST(uint, kMaxCullTiles, 32u)  // 16 directional (4 lights x 4 cascad
 PENUMBRA_CONST(uint, kCullWorkgroupSize, 64u)
 PENUMBRA_CONST(uint, kCasterKinds, 2u)  // 0: opaque (depth-only pipeline), 1: alpha-tested (clip, dither)
 PENUMBRA_CONST(uint, kCullInstanceCasts, 1u)  // CullInstance.info.y bit: node casts and has bounds
+PENUMBRA_CONST(uint, kCullInstanceBounded, 2u)  // CullInstance.info.y bit: wsMin / wsMax hold its bounds
 PENUMBRA_CONST(uint, kCullTileDirectional, 0u)
 PENUMBRA_CONST(uint, kCullTilePerspective, 1u)
 
@@ -25,7 +26,7 @@ PENUMBRA_CONST(uint, kCullTilePerspective, 1u)
 struct CullInstance {
     vec4 wsMin;   // xyz: world bounds
     vec4 wsMax;
-    uvec4 info;   // x = mesh slot (index into CullMesh), y = kCullInstance* bits
+    uvec4 info;   // x = mesh slot (index into CullMesh; 0 without geometry), y = kCullInstance* bits
 };
 PENUMBRA_CHECK_SIZE(CullInstance, 48)
 

@@ -87,6 +87,7 @@ struct Measurements {
     Series frame;
     std::vector<AtlasDrawStats> atlases;  // of the last timed frame
     std::string raster, rasterChoice;     // of the last timed frame
+    std::string mainView, mainViewChoice;
     uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
     double lightsPerClusterMean = 0.0;  // of the last timed frame
@@ -107,6 +108,8 @@ struct Measurements {
         rasterChunks = stats.rasterChunks;
         rasterDropped = stats.rasterDropped;
         rasterChoice = stats.shadowRasterChoice;
+        mainView = stats.mainView;
+        mainViewChoice = stats.mainViewChoice;
         lightsPerClusterMean = stats.lightsPerClusterMean;
         lightsPerClusterMax = stats.lightsPerClusterMax;
     }
@@ -197,6 +200,7 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
                             {"largePieces", measured.rasterLarge}, {"chunks", measured.rasterChunks},
                             {"dropped", measured.rasterDropped}};
     json["lightsPerCluster"] = {{"mean", measured.lightsPerClusterMean}, {"max", measured.lightsPerClusterMax}};
+    json["mainView"] = {{"used", measured.mainView}, {"choice", measured.mainViewChoice}};
     if (bench.varyPeriod > 0) json["vary"] = variationJson(bench.varyPeriod, run.samples);
     return json;
 }
@@ -225,6 +229,7 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
     std::printf("shadow raster: %s (%s), %llu large pieces in %llu chunks, %llu dropped\n", measured.raster.c_str(),
                 measured.rasterChoice.c_str(), (unsigned long long)measured.rasterLarge,
                 (unsigned long long)measured.rasterChunks, (unsigned long long)measured.rasterDropped);
+    std::printf("main view: %s (%s)\n", measured.mainView.c_str(), measured.mainViewChoice.c_str());
     std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
                 measured.tilesReused.median());
     std::printf("spot/point lights per cluster: %.2f mean, %u most\n", measured.lightsPerClusterMean,

@@ -34,6 +34,9 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
     command.add_option("--raster", options.raster, "shadow-map rasterizer: hw | compute | auto (= shadows.raster)")
         ->check(CLI::IsMember({"hw", "compute", "auto"}));
+    command.add_option("--main-view", options.mainView,
+                       "main view: forward | visibility (compute visibility buffer) | auto (= render.mainView)")
+        ->check(CLI::IsMember({"forward", "visibility", "auto"}));
     command.add_flag("--validation", options.validation, "enable the Vulkan validation layers");
     command.add_option("--light", options.light, "light index (in the KHR_lights_punctual array) for AOVs and comparisons");
 }

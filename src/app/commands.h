@@ -22,6 +22,7 @@ struct RenderOptions {
     std::vector<std::string> overrides;
     std::string device = "auto";
     std::string raster;  // --raster: shorthand for --set shadows.raster=...
+    std::string mainView;  // --main-view: shorthand for --set render.mainView=...
     bool validation = false;
     uint32_t light = 0;
     std::string outputPath;

@@ -68,6 +68,7 @@ Settings loadSettings(const RenderOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
     for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
     if (!options.raster.empty()) applySettingOverride(settings, "shadows.raster=" + options.raster);
+    if (!options.mainView.empty()) applySettingOverride(settings, "render.mainView=" + options.mainView);
     validateSettings(settings);
     return settings;
 }
@@ -95,6 +96,7 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
     stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
     stats["warnings"] = result.stats.warnings;
     stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
+    stats["mainView"] = {{"used", result.stats.mainView}, {"choice", result.stats.mainViewChoice}};
     stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
     stats["lightsPerCluster"] = {{"mean", result.stats.lightsPerClusterMean}, {"max", result.stats.lightsPerClusterMax}};
     return stats.dump(2);

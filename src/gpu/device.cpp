@@ -197,7 +197,7 @@ uint32_t findQueueFamily(VkPhysicalDevice physicalDevice, const std::string& nam
 }
 
 VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
-                             bool memoryBudget) {
+                             bool memoryBudget, bool& bufferInt64Atomics) {
     VkPhysicalDeviceFeatures supported{};
     vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -215,12 +215,16 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     features12.pNext = &features13;
     features12.drawIndirectCount = VK_TRUE;
+    // The visibility-buffer main view's 64-bit atomicMax (render/visibility_pass.h), where supported.
+    bufferInt64Atomics = supported.shaderInt64 && supported12.shaderBufferInt64Atomics;
+    features12.shaderBufferInt64Atomics = bufferInt64Atomics;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &features12;
     if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
     features.features.depthClamp = VK_TRUE;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    features.features.shaderInt64 = bufferInt64Atomics;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -276,7 +280,7 @@ void Device::createOwnDevice(const DeviceOptions& options) {
     d.info = describe(d.physicalDevice, chosen);
     d.queueFamily = findQueueFamily(d.physicalDevice, d.info.name);
     d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
-    d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget);
+    d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget, d.bufferInt64Atomics);
     vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
 }
 
@@ -289,6 +293,7 @@ Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& option
     d.device = reinterpret_cast<VkDevice>(external.device);
     d.queue = reinterpret_cast<VkQueue>(external.queue);
     d.queueFamily = external.queueFamily;
+    d.bufferInt64Atomics = external.bufferInt64Atomics;
     if (!d.instance || !d.physicalDevice || !d.device || !d.queue)
         throw Error("external Vulkan device: instance, physical device, device and queue are all required");
     d.info = describe(d.physicalDevice, 0);
@@ -389,6 +394,7 @@ uint32_t Device::maxImageSize() const {
 uint64_t Device::maxStorageBufferRange() const { return impl_->properties.limits.maxStorageBufferRange; }
 bool Device::lost() const { return impl_->lost; }
 bool Device::hasTimestamps() const { return impl_->timestampsSupported; }
+bool Device::hasBufferInt64Atomics() const { return impl_->bufferInt64Atomics; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);

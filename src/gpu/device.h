@@ -34,6 +34,8 @@ public:
     uint64_t maxStorageBufferRange() const;   // the largest storage buffer a shader may bind
     bool lost() const;                        // a submission or wait returned VK_ERROR_DEVICE_LOST
     bool hasTimestamps() const;
+    // shaderInt64 + shaderBufferInt64Atomics enabled (the visibility-buffer main view needs them).
+    bool hasBufferInt64Atomics() const;
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,

@@ -114,6 +114,7 @@ struct Device::Impl {
     VkQueryPool timestampPool = VK_NULL_HANDLE;
     uint32_t timestampsPerFrame = 128;
     bool timestampsSupported = false;
+    bool bufferInt64Atomics = false;  // enabled on devices it creates; external devices: not known, off
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
     VkPipelineCache pipelineCache = VK_NULL_HANDLE;

@@ -13,6 +13,26 @@ constexpr uint32_t kFarDepthBits = 0x3f800000u;  // floatBitsToUint(1.0): nothin
 
 }  // namespace
 
+gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName) {
+    gpu::ComputePipelineDesc args;
+    args.shader = "shadow_raster_args.comp";
+    args.bindings = {{9, gpu::DescriptorType::StorageBuffer}};
+    args.pushConstantSize = 2 * sizeof(glm::uvec4);
+    args.debugName = debugName;
+    return device.createComputePipeline(args);
+}
+
+void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
+                              uint32_t which, uint32_t largeCapacity, uint32_t chunkCapacity) {
+    commands.memoryBarrier();
+    commands.bindPipeline(args);
+    commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{9, counters, {}, {}}});
+    const glm::uvec4 selector[2] = {{which, 0, 0, 0}, {largeCapacity, chunkCapacity, 0, 0}};
+    commands.pushConstants(selector, sizeof(selector));
+    commands.dispatch(1, 1);
+    commands.memoryBarrier();
+}
+
 ComputeRasterPass::ComputeRasterPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t largeQueue,
                                      uint32_t chunkQueue)
     : device_(device), scene_(gpuScene) {
@@ -40,12 +60,7 @@ void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue) {
         desc.debugName = shader;
         *pipeline = device.createComputePipeline(desc);
     }
-    gpu::ComputePipelineDesc args;
-    args.shader = "shadow_raster_args.comp";
-    args.bindings = {{9, DescriptorType::StorageBuffer}};
-    args.pushConstantSize = 2 * sizeof(glm::uvec4);
-    args.debugName = "shadow raster dispatch sizes";
-    args_ = device.createComputePipeline(args);
+    args_ = createRasterArgsPipeline(device, "shadow raster dispatch sizes");
     using gpu::MemoryKind;
     counters_ = device.createBuffer(sizeof(gpu_data::RasterCounters), gpu::kBufferStorage | gpu::kBufferIndirect,
                                     MemoryKind::DeviceLocal, nullptr, "shadow raster counters");
@@ -119,13 +134,7 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
     commands.endTimer();
     if (tileCount > 0) {
         auto sizeDispatch = [&](uint32_t which) {
-            commands.memoryBarrier();
-            commands.bindPipeline(args_);
-            commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{9, counters_, {}, {}}});
-            const glm::uvec4 selector[2] = {{which, 0, 0, 0}, {largeCapacity_, chunkCapacity_, 0, 0}};
-            commands.pushConstants(selector, sizeof(selector));
-            commands.dispatch(1, 1);
-            commands.memoryBarrier();
+            recordRasterDispatchSize(commands, args_, counters_, which, largeCapacity_, chunkCapacity_);
         };
         const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
         commands.beginTimer(timerPrefix + "/instances");

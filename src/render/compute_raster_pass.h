@@ -12,6 +12,13 @@
 
 namespace penumbra {
 
+// What both compute rasterizers (this one and VisibilityPass) share: the pipeline that sizes the
+// indirect dispatches of passes 2 and 3 from a RasterCounters buffer (shadow_raster_args.comp), and
+// its recording (which = 0: the large-piece pass, 1: the chunk pass), between full barriers.
+gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName);
+void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
+                              uint32_t which, uint32_t largeCapacity, uint32_t chunkCapacity);
+
 class ComputeRasterPass {
 public:
     // largeQueue, chunkQueue: the queues' first capacities (0 = kRasterInitialLarge / Chunks).

@@ -55,14 +55,16 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
         device_.destroy(colorSrgb_);
         device_.destroy(colorUnorm_);
         colorSrgb_ = colorUnorm_ = {};
-        replace(depth, {sizes.width, sizes.height, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "depth"});
+        replace(depth, {sizes.width, sizes.height, gpu::Format::D32Float,
+                        gpu::kTextureDepthTarget | gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "depth"});
         device_.destroy(colorReadback_);
         colorReadback_ = {};
     }
     gpu::TextureHandle& colorOfFormat = sizes.colorFormat == gpu::Format::RGBA8Srgb ? colorSrgb_ : colorUnorm_;
     if (!colorOfFormat)
         colorOfFormat = device_.createTexture({sizes.width, sizes.height, sizes.colorFormat,
-                                               gpu::kTextureColorTarget | gpu::kTextureTransferSrc, 1, "color"});
+                                               gpu::kTextureColorTarget | gpu::kTextureTransferSrc | gpu::kTextureTransferDst, 1,
+                                               "color"});
     color = colorOfFormat;
     sizes_ = sizes;
     made_ = true;

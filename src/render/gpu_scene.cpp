@@ -1,6 +1,7 @@
 #include "render/gpu_scene.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "core/error.h"
@@ -44,10 +45,14 @@ gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance
 
 gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshSlot) {
     gpu_data::CullInstance data{};
-    const bool casts = instance.castShadows && instance.wsBounds.valid() && meshSlot != ~0u;
-    data.wsMin = glm::vec4(casts ? instance.wsBounds.min : glm::vec3(0.0f), 0.0f);
-    data.wsMax = glm::vec4(casts ? instance.wsBounds.max : glm::vec3(0.0f), 0.0f);
-    data.info = glm::uvec4(casts ? meshSlot : 0u, casts ? gpu_data::kCullInstanceCasts : 0u, 0u, 0u);
+    // Every instance with geometry keeps its slot and bounds (the main view's rasterizer and resolve
+    // read them); only casters carry the cast bit the shadow culling tests.
+    const bool bounded = instance.wsBounds.valid() && meshSlot != ~0u;
+    const bool casts = instance.castShadows && bounded;
+    data.wsMin = glm::vec4(bounded ? instance.wsBounds.min : glm::vec3(0.0f), 0.0f);
+    data.wsMax = glm::vec4(bounded ? instance.wsBounds.max : glm::vec3(0.0f), 0.0f);
+    data.info = glm::uvec4(meshSlot != ~0u ? meshSlot : 0u,
+                           (casts ? gpu_data::kCullInstanceCasts : 0u) | (bounded ? gpu_data::kCullInstanceBounded : 0u), 0u, 0u);
     return data;
 }
 
@@ -176,6 +181,20 @@ void GpuScene::create(const Scene& scene) {
         mesh.counts.w = batches;
         rasterWorkItems_ += mesh.counts.y * batches;
     }
+    // The main view's work list: every instance with geometry, by mesh slot, laid out as a tile's
+    // visible list with everything visible (cull_structs.h).
+    std::vector<uint32_t> meshInstances(std::max<size_t>(firstSlot, 1), 0u);
+    std::vector<uint32_t> placed(cullMeshes.size(), 0u);
+    uint32_t maxTriangles = 1;
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const uint32_t slot = meshSlotOfMesh_[scene.instances[i].meshIndex];
+        if (slot == ~0u) continue;
+        meshInstances[cullMeshes[slot].counts.x + placed[slot]++] = i;
+        maxTriangles = std::max(maxTriangles, cullMeshes[slot].draw.x / 3);
+    }
+    triangleIdBits_ = uint32_t(std::bit_width(maxTriangles - 1u));
+    const uint64_t largestId = (uint64_t(scene.instances.size()) << triangleIdBits_) + 1;
+    visibilityIdsFit_ = largestId <= UINT32_MAX;
     if (cullMeshes.empty()) cullMeshes.push_back({});
     if (cullInstances.empty()) cullInstances.push_back({});
     instanceCount_ = uint32_t(scene.instances.size());
@@ -198,6 +217,8 @@ void GpuScene::create(const Scene& scene) {
                                          MemoryKind::DeviceLocal, cullInstances.data(), "cull instances");
     cullMeshes_ = device.createBuffer(cullMeshes.size() * sizeof(cullMeshes[0]), gpu::kBufferStorage,
                                       MemoryKind::DeviceLocal, cullMeshes.data(), "cull meshes");
+    meshInstances_ = device.createBuffer(meshInstances.size() * sizeof(uint32_t), gpu::kBufferStorage,
+                                         MemoryKind::DeviceLocal, meshInstances.data(), "instances by mesh");
 
     // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
     // one white texel so the table is never empty.
@@ -238,11 +259,12 @@ void GpuScene::destroyAll() {
     device_.destroy(textureTable_);
     for (gpu::SamplerHandle sampler : samplers_) device_.destroy(sampler);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
-    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshInstances_})
+        device_.destroy(b);
     textureTable_ = {};
     samplers_.clear();
     textures_.clear();
-    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = {};
+    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = meshInstances_ = {};
 }
 
 GpuScene::~GpuScene() { destroyAll(); }

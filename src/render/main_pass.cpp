@@ -128,7 +128,7 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     std::vector<const DrawItem*> opaque, blended;
     for (const DrawItem& item : scene_.draws()) {
         const bool isBlend = scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend;
-        if (!isBlend) opaque.push_back(&item);
+        if (!isBlend && !target.opaqueDone) opaque.push_back(&item);
         else if (target.variant.drawBlended) blended.push_back(&item);
     }
     // Transparent draws back to front by the distance of their bounds' centre to the camera.
@@ -142,9 +142,10 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     rendering.height = target.height;
     gpu::ColorAttachment color;
     color.texture = target.color;
+    color.clear = !target.opaqueDone;
     std::copy(target.clearColor, target.clearColor + 4, color.clearColor);
     rendering.colors = {color};
-    rendering.depth = {target.depth, true, 0.0f};
+    rendering.depth = {target.depth, !target.opaqueDone, 0.0f};
     commands.beginRendering(rendering);
     drawItems(commands, opaque, set, false, scene, inputs.writes);
     drawItems(commands, blended, set, true, scene, inputs.writes);

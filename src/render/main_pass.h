@@ -54,6 +54,9 @@ public:
         std::vector<gpu::SpecConstant> genericSpecialization;  // empty: the variant has no generic stand-in
         float clearColor[4] = {0, 0, 0, 1};
         uint32_t width = 0, height = 0;
+        // The visibility buffer drew the opaque and alpha-tested surfaces already: keep the targets
+        // (colour and depth) and draw only the blended materials on them.
+        bool opaqueDone = false;
     };
     // Records the pass into target.color / target.depth (both already in their target states).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,

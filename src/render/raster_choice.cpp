@@ -20,11 +20,12 @@ double median(std::vector<double> values) {
 
 }  // namespace
 
-RasterChoice::RasterChoice(bool timestamps, const std::string& deviceName) : phase_(Phase::MeasureHw) {
+RasterChoice::RasterChoice(bool timestamps, const std::string& deviceName, Names names)
+    : phase_(Phase::MeasureHw), names_(names) {
     if (!timestamps) {
         phase_ = Phase::Decided;
         compute_ = datacenterNvidia(deviceName);
-        reason_ = std::string(compute_ ? "compute" : "hw") + " (no timestamps: by the device table)";
+        reason_ = std::string(compute_ ? names_.compute : names_.hw) + " (no timestamps: by the device table)";
     }
 }
 
@@ -48,7 +49,8 @@ void RasterChoice::measured(bool compute, double shadowMilliseconds) {
     const double computed = median({compute__.begin() + kWarmup, compute__.end()});
     compute_ = computed < hw;
     std::ostringstream text;
-    text << (compute_ ? "compute" : "hw") << " (measured shadow passes: hw " << hw << " ms, compute " << computed << " ms)";
+    text << (compute_ ? names_.compute : names_.hw) << " (measured " << names_.timed << ": " << names_.hw << " " << hw
+         << " ms, " << names_.compute << " " << computed << " ms)";
     reason_ = text.str();
     phase_ = Phase::Decided;
 }

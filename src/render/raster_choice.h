@@ -5,6 +5,7 @@
 // Without timestamps a table decides: compute on
 // datacenter NVIDIA GPUs (H100, H200, A100, GH200, B200: few SMs run graphics, measured 7-100x
 // slower raster there, docs/performance.md), the hardware path elsewhere. No GPU here: unit-tested.
+// render.mainView = auto decides between the forward and the visibility-buffer main view the same way.
 #include <string>
 #include <vector>
 
@@ -12,11 +13,20 @@
 
 namespace penumbra {
 
+// The names of the two paths and of what is timed, for describe(): render.mainView = auto uses
+// the same rule with {"forward", "visibility", "main view"}.
+struct RasterChoiceNames {
+    const char* hw = "hw";
+    const char* compute = "compute";
+    const char* timed = "shadow passes";
+};
+
 class RasterChoice {
 public:
     static constexpr int kWarmup = 1, kSamples = 3;
 
-    RasterChoice(bool timestamps, const std::string& deviceName);
+    using Names = RasterChoiceNames;
+    RasterChoice(bool timestamps, const std::string& deviceName, Names names = {});
 
     // Whether the next frame draws its shadow maps with the compute path.
     bool useCompute(ShadowRaster setting) const;
@@ -31,6 +41,7 @@ private:
     Phase phase_;
     bool compute_ = false;
     std::string reason_;
+    Names names_;
     std::vector<double> hw_, compute__;
 };
 

@@ -24,6 +24,7 @@
 #include "render/shadow_culling_pass.h"
 #include "render/shadow_stats_json.h"
 #include "render/visible_surface_pass.h"
+#include "render/visibility_pass.h"
 #include "scene/scene_edits.h"
 #include "scene/scene_validation.h"
 #include "scene_structs.h"
@@ -90,9 +91,21 @@ struct PendingFrame {
     bool autoRaster = false;  // shadows.raster = auto and still measuring: its timings feed the choice
     bool clusterStats = false;     // the light cluster pass's LightClusterStats end the readback
     bool visibleReadback = false;  // the tight fit's depth subsample is in the readback, for later frames
+    bool visibilityView = false;   // the main view came from the visibility buffer
+    bool autoMainView = false;     // render.mainView = auto and still measuring: its main pass time feeds the choice
     CameraView view;
     ShadowRaster rasterSetting = ShadowRaster::Auto;
 };
+
+double timerMilliseconds(const FrameStats& stats, const char* name) {
+    for (const PassTiming& t : stats.gpuTimings)
+        if (t.name == name) return t.milliseconds;
+    return 0.0;
+}
+
+ShadowRaster mainViewAsRaster(MainView view) {
+    return view == MainView::Forward ? ShadowRaster::Hw : view == MainView::Visibility ? ShadowRaster::Compute : ShadowRaster::Auto;
+}
 
 double shadowPassMilliseconds(const FrameStats& stats) {
     double total = 0.0;
@@ -202,6 +215,8 @@ struct Renderer::State {
     ComputeRasterPass computeRaster;
     LightClusterPass lightClusters;
     RasterChoice rasterChoice;
+    std::unique_ptr<VisibilityPass> visibility;  // made by the first visibility-buffer frame
+    RasterChoice mainViewChoice;
     std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
     glm::uvec2 latestVisibleSize{0};
     glm::uvec2 rasterNeeded{0};  // the most large pieces / chunks a finished frame asked the compute rasterizer for
@@ -219,7 +234,8 @@ struct Renderer::State {
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
           mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
           visiblePass(d, gpuScene, mainPass),
-          computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name), targets(d) {
+          computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name),
+          mainViewChoice(d.hasTimestamps(), d.info().name, {"forward", "visibility", "main view"}), targets(d) {
         try {
             // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
             shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
@@ -318,6 +334,15 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     Settings fittedSettings = requestedSettings;
     fittedSettings.shadows = fitShadowSettings(requestedSettings.shadows, device.maxImageSize(), stats.warnings);
     const Settings& settings = fittedSettings;
+    const bool visibilityOk = VisibilityPass::supported(device, gpuScene);
+    if (settings.render.mainView == MainView::Visibility && !visibilityOk)
+        throw Error(std::string("render.mainView = visibility is not available: ") +
+                    (!device.hasBufferInt64Atomics() ? device.info().name + " has no 64-bit buffer atomics (or an embedder's device did not enable them)"
+                                                     : "the scene has too many instances x triangles per mesh for 32-bit ids") +
+                    "; use forward or auto");
+    frame.visibilityView = visibilityOk && mainViewChoice.useCompute(mainViewAsRaster(settings.render.mainView));
+    frame.autoMainView = visibilityOk && settings.render.mainView == MainView::Auto && !mainViewChoice.decided();
+    stats.mainView = frame.visibilityView ? "visibility" : "forward";
     const uint64_t frameIndex = device.nextFrameIndex();
     const auto failed = [&](const char* stage, const Error& error) {
         return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
@@ -365,6 +390,16 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     }
 
     phase.restart();
+    MainPassVariant litPass = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+    if (options.forceGenericVariants) litPass.specialization = kGenericLitSpecialization;
+    if (frame.visibilityView) {
+        try {  // before the frame: its pipelines are built here, not while recording
+            if (!visibility) visibility = std::make_unique<VisibilityPass>(device, gpuScene);
+            visibility->prepare(litPass.specialization, sizes.colorFormat);
+        } catch (const Error& error) {
+            throw failed("the visibility-buffer main view", error);
+        }
+    }
     gpu::CommandList commands = device.beginFrame();
     // A failure from here to the submission drops the frame (the next one starts clean) and names the
     // part being recorded.
@@ -474,20 +509,27 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
         if (screenSpace) inputs.writes.back().texture = screenSpacePass.record(commands, scene, view, inputs, 0);
 
-        stage = "main";
+        stage = frame.visibilityView ? "main (visibility buffer)" : "main";
         commands.beginTimer("main");
-        commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-        commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
         MainPass::Target main;
         main.color = targets.color;
         main.depth = targets.depth;
         main.width = view.width;
         main.height = view.height;
-        main.variant = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+        main.variant = litPass;
         main.genericSpecialization = kGenericLitSpecialization;
-        if (options.forceGenericVariants) main.variant.specialization = kGenericLitSpecialization;
         // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
         if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+        if (frame.visibilityView) {
+            VisibilityPass::Target opaque{targets.color, targets.depth, sizes.colorFormat, view.width, view.height, {},
+                                          main.variant.specialization};
+            std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
+            visibility->record(commands, inputs.writes, opaque);  // leaves both targets in their target states
+            main.opaqueDone = true;
+        } else {
+            commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+            commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+        }
         mainPass.record(commands, scene, view, inputs, main);
         commands.endTimer();
         if (tight && !oneShot) {
@@ -545,6 +587,7 @@ void Renderer::State::collectCompleted() {
             otherCache.invalidate();
         }
         const bool computeRasterFrame = pending.front().computeRaster, autoFrame = pending.front().autoRaster;
+        const bool visibilityFrame = pending.front().visibilityView, autoMainView = pending.front().autoMainView;
         const ShadowRaster rasterSetting = pending.front().rasterSetting;
         if (pending.front().visibleReadback) {
             const PendingFrame& finished = pending.front();
@@ -560,6 +603,8 @@ void Renderer::State::collectCompleted() {
         pending.pop_front();
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
         if (autoFrame) rasterChoice.measured(computeRasterFrame, shadowPassMilliseconds(stats));
+        if (autoMainView) mainViewChoice.measured(visibilityFrame, timerMilliseconds(stats, "main"));
+        stats.mainViewChoice = mainViewChoice.describe();
         stats.shadowRasterChoice = rasterSetting == ShadowRaster::Auto
                                        ? "auto: " + rasterChoice.describe()
                                        : std::string("shadows.raster = ") + shadowRasterName(rasterSetting);

@@ -14,6 +14,7 @@ constexpr const char* kFitNames[] = {"sphere", "tight"};
 constexpr const char* kFadeModeNames[] = {"linear", "squared"};
 constexpr const char* kSplitModeNames[] = {"manual", "log", "practical"};
 constexpr const char* kLightCullingNames[] = {"clustered", "none"};
+constexpr const char* kMainViewNames[] = {"forward", "visibility", "auto"};
 
 // The name of enumerator `value` in `names`, "?" when out of range; and back.
 template <size_t N>
@@ -38,6 +39,8 @@ std::optional<ShadowFadeMode> parseShadowFadeMode(const std::string& name) {
     return parseEnum<ShadowFadeMode>(kFadeModeNames, name);
 }
 const char* lightCullingName(LightCulling culling) { return enumName(kLightCullingNames, int(culling)); }
+const char* mainViewName(MainView view) { return enumName(kMainViewNames, int(view)); }
+std::optional<MainView> parseMainView(const std::string& name) { return parseEnum<MainView>(kMainViewNames, name); }
 std::optional<LightCulling> parseLightCulling(const std::string& name) {
     return parseEnum<LightCulling>(kLightCullingNames, name);
 }

@@ -90,7 +90,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
     DeviceOptions deviceOptions;
     deviceOptions.framesInFlight = Presenter::kFramesInFlight;
     device_ = std::make_unique<Device>(externalVulkanDevice(context_->instance, context_->physicalDevice, context_->device,
-                                                            context_->queue, context_->queueFamily),
+                                                            context_->queue, context_->queueFamily, context_->bufferInt64Atomics),
                                        deviceOptions);
     sceneSource_ = options.scenePath;
     RendererOptions rendererOptions;

@@ -174,11 +174,19 @@ void VulkanContext::createDevice() {
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     features12.pNext = &features13;
     features12.drawIndirectCount = VK_TRUE;
+    // Optional: the visibility-buffer main view (render.mainView).
+    VkPhysicalDeviceVulkan12Features supported12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 supportedAll{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    supportedAll.pNext = &supported12;
+    vkGetPhysicalDeviceFeatures2(physicalDevice, &supportedAll);
+    bufferInt64Atomics = supported.shaderInt64 && supported12.shaderBufferInt64Atomics;
+    features12.shaderBufferInt64Atomics = bufferInt64Atomics;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &features12;
     features.features.depthClamp = VK_TRUE;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    features.features.shaderInt64 = bufferInt64Atomics;
     uint32_t penumbraCount = 0;
     const char* const* penumbraExtensions = requiredVulkanDeviceExtensions(&penumbraCount);
     std::vector<const char*> extensions(penumbraExtensions, penumbraExtensions + penumbraCount);

@@ -30,6 +30,7 @@ public:
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queueFamily = 0;
+    bool bufferInt64Atomics = false;  // enabled on the device (the visibility-buffer main view)
     std::string deviceName;
 
     uint32_t validationMessages() const { return messages_.load(); }

@@ -28,18 +28,6 @@ protected:
         return renderer.render(request, settings);
     }
 
-    // The share of pixels where some channel differs by more than `levels`.
-    static double shareOver(const Image& a, const Image& b, int levels) {
-        EXPECT_EQ(a.pixels.size(), b.pixels.size());
-        size_t over = 0;
-        for (size_t p = 0; p < a.pixels.size(); p += a.channels) {
-            bool differs = false;
-            for (uint32_t c = 0; c < a.channels; ++c)
-                differs |= std::abs(int(a.pixels[p + c]) - int(b.pixels[p + c])) > levels;
-            over += differs;
-        }
-        return double(over) / double(a.pixels.size() / a.channels);
-    }
 
     // Clustered and unculled colour of `scene`: at most 2 levels apart in 99.5 % of pixels (the
     // figure of issue 11); returns the share of pixels that differ at all.
@@ -47,9 +35,9 @@ protected:
         Renderer renderer(device(), scene);
         const RenderResult clustered = renderColor(renderer, LightCulling::Clustered, 160, 90);
         const RenderResult unculled = renderColor(renderer, LightCulling::None, 160, 90);
-        EXPECT_LE(shareOver(clustered.image, unculled.image, 2), 0.005) << what;
+        EXPECT_LE(shareOfPixelsOver(clustered.image, unculled.image, 2), 0.005) << what;
         EXPECT_EQ(unculled.stats.lightsPerClusterMax, 0u) << what << ": culling off counts nothing";
-        return shareOver(clustered.image, unculled.image, 0);
+        return shareOfPixelsOver(clustered.image, unculled.image, 0);
     }
 };
 

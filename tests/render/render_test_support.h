@@ -1,6 +1,8 @@
 #pragma once
 // Shared fixture of the GPU tests: one lavapipe device with validation on for the whole test
 // program; every test fails if any validation message appeared while it ran.
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -42,6 +44,18 @@ protected:
 private:
     uint32_t messagesBefore_ = 0;
 };
+
+// The share of pixels of two same-sized images where some channel differs by more than `levels`.
+inline double shareOfPixelsOver(const Image& a, const Image& b, int levels) {
+    EXPECT_EQ(a.pixels.size(), b.pixels.size());
+    size_t over = 0;
+    for (size_t p = 0; p + a.channels <= std::min(a.pixels.size(), b.pixels.size()); p += a.channels) {
+        bool differs = false;
+        for (uint32_t c = 0; c < a.channels; ++c) differs |= std::abs(int(a.pixels[p + c]) - int(b.pixels[p + c])) > levels;
+        over += differs;
+    }
+    return double(over) / double(std::max<size_t>(a.pixels.size() / a.channels, 1));
+}
 
 // sRGB 8-bit → linear [0,1].
 inline float srgbToLinear(uint8_t value) {

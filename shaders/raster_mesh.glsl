@@ -1,0 +1,79 @@
+// What both compute rasterizers (shadow_raster.glsl, visibility_raster.glsl) read of the scene's
+// meshes and share of their queues: the work items of pass 1 (every mesh slot's instances x triangle
+// batches, CullMesh.counts), the queue of large pieces (pass 2) and of their chunks (pass 3).
+#ifndef PENUMBRA_RASTER_MESH_GLSL
+#define PENUMBRA_RASTER_MESH_GLSL
+#include "cull_structs.h"
+#include "raster_core.glsl"
+
+layout(set = 0, binding = 6, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = 0, binding = 7, std430) readonly buffer IndexBlock { uint indices[]; };
+layout(set = 0, binding = 9, std430) buffer CounterBlock { RasterCounters counters; };
+layout(set = 0, binding = 10, std430) buffer LargeBlock { RasterPiece largePieces[]; };
+layout(set = 0, binding = 11, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
+
+layout(push_constant) uniform RasterConstants {
+    uvec4 pass;      // shadows: x = first entry of CullFrame::rasterTiles for this atlas, y = their count,
+                     // z = atlas size; main view: visibility_raster.glsl
+    uvec4 capacity;  // x = large pieces, y = chunks the queues hold
+} raster;
+
+// The mesh slot whose work items (instances x batches) hold work item `item`, in mesh order.
+uint meshOfWorkItem(uint item, uint meshCount) {
+    uint lo = 0u, hi = meshCount - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi + 1u) / 2u;
+        if (cullMeshes[mid].counts.z <= item) lo = mid;
+        else hi = mid - 1u;
+    }
+    return lo;
+}
+
+RasterVertex casterVertex(uint vertexIndex, mat4 clipFromObject) {
+    VertexData vertex = vertices[vertexIndex];
+    RasterVertex v;
+    v.clip = clipFromObject * vec4(vertex.osPositionU.xyz, 1.0);
+    v.uv = vec2(vertex.osPositionU.w, vertex.osNormalV.w);
+    return v;
+}
+
+// Fetches triangle `triangle` of `mesh` in the tile's clip space (clipFromObject = the tile's
+// clipFromWorld x the instance's worldFromObject).
+void fetchTriangle(CullMesh mesh, uint triangle, mat4 clipFromObject, out RasterVertex v[3]) {
+    for (int i = 0; i < 3; ++i) {
+        uint index = indices[mesh.draw.y + triangle * 3u + uint(i)];
+        v[i] = casterVertex(uint(int(index) + int(mesh.draw.z)), clipFromObject);
+    }
+}
+
+RasterPiece packPiece(RasterTriangleSetup t, float slopeBias) {
+    RasterPiece piece;
+    piece.points01 = ivec4(t.p[0], t.p[1]);
+    piece.point2 = ivec4(t.p[2], int(t.materialIndex), t.alphaTested ? 1 : 0);
+    piece.depth = vec4(t.z, t.area);
+    piece.inverseW = vec4(t.invW, slopeBias);
+    piece.uvOverW01 = vec4(t.uvOverW[0], t.uvOverW[1]);
+    piece.uvOverW2Slope = vec4(t.uvOverW[2], t.depthSlope);
+    piece.bounds = t.bounds;
+    return piece;
+}
+
+RasterTriangleSetup unpackPiece(RasterPiece piece) {
+    RasterTriangleSetup t;
+    t.p[0] = piece.points01.xy;
+    t.p[1] = piece.points01.zw;
+    t.p[2] = piece.point2.xy;
+    t.materialIndex = uint(piece.point2.z);
+    t.alphaTested = piece.point2.w != 0;
+    t.z = piece.depth.xyz;
+    t.area = piece.depth.w;
+    t.invW = piece.inverseW.xyz;
+    t.uvOverW[0] = piece.uvOverW01.xy;
+    t.uvOverW[1] = piece.uvOverW01.zw;
+    t.uvOverW[2] = piece.uvOverW2Slope.xy;
+    t.depthSlope = piece.uvOverW2Slope.zw;
+    t.bounds = piece.bounds;
+    return t;
+}
+
+#endif

@@ -1,0 +1,110 @@
+// The lit surface of a pixel: materials, every light's shadow and the outputs (colour and the debug
+// AOVs), shared by the forward lit pass (lit.frag) and the visibility buffer's resolve
+// (visibility_resolve.comp), so both paths evaluate the same functions. The caller supplies what its
+// rasterizer knows: the interpolated position and normal, the triangle's plane and the base colour.
+#ifndef PENUMBRA_SHADE_SURFACE_GLSL
+#define PENUMBRA_SHADE_SURFACE_GLSL
+#include "bindings.glsl"
+#include "lighting.glsl"
+#include "light_clusters.glsl"
+#include "shadows.glsl"
+
+// The main directional light's shadow term from the screen-space resolve (seed 004), when enabled.
+layout(set = 0, binding = 9) uniform sampler2D screenSpaceShadows;
+layout(set = 0, binding = kBindingClusterMasks, std430) readonly buffer ClusterMaskBlock { uint clusterMasks[]; };
+
+// What the rasterizer knows of the visible surface at a pixel.
+struct SurfaceInput {
+    vec3 wsPosition;
+    vec3 wsNormal;           // unit shading normal, turned to the viewer for double-sided back faces
+    vec3 wsGeometricNormal;  // the triangle's unit normal on the side of wsNormal
+    vec2 pixel;              // window position of the pixel centre (gl_FragCoord.xy)
+    MaterialData material;
+    vec4 baseColor;          // factor x texture at the pixel's uv
+    bool blendPass;          // an alpha-blended draw (not in the depth prepass)
+};
+
+vec3 cascadeColor(int cascade) {
+    const vec3 colors[5] = vec3[](vec3(0.0), vec3(1, 0.25, 0.25), vec3(0.25, 1, 0.25), vec3(0.25, 0.4, 1), vec3(1, 1, 0.25));
+    return colors[clamp(cascade + 1, 0, 4)];
+}
+
+// What a lit pixel knows while it sums its lights.
+struct PixelLighting {
+    Surface surface;
+    ShadowReceiver receiver;
+    vec2 pixel;
+    bool receives;
+    bool blendPass;
+    uint outputMode;
+};
+
+// Light i's radiance at the pixel; the AOV light's shadow term is recorded on the way.
+vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int aovCascade) {
+    LightData light = lights[i];
+    vec3 wsToLight = light.wsToLight.xyz;
+    float attenuation = 1.0;
+    ShadowSample shadow = ShadowSample(1.0, -1);
+    if (uint(light.colorIntensity.a) == kLightDirectional) {
+        // Transparent surfaces are not in the depth prepass: they sample the atlas directly, as in URP.
+        bool resolved = frame.params.z > 0.5 && light.shadow.y == 0u && !pixel.blendPass &&
+                        pixel.outputMode != kOutputCascadesAov;
+        if (pixel.receives && resolved)
+            shadow = ShadowSample(texelFetch(screenSpaceShadows, ivec2(pixel.pixel), 0).r, -1);
+        else if (pixel.receives)
+            shadow = directionalShadow(light.shadow.y, pixel.receiver, pixel.pixel);
+    } else {
+        vec3 wsOffset = light.wsPosition.xyz - pixel.surface.wsPosition;
+        float distanceSquared = dot(wsOffset, wsOffset);
+        wsToLight = wsOffset * inversesqrt(max(distanceSquared, 1e-8));
+        attenuation = rangeAttenuation(distanceSquared, light.wsPosition.w);
+        if (uint(light.colorIntensity.a) == kLightSpot)
+            attenuation *= spotAttenuation(-wsToLight, -light.wsToLight.xyz, light.spotAngles);
+        if (pixel.receives) shadow = otherShadow(light.shadow.y, pixel.receiver, wsToLight);
+    }
+    if (light.shadow.x == frame.counts.w) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
+    float nDotL = max(dot(pixel.surface.wsNormal, wsToLight), 0.0);
+    return brdf(pixel.surface, wsToLight) * light.colorIntensity.rgb * (nDotL * attenuation * shadow.attenuation);
+}
+
+// The pixel's output: linear colour x exposure (alpha for blended draws), or the AOV of frame.counts.z.
+vec4 shadeSurface(SurfaceInput s) {
+    MaterialData material = s.material;
+    vec3 wsToCamera = normalize(frame.wsCameraPosition.xyz - s.wsPosition);
+    PixelLighting pixel = PixelLighting(Surface(s.wsPosition, s.wsNormal, wsToCamera, s.baseColor.rgb, material.params.x,
+                                                material.params.y),
+                                        ShadowReceiver(s.wsPosition, s.wsNormal, s.wsGeometricNormal), s.pixel,
+                                        (material.flags.y & kMaterialReceiveShadows) != 0u, s.blendPass, frame.counts.z);
+    uint outputMode = pixel.outputMode;
+
+    vec3 radiance = frame.params.y * s.baseColor.rgb;
+    float aovShadow = 1.0;
+    int aovCascade = -1;
+    for (uint i = 0u; i < frame.counts.x; ++i) radiance += shadeLight(i, pixel, aovShadow, aovCascade);
+    // Spot and point lights: the cluster's (a culled light adds exactly nothing here), or all of them
+    // for the AOVs (the AOV light's shadow term is wanted where it does not light) and beyond the slices.
+    float vsDepth = -dot(vec4(frame.viewFromWorld[0].z, frame.viewFromWorld[1].z, frame.viewFromWorld[2].z,
+                              frame.viewFromWorld[3].z), vec4(s.wsPosition, 1.0));
+    int cluster = clusters.config.w != 0u && outputMode == kOutputColor ? clusterOfFragment(s.pixel, vsDepth) : -1;
+    if (cluster < 0) {
+        for (uint i = frame.counts.x; i < frame.counts.x + frame.counts.y; ++i)
+            radiance += shadeLight(i, pixel, aovShadow, aovCascade);
+    } else {
+        uint words = clusters.config.z;
+        for (uint word = 0u; word < words; ++word) {
+            uint bits = clusterMasks[uint(cluster) * words + word];
+            while (bits != 0u) {
+                uint bit = uint(findLSB(bits));
+                bits &= bits - 1u;
+                radiance += shadeLight(clusters.config.y + word * 32u + bit, pixel, aovShadow, aovCascade);
+            }
+        }
+    }
+    if ((material.flags.y & kMaterialUnlit) != 0u) radiance = s.baseColor.rgb;
+
+    if (outputMode == kOutputShadowAov) return vec4(vec3(aovShadow), 1.0);
+    if (outputMode == kOutputCascadesAov) return vec4(cascadeColor(aovCascade), 1.0);
+    return vec4(radiance * frame.params.x, s.blendPass ? s.baseColor.a : 1.0);
+}
+
+#endif

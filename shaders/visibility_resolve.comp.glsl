@@ -1,0 +1,31 @@
+#version 460
+// Visibility-buffer resolve (issue 11; visibility_structs.h), compute: one thread per pixel reads the
+// nearest triangle the compute rasterizer kept and shades it with shade_surface.glsl, the forward
+// pass's own functions (visibility_surface.glsl). Writes the colour (RGBA8, sRGB-encoded for sRGB
+// targets) and the depth, copied into the targets for the forward pass of blended materials.
+#include "visibility_surface.glsl"
+
+layout(local_size_x = kResolveGroupSize, local_size_y = kResolveGroupSize) in;
+
+layout(set = 0, binding = kBindingResolvedColor, std430) writeonly buffer ColorBlock { uint resolvedColor[]; };
+layout(set = 0, binding = kBindingResolvedDepth, std430) writeonly buffer DepthBlock { float resolvedDepth[]; };
+
+vec3 srgbEncode(vec3 linear) {
+    vec3 c = clamp(linear, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+void main() {
+    uvec2 pixel = gl_GlobalInvocationID.xy;
+    if (pixel.x >= constants.view.x || pixel.y >= constants.view.y) return;
+    uint index = pixel.y * constants.view.x + pixel.x;
+    uvec2 word = visibility[index];
+    resolvedDepth[index] = uintBitsToFloat(word.y);
+    if (word.x == 0u) {  // nothing drawn: the clear colour
+        resolvedColor[index] = constants.capacity.z;
+        return;
+    }
+    vec4 color = shadeVisiblePixel(word.x, pixel);
+    if (constants.view.w != 0u) color.rgb = srgbEncode(color.rgb);
+    resolvedColor[index] = packUnorm4x8(color);
+}

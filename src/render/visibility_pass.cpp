@@ -1,0 +1,222 @@
+#include "render/visibility_pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cull_structs.h"
+#include "render/compute_raster_pass.h"
+#include "render/main_pass.h"
+#include "visibility_structs.h"
+
+namespace penumbra {
+
+namespace {
+
+uint32_t packRgba8(const float color[4], bool srgb) {
+    uint32_t packed = 0;
+    for (int i = 0; i < 4; ++i) {
+        float c = std::clamp(color[i], 0.0f, 1.0f);
+        if (srgb && i < 3) c = c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+        packed |= uint32_t(std::lround(c * 255.0f)) << (8 * i);
+    }
+    return packed;
+}
+
+}  // namespace
+
+VisibilityPass::VisibilityPass(gpu::Device& device, const GpuScene& gpuScene)
+    : device_(device), scene_(gpuScene), fragmentResolve_(device.info().isCpu) {
+    try {
+        create();
+    } catch (...) {
+        destroyAll();  // a failed allocation half-way: the destructor does not run
+        throw;
+    }
+}
+
+VisibilityPass::~VisibilityPass() { destroyAll(); }
+
+bool VisibilityPass::supported(const gpu::Device& device, const GpuScene& gpuScene) {
+    return device.hasBufferInt64Atomics() && gpuScene.visibilityIdsFit();
+}
+
+void VisibilityPass::create() {
+    using gpu::DescriptorType;
+    gpu::ComputePipelineDesc desc;
+    desc.bindings = sceneBindings();
+    for (uint32_t binding : {6u, 7u, gpu_data::kBindingVisibility, 9u, 10u, 11u, gpu_data::kBindingRasterInstances,
+                             gpu_data::kBindingMeshInstances})
+        desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
+    desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
+    desc.textureTable = scene_.textureTable();
+    for (auto [pipeline, shader] : {std::pair{&raster_, "visibility_raster.comp"}, std::pair{&bin_, "visibility_raster_bin.comp"},
+                                    std::pair{&chunks_, "visibility_raster_chunks.comp"}}) {
+        desc.shader = shader;
+        desc.debugName = shader;
+        *pipeline = device_.createComputePipeline(desc);
+    }
+    args_ = createRasterArgsPipeline(device_, "visibility raster dispatch sizes");
+    using gpu::MemoryKind;
+    counters_ = device_.createBuffer(sizeof(gpu_data::RasterCounters), gpu::kBufferStorage | gpu::kBufferIndirect,
+                                     MemoryKind::DeviceLocal, nullptr, "visibility raster counters");
+    large_ = device_.createBuffer(uint64_t(kLargeCapacity) * sizeof(gpu_data::RasterPiece), gpu::kBufferStorage,
+                                  MemoryKind::DeviceLocal, nullptr, "visibility raster large pieces");
+    chunkList_ = device_.createBuffer(uint64_t(kChunkCapacity) * 8, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
+                                      "visibility raster chunks");
+}
+
+void VisibilityPass::destroyAll() {
+    for (gpu::PipelineHandle p : {raster_, bin_, chunks_, args_}) device_.destroy(p);
+    for (auto& [key, pipeline] : resolve_) device_.destroy(pipeline);
+    resolve_.clear();
+    for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, color_, depth_}) device_.destroy(b);
+}
+
+void VisibilityPass::ensureSize(uint32_t width, uint32_t height) {
+    if (visibility_ && width == width_ && height == height_) return;
+    for (gpu::BufferHandle b : {visibility_, color_, depth_}) device_.destroy(b);
+    const uint64_t pixels = uint64_t(width) * height;
+    using gpu::MemoryKind;
+    visibility_ = device_.createBuffer(pixels * 8, gpu::kBufferStorage | gpu::kBufferTransferDst, MemoryKind::DeviceLocal,
+                                       nullptr, "visibility buffer");
+    if (!fragmentResolve_) color_ = device_.createBuffer(pixels * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
+                                  nullptr, "visibility resolved colour");
+    if (!fragmentResolve_) depth_ = device_.createBuffer(pixels * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
+                                  nullptr, "visibility resolved depth");
+    width_ = width;
+    height_ = height;
+}
+
+gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecConstant>& specialization,
+                                                    gpu::Format colorFormat) {
+    std::vector<std::pair<uint32_t, uint32_t>> constants;
+    for (const gpu::SpecConstant& c : specialization) constants.emplace_back(c.id, c.value);
+    // The compute resolve writes buffers (one pipeline for every format); the fragment one the target.
+    gpu::PipelineHandle& pipeline = resolve_[{constants, fragmentResolve_ ? colorFormat : gpu::Format::Undefined}];
+    if (pipeline) return pipeline;
+    using gpu::DescriptorType;
+    std::vector<gpu::BindingDesc> bindings = shadedSceneBindings();
+    const uint32_t last = fragmentResolve_ ? gpu_data::kBindingResolveInstances : gpu_data::kBindingResolvedDepth;
+    for (uint32_t binding = gpu_data::kBindingResolveVisibility; binding <= last; ++binding)
+        bindings.push_back({binding, DescriptorType::StorageBuffer});
+    if (fragmentResolve_) {
+        gpu::GraphicsPipelineDesc desc;
+        desc.vertexShader = "fullscreen.vert";
+        desc.fragmentShader = "visibility_resolve.frag";
+        desc.bindings = bindings;
+        desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
+        desc.textureTable = scene_.textureTable();
+        desc.colorFormats = {colorFormat};
+        desc.depthFormat = gpu::Format::D32Float;
+        desc.depthCompare = gpu::CompareOp::Always;
+        desc.cullMode = gpu::CullMode::None;
+        desc.specialization = specialization;
+        desc.debugName = "visibility resolve (fragment)";
+        pipeline = device_.createGraphicsPipeline(desc);
+        return pipeline;
+    }
+    gpu::ComputePipelineDesc desc;
+    desc.shader = "visibility_resolve.comp";
+    desc.bindings = bindings;
+    desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
+    desc.textureTable = scene_.textureTable();
+    desc.specialization = specialization;
+    desc.debugName = "visibility resolve";
+    pipeline = device_.createComputePipeline(desc);
+    return pipeline;
+}
+
+void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+                                   const Target& target, const gpu_data::VisibilityConstants& constants) {
+    std::vector<gpu::DescriptorWrite> resolveWrites = writes;
+    resolveWrites.push_back({gpu_data::kBindingResolveVisibility, visibility_, {}, {}});
+    resolveWrites.push_back({gpu_data::kBindingResolveIndices, scene_.indexBuffer(), {}, {}});
+    resolveWrites.push_back({gpu_data::kBindingResolveMeshes, scene_.cullMeshBuffer(), {}, {}});
+    resolveWrites.push_back({gpu_data::kBindingResolveInstances, scene_.cullInstanceBuffer(), {}, {}});
+    auto bind = [&]() {
+        commands.bindPipeline(resolvePipeline(target.specialization, target.colorFormat));
+        commands.pushDescriptors(resolveWrites);
+        commands.bindTextureTable(scene_.textureTable());
+        commands.pushConstants(&constants, sizeof(constants));
+    };
+    if (fragmentResolve_) {
+        commands.transition(target.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+        commands.transition(target.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+        gpu::RenderingDesc rendering;
+        rendering.width = target.width;
+        rendering.height = target.height;
+        gpu::ColorAttachment color;
+        color.texture = target.color;
+        color.clear = false;  // every pixel is written
+        rendering.colors = {color};
+        rendering.depth = {target.depth, false, 0.0f};
+        commands.beginRendering(rendering);
+        bind();
+        commands.draw(3);
+        commands.endRendering();
+        return;
+    }
+    resolveWrites.push_back({gpu_data::kBindingResolvedColor, color_, {}, {}});
+    resolveWrites.push_back({gpu_data::kBindingResolvedDepth, depth_, {}, {}});
+    bind();
+    const uint32_t group = gpu_data::kResolveGroupSize;
+    commands.dispatch((target.width + group - 1) / group, (target.height + group - 1) / group);
+    commands.memoryBarrier();
+}
+
+void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+                            const Target& target) {
+    ensureSize(target.width, target.height);
+    gpu_data::VisibilityConstants constants{};
+    constants.view = glm::uvec4(target.width, target.height, scene_.triangleIdBits(),
+                                target.colorFormat == gpu::Format::RGBA8Srgb ? 1u : 0u);
+    constants.capacity = glm::uvec4(kLargeCapacity, kChunkCapacity, packRgba8(target.clearColor, false),
+                                    scene_.meshSlotCount());
+    std::vector<gpu::DescriptorWrite> rasterWrites(writes.begin(), writes.begin() + 5);  // scene 0-4
+    rasterWrites.push_back({6, scene_.cullMeshBuffer(), {}, {}});
+    rasterWrites.push_back({7, scene_.indexBuffer(), {}, {}});
+    rasterWrites.push_back({gpu_data::kBindingVisibility, visibility_, {}, {}});
+    rasterWrites.push_back({9, counters_, {}, {}});
+    rasterWrites.push_back({10, large_, {}, {}});
+    rasterWrites.push_back({11, chunkList_, {}, {}});
+    rasterWrites.push_back({gpu_data::kBindingRasterInstances, scene_.cullInstanceBuffer(), {}, {}});
+    rasterWrites.push_back({gpu_data::kBindingMeshInstances, scene_.meshInstanceBuffer(), {}, {}});
+    auto bind = [&](gpu::PipelineHandle pipeline, const std::vector<gpu::DescriptorWrite>& set) {
+        commands.bindPipeline(pipeline);
+        commands.pushDescriptors(set);
+        commands.bindTextureTable(scene_.textureTable());
+        commands.pushConstants(&constants, sizeof(constants));
+    };
+    auto sizeDispatch = [&](uint32_t which) {
+        recordRasterDispatchSize(commands, args_, counters_, which, kLargeCapacity, kChunkCapacity);
+    };
+
+    commands.beginTimer("main/raster");
+    commands.memoryBarrier();  // the previous frame may still read these buffers
+    commands.fillBuffer(visibility_, 0);
+    commands.fillBuffer(counters_, 0);
+    commands.memoryBarrier();
+    const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
+    bind(raster_, rasterWrites);
+    commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
+                      (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
+    sizeDispatch(0);
+    bind(bin_, rasterWrites);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
+    sizeDispatch(1);
+    bind(chunks_, rasterWrites);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
+    commands.memoryBarrier();
+    commands.endTimer();
+
+    commands.beginTimer("main/resolve");
+    recordResolve(commands, writes, target, constants);
+    commands.endTimer();
+    if (fragmentResolve_) return;
+    commands.beginTimer("main/copy");
+    commands.copyBufferToTexture(color_, target.color, gpu::TextureState::ColorTarget);
+    commands.copyBufferToTexture(depth_, target.depth, gpu::TextureState::DepthTarget);
+    commands.endTimer();
+}
+
+}  // namespace penumbra

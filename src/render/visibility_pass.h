@@ -1,0 +1,66 @@
+#pragma once
+// The visibility-buffer main view (issue 11, shaders/shared/visibility_structs.h): opaque and
+// alpha-tested triangles rasterized in compute into a 64-bit word per pixel (depth | instance +
+// triangle), then one full-screen compute resolve that shades every pixel with the forward lit
+// pass's functions (shade_surface.glsl) and writes the colour and depth targets, on which the
+// forward pass draws the blended materials afterwards (MainPass::Target::opaqueDone).
+// Raster passes as the shadow atlases' compute rasterizer: per instance batch (small triangles at
+// once, large ones queued), per large triangle (split into chunks), per chunk; a full queue makes
+// the earlier pass draw the rest itself, so nothing is dropped.
+// On CPU devices (lavapipe) the resolve runs as a full-screen fragment pass of the same functions
+// (visibility_resolve.frag): Mesa 22.3's lavapipe corrupts its heap now and then running the shading
+// functions in a compute shader (seen as crashes in later, unrelated calls; it does not happen with the
+// same code in a fragment shader). GPUs run the compute resolve.
+#include <map>
+#include <vector>
+
+#include "gpu/device.h"
+#include "render/gpu_scene.h"
+#include "visibility_structs.h"
+
+namespace penumbra {
+
+class VisibilityPass {
+public:
+    VisibilityPass(gpu::Device& device, const GpuScene& gpuScene);
+    ~VisibilityPass();
+    VisibilityPass(const VisibilityPass&) = delete;
+    VisibilityPass& operator=(const VisibilityPass&) = delete;
+
+    // Whether the device and scene allow it: 64-bit buffer atomics, instance + triangle ids in 32 bits.
+    static bool supported(const gpu::Device& device, const GpuScene& gpuScene);
+
+    struct Target {
+        gpu::TextureHandle color, depth;  // left in ColorTarget / DepthTarget
+        gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
+        uint32_t width = 0, height = 0;
+        float clearColor[4] = {0, 0, 0, 1};
+        std::vector<gpu::SpecConstant> specialization;  // the lit pass's (ids >= 2)
+    };
+    // Builds the resolve pipeline of these lit-pass constants unless it exists (before recording).
+    void prepare(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat) {
+        resolvePipeline(specialization, colorFormat);
+    }
+    bool fragmentResolve() const { return fragmentResolve_; }
+    // `writes`: the shaded scene bindings 0-16 (MainPassInputs). Timed as main/raster, main/resolve, main/copy.
+    void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target);
+
+private:
+    void create();
+    void destroyAll();
+    void ensureSize(uint32_t width, uint32_t height);
+    gpu::PipelineHandle resolvePipeline(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat);
+    void recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
+                       const gpu_data::VisibilityConstants& constants);
+
+    gpu::Device& device_;
+    const GpuScene& scene_;
+    gpu::PipelineHandle raster_, bin_, chunks_, args_;
+    std::map<std::pair<std::vector<std::pair<uint32_t, uint32_t>>, gpu::Format>, gpu::PipelineHandle> resolve_;
+    bool fragmentResolve_ = false;
+    gpu::BufferHandle counters_, large_, chunkList_, visibility_, color_, depth_;
+    uint32_t width_ = 0, height_ = 0;
+    static constexpr uint32_t kLargeCapacity = 1u << 18, kChunkCapacity = 1u << 20;
+};
+
+}  // namespace penumbra
