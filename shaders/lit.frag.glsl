@@ -105,6 +105,6 @@ void main() {
     } else if (outputMode == kOutputCascadesAov) {
         outColor = vec4(cascadeColor(aovCascade), 1.0);
     } else {
-        outColor = vec4(radiance * frame.params.x, kBlendPass ? baseColor.a : 1.0);
+        outColor = vec4(toneMap(radiance * frame.params.x, uint(frame.params.w)), kBlendPass ? baseColor.a : 1.0);
     }
 }

@@ -62,7 +62,10 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
     frame.counts = glm::uvec4(lights.directionalCount, lights.otherCount, mode, request.aovLight);
-    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f, 0.0f);
+    static_assert(uint32_t(ToneMapping::Neutral) == gpu_data::kToneMapNeutral &&
+                  uint32_t(ToneMapping::Aces) == gpu_data::kToneMapAces);
+    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f,
+                             float(settings.render.toneMapping));
     return frame;
 }
 
@@ -486,8 +489,9 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         main.variant = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
         main.genericSpecialization = kGenericLitSpecialization;
         if (options.forceGenericVariants) main.variant.specialization = kGenericLitSpecialization;
-        // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
+        // Shadow AOV: 1 (lit) where no geometry is; cascades: black; colour: black under the background.
         if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+        main.background = request.output == OutputMode::Color && settings.render.background == Background::Gradient;
         mainPass.record(commands, scene, view, inputs, main);
         commands.endTimer();
         if (tight && !oneShot) {
