@@ -1,7 +1,9 @@
 // Direct lighting: Lambert diffuse + GGX specular (Smith-GGX correlated visibility, Schlick Fresnel),
-// KHR_lights_punctual attenuation for spot and point lights.
+// KHR_lights_punctual attenuation for spot and point lights. The display transform of the shaded
+// radiance (toneMap) comes with it from tone_mapping.glsl.
 #ifndef PENUMBRA_LIGHTING_GLSL
 #define PENUMBRA_LIGHTING_GLSL
+#include "tone_mapping.glsl"
 
 const float kPi = 3.14159265358979;
 

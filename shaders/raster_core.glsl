@@ -187,16 +187,18 @@ bool overlapsChunk(RasterTriangleSetup t, ivec2 origin, int chunk) {
 }
 
 // The base colour's alpha of the piece's material at a pixel centre: the texture at the
-// perspective-correct uv, with the uv change to the next pixel in x and y as gradients (the LOD rule
-// of the fragment passes). Every thread of a workgroup rasterizes the same instance (pass 1) or piece
+// perspective-correct uv, with the uv change from pixel `d` to its next pixel in x and y as gradients
+// (the LOD rule of the fragment passes; d = the pixel itself, or its 2 x 2 quad's first pixel for the
+// hardware's coarse derivatives). Every thread of a workgroup rasterizes the same instance (pass 1) or piece
 // (pass 3), so the texture index is uniform; broadcasting it says so to the compiler.
-float rasterBaseAlpha(RasterTriangleSetup t, vec3 weights, int x, int y) {
+float rasterBaseAlpha(RasterTriangleSetup t, vec3 weights, ivec2 d) {
     MaterialData material = materials[t.materialIndex];
     float alpha = material.baseColorFactor.a;
     if (material.flags.x != 0u) {
         vec2 uv = perspectiveUv(t, weights);
-        vec2 dx = perspectiveUv(t, planeWeights(t, x + 1, y)) - uv;
-        vec2 dy = perspectiveUv(t, planeWeights(t, x, y + 1)) - uv;
+        vec2 uvAtD = perspectiveUv(t, planeWeights(t, d.x, d.y));
+        vec2 dx = perspectiveUv(t, planeWeights(t, d.x + 1, d.y)) - uvAtD;
+        vec2 dy = perspectiveUv(t, planeWeights(t, d.x, d.y + 1)) - uvAtD;
         uint texture = subgroupBroadcastFirst(material.flags.x - 1u);
         alpha *= textureLod(baseColorTextures[texture], uv, textureLevel(texture, dx, dy)).a;
     }

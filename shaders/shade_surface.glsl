@@ -67,7 +67,8 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
     return brdf(pixel.surface, wsToLight) * light.colorIntensity.rgb * (nDotL * attenuation * shadow.attenuation);
 }
 
-// The pixel's output: linear colour x exposure (alpha for blended draws), or the AOV of frame.counts.z.
+// The pixel's output: colour x exposure, tone mapped (render.toneMapping; alpha for blended draws), or
+// the AOV of frame.counts.z.
 vec4 shadeSurface(SurfaceInput s) {
     MaterialData material = s.material;
     vec3 wsToCamera = normalize(frame.wsCameraPosition.xyz - s.wsPosition);
@@ -104,7 +105,7 @@ vec4 shadeSurface(SurfaceInput s) {
 
     if (outputMode == kOutputShadowAov) return vec4(vec3(aovShadow), 1.0);
     if (outputMode == kOutputCascadesAov) return vec4(cascadeColor(aovCascade), 1.0);
-    return vec4(radiance * frame.params.x, s.blendPass ? s.baseColor.a : 1.0);
+    return vec4(toneMap(radiance * frame.params.x, uint(frame.params.w)), s.blendPass ? s.baseColor.a : 1.0);
 }
 
 #endif

@@ -27,7 +27,7 @@ uint rasterTile(uint i) { return cull.rasterTiles[i / 4u][i % 4u]; }
 // seed 000 §5.1-§5.3 as shadow_caster.frag: clip below the cutoff, dither by interleaved gradient noise.
 bool alphaKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
     MaterialData material = materials[t.materialIndex];
-    float alpha = rasterBaseAlpha(t, weights, x, y);
+    float alpha = rasterBaseAlpha(t, weights, ivec2(x, y));
     if (material.flags.w == kShadowModeClip && alpha < material.params.z) return false;
     if (material.flags.w == kShadowModeDither && alpha < interleavedGradientNoise(vec2(x, y) + 0.5)) return false;
     return true;

@@ -34,7 +34,8 @@ bool facesShown(RasterVertex v[3], bool doubleSided) {
 
 // lit.frag's alpha test (MASK materials): base colour alpha below the cutoff is discarded.
 bool maskKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
-    return rasterBaseAlpha(t, weights, x, y) >= materials[t.materialIndex].params.z;
+    // Derivatives of the pixel's 2 x 2 quad, as the hardware's implicit level in lit.frag takes them.
+    return rasterBaseAlpha(t, weights, ivec2(x, y) & ~1) >= materials[t.materialIndex].params.z;
 }
 
 void rasterizePixel(RasterTriangleSetup t, uint payload, int x, int y) {

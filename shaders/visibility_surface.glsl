@@ -20,10 +20,13 @@ layout(push_constant) uniform Constants { VisibilityConstants constants; };
 // homogeneous edge functions (Olano and Greer 1997), valid for vertices behind the camera too. A
 // covered pixel's weights lie in [0, 1] but for rounding, which a sliver seen edge-on magnifies without
 // bound: they are clamped there (the vertices' mean where nothing is left), so no surface point leaves
-// its triangle.
-vec3 barycentricsAt(mat3 edges, vec2 ndc) {
+// its triangle. unclampedBarycentricsAt extends the triangle's plane beyond it (for gradients).
+vec3 unclampedBarycentricsAt(mat3 edges, vec2 ndc) {
     vec3 b = edges * vec3(ndc, 1.0);
-    b = clamp(b / (b.x + b.y + b.z), 0.0, 1.0);
+    return b / (b.x + b.y + b.z);
+}
+vec3 barycentricsAt(mat3 edges, vec2 ndc) {
+    vec3 b = clamp(unclampedBarycentricsAt(edges, ndc), 0.0, 1.0);
     float sum = b.x + b.y + b.z;
     return sum > 1e-6 ? b / sum : vec3(1.0 / 3.0);
 }
@@ -65,8 +68,11 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     vec2 ndcPerPixel = 2.0 * frame.viewport.zw;
     vec2 ndc = pixel * ndcPerPixel - 1.0;
     vec3 b = barycentricsAt(edges, ndc);
-    vec3 bx = barycentricsAt(edges, ndc + vec2(ndcPerPixel.x, 0.0));
-    vec3 by = barycentricsAt(edges, ndc + vec2(0.0, ndcPerPixel.y));
+    // Texture gradients over the pixel's 2 x 2 quad, as the hardware's coarse derivatives in lit.frag.
+    vec2 ndcQuad = (floor(pixel * 0.5) * 2.0 + 0.5) * ndcPerPixel - 1.0;
+    vec3 bq = unclampedBarycentricsAt(edges, ndcQuad);
+    vec3 bx = unclampedBarycentricsAt(edges, ndcQuad + vec2(ndcPerPixel.x, 0.0));
+    vec3 by = unclampedBarycentricsAt(edges, ndcQuad + vec2(0.0, ndcPerPixel.y));
     mat3x2 uvs = mat3x2(vec2(v[0].osPositionU.w, v[0].osNormalV.w), vec2(v[1].osPositionU.w, v[1].osNormalV.w),
                         vec2(v[2].osPositionU.w, v[2].osNormalV.w));
     vec2 uv = uvs * b;
@@ -80,7 +86,7 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     wsGeometric = length2 > 1e-30 ? wsGeometric * inversesqrt(length2) : wsNormal;
     if (dot(wsGeometric, wsNormal) < 0.0) wsGeometric = -wsGeometric;
     MaterialData material = materials[data.info.x];
-    vec4 baseColor = baseColorGrad(material, uv, uvs * bx - uv, uvs * by - uv);
+    vec4 baseColor = baseColorGrad(material, uv, uvs * (bx - bq), uvs * (by - bq));
     return SurfaceInput(wsPosition, wsNormal, wsGeometric, pixel, material, baseColor, false);
 }
 

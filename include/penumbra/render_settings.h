@@ -19,12 +19,28 @@ std::optional<LightCulling> parseLightCulling(const std::string& name);
 enum class MainView { Forward, Visibility, Auto };
 const char* mainViewName(MainView view);
 std::optional<MainView> parseMainView(const std::string& name);
+// The display transform applied to linear radiance (x exposure) before sRGB encoding (issue 12):
+// Neutral = Khronos PBR Neutral (base colours stay close to their sRGB values, highlights roll off
+// to white), Aces = Narkowicz's fit of the ACES filmic curve, None = clamp only (the linear values).
+// The shadow and cascade AOVs are never tone mapped.
+enum class ToneMapping { None, Neutral, Aces };
+const char* toneMappingName(ToneMapping toneMapping);
+std::optional<ToneMapping> parseToneMapping(const std::string& name);
+
+// What the colour image shows where no geometry is: Gradient = a sky gradient by view direction
+// (zenith, horizon, ground; exposed and tone mapped like the scene), Black = black (as before
+// issue 12). The AOVs keep their backgrounds (shadow: 1, cascades: black).
+enum class Background { Gradient, Black };
+const char* backgroundName(Background background);
+std::optional<Background> parseBackground(const std::string& name);
 
 struct RenderSettings {
     float exposure = 1.0f;  // linear scale applied before sRGB encoding
     float ambient = 0.03f;  // constant ambient light, as a fraction of base colour
     LightCulling lightCulling = LightCulling::Clustered;
     MainView mainView = MainView::Auto;
+    ToneMapping toneMapping = ToneMapping::Neutral;
+    Background background = Background::Gradient;
 };
 
 }  // namespace penumbra

@@ -13,6 +13,11 @@ PENUMBRA_CONST(uint, kOutputColor, 0u)
 PENUMBRA_CONST(uint, kOutputShadowAov, 1u)
 PENUMBRA_CONST(uint, kOutputCascadesAov, 2u)
 
+// Tone mapping of the colour output (FrameData.params.w; = penumbra::ToneMapping, tone_mapping.glsl).
+PENUMBRA_CONST(uint, kToneMapNone, 0u)
+PENUMBRA_CONST(uint, kToneMapNeutral, 1u)
+PENUMBRA_CONST(uint, kToneMapAces, 2u)
+
 // Material flags (MaterialData.flags.y)
 PENUMBRA_CONST(uint, kMaterialUnlit, 1u)
 PENUMBRA_CONST(uint, kMaterialDoubleSided, 2u)
@@ -38,7 +43,7 @@ struct FrameData {
     vec4 wsCameraPosition;  // xyz, w unused
     vec4 viewport;          // width, height, 1/width, 1/height
     uvec4 counts;           // directional light count, other light count, output mode, AOV light index
-    vec4 params;            // exposure, ambient, 1 = main light's shadows come from the screen-space resolve, unused
+    vec4 params;            // exposure, ambient, 1 = main light's shadows come from the screen-space resolve, kToneMap*
 };
 PENUMBRA_CHECK_SIZE(FrameData, 256)
 PENUMBRA_CHECK_LAYOUT(FrameData, viewFromWorld, 64)

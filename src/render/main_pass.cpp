@@ -1,8 +1,10 @@
 #include "render/main_pass.h"
 
+#include "core/error.h"
 #include "light_cluster_structs.h"
 
 #include <algorithm>
+#include <span>
 
 namespace penumbra {
 
@@ -36,6 +38,7 @@ std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene
 MainPass::~MainPass() {
     for (auto& [key, set] : pipelineSets_)
         for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]}) device_.destroy(p);
+    for (auto& [format, pipeline] : backgrounds_) device_.destroy(pipeline);
 }
 
 MainPass::PipelineKey MainPass::keyOf(const MainPassVariant& variant) {
@@ -67,7 +70,38 @@ MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool asy
                 async ? device_.createGraphicsPipelineAsync(desc) : device_.createGraphicsPipeline(desc);
         }
     }
+    // The colour output's sets come with the background of their format (built alongside, so a
+    // change of render.background builds nothing).
+    if (variant.drawBlended) backgroundPipeline(variant.colorFormat, async);
     return pipelineSets_.emplace(keyOf(variant), set).first->second;
+}
+
+gpu::PipelineHandle MainPass::backgroundPipeline(gpu::Format colorFormat, bool async) {
+    if (const auto found = backgrounds_.find(colorFormat); found != backgrounds_.end()) return found->second;
+    gpu::GraphicsPipelineDesc desc;
+    desc.vertexShader = "fullscreen.vert";  // at depth 0: reversed Z's far end, the depth buffer's clear value
+    desc.fragmentShader = "background.frag";
+    desc.bindings = {{0, gpu::DescriptorType::UniformBuffer}};
+    desc.colorFormats = {colorFormat};
+    desc.depthFormat = gpu::Format::D32Float;
+    desc.depthCompare = gpu::CompareOp::GreaterOrEqual;  // passes only where the depth is still cleared
+    desc.depthWrite = false;
+    desc.cullMode = gpu::CullMode::None;
+    desc.debugName = "background";
+    const gpu::PipelineHandle pipeline = async ? device_.createGraphicsPipelineAsync(desc) : device_.createGraphicsPipeline(desc);
+    backgrounds_.emplace(colorFormat, pipeline);
+    return pipeline;
+}
+
+void MainPass::drawBackground(gpu::CommandList& commands, const Target& target,
+                              const std::vector<gpu::DescriptorWrite>& writes) {
+    const gpu::PipelineHandle pipeline = backgroundPipeline(target.variant.colorFormat, false);
+    device_.waitForPipeline(pipeline);  // only before its first build has finished
+    const auto frame = std::find_if(writes.begin(), writes.end(), [](const auto& w) { return w.binding == 0; });
+    PENUMBRA_ASSERT(frame != writes.end());
+    commands.bindPipeline(pipeline);
+    commands.pushDescriptors(std::span(&*frame, 1));
+    commands.draw(3);
 }
 
 bool MainPass::setReady(const PipelineSet& set) {
@@ -128,8 +162,11 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     std::vector<const DrawItem*> opaque, blended;
     for (const DrawItem& item : scene_.draws()) {
         const bool isBlend = scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend;
-        if (!isBlend && !target.opaqueDone) opaque.push_back(&item);
-        else if (target.variant.drawBlended) blended.push_back(&item);
+        if (isBlend) {
+            if (target.variant.drawBlended) blended.push_back(&item);
+        } else if (!target.opaqueDone) {
+            opaque.push_back(&item);
+        }
     }
     // Transparent draws back to front by the distance of their bounds' centre to the camera.
     auto distance = [&](const DrawItem* item) {
@@ -148,6 +185,7 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     rendering.depth = {target.depth, !target.opaqueDone, 0.0f};
     commands.beginRendering(rendering);
     drawItems(commands, opaque, set, false, scene, inputs.writes);
+    if (target.background) drawBackground(commands, target, inputs.writes);
     drawItems(commands, blended, set, true, scene, inputs.writes);
     commands.endRendering();
 }

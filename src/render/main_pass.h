@@ -1,5 +1,6 @@
 #pragma once
-// The forward main pass: opaque and alpha-tested draws, then alpha-blended draws back to front.
+// The forward main pass: opaque and alpha-tested draws, the background (render.background) where
+// none of them drew, then alpha-blended draws back to front.
 // Unlit materials share the pipelines (the material flag selects the path in the shader). The same
 // pass draws the depth + normal prepass of the screen-space resolve with another fragment shader.
 //
@@ -53,6 +54,7 @@ public:
         MainPassVariant variant;
         std::vector<gpu::SpecConstant> genericSpecialization;  // empty: the variant has no generic stand-in
         float clearColor[4] = {0, 0, 0, 1};
+        bool background = false;  // draw shaders/background.frag.glsl behind the opaque draws (colour output)
         uint32_t width = 0, height = 0;
         // The visibility buffer drew the opaque and alpha-tested surfaces already: keep the targets
         // (colour and depth) and draw only the blended materials on them.
@@ -76,6 +78,8 @@ private:
     bool setReady(const PipelineSet& set);
     void waitFor(const PipelineSet& set);
     const PipelineSet& pipelinesFor(const Target& target);
+    gpu::PipelineHandle backgroundPipeline(gpu::Format colorFormat, bool async);
+    void drawBackground(gpu::CommandList& commands, const Target& target, const std::vector<gpu::DescriptorWrite>& writes);
     void drawItems(gpu::CommandList& commands, const std::vector<const DrawItem*>& items, const PipelineSet& set,
                    bool blended, const Scene& scene, const std::vector<gpu::DescriptorWrite>& writes);
 
@@ -83,6 +87,7 @@ private:
     const GpuScene& scene_;
     PipelineWarmup warmup_;
     std::map<PipelineKey, PipelineSet> pipelineSets_;
+    std::map<gpu::Format, gpu::PipelineHandle> backgrounds_;  // by colour format
 };
 
 }  // namespace penumbra

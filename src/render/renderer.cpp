@@ -63,7 +63,10 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
     frame.counts = glm::uvec4(lights.directionalCount, lights.otherCount, mode, request.aovLight);
-    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f, 0.0f);
+    static_assert(uint32_t(ToneMapping::Neutral) == gpu_data::kToneMapNeutral &&
+                  uint32_t(ToneMapping::Aces) == gpu_data::kToneMapAces);
+    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f,
+                             float(settings.render.toneMapping));
     return frame;
 }
 
@@ -392,10 +395,12 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     phase.restart();
     MainPassVariant litPass = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
     if (options.forceGenericVariants) litPass.specialization = kGenericLitSpecialization;
-    if (frame.visibilityView) {
-        try {  // before the frame: its pipelines are built here, not while recording
+    // Also while auto still draws forward frames to measure: the visibility frames that follow then
+    // make nothing (the steady state allocates no GPU object).
+    if (visibilityOk && settings.render.mainView != MainView::Forward) {
+        try {  // before the frame: its pipelines and buffers are made here, not while recording
             if (!visibility) visibility = std::make_unique<VisibilityPass>(device, gpuScene);
-            visibility->prepare(litPass.specialization, sizes.colorFormat);
+            visibility->prepare(litPass.specialization, sizes.colorFormat, view.width, view.height);
         } catch (const Error& error) {
             throw failed("the visibility-buffer main view", error);
         }
@@ -518,8 +523,9 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         main.height = view.height;
         main.variant = litPass;
         main.genericSpecialization = kGenericLitSpecialization;
-        // Shadow AOV: 1 (lit) where no geometry is; colour and cascades: black background.
+        // Shadow AOV: 1 (lit) where no geometry is; cascades: black; colour: black under the background.
         if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+        main.background = request.output == OutputMode::Color && settings.render.background == Background::Gradient;
         if (frame.visibilityView) {
             VisibilityPass::Target opaque{targets.color, targets.depth, sizes.colorFormat, view.width, view.height, {},
                                           main.variant.specialization};

@@ -37,9 +37,12 @@ public:
         float clearColor[4] = {0, 0, 0, 1};
         std::vector<gpu::SpecConstant> specialization;  // the lit pass's (ids >= 2)
     };
-    // Builds the resolve pipeline of these lit-pass constants unless it exists (before recording).
-    void prepare(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat) {
+    // Builds the resolve pipeline of these lit-pass constants and the buffers of this size unless they
+    // exist (before recording).
+    void prepare(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat, uint32_t width,
+                 uint32_t height) {
         resolvePipeline(specialization, colorFormat);
+        ensureSize(width, height);
     }
     bool fragmentResolve() const { return fragmentResolve_; }
     // `writes`: the shaded scene bindings 0-16 (MainPassInputs). Timed as main/raster, main/resolve, main/copy.

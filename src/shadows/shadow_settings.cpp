@@ -15,6 +15,8 @@ constexpr const char* kFadeModeNames[] = {"linear", "squared"};
 constexpr const char* kSplitModeNames[] = {"manual", "log", "practical"};
 constexpr const char* kLightCullingNames[] = {"clustered", "none"};
 constexpr const char* kMainViewNames[] = {"forward", "visibility", "auto"};
+constexpr const char* kToneMappingNames[] = {"none", "neutral", "aces"};
+constexpr const char* kBackgroundNames[] = {"gradient", "black"};
 
 // The name of enumerator `value` in `names`, "?" when out of range; and back.
 template <size_t N>
@@ -44,6 +46,12 @@ std::optional<MainView> parseMainView(const std::string& name) { return parseEnu
 std::optional<LightCulling> parseLightCulling(const std::string& name) {
     return parseEnum<LightCulling>(kLightCullingNames, name);
 }
+const char* toneMappingName(ToneMapping toneMapping) { return enumName(kToneMappingNames, int(toneMapping)); }
+std::optional<ToneMapping> parseToneMapping(const std::string& name) {
+    return parseEnum<ToneMapping>(kToneMappingNames, name);
+}
+const char* backgroundName(Background background) { return enumName(kBackgroundNames, int(background)); }
+std::optional<Background> parseBackground(const std::string& name) { return parseEnum<Background>(kBackgroundNames, name); }
 const char* cascadeFitName(CascadeFit fit) { return enumName(kFitNames, int(fit)); }
 const char* cascadeSplitModeName(CascadeSplitMode mode) { return enumName(kSplitModeNames, int(mode)); }
 

@@ -5,6 +5,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "core/files.h"
 #include "penumbra/error.h"
 #include "penumbra/scene_loading.h"
 #include "penumbra/vulkan.h"
@@ -65,6 +66,15 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
     if ((options.view == ViewMode::Shadow || options.view == ViewMode::Cascades) && options.light >= scene.lights.size())
         throw Error("--light " + std::to_string(options.light) + ": the scene has " + std::to_string(scene.lights.size()) +
                     " lights");
+    if (!options.cameraPath.empty()) {
+        playback_ = loadCameraPath(options.cameraPath);
+        playing_ = true;
+    }
+    if (!options.recordCameraPath.empty()) {
+        checkWritable(options.recordCameraPath);
+        recordingFile_ = options.recordCameraPath;
+        recordingOn_ = true;
+    }
     state_.view = options.view;
     state_.light = options.light;
     state_.showPanels = options.screenshotPath.empty() || options.panels;
@@ -179,6 +189,7 @@ void ViewerApp::onKey(int key, int action, int mods) {
         case GLFW_KEY_F: camera_->frameScene(); break;
         case GLFW_KEY_C: nextSceneCamera(); break;
         case GLFW_KEY_F12: screenshotRequested_ = true; break;
+        case GLFW_KEY_P: toggleRecording(); break;
         default: break;
     }
 }
@@ -190,6 +201,46 @@ void ViewerApp::nextSceneCamera() {
     camera_->reset(sceneCamera_ < 0 ? startCamera(renderer_->scene()) : cameras[size_t(sceneCamera_)]);
     state_.status = sceneCamera_ < 0 ? "the scene's camera" : "glTF camera " + std::to_string(sceneCamera_) + " (" +
                                                                  cameras[size_t(sceneCamera_)].name + ")";
+}
+
+// P: starts a new recording, or stops the one running and writes it.
+void ViewerApp::toggleRecording() {
+    recordingOn_ = !recordingOn_;
+    if (recordingOn_) {
+        recording_.keyframes.clear();
+        recordingClock_ = 0.0f;
+        state_.status = "recording the camera path";
+        return;
+    }
+    try {
+        saveCameraPath(recording_, recordingFile_);
+        state_.status = "saved the camera path (" + std::to_string(recording_.keyframes.size()) + " keyframes) to " +
+                        recordingFile_;
+    } catch (const Error& error) {
+        state_.status = error.what();
+        std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
+    }
+}
+
+// The camera of this frame: the played path's (scripted: by frame index, so the screenshot is its end)
+// or the user's; then the recording takes it as a keyframe (scripted: 1/60 s per frame).
+void ViewerApp::moveCamera(float seconds) {
+    const CameraInput input = pollCameraInput();
+    const bool scripted = !options_.screenshotPath.empty();
+    if (playing_) {
+        playbackClock_ += seconds;
+        const float time = scripted ? scriptedPathTime(playback_, framesDone_, options_.frames)
+                                    : playback_.keyframes.front().time + playbackClock_;
+        camera_->reset(cameraOnPath(playback_, time, camera_->camera()));
+        playing_ = scripted || time < playback_.keyframes.back().time;  // then the user flies on from its end
+    } else {
+        camera_->update(input, seconds);
+    }
+    if (recordingOn_) {
+        recordingClock_ = scripted ? float(recording_.keyframes.size()) / 60.0f : recordingClock_ + seconds;
+        if (recording_.keyframes.empty() || recordingClock_ > recording_.keyframes.back().time)
+            recording_.keyframes.push_back(keyframeOf(camera_->camera(), recordingClock_));
+    }
 }
 
 CameraInput ViewerApp::pollCameraInput() {
@@ -229,7 +280,7 @@ void ViewerApp::collectStats() {
 // One frame: false when the swapchain must be re-made before it can be drawn.
 bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     if (!presenter_->beginFrame()) return false;
-    camera_->update(pollCameraInput(), seconds);
+    moveCamera(seconds);
     const VkExtent2D extent = swapchain_->extent();
     const CameraView view = makeCameraView(camera_->camera(), extent.width, extent.height);
     RenderRequest request;
@@ -282,7 +333,6 @@ int ViewerApp::run() {
     auto last = std::chrono::steady_clock::now();
     glfwGetCursorPos(window_, &lastCursorX_, &lastCursorY_);
     const bool scripted = !options_.screenshotPath.empty();
-    uint32_t framesDone = 0;
     while (!glfwWindowShouldClose(window_)) {
         glfwPollEvents();
         int width = 0, height = 0;
@@ -297,14 +347,14 @@ int ViewerApp::run() {
         const auto now = std::chrono::steady_clock::now();
         const float seconds = std::chrono::duration<float>(now - last).count();
         last = now;
-        const bool lastScripted = scripted && framesDone + 1 == options_.frames;
+        const bool lastScripted = scripted && framesDone_ + 1 == options_.frames;
         const bool capture = lastScripted || screenshotRequested_;
         Image shot;
         if (!renderFrame(seconds, capture ? &shot : nullptr)) {
             recreateSwapchain();
             continue;
         }
-        ++framesDone;
+        ++framesDone_;
         if (capture && !lastScripted) {
             screenshotRequested_ = false;
             saveScreenshot(shot, "penumbra-viewer-" + std::to_string(screenshotCount_++) + ".png");
@@ -314,6 +364,7 @@ int ViewerApp::run() {
             break;
         }
     }
+    if (recordingOn_) saveCameraPath(recording_, recordingFile_);  // a recording still running at exit
     renderer_->waitIdle();
     VIEWER_VK(vkDeviceWaitIdle(context_->device));
     if (options_.validation && context_->validationMessages() > 0)

@@ -11,6 +11,7 @@
 #include "penumbra/renderer.h"
 #include "penumbra/settings.h"
 #include "viewer/camera_controller.h"
+#include "viewer/camera_path.h"
 #include "viewer/viewer_options.h"
 
 struct GLFWwindow;
@@ -50,6 +51,8 @@ private:
     void reloadIfChanged();
     bool renderFrame(float seconds, Image* screenshot);
     CameraInput pollCameraInput();
+    void moveCamera(float seconds);
+    void toggleRecording();
     void collectStats();
     void recreateSwapchain();
     void nextSceneCamera();
@@ -75,6 +78,13 @@ private:
     int sceneCamera_ = -1;  // -1: the scene's camera, else an index into Scene::cameras
     uint32_t screenshotCount_ = 0;
     bool screenshotRequested_ = false;
+    uint32_t framesDone_ = 0;
+    // Camera paths: one played from the first frame (until its end; scripted: by frame index), one
+    // being recorded (P, or --record-camera-path from the first frame), with their clocks in seconds.
+    CameraPath playback_, recording_;
+    bool playing_ = false, recordingOn_ = false;
+    float playbackClock_ = 0.0f, recordingClock_ = 0.0f;
+    std::string recordingFile_ = "penumbra-camera-path.json";
 };
 
 }  // namespace penumbra::viewer

@@ -16,6 +16,7 @@ Controls:
   right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
+  P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4      view: final, shadow term, cascades, atlas overlay; [ / ] previous / next light
   Tab          show / hide the inspector and stats panels
   F12          save a screenshot (penumbra-viewer-N.png)
@@ -54,6 +55,10 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
         ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas"}));
     app.add_option("--light", options.light, "light (index in KHR_lights_punctual) of the shadow and cascade views");
     app.add_flag("--panels", options.panels, "with --screenshot: show the panels in it too");
+    app.add_option("--camera-path", options.cameraPath,
+                   "play a recorded camera path (JSON); with --screenshot, frame i of N shows i / (N - 1) of it");
+    app.add_option("--record-camera-path", options.recordCameraPath,
+                   "record the camera path from the first frame into this JSON file (P stops and starts)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -26,6 +26,8 @@ struct ViewerOptions {
     ViewMode view = ViewMode::Final;
     uint32_t light = 0;
     bool panels = false;  // --screenshot: keep the panels (hidden by default so the image is the view alone)
+    std::string cameraPath;        // --camera-path: play this recorded path (camera_path.h)
+    std::string recordCameraPath;  // --record-camera-path: record from the first frame into this file
 };
 
 // Parses argv. Returns nullopt after printing --help; throws penumbra::Error with one line on a

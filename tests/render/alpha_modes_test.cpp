@@ -34,6 +34,13 @@ Scene quadInFrontOfBackdrop(const Material& quadMaterial, const Texture* texture
     return builder.build();
 }
 
+// The expected values below are the base colours and their linear blends: no tone mapping.
+Settings linearOutput() {
+    Settings settings;
+    settings.render.toneMapping = ToneMapping::None;
+    return settings;
+}
+
 }  // namespace
 
 TEST_F(RenderTest, MaskMaterialShowsHolesWhereTextureAlphaIsBelowCutoff) {
@@ -44,7 +51,7 @@ TEST_F(RenderTest, MaskMaterialShowsHolesWhereTextureAlphaIsBelowCutoff) {
     mask.baseColorTexture = 0;
     const Texture texture = halfTransparentTexture();
     const Scene scene = quadInFrontOfBackdrop(mask, &texture);
-    const RenderResult result = renderScene(scene, {64, 64});
+    const RenderResult result = renderScene(scene, {64, 64}, linearOutput());
     // Left half of the quad: the red backdrop shows through; right half: the white quad.
     EXPECT_EQ(result.image.at(12, 32, 0), 255);
     EXPECT_EQ(result.image.at(12, 32, 1), 0);
@@ -57,7 +64,7 @@ TEST_F(RenderTest, OpaqueMaterialIgnoresTextureAlpha) {
     opaque.baseColorTexture = 0;
     const Texture texture = halfTransparentTexture();
     const Scene scene = quadInFrontOfBackdrop(opaque, &texture);
-    const RenderResult result = renderScene(scene, {64, 64});
+    const RenderResult result = renderScene(scene, {64, 64}, linearOutput());
     EXPECT_EQ(result.image.at(12, 32, 1), 255);
 }
 
@@ -66,7 +73,7 @@ TEST_F(RenderTest, BlendMaterialMixesWithWhatIsBehindIt) {
     glass.unlit = true;
     glass.alphaMode = AlphaMode::Blend;
     glass.baseColorFactor = glm::vec4(0, 0, 1, 0.5f);
-    const RenderResult result = renderScene(quadInFrontOfBackdrop(glass), {64, 64});
+    const RenderResult result = renderScene(quadInFrontOfBackdrop(glass), {64, 64}, linearOutput());
     // Linear 0.5 red + 0.5 blue, sRGB-encoded: 188.
     EXPECT_NEAR(result.image.at(32, 32, 0), 188, 2);
     EXPECT_NEAR(result.image.at(32, 32, 2), 188, 2);
@@ -88,7 +95,7 @@ TEST_F(RenderTest, BlendedSurfacesAreDrawnBackToFront) {
     builder.addInstance(builder.addMesh(makeQuadMesh({2, 2}, b)), glm::translate(glm::mat4(1), {0, 0, 0.5f}));
     builder.addInstance(builder.addMesh(makeQuadMesh({2, 2}, g)), glm::mat4(1));
     builder.setCamera(makeLookAtCamera({0, 0, 3}, {0, 0, 0}, 0.5f));
-    const RenderResult result = renderScene(builder.build(), {32, 32});
+    const RenderResult result = renderScene(builder.build(), {32, 32}, linearOutput());
     const float redLinear = srgbToLinear(result.image.at(16, 16, 0));
     const float greenLinear = srgbToLinear(result.image.at(16, 16, 1));
     const float blueLinear = srgbToLinear(result.image.at(16, 16, 2));

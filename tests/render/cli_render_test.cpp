@@ -41,9 +41,10 @@ TEST(CliRender, DemoSceneRendersWithoutValidationMessages) {
 
 TEST(CliRender, RealGltfSampleRendersAndShowsGeometry) {
     const fs::path out = tempPath("engine.png");
-    // The sample has no lights: the CLI adds a default sun and says so.
+    // The sample has no lights: the CLI adds a default sun and says so. Black behind it, so bright
+    // pixels are the engine's (the default sky gradient is bright everywhere).
     const CliRun rendered = runPenumbra("render " + kEngine + " -o " + out.string() +
-                                      " --width 160 --height 90 --device cpu --validation");
+                                      " --width 160 --height 90 --device cpu --validation --set render.background=black");
     ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
     EXPECT_NE(rendered.err.find("added a default sun"), std::string::npos);
     const Image image = readPng(out.string());

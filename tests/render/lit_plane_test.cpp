@@ -1,9 +1,11 @@
-// The lit pass against analytic expectations: Lambert N.L, culling, background.
+// The lit pass against analytic expectations: Lambert N.L, culling, background, tone mapping.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render_test_support.h"
+#include "tone_mapping.glsl"
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -43,10 +45,21 @@ Scene planeUnderSun(glm::vec3 wsSunDirection, float intensity, bool unlit = fals
     return scene;
 }
 
+// No ambient, and the linear output these analytic values are stated in: no tone mapping (the default
+// Khronos PBR Neutral would take 0.04 off mid tones) and a black background (the culling tests read
+// black where no surface is drawn).
 Settings noAmbient() {
     Settings settings;
     settings.render.ambient = 0.0f;
+    settings.render.toneMapping = ToneMapping::None;
+    settings.render.background = Background::Black;
     return settings;
+}
+
+uint8_t srgbByte(float linear) {
+    const float c = std::clamp(linear, 0.0f, 1.0f);
+    const float encoded = c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+    return uint8_t(std::lround(255.0f * encoded));
 }
 
 float centreLinear(const Image& image) { return srgbToLinear(image.at(image.width / 2, image.height / 2, 0)); }
@@ -91,4 +104,27 @@ TEST_F(RenderTest, ShadowAovIsWhereNoShadowIsCast) {
     const RenderResult result = renderScene(planeUnderSun({0, -1, 0}, 1.0f), request);
     ASSERT_EQ(result.image.channels, 1u);
     for (uint8_t v : result.image.pixels) ASSERT_EQ(v, 255);
+}
+
+TEST_F(RenderTest, ToneMappingOnTheGpuIsTheCurveOfToneMappingGlsl) {
+    // Unlit grey 0.5 at exposure 1 and 2: mid tones, and a highlight past Neutral's compression start.
+    for (float exposure : {1.0f, 2.0f}) {
+        for (ToneMapping mode : {ToneMapping::None, ToneMapping::Neutral, ToneMapping::Aces}) {
+            Settings settings = noAmbient();
+            settings.render.exposure = exposure;
+            settings.render.toneMapping = mode;
+            const RenderResult result = renderScene(planeUnderSun({0, 1, 0}, 1.0f, true), {32, 32}, settings);
+            const float expected = gpu_data::look::toneMap(glm::vec3(0.5f * exposure), uint32_t(mode)).r;
+            EXPECT_NEAR(int(result.image.at(16, 16, 0)), int(srgbByte(expected)), 1)
+                << toneMappingName(mode) << " at exposure " << exposure;
+        }
+    }
+    // The curves differ by more than the tolerance at both points, so the loop above tells them apart.
+    for (float x : {0.5f, 1.0f}) {
+        const int none = srgbByte(x), neutral = srgbByte(gpu_data::look::toneMapNeutral(glm::vec3(x)).r),
+                  aces = srgbByte(gpu_data::look::toneMapAces(glm::vec3(x)).r);
+        EXPECT_GT(std::abs(none - neutral), 3);
+        EXPECT_GT(std::abs(none - aces), 3);
+        EXPECT_GT(std::abs(neutral - aces), 3);
+    }
 }

@@ -3,9 +3,11 @@
 // against penumbra render --aov shadow for the same camera and size, the atlas overlay.
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli_process.h"
 #include "penumbra/image.h"
@@ -72,6 +74,19 @@ double shadowedFraction(const Image& aov) {
     size_t shadowed = 0;
     for (uint8_t v : aov.pixels) shadowed += v < 128;
     return double(shadowed) / double(aov.pixels.size());
+}
+
+double differingFraction(const Image& a, const Image& b) {
+    size_t differ = 0;
+    for (size_t p = 0; p < a.pixels.size(); p += 3)
+        differ += a.pixels[p] != b.pixels[p] || a.pixels[p + 1] != b.pixels[p + 1] || a.pixels[p + 2] != b.pixels[p + 2];
+    return double(differ) / double(a.pixels.size() / 3);
+}
+
+fs::path writeText(const std::string& name, const std::string& text) {
+    const fs::path path = tempPath(name);
+    std::ofstream(path) << text;
+    return path;
 }
 
 }  // namespace
@@ -164,6 +179,64 @@ TEST(Viewer, BadOptionIsOneLineError) {
         const CliRun run = runProgram(kViewer, arguments);
         EXPECT_EQ(run.exitCode, 1) << arguments;
         EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
+        EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    }
+}
+
+TEST(Viewer, CameraPathPlaysByFrameIndexAndEndsOnItsLastKeyframe) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf";
+    // Sphere-fitted cascades depend on this frame's camera only (the tight fit reads the previous
+    // frame's depth), so a frame's image is a function of its camera.
+    const std::string fit = " --set shadows.directional.fit=sphere";
+    // Record the scene's camera: recording starts with the first frame, the file is written at exit.
+    const fs::path recorded = tempPath("recorded.json");
+    fs::remove(recorded);
+    viewerScreenshot(scene, "recording.png", "--record-camera-path " + recorded.string() + fit, 320, 180, 2);
+    ASSERT_TRUE(fs::exists(recorded));
+    const nlohmann::json path = nlohmann::json::parse(std::ifstream(recorded));
+    ASSERT_EQ(path["keyframes"].size(), 2u);
+    const nlohmann::json start = path["keyframes"][0];
+    EXPECT_NEAR(start["position"][0].get<float>(), 4.0f, 1e-4f);  // cube.gltf's camera node
+    EXPECT_NEAR(start["position"][1].get<float>(), 4.5f, 1e-4f);
+    EXPECT_NEAR(start["position"][2].get<float>(), 7.0f, 1e-4f);
+
+    nlohmann::json moved = start;
+    moved["position"] = {2.0f, 5.0f, 5.5f};
+    auto pathOf = [&](const nlohmann::json& a, const nlohmann::json& b) {
+        nlohmann::json first = a, second = b;
+        first["time"] = 0.0;
+        second["time"] = 1.5;
+        return nlohmann::json{{"keyframes", {first, second}}}.dump();
+    };
+    const fs::path toScene = writeText("to_scene.json", pathOf(moved, start));
+    const fs::path toMoved = writeText("to_moved.json", pathOf(start, moved));
+    const fs::path still = writeText("still.json", nlohmann::json{{"keyframes", {start}}}.dump());
+    auto play = [&](const fs::path& file, const std::string& name) {
+        return viewerScreenshot(scene, name, "--camera-path " + file.string() + fit, 320, 180, 4);
+    };
+    const Image arrived = play(toScene, "arrived.png");
+    const Image again = play(toScene, "again.png");
+    const Image stayed = play(still, "stayed.png");
+    const Image left = play(toMoved, "left.png");
+    ASSERT_FALSE(arrived.empty());
+    ASSERT_EQ(arrived.pixels.size(), stayed.pixels.size());
+    ASSERT_EQ(arrived.pixels.size(), left.pixels.size());
+    EXPECT_EQ(differingFraction(arrived, again), 0.0) << "the same path gives the same screenshot";
+    EXPECT_EQ(differingFraction(arrived, stayed), 0.0) << "the screenshot is the path's last keyframe";
+    EXPECT_GT(differingFraction(arrived, left), 0.1) << "a path that ends elsewhere shows something else";
+}
+
+TEST(Viewer, BadCameraPathIsOneLineError) {
+    if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
+    const fs::path notJson = writeText("not_json.json", "{\"keyframes\": [");
+    const fs::path noKeyframes = writeText("empty_path.json", "{\"keyframes\": []}");
+    const fs::path badRotation =
+        writeText("bad_rotation.json", R"({"keyframes": [{"time": 0, "position": [0, 1, 2], "rotation": [0, 0, 1]}]})");
+    for (const fs::path& file : {notJson, noKeyframes, badRotation, tempPath("missing_path.json")}) {
+        const CliRun run = runProgram(kViewer, "--camera-path " + file.string() + " --screenshot " + tempPath("x.png").string());
+        EXPECT_EQ(run.exitCode, 1) << file;
+        EXPECT_EQ(run.err.rfind("penumbra-viewer: camera path " + file.string(), 0), 0u) << run.err;
         EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
     }
 }

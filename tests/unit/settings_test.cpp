@@ -138,7 +138,27 @@ INSTANTIATE_TEST_SUITE_P(
         BadValueCase{R"({"render": {"ambient": 2}})", "render.ambient = 2 is out of range (allowed 0..1)"},
         BadValueCase{R"({"render": {"lightCulling": "tiled"}})",
                      "render.lightCulling = \"tiled\" is out of range (allowed clustered, none)"},
+        BadValueCase{R"({"render": {"toneMapping": "filmic"}})",
+                     "render.toneMapping = \"filmic\" is out of range (allowed none, neutral, aces)"},
+        BadValueCase{R"({"render": {"toneMapping": 1}})", "render.toneMapping = 1 has the wrong type (expected a string)"},
+        BadValueCase{R"({"render": {"background": "sky"}})",
+                     "render.background = \"sky\" is out of range (allowed gradient, black)"},
         BadValueCase{R"({"render": {"gamma": 2.2}})", "unknown key render.gamma"}));
+
+TEST(SettingsJson, ToneMappingIsNeutralAndTheBackgroundAGradientByDefault) {
+    EXPECT_EQ(Settings{}.render.toneMapping, ToneMapping::Neutral);
+    EXPECT_EQ(Settings{}.render.background, Background::Gradient);
+    const Settings s = parseSettingsJson(R"({"render": {"toneMapping": "aces", "background": "black"}})", "test.json");
+    EXPECT_EQ(s.render.toneMapping, ToneMapping::Aces);
+    EXPECT_EQ(s.render.background, Background::Black);
+    Settings set;
+    applySettingOverride(set, "render.toneMapping=none");
+    EXPECT_EQ(set.render.toneMapping, ToneMapping::None);
+    EXPECT_STREQ(toneMappingName(ToneMapping::Neutral), "neutral");
+    EXPECT_EQ(parseToneMapping("aces"), ToneMapping::Aces);
+    EXPECT_EQ(parseBackground("black"), Background::Black);
+    EXPECT_EQ(parseBackground("sky"), std::nullopt);
+}
 
 TEST(SettingsJson, LightCullingIsClusteredUnlessTurnedOff) {
     EXPECT_EQ(Settings{}.render.lightCulling, LightCulling::Clustered);
