@@ -106,10 +106,6 @@ double timerMilliseconds(const FrameStats& stats, const char* name) {
     return 0.0;
 }
 
-ShadowRaster mainViewAsRaster(MainView view) {
-    return view == MainView::Forward ? ShadowRaster::Hw : view == MainView::Visibility ? ShadowRaster::Compute : ShadowRaster::Auto;
-}
-
 double shadowPassMilliseconds(const FrameStats& stats) {
     double total = 0.0;
     for (const PassTiming& t : stats.gpuTimings)
@@ -343,8 +339,12 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
                     (!device.hasBufferInt64Atomics() ? device.info().name + " has no 64-bit buffer atomics (or an embedder's device did not enable them)"
                                                      : "the scene has too many instances x triangles per mesh for 32-bit ids") +
                     "; use forward or auto");
-    frame.visibilityView = visibilityOk && mainViewChoice.useCompute(mainViewAsRaster(settings.render.mainView));
-    frame.autoMainView = visibilityOk && settings.render.mainView == MainView::Auto && !mainViewChoice.decided();
+    // auto keeps the forward pass on CPU devices, where the resolve is a fragment pass anyway.
+    const bool autoCanChoose = visibilityOk && !device.info().isCpu;
+    frame.visibilityView = settings.render.mainView == MainView::Auto
+                               ? autoCanChoose && mainViewChoice.useCompute(ShadowRaster::Auto)
+                               : visibilityOk && settings.render.mainView == MainView::Visibility;
+    frame.autoMainView = autoCanChoose && settings.render.mainView == MainView::Auto && !mainViewChoice.decided();
     stats.mainView = frame.visibilityView ? "visibility" : "forward";
     const uint64_t frameIndex = device.nextFrameIndex();
     const auto failed = [&](const char* stage, const Error& error) {
@@ -397,7 +397,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     if (options.forceGenericVariants) litPass.specialization = kGenericLitSpecialization;
     // Also while auto still draws forward frames to measure: the visibility frames that follow then
     // make nothing (the steady state allocates no GPU object).
-    if (visibilityOk && settings.render.mainView != MainView::Forward) {
+    if (settings.render.mainView == MainView::Visibility || (autoCanChoose && settings.render.mainView == MainView::Auto)) {
         try {  // before the frame: its pipelines and buffers are made here, not while recording
             if (!visibility) visibility = std::make_unique<VisibilityPass>(device, gpuScene);
             visibility->prepare(litPass.specialization, sizes.colorFormat, view.width, view.height);
@@ -610,7 +610,8 @@ void Renderer::State::collectCompleted() {
         for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
         if (autoFrame) rasterChoice.measured(computeRasterFrame, shadowPassMilliseconds(stats));
         if (autoMainView) mainViewChoice.measured(visibilityFrame, timerMilliseconds(stats, "main"));
-        stats.mainViewChoice = mainViewChoice.describe();
+        stats.mainViewChoice = device.info().isCpu ? "forward (a CPU device: auto keeps the forward pass)"
+                                                   : mainViewChoice.describe();
         stats.shadowRasterChoice = rasterSetting == ShadowRaster::Auto
                                        ? "auto: " + rasterChoice.describe()
                                        : std::string("shadows.raster = ") + shadowRasterName(rasterSetting);

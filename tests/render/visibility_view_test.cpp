@@ -112,11 +112,12 @@ TEST_F(VisibilityViewTest, CascadeColoursEqualTheForwardPass) {
     EXPECT_LE(shareOfPixelsOver(forward, visibility, 0), 0.005);
 }
 
-TEST_F(VisibilityViewTest, AutoDrawsItsFirstFramesForwardWhileItMeasures) {
+TEST_F(VisibilityViewTest, AutoKeepsTheForwardPassOnACpuDevice) {
     Renderer renderer(device(), makeCanonicalScene(canonicalScenes().front().name));
-    const RenderResult first = renderWith(renderer, settingsFor(MainView::Auto), OutputMode::Color);
-    EXPECT_EQ(first.stats.mainView, "forward");
-    EXPECT_EQ(first.stats.mainViewChoice, "measuring");
+    for (int i = 0; i < 10; ++i) {  // past the measuring frames a GPU would take
+        const RenderResult frame = renderWith(renderer, settingsFor(MainView::Auto), OutputMode::Color);
+        EXPECT_EQ(frame.stats.mainView, "forward");
+    }
 }
 
 TEST_F(VisibilityViewTest, BackFacesShowOnlyForDoubleSidedMaterials) {
