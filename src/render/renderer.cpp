@@ -341,9 +341,12 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
                     "; use forward or auto");
     // auto keeps the forward pass on CPU devices, where the resolve is a fragment pass anyway.
     const bool autoCanChoose = visibilityOk && !device.info().isCpu;
+    // The frames that may draw with the visibility buffer (auto: while measuring too).
+    const bool visibilityWanted = settings.render.mainView == MainView::Visibility ||
+                                  (autoCanChoose && settings.render.mainView == MainView::Auto);
     frame.visibilityView = settings.render.mainView == MainView::Auto
                                ? autoCanChoose && mainViewChoice.useCompute(ShadowRaster::Auto)
-                               : visibilityOk && settings.render.mainView == MainView::Visibility;
+                               : visibilityWanted;
     frame.autoMainView = autoCanChoose && settings.render.mainView == MainView::Auto && !mainViewChoice.decided();
     stats.mainView = frame.visibilityView ? "visibility" : "forward";
     const uint64_t frameIndex = device.nextFrameIndex();
@@ -397,7 +400,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     if (options.forceGenericVariants) litPass.specialization = kGenericLitSpecialization;
     // Also while auto still draws forward frames to measure: the visibility frames that follow then
     // make nothing (the steady state allocates no GPU object).
-    if (settings.render.mainView == MainView::Visibility || (autoCanChoose && settings.render.mainView == MainView::Auto)) {
+    if (visibilityWanted) {
         try {  // before the frame: its pipelines and buffers are made here, not while recording
             if (!visibility) visibility = std::make_unique<VisibilityPass>(device, gpuScene);
             visibility->prepare(litPass.specialization, sizes.colorFormat, view.width, view.height);
