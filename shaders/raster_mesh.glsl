@@ -16,6 +16,9 @@ layout(push_constant) uniform RasterConstants {
     uvec4 pass;      // shadows: x = first entry of CullFrame::rasterTiles for this atlas, y = their count,
                      // z = atlas size; main view: visibility_raster.glsl
     uvec4 capacity;  // x = large pieces, y = chunks the queues hold
+#ifdef PENUMBRA_VIEW_RASTER
+    uvec4 list;      // VisibilityConstants.list
+#endif
 } raster;
 
 // The mesh slot whose work items (instances x batches) hold work item `item`, in mesh order.

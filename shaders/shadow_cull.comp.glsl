@@ -3,7 +3,8 @@
 // tests are the CPU planner's, operation for operation: the cascade's caster box and cascade blend
 // culling (seed 000 §1.4, §4.9; shadows/caster_culling.cpp) for directional tiles, the frustum planes
 // and bounds (shadows/spot_culling.cpp) for spot and point faces. Survivors are appended to their
-// (tile, mesh) list.
+// (tile, mesh) list. The main view's two phases (cull_structs.h) use the same lists after the tiles':
+// the camera frustum, then occlusion by the depth pyramid of what the early list drew.
 #include "cull_structs.h"
 #include "scene_structs.h"
 
@@ -15,6 +16,10 @@ layout(set = 0, binding = 2, std430) readonly buffer CullMeshBlock { CullMesh cu
 layout(set = 0, binding = 3, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
 layout(set = 0, binding = 4, std430) buffer ListCountBlock { uint listCounts[]; };  // [tile * meshes + mesh]
 layout(set = 0, binding = 5, std430) writeonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = 0, binding = 9, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
+layout(set = 0, binding = 10, std430) readonly buffer PyramidBlock { float pyramid[]; };
+layout(set = 0, binding = 11, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
+layout(push_constant) uniform CullConstantsBlock { CullConstants constants; };
 
 // seed 000 §4.9 (caster_culling.cpp insideScaledSphere): the box wholly inside the scaled sphere.
 bool insideScaledSphere(vec3 wsMin, vec3 wsMax, vec4 sphere, float factor) {
@@ -82,7 +87,117 @@ bool perspectiveKeeps(CullTile tile, vec3 wsMin, vec3 wsMax) {
     return true;
 }
 
+// ---- the main view
+
+// Where the world box lies on screen, if it lies wholly beyond the near plane: the pixel rectangle
+// (inclusive) of its projected corners and the nearest (largest, reversed Z) depth of any of them.
+bool projectBox(vec3 wsMin, vec3 wsMax, out ivec4 pixels, out float nearestDepth) {
+    vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
+    nearestDepth = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        vec4 clip = cull.camera.clipFromWorld * vec4((i & 1) != 0 ? wsMax.x : wsMin.x, (i & 2) != 0 ? wsMax.y : wsMin.y,
+                                                     (i & 4) != 0 ? wsMax.z : wsMin.z, 1.0);
+        if (!(clip.w > 0.0) || clip.z > clip.w) return false;  // a corner before the near plane
+        ndcMin = min(ndcMin, clip.xy / clip.w);
+        ndcMax = max(ndcMax, clip.xy / clip.w);
+        nearestDepth = max(nearestDepth, clip.z / clip.w);
+    }
+    vec2 size = vec2(cull.camera.view.xy);
+    // Window coordinates as the rasterizer's (raster_core.glsl setupTriangle); a pixel is covered when
+    // its centre is, so every pixel the box can cover lies in floor(min) .. floor(max).
+    vec2 windowMin = clamp((ndcMin * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
+    vec2 windowMax = clamp((ndcMax * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
+    pixels = ivec4(floor(windowMin), floor(windowMax));
+    return true;
+}
+
+float pyramidTexel(uint level, ivec2 texel) {
+    uvec2 size = cull.camera.pyramid.xy;
+    uint offset = 0u;
+    for (uint l = 0u; l < level; ++l) {
+        offset += size.x * size.y;
+        size = (size + 1u) / 2u;
+    }
+    texel = min(texel, ivec2(size) - 1);
+    return pyramid[offset + uint(texel.y) * size.x + uint(texel.x)];
+}
+
+// Whether what the early list drew hides the whole box: at the pyramid level where the box's pixel
+// rectangle spans at most 2 x 2 texels, the farthest depth there is nearer than the box's nearest.
+// (Those texels cover the rectangle: texel x of level L covers pixels x * 2^(L+1) .. + 2^(L+1) - 1.)
+bool occluded(vec3 wsMin, vec3 wsMax) {
+    ivec4 pixels;
+    float nearestDepth;
+    if (!projectBox(wsMin, wsMax, pixels, nearestDepth)) return false;
+    uint level = 0u;
+    while (level + 1u < cull.camera.view.z &&
+           any(greaterThan((pixels.zw >> int(level + 1u)) - (pixels.xy >> int(level + 1u)), ivec2(1))))
+        ++level;
+    ivec4 texels = pixels >> int(level + 1u);
+    float farthest = min(min(pyramidTexel(level, texels.xy), pyramidTexel(level, texels.zy)),
+                         min(pyramidTexel(level, texels.xw), pyramidTexel(level, texels.zw)));
+    // A margin of 1e-4 of the depth: a surface drawn early stays visible through its own bounds
+    // (whose front face may round a little behind the rasterized depth of the same plane).
+    return nearestDepth * 1.0001 < farthest;
+}
+
+// The visibility rasterizer's frustum test (0 <= z <= w, |x|, |y| <= w): no plane has all 8 corners outside.
+bool boxInCameraFrustum(vec3 wsMin, vec3 wsMax) {
+    vec4 corners[8];
+    for (int i = 0; i < 8; ++i)
+        corners[i] = cull.camera.clipFromWorld * vec4((i & 1) != 0 ? wsMax.x : wsMin.x, (i & 2) != 0 ? wsMax.y : wsMin.y,
+                                                      (i & 4) != 0 ? wsMax.z : wsMin.z, 1.0);
+    for (int plane = 0; plane < 6; ++plane) {
+        bool allOutside = true;
+        for (int i = 0; i < 8; ++i) {
+            vec4 c = corners[i];
+            float d = plane == 0 ? c.w - c.x : plane == 1 ? c.w + c.x : plane == 2 ? c.w - c.y
+                    : plane == 3 ? c.w + c.y : plane == 4 ? c.w - c.z : c.z;
+            allOutside = allOutside && d < 0.0;
+        }
+        if (allOutside) return false;
+    }
+    return true;
+}
+
+void appendToView(uint list, uint instance, CullMesh mesh, uint meshSlot) {
+    uint meshCount = cull.counts.z;
+    uint slot = atomicAdd(listCounts[list * meshCount + meshSlot], 1u);
+    visibleInstances[list * cull.counts.y + mesh.counts.x + slot] = instance;
+    atomicAdd(tileStats[list].counts.y, 1u);
+    atomicAdd(tileStats[list].counts.z, mesh.draw.x / 3u);
+}
+
+// The early phase: the frustum's instances visible last frame (every one in frustum without
+// occlusion culling, every one without it at all); the late phase: the frustum's instances the
+// pyramid does not hide, less those drawn early. Unbounded instances are always drawn early.
+void cullCamera(uint instance) {
+    CullInstance candidate = cullInstances[instance];
+    if ((candidate.info.y & kCullInstanceHasMesh) == 0u) return;
+    uint meshSlot = candidate.info.x;
+    CullMesh mesh = cullMeshes[meshSlot];
+    if (materials[mesh.draw.w].flags.z == kAlphaBlend) return;  // the forward pass draws them afterwards
+    uint culling = cull.camera.view.w;
+    bool bounded = (candidate.info.y & kCullInstanceBounded) != 0u;
+    bool inFrustum = culling == kViewCullingNone || !bounded ||
+                     boxInCameraFrustum(candidate.wsMin.xyz, candidate.wsMax.xyz);
+    uint history = viewHistory[instance];
+    if (constants.mode.x == kCullPassCameraEarly) {
+        bool early = inFrustum && (culling != kViewCullingOcclusion || !bounded || (history & kViewVisible) != 0u);
+        viewHistory[instance] = (history & kViewVisible) | (early ? kViewDrawnEarly : 0u);
+        if (early) appendToView(kCullListCameraEarly, instance, mesh, meshSlot);
+        return;
+    }
+    bool visible = inFrustum && (!bounded || !occluded(candidate.wsMin.xyz, candidate.wsMax.xyz));
+    viewHistory[instance] = visible ? kViewVisible : 0u;
+    if (visible && (history & kViewDrawnEarly) == 0u) appendToView(kCullListCameraLate, instance, mesh, meshSlot);
+}
+
 void main() {
+    if (constants.mode.x != kCullPassShadows) {
+        if (gl_GlobalInvocationID.x < cull.counts.y) cullCamera(gl_GlobalInvocationID.x);
+        return;
+    }
     uint instance = gl_GlobalInvocationID.x;
     uint tileIndex = gl_WorkGroupID.y;
     uint instanceCount = cull.counts.y, meshCount = cull.counts.z;

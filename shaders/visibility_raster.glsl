@@ -16,6 +16,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 #define RASTER_MAX_CLIPPED 10
+#define PENUMBRA_VIEW_RASTER
 #include "raster_mesh.glsl"
 #include "visibility_structs.h"
 

@@ -19,6 +19,14 @@ std::optional<LightCulling> parseLightCulling(const std::string& name);
 enum class MainView { Forward, Visibility, Auto };
 const char* mainViewName(MainView view);
 std::optional<MainView> parseMainView(const std::string& name);
+// How the visibility-buffer main view culls its instances on the GPU (issue 11): Occlusion tests
+// the camera frustum and, in two phases, a depth pyramid of what was drawn first (last frame's
+// visible set); Frustum the frustum only; None draws every opaque and alpha-tested instance. The
+// image is the same (every instance a pixel shows is drawn); the forward pass ignores it.
+enum class ViewCulling { Occlusion, Frustum, None };
+const char* viewCullingName(ViewCulling culling);
+std::optional<ViewCulling> parseViewCulling(const std::string& name);
+
 // The display transform applied to linear radiance (x exposure) before sRGB encoding (issue 12):
 // Neutral = Khronos PBR Neutral (base colours stay close to their sRGB values, highlights roll off
 // to white), Aces = Narkowicz's fit of the ACES filmic curve, None = clamp only (the linear values).
@@ -39,6 +47,7 @@ struct RenderSettings {
     float ambient = 0.03f;  // constant ambient light, as a fraction of base colour
     LightCulling lightCulling = LightCulling::Clustered;
     MainView mainView = MainView::Auto;
+    ViewCulling viewCulling = ViewCulling::Occlusion;
     ToneMapping toneMapping = ToneMapping::Neutral;
     Background background = Background::Gradient;
 };

@@ -59,11 +59,20 @@ struct FrameStats {
     std::vector<PassTiming> gpuTimings;  // per pass, from timestamps (empty where the device has none)
     CpuPhaseTimes cpu;
     double submitToFenceMilliseconds = 0.0;  // from the submission to the fence seen signalled
+    // GPU timestamps (0 without them): the frame's commands first to last, and the frame period, from
+    // the end of the previous finished frame's commands to the end of this one's (what the GPU
+    // sustains when frames are submitted back to back; idle time between frames counts).
+    double gpuFrameMilliseconds = 0.0, gpuFramePeriodMilliseconds = 0.0;
     uint64_t sceneBytesUploaded = 0;         // changed instances and materials copied this frame
     std::string shadowRaster = "hw";         // the rasterizer that drew this frame's shadow maps: hw | compute
     std::string shadowRasterChoice;          // shadows.raster = auto: how it was chosen
     std::string mainView = "forward";        // how the main view was drawn: forward | visibility
     std::string mainViewChoice;              // render.mainView = auto: how it was chosen (or "measuring")
+    // The visibility buffer's GPU culling (render.viewCulling): the opaque and alpha-tested instances
+    // with geometry, those drawn in the early phase (the frustum's instances visible last frame) and the
+    // late one (found visible by the depth pyramid), and their triangles; all 0 for forward frames.
+    uint32_t viewInstances = 0, viewInstancesEarly = 0, viewInstancesLate = 0;
+    uint64_t viewTriangles = 0;
     // The compute rasterizer (both atlases): large triangle pieces split into chunks, the chunks, and what
     // its queues could not hold (drawn incompletely: a warning names it).
     uint64_t rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;

@@ -8,6 +8,14 @@
 // Visible-instance list layout: tile t, mesh m, entry i lives at
 //   t * instanceCount + meshes[m].counts.x + i      (counts.x = the mesh's first slot, a prefix sum)
 // so a draw's firstInstance is where its list starts and gl_InstanceIndex indexes the list.
+//
+// The main view's visibility buffer (issue 11) is culled by the same pass, in two more lists after
+// the shadow tiles' (kCullListCameraEarly, kCullListCameraLate), by two-phase occlusion culling: the
+// early list holds the instances inside the camera frustum that were visible last frame; they are
+// rasterized, a depth pyramid is built from the visibility buffer (CullCamera), and the late pass
+// tests every instance in the frustum against it: those not hidden are this frame's visible set
+// (kept per instance for the next frame), and the ones of them the early list lacked are the late
+// list, rasterized on top. Nothing visible is missed, whatever last frame's set was.
 #ifndef PENUMBRA_CULL_STRUCTS_H
 #define PENUMBRA_CULL_STRUCTS_H
 #include "gpu_shared.h"
@@ -15,10 +23,27 @@
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
 PENUMBRA_CONST(uint, kMaxCullTiles, 32u)  // 16 directional (4 lights x 4 cascades) + 16 spot/point
+PENUMBRA_CONST(uint, kCullListCameraEarly, 32u)  // kMaxCullTiles: the main view's lists follow the tiles'
+PENUMBRA_CONST(uint, kCullListCameraLate, 33u)
+PENUMBRA_CONST(uint, kCullListCount, 34u)
 PENUMBRA_CONST(uint, kCullWorkgroupSize, 64u)
 PENUMBRA_CONST(uint, kCasterKinds, 2u)  // 0: opaque (depth-only pipeline), 1: alpha-tested (clip, dither)
 PENUMBRA_CONST(uint, kCullInstanceCasts, 1u)  // CullInstance.info.y bit: node casts and has bounds
 PENUMBRA_CONST(uint, kCullInstanceBounded, 2u)  // CullInstance.info.y bit: wsMin / wsMax hold its bounds
+PENUMBRA_CONST(uint, kCullInstanceHasMesh, 4u)  // CullInstance.info.y bit: the instance has geometry (a mesh slot)
+// What a culling dispatch does (CullConstants.mode.x): the shadow tiles, or a main-view phase.
+PENUMBRA_CONST(uint, kCullPassShadows, 0u)
+PENUMBRA_CONST(uint, kCullPassCameraEarly, 1u)
+PENUMBRA_CONST(uint, kCullPassCameraLate, 2u)
+// How the main view culls (CullCamera.view.w, render.viewCulling).
+PENUMBRA_CONST(uint, kViewCullingNone, 0u)
+PENUMBRA_CONST(uint, kViewCullingFrustum, 1u)
+PENUMBRA_CONST(uint, kViewCullingOcclusion, 2u)
+// Per-instance main-view history word (ShadowCullingPass::viewHistory): bit 0 = visible in the last
+// finished late pass, bit 1 = drawn by this frame's early list.
+PENUMBRA_CONST(uint, kViewVisible, 1u)
+PENUMBRA_CONST(uint, kViewDrawnEarly, 2u)
+PENUMBRA_CONST(uint, kMaxPyramidLevels, 16u)
 PENUMBRA_CONST(uint, kCullTileDirectional, 0u)
 PENUMBRA_CONST(uint, kCullTilePerspective, 1u)
 
@@ -58,6 +83,17 @@ PENUMBRA_CHECK_LAYOUT(CullTile, params, 176)
 PENUMBRA_CHECK_LAYOUT(CullTile, clipFromWorld, 208)
 PENUMBRA_CHECK_LAYOUT(CullTile, viewport, 272)
 
+// The main view as its culling sees it. The depth pyramid (a float buffer, reversed Z) has `levels`
+// levels, level 0 of (width + 1) / 2 x (height + 1) / 2 texels, each level half the previous one
+// rounded up; a texel holds the farthest (smallest) depth of the 2 x 2 texels (level 0: pixels)
+// under it, so texel (x, y) of level L covers pixels [x, x + 1) * 2^(L+1) in each axis.
+struct CullCamera {
+    mat4 clipFromWorld;
+    uvec4 view;     // x = width, y = height, z = pyramid levels, w = kViewCulling*
+    uvec4 pyramid;  // x, y = level 0 size
+};
+PENUMBRA_CHECK_SIZE(CullCamera, 96)
+
 struct CullFrame {
     CullTile tiles[32];
     vec4 spheres[4];           // cascade culling spheres: xyz centre, w radius (shared by every light)
@@ -67,13 +103,22 @@ struct CullFrame {
     // The tiles the compute rasterizer draws this frame (the others are cached), 4 per uvec4: the
     // directional atlas's first, then the spot/point atlas's; a raster pass reads its part.
     uvec4 rasterTiles[8];
+    CullCamera camera;
 };
-PENUMBRA_CHECK_SIZE(CullFrame, 9968)
+PENUMBRA_CHECK_SIZE(CullFrame, 10064)
 PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 9728)
 PENUMBRA_CHECK_LAYOUT(CullFrame, counts, 9824)
 PENUMBRA_CHECK_LAYOUT(CullFrame, rasterTiles, 9840)
+PENUMBRA_CHECK_LAYOUT(CullFrame, camera, 9968)
 
-// What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done.
+// Push constants of the culling pass.
+struct CullConstants {
+    uvec4 mode;  // x = kCullPass*
+};
+PENUMBRA_CHECK_SIZE(CullConstants, 16)
+
+// What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done; the
+// main view's two lists count instances (y) and triangles (z) in the culling pass itself.
 struct CullTileStats {
     uvec4 counts;  // x = draws (indirect commands), y = instances drawn, z = triangles, w unused
 };

@@ -14,8 +14,8 @@ PENUMBRA_GPU_NAMESPACE_BEGIN
 
 // Set 0 bindings of the visibility rasterizer beyond raster_mesh.glsl's 6, 7, 9-11.
 PENUMBRA_CONST(uint, kBindingVisibility, 8u)          // uint64 per pixel
-PENUMBRA_CONST(uint, kBindingRasterInstances, 12u)    // CullInstance: bounds for the frustum test
-PENUMBRA_CONST(uint, kBindingMeshInstances, 13u)      // instances by mesh slot (CullMesh.counts.x + i)
+PENUMBRA_CONST(uint, kBindingViewListCounts, 12u)     // the culling pass's list counts (cull_structs.h)
+PENUMBRA_CONST(uint, kBindingViewLists, 13u)          // and lists: the main view's are kCullListCamera*
 // Set 0 bindings of the resolve beyond the shaded scene's 0-15.
 PENUMBRA_CONST(uint, kBindingResolveVisibility, 16u)
 PENUMBRA_CONST(uint, kBindingResolveIndices, 17u)
@@ -28,10 +28,23 @@ PENUMBRA_CONST(uint, kResolveGroupSize, 8u)           // the resolve's 8 x 8 wor
 // Push constants of every visibility pass (the rasterizer's RasterConstants block has this shape).
 struct VisibilityConstants {
     uvec4 view;      // x = width, y = height, z = triangle bits of the payload, w = 1: encode sRGB
-    uvec4 capacity;  // x = large pieces, y = chunks the queues hold; z = background colour (RGBA8); w unused
+    uvec4 capacity;  // x = large pieces, y = chunks the queues hold; z = background colour (RGBA8); w = mesh slots
+    uvec4 list;      // the rasterizer: x = the culling list it draws (kCullListCamera*), y = instances
 };
-PENUMBRA_CHECK_SIZE(VisibilityConstants, 32)
+PENUMBRA_CHECK_SIZE(VisibilityConstants, 48)
 PENUMBRA_CHECK_LAYOUT(VisibilityConstants, capacity, 16)
+
+// The depth pyramid of the main view's occlusion culling (cull_structs.h CullCamera), built by
+// depth_pyramid.comp one level a dispatch: level 0 from the visibility buffer, the others from the
+// level below.
+PENUMBRA_CONST(uint, kBindingPyramidVisibility, 0u)
+PENUMBRA_CONST(uint, kBindingPyramid, 1u)
+PENUMBRA_CONST(uint, kPyramidGroupSize, 8u)
+struct PyramidConstants {
+    uvec4 source;  // x = first texel of the level read, y = width, z = height, w = 1: the visibility buffer
+    uvec4 target;  // x = first texel of the level written, y = width, z = height
+};
+PENUMBRA_CHECK_SIZE(PyramidConstants, 32)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

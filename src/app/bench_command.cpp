@@ -84,10 +84,12 @@ void printProgress(uint32_t done, uint32_t total) {
 struct Measurements {
     std::map<std::string, Series> passes;
     std::map<std::string, Series> cpu;
-    Series frame;
+    Series frame, gpuFrame, gpuPeriod;
     std::vector<AtlasDrawStats> atlases;  // of the last timed frame
     std::string raster, rasterChoice;     // of the last timed frame
     std::string mainView, mainViewChoice;
+    uint32_t viewInstances = 0;  // of the last timed frame
+    Series viewEarly, viewLate, viewTriangles;
     uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
     double lightsPerClusterMean = 0.0;  // of the last timed frame
@@ -100,6 +102,8 @@ struct Measurements {
         cpu["record"].values.push_back(stats.cpu.record);
         cpu["submit"].values.push_back(stats.cpu.submit);
         frame.values.push_back(stats.submitToFenceMilliseconds);
+        gpuFrame.values.push_back(stats.gpuFrameMilliseconds);
+        if (stats.gpuFramePeriodMilliseconds > 0.0) gpuPeriod.values.push_back(stats.gpuFramePeriodMilliseconds);
         atlases = stats.atlases;
         tilesRendered.values.push_back(stats.tilesRendered);
         tilesReused.values.push_back(stats.tilesReused);
@@ -110,6 +114,10 @@ struct Measurements {
         rasterChoice = stats.shadowRasterChoice;
         mainView = stats.mainView;
         mainViewChoice = stats.mainViewChoice;
+        viewInstances = stats.viewInstances;
+        viewEarly.values.push_back(stats.viewInstancesEarly);
+        viewLate.values.push_back(stats.viewInstancesLate);
+        viewTriangles.values.push_back(double(stats.viewTriangles));
         lightsPerClusterMean = stats.lightsPerClusterMean;
         lightsPerClusterMax = stats.lightsPerClusterMax;
     }
@@ -187,6 +195,8 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     for (const auto& [name, series] : measured.cpu)
         json["cpu"][name] = {{"median_ms", series.median()}, {"p95_ms", series.p95()}};
     json["frame"] = {{"median_ms", measured.frame.median()}, {"p95_ms", measured.frame.p95()}};
+    json["gpuFrame"] = {{"median_ms", measured.gpuFrame.median()}, {"p95_ms", measured.gpuFrame.p95()}};
+    json["gpuFramePeriod"] = {{"median_ms", measured.gpuPeriod.median()}, {"p95_ms", measured.gpuPeriod.p95()}};
     json["atlases"] = nlohmann::json::object();
     for (const AtlasDrawStats& atlas : measured.atlases)
         json["atlases"][atlas.pass] = {{"tiles", atlas.tiles}, {"draws", atlas.draws}, {"triangles", atlas.triangles}};
@@ -200,7 +210,12 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
                             {"largePieces", measured.rasterLarge}, {"chunks", measured.rasterChunks},
                             {"dropped", measured.rasterDropped}};
     json["lightsPerCluster"] = {{"mean", measured.lightsPerClusterMean}, {"max", measured.lightsPerClusterMax}};
-    json["mainView"] = {{"used", measured.mainView}, {"choice", measured.mainViewChoice}};
+    json["mainView"] = {{"used", measured.mainView},
+                        {"choice", measured.mainViewChoice},
+                        {"instances", measured.viewInstances},
+                        {"drawnEarly", measured.viewEarly.median()},
+                        {"drawnLate", measured.viewLate.median()},
+                        {"triangles", measured.viewTriangles.median()}};
     if (bench.varyPeriod > 0) json["vary"] = variationJson(bench.varyPeriod, run.samples);
     return json;
 }
@@ -223,6 +238,8 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
     for (const auto& [name, series] : measured.cpu)
         std::printf("cpu %-24s %10.4f %10.4f\n", name.c_str(), series.median(), series.p95());
     std::printf("frame (submit to fence)      %10.4f %10.4f\n", measured.frame.median(), measured.frame.p95());
+    std::printf("frame (GPU, first to last)   %10.4f %10.4f\n", measured.gpuFrame.median(), measured.gpuFrame.p95());
+    std::printf("frame period (GPU end to end)%10.4f %10.4f\n", measured.gpuPeriod.median(), measured.gpuPeriod.p95());
     for (const AtlasDrawStats& atlas : measured.atlases)
         std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     (unsigned long long)atlas.triangles);
@@ -230,6 +247,10 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                 measured.rasterChoice.c_str(), (unsigned long long)measured.rasterLarge,
                 (unsigned long long)measured.rasterChunks, (unsigned long long)measured.rasterDropped);
     std::printf("main view: %s (%s)\n", measured.mainView.c_str(), measured.mainViewChoice.c_str());
+    if (measured.mainView == "visibility")
+        std::printf("main view culling (median): %.0f early + %.0f late of %u instances, %.0f triangles\n",
+                    measured.viewEarly.median(), measured.viewLate.median(), measured.viewInstances,
+                    measured.viewTriangles.median());
     std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
                 measured.tilesReused.median());
     std::printf("spot/point lights per cluster: %.2f mean, %u most\n", measured.lightsPerClusterMean,

@@ -96,7 +96,12 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
     stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
     stats["warnings"] = result.stats.warnings;
     stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
-    stats["mainView"] = {{"used", result.stats.mainView}, {"choice", result.stats.mainViewChoice}};
+    stats["mainView"] = {{"used", result.stats.mainView},
+                         {"choice", result.stats.mainViewChoice},
+                         {"instances", result.stats.viewInstances},
+                         {"drawnEarly", result.stats.viewInstancesEarly},
+                         {"drawnLate", result.stats.viewInstancesLate},
+                         {"triangles", result.stats.viewTriangles}};
     stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
     stats["lightsPerCluster"] = {{"mean", result.stats.lightsPerClusterMean}, {"max", result.stats.lightsPerClusterMax}};
     return stats.dump(2);

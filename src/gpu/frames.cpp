@@ -127,16 +127,22 @@ void Device::Impl::retireFrame(FrameContext& frame) {
     CompletedFrame done;
     done.frameIndex = frame.frameIndex;
     done.submitToFenceMilliseconds = millisecondsSince(frame.submitTime);
-    if (timestampsSupported && !frame.timerNames.empty()) {
+    if (timestampsSupported) {
         const uint32_t slot = uint32_t(&frame - frames.data());
-        const uint32_t queryCount = uint32_t(frame.timerNames.size()) * 2;
-        std::vector<uint64_t> ticks(queryCount);
-        VK_CHECK(vkGetQueryPoolResults(device, timestampPool, slot * timestampsPerFrame, queryCount,
-                                       ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
-                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
         const double msPerTick = double(properties.limits.timestampPeriod) * 1e-6;
+        const uint32_t queryCount = uint32_t(frame.timerNames.size()) * 2;
+        std::vector<uint64_t> ticks(std::max<uint32_t>(queryCount, 1));
+        if (queryCount > 0)
+            VK_CHECK(vkGetQueryPoolResults(device, timestampPool, slot * timestampsPerFrame, queryCount,
+                                           ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
         for (size_t i = 0; i < frame.timerNames.size(); ++i)
             done.timings.push_back({frame.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
+        uint64_t whole[2] = {};
+        VK_CHECK(vkGetQueryPoolResults(device, timestampPool, (slot + 1) * timestampsPerFrame - 2, 2, sizeof(whole),
+                                       whole, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+        done.gpuFrameMilliseconds = double(whole[1] - whole[0]) * msPerTick;
+        done.gpuEndMilliseconds = double(whole[1]) * msPerTick;
     }
     const auto* ring = static_cast<const uint8_t*>(buffers.at(frame.uploadBuffer.id).mapped);
     for (const auto& [offset, size] : frame.readbackRanges)
@@ -174,9 +180,12 @@ CommandList Device::beginFrame() {
     commands.device = this;
     commands.nativeCommandBuffer = frame.commandBuffer;
     if (d.timestampsSupported) {
+        // The slot's last two queries time the whole frame (submitFrame writes the end).
         commands.queryBase = slot * d.timestampsPerFrame;
-        commands.queryCapacity = d.timestampsPerFrame;
+        commands.queryCapacity = d.timestampsPerFrame - 2;
         vkCmdResetQueryPool(frame.commandBuffer, d.timestampPool, commands.queryBase, d.timestampsPerFrame);
+        vkCmdWriteTimestamp2(frame.commandBuffer, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool,
+                             commands.queryBase + commands.queryCapacity);
     } else {
         commands.queryBase = kNoQueries;
     }
@@ -226,6 +235,9 @@ uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) 
     Impl& d = *impl_;
     PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimers.empty());
     FrameContext& frame = d.frames[d.recordingSlot];
+    if (d.timestampsSupported)
+        vkCmdWriteTimestamp2(frame.commandBuffer, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, d.timestampPool,
+                             commands.queryBase + commands.queryCapacity + 1);
     VK_CHECK(vkEndCommandBuffer(frame.commandBuffer));
     VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     commandInfo.commandBuffer = frame.commandBuffer;

@@ -165,6 +165,10 @@ struct CompletedFrame {
     uint64_t frameIndex = 0;
     std::vector<PassTiming> timings;
     double submitToFenceMilliseconds = 0.0;
+    // The frame's command buffer on the GPU, first to last command, and when it ended on the
+    // device's timestamp clock (differences of gpuEndMilliseconds between frames are the frame
+    // period the GPU kept); 0 without timestamps.
+    double gpuFrameMilliseconds = 0.0, gpuEndMilliseconds = 0.0;
     std::vector<uint8_t> readback;  // what Device::readBackAtFrameEnd asked for, in call order
 };
 

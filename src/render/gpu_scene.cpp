@@ -51,8 +51,9 @@ gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshS
     const bool casts = instance.castShadows && bounded;
     data.wsMin = glm::vec4(bounded ? instance.wsBounds.min : glm::vec3(0.0f), 0.0f);
     data.wsMax = glm::vec4(bounded ? instance.wsBounds.max : glm::vec3(0.0f), 0.0f);
-    data.info = glm::uvec4(meshSlot != ~0u ? meshSlot : 0u,
-                           (casts ? gpu_data::kCullInstanceCasts : 0u) | (bounded ? gpu_data::kCullInstanceBounded : 0u), 0u, 0u);
+    const uint32_t bits = (casts ? gpu_data::kCullInstanceCasts : 0u) | (bounded ? gpu_data::kCullInstanceBounded : 0u) |
+                          (meshSlot != ~0u ? gpu_data::kCullInstanceHasMesh : 0u);
+    data.info = glm::uvec4(meshSlot != ~0u ? meshSlot : 0u, bits, 0u, 0u);
     return data;
 }
 
@@ -181,17 +182,8 @@ void GpuScene::create(const Scene& scene) {
         mesh.counts.w = batches;
         rasterWorkItems_ += mesh.counts.y * batches;
     }
-    // The main view's work list: every instance with geometry, by mesh slot, laid out as a tile's
-    // visible list with everything visible (cull_structs.h).
-    std::vector<uint32_t> meshInstances(std::max<size_t>(firstSlot, 1), 0u);
-    std::vector<uint32_t> placed(cullMeshes.size(), 0u);
     uint32_t maxTriangles = 1;
-    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-        const uint32_t slot = meshSlotOfMesh_[scene.instances[i].meshIndex];
-        if (slot == ~0u) continue;
-        meshInstances[cullMeshes[slot].counts.x + placed[slot]++] = i;
-        maxTriangles = std::max(maxTriangles, cullMeshes[slot].draw.x / 3);
-    }
+    for (const gpu_data::CullMesh& mesh : cullMeshes) maxTriangles = std::max(maxTriangles, mesh.draw.x / 3);
     triangleIdBits_ = uint32_t(std::bit_width(maxTriangles - 1u));
     const uint64_t largestId = (uint64_t(scene.instances.size()) << triangleIdBits_) + 1;
     visibilityIdsFit_ = largestId <= UINT32_MAX;
@@ -217,8 +209,6 @@ void GpuScene::create(const Scene& scene) {
                                          MemoryKind::DeviceLocal, cullInstances.data(), "cull instances");
     cullMeshes_ = device.createBuffer(cullMeshes.size() * sizeof(cullMeshes[0]), gpu::kBufferStorage,
                                       MemoryKind::DeviceLocal, cullMeshes.data(), "cull meshes");
-    meshInstances_ = device.createBuffer(meshInstances.size() * sizeof(uint32_t), gpu::kBufferStorage,
-                                         MemoryKind::DeviceLocal, meshInstances.data(), "instances by mesh");
 
     // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
     // one white texel so the table is never empty.
@@ -259,12 +249,12 @@ void GpuScene::destroyAll() {
     device_.destroy(textureTable_);
     for (gpu::SamplerHandle sampler : samplers_) device_.destroy(sampler);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
-    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshInstances_})
+    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_})
         device_.destroy(b);
     textureTable_ = {};
     samplers_.clear();
     textures_.clear();
-    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = meshInstances_ = {};
+    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = {};
 }
 
 GpuScene::~GpuScene() { destroyAll(); }
@@ -305,6 +295,15 @@ uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene)
     });
     commands.memoryBarrier();
     return bytes;
+}
+
+uint32_t GpuScene::viewInstanceCount(const Scene& scene) const {
+    uint32_t count = 0;
+    for (const Instance& instance : scene.instances) {
+        const Mesh& mesh = scene.meshes[instance.meshIndex];
+        count += meshSlotOfMesh_[instance.meshIndex] != ~0u && scene.materials[mesh.materialIndex].alphaMode != AlphaMode::Blend;
+    }
+    return count;
 }
 
 }  // namespace penumbra

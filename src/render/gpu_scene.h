@@ -54,11 +54,11 @@ public:
     // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's triangle batches.
     uint32_t rasterWorkItems() const { return rasterWorkItems_; }
     uint64_t triangleCount() const { return triangles_; }
-    // The main view's compute rasterizer: instances by mesh slot (every instance with geometry, at
-    // CullMesh.counts.x + i), and the bits a triangle index takes in a visibility payload
+    // The main view's compute rasterizer: the bits a triangle index takes in a visibility payload
     // (visibility_structs.h); visibilityIdsFit() says whether instance and triangle fit 32 bits.
-    gpu::BufferHandle meshInstanceBuffer() const { return meshInstances_; }
     uint32_t triangleIdBits() const { return triangleIdBits_; }
+    // The instances the visibility buffer may draw: with geometry and an opaque or alpha-tested material.
+    uint32_t viewInstanceCount(const Scene& scene) const;
     bool visibilityIdsFit() const { return visibilityIdsFit_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -77,7 +77,7 @@ private:
     gpu::Device& device_;
     std::vector<DrawItem> draws_;
     uint64_t triangles_ = 0;
-    gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshInstances_;
+    gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_;
     std::vector<uint32_t> meshSlotOfMesh_;  // per Scene::meshes entry: its CullMesh slot, ~0u without geometry
     uint32_t instanceCount_ = 0, meshSlotCount_ = 0, rasterWorkItems_ = 0, triangleIdBits_ = 0;
     bool visibilityIdsFit_ = true;

@@ -96,6 +96,7 @@ struct PendingFrame {
     bool visibleReadback = false;  // the tight fit's depth subsample is in the readback, for later frames
     bool visibilityView = false;   // the main view came from the visibility buffer
     bool autoMainView = false;     // render.mainView = auto and still measuring: its main pass time feeds the choice
+    bool viewStats = false;        // the visibility buffer's culling counts are in the readback (before the cluster stats)
     CameraView view;
     ShadowRaster rasterSetting = ShadowRaster::Auto;
 };
@@ -134,6 +135,17 @@ void applyRasterCounters(FrameStats& stats, const ShadowFrame& plan, const std::
         stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
                                  " large pieces or chunks were not drawn in frame " + std::to_string(stats.frameIndex) +
                                  "; the queues grow for the next frames");
+}
+
+// The main view culling's counts: the two CullTileStats before the light cluster counts, if any.
+void applyViewStats(FrameStats& stats, const std::vector<uint8_t>& readback, bool clusterStats) {
+    gpu_data::CullTileStats lists[2]{};
+    const size_t tail = sizeof(lists) + (clusterStats ? sizeof(gpu_data::LightClusterStats) : 0);
+    if (readback.size() < tail) return;
+    std::memcpy(lists, readback.data() + readback.size() - tail, sizeof(lists));
+    stats.viewInstancesEarly = lists[0].counts.y;
+    stats.viewInstancesLate = lists[1].counts.y;
+    stats.viewTriangles = uint64_t(lists[0].counts.z) + lists[1].counts.z;
 }
 
 // The light cluster pass's counts, the last bytes of the frame's readback.
@@ -228,6 +240,7 @@ struct Renderer::State {
     std::vector<ImportedImage> imported;
     std::deque<PendingFrame> pending;
     std::vector<FrameStats> completed;
+    double lastGpuFrameEnd = 0.0;  // the latest finished frame's CompletedFrame::gpuEndMilliseconds
 
     State(gpu::Device& d, Scene s, const RendererOptions& o)
         : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
@@ -448,6 +461,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         stats.tilesRendered = uint32_t(drawDirectional.size() + drawOther.size());
         stats.tilesReused = directionalCache.reused() + otherCache.reused();
         gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+        cullFrame.camera = packCullCamera(view.clipFromWorld, view.width, view.height, settings.render.viewCulling);
         std::vector<uint32_t> rasterTiles = drawDirectional;
         for (uint32_t i : drawOther) rasterTiles.push_back(directionalTiles + i);
         packRasterTiles(cullFrame, rasterTiles);
@@ -533,8 +547,10 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
             VisibilityPass::Target opaque{targets.color, targets.depth, sizes.colorFormat, view.width, view.height, {},
                                           main.variant.specialization};
             std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
-            visibility->record(commands, inputs.writes, opaque);  // leaves both targets in their target states
+            // Leaves both targets in their target states.
+            visibility->record(commands, inputs.writes, opaque, culling, cullSlice, settings.render.viewCulling);
             main.opaqueDone = true;
+            stats.viewInstances = gpuScene.viewInstanceCount(scene);
         } else {
             commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
             commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
@@ -547,7 +563,9 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
             frame.view = view;
         }
 
-        // Last in the readback (collectCompleted reads it from the end).
+        // Last in the readback (collectCompleted reads them from the end).
+        frame.viewStats = frame.visibilityView;
+        if (frame.viewStats) device.readBackAtFrameEnd(commands, culling.viewStats());
         if (clustered) device.readBackAtFrameEnd(commands, lightClusters.stats());
         stage = "readback";
         if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
@@ -590,6 +608,7 @@ void Renderer::State::collectCompleted() {
         FrameStats stats = std::move(pending.front().stats);
         applyCullStats(stats, pending.front().plan, done.readback);
         if (pending.front().clusterStats) applyClusterStats(stats, done.readback);
+        if (pending.front().viewStats) applyViewStats(stats, done.readback, pending.front().clusterStats);
         if (pending.front().computeRaster) applyRasterCounters(stats, pending.front().plan, done.readback, rasterNeeded);
         if (stats.rasterDropped > 0) {  // those tiles are incomplete: draw them all again
             directionalCache.invalidate();
@@ -619,6 +638,9 @@ void Renderer::State::collectCompleted() {
                                        ? "auto: " + rasterChoice.describe()
                                        : std::string("shadows.raster = ") + shadowRasterName(rasterSetting);
         stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
+        stats.gpuFrameMilliseconds = done.gpuFrameMilliseconds;
+        if (lastGpuFrameEnd > 0.0) stats.gpuFramePeriodMilliseconds = done.gpuEndMilliseconds - lastGpuFrameEnd;
+        lastGpuFrameEnd = done.gpuEndMilliseconds;
         completed.push_back(std::move(stats));
     }
 }

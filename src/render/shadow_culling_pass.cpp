@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/error.h"
 #include "cull_structs.h"
 
 namespace penumbra {
 
 namespace {
 
+static_assert(gpu_data::kCullListCameraEarly == gpu_data::kMaxCullTiles &&
+              gpu_data::kCullListCameraLate + 1 == gpu_data::kCullListCount);
 constexpr uint32_t kDrawCommandBytes = 5 * sizeof(uint32_t);  // VkDrawIndexedIndirectCommand
 
 uint32_t groupsFor(uint32_t count) { return (count + gpu_data::kCullWorkgroupSize - 1) / gpu_data::kCullWorkgroupSize; }
@@ -32,9 +35,13 @@ void ShadowCullingPass::create() {
     desc.shader = "shadow_cull.comp";
     desc.bindings = {{0, DescriptorType::UniformBuffer}, {1, DescriptorType::StorageBuffer},
                      {2, DescriptorType::StorageBuffer}, {3, DescriptorType::StorageBuffer},
-                     {4, DescriptorType::StorageBuffer}, {5, DescriptorType::StorageBuffer}};
-    desc.debugName = "shadow caster culling";
+                     {4, DescriptorType::StorageBuffer}, {5, DescriptorType::StorageBuffer},
+                     {9, DescriptorType::StorageBuffer}, {10, DescriptorType::StorageBuffer},
+                     {11, DescriptorType::StorageBuffer}};
+    desc.pushConstantSize = sizeof(gpu_data::CullConstants);
+    desc.debugName = "shadow caster and main view culling";
     cull_ = device.createComputePipeline(desc);
+    desc.pushConstantSize = 0;
     desc.shader = "shadow_draws.comp";
     desc.bindings = {{0, DescriptorType::UniformBuffer}, {2, DescriptorType::StorageBuffer},
                      {3, DescriptorType::StorageBuffer}, {4, DescriptorType::StorageBuffer},
@@ -43,7 +50,7 @@ void ShadowCullingPass::create() {
     desc.debugName = "shadow draw lists";
     buildDraws_ = device.createComputePipeline(desc);
 
-    const uint64_t tiles = gpu_data::kMaxCullTiles, meshes = gpuScene.meshSlotCount();
+    const uint64_t tiles = gpu_data::kCullListCount, meshes = gpuScene.meshSlotCount();
     const uint64_t instances = std::max(gpuScene.instanceCount(), 1u);
     using gpu::MemoryKind;
     listCounts_ = device.createBuffer(tiles * meshes * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
@@ -57,6 +64,9 @@ void ShadowCullingPass::create() {
                                       MemoryKind::DeviceLocal, nullptr, "shadow draw counts");
     tileStats_ = device.createBuffer(tiles * sizeof(gpu_data::CullTileStats), gpu::kBufferStorage,
                                      MemoryKind::DeviceLocal, nullptr, "shadow tile stats");
+    const std::vector<uint32_t> nothingVisible(instances, 0u);  // the first frame's late phase finds them all
+    viewHistory_ = device.createBuffer(instances * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nothingVisible.data(),
+                                       "main view visibility history");
 }
 
 ShadowCullingPass::~ShadowCullingPass() { destroyAll(); }
@@ -64,7 +74,8 @@ ShadowCullingPass::~ShadowCullingPass() { destroyAll(); }
 void ShadowCullingPass::destroyAll() {
     device_.destroy(cull_);
     device_.destroy(buildDraws_);
-    for (gpu::BufferHandle b : {listCounts_, visible_, drawCommands_, drawCounts_, tileStats_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {listCounts_, visible_, drawCommands_, drawCounts_, tileStats_, viewHistory_})
+        device_.destroy(b);
 }
 
 void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount) {
@@ -76,14 +87,9 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
     commands.memoryBarrier();
     if (tileCount == 0) return;
     commands.bindPipeline(cull_);
-    const std::vector<gpu::DescriptorWrite> cullWrites = {
-        {0, cullFrame},
-        {1, scene_.cullInstanceBuffer(), {}, {}},
-        {2, scene_.cullMeshBuffer(), {}, {}},
-        {3, scene_.materialBuffer(), {}, {}},
-        {4, listCounts_, {}, {}},
-        {5, visible_, {}, {}}};
-    commands.pushDescriptors(cullWrites);
+    commands.pushDescriptors(cullWrites(cullFrame, viewHistory_));  // no pyramid read: any buffer
+    const gpu_data::CullConstants constants{glm::uvec4(gpu_data::kCullPassShadows, 0, 0, 0)};
+    commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), tileCount);
     commands.memoryBarrier();
     commands.bindPipeline(buildDraws_);
@@ -98,6 +104,35 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
     commands.pushDescriptors(drawWrites);
     commands.dispatch(groupsFor(scene_.meshSlotCount()), tileCount);
     commands.memoryBarrier();  // the draws read the commands (indirect) and the lists (vertex shader)
+}
+
+std::vector<gpu::DescriptorWrite> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
+                                                               gpu::BufferHandle pyramid) const {
+    return {{0, cullFrame},
+            {1, scene_.cullInstanceBuffer(), {}, {}},
+            {2, scene_.cullMeshBuffer(), {}, {}},
+            {3, scene_.materialBuffer(), {}, {}},
+            {4, listCounts_, {}, {}},
+            {5, visible_, {}, {}},
+            {9, viewHistory_, {}, {}},
+            {10, pyramid, {}, {}},
+            {11, tileStats_, {}, {}}};
+}
+
+void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,
+                                   gpu::BufferHandle pyramid) {
+    PENUMBRA_ASSERT(phase == gpu_data::kCullPassCameraEarly || phase == gpu_data::kCullPassCameraLate);
+    commands.bindPipeline(cull_);
+    commands.pushDescriptors(cullWrites(cullFrame, pyramid));
+    const gpu_data::CullConstants constants{glm::uvec4(phase, 0, 0, 0)};
+    commands.pushConstants(&constants, sizeof(constants));
+    commands.dispatch(groupsFor(scene_.instanceCount()), 1);
+    commands.memoryBarrier();  // the rasterizer reads the lists
+}
+
+gpu::BufferSlice ShadowCullingPass::viewStats() const {
+    return {tileStats_, gpu_data::kCullListCameraEarly * sizeof(gpu_data::CullTileStats),
+            2 * sizeof(gpu_data::CullTileStats)};
 }
 
 ShadowCullingPass::DrawList ShadowCullingPass::drawList(uint32_t tile, uint32_t kind) const {

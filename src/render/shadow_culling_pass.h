@@ -3,6 +3,8 @@
 // every instance against every shadow tile of both atlases and a second turns the survivors into
 // compacted indirect draws per tile and caster kind. The CPU planner computes lights, matrices and
 // tiles only; its caster culling (PlanOptions::cullCasters) is the reference tests compare with.
+// The same pass culls the visibility buffer's main view (cull_structs.h: the camera frustum, then
+// two-phase occlusion against a depth pyramid) into two more lists, recordView's.
 #include <vector>
 
 #include "gpu/device.h"
@@ -21,6 +23,14 @@ public:
     // Culls for every tile of `plan` (directional tiles first, then spot/point) and leaves the draw
     // lists for drawTile; `cullFrame` is packCullFrame(plan) in this frame's upload ring.
     void record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount);
+
+    // A main-view phase (kCullPassCameraEarly / Late) into list kCullListCameraEarly / Late;
+    // `pyramid` is the depth pyramid the late phase tests against (the early phase binds it unread).
+    // `cullFrame` holds CullFrame::camera.
+    void recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,
+                    gpu::BufferHandle pyramid);
+    // What the main view's two lists hold (instances y, triangles z), GPU-written this frame.
+    gpu::BufferSlice viewStats() const;
 
     // The indirect draws of culling tile `tile` and caster kind (0 opaque, 1 alpha-tested).
     struct DrawList {
@@ -45,7 +55,9 @@ private:
     gpu::Device& device_;
     const GpuScene& scene_;
     gpu::PipelineHandle cull_, buildDraws_;
+    std::vector<gpu::DescriptorWrite> cullWrites(const gpu::BufferSlice& cullFrame, gpu::BufferHandle pyramid) const;
     gpu::BufferHandle listCounts_, visible_, drawCommands_, drawCounts_, tileStats_;
+    gpu::BufferHandle viewHistory_;  // kView* bits per instance, carried from frame to frame
 };
 
 }  // namespace penumbra

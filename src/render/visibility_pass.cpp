@@ -6,6 +6,7 @@
 #include "cull_structs.h"
 #include "render/compute_raster_pass.h"
 #include "render/main_pass.h"
+#include "shadows/cull_packing.h"
 #include "visibility_structs.h"
 
 namespace penumbra {
@@ -44,8 +45,8 @@ void VisibilityPass::create() {
     using gpu::DescriptorType;
     gpu::ComputePipelineDesc desc;
     desc.bindings = sceneBindings();
-    for (uint32_t binding : {6u, 7u, gpu_data::kBindingVisibility, 9u, 10u, 11u, gpu_data::kBindingRasterInstances,
-                             gpu_data::kBindingMeshInstances})
+    for (uint32_t binding : {6u, 7u, gpu_data::kBindingVisibility, 9u, 10u, 11u, gpu_data::kBindingViewListCounts,
+                             gpu_data::kBindingViewLists})
         desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
     desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
     desc.textureTable = scene_.textureTable();
@@ -56,6 +57,13 @@ void VisibilityPass::create() {
         *pipeline = device_.createComputePipeline(desc);
     }
     args_ = createRasterArgsPipeline(device_, "visibility raster dispatch sizes");
+    gpu::ComputePipelineDesc pyramid;
+    pyramid.shader = "depth_pyramid.comp";
+    pyramid.bindings = {{gpu_data::kBindingPyramidVisibility, DescriptorType::StorageBuffer},
+                        {gpu_data::kBindingPyramid, DescriptorType::StorageBuffer}};
+    pyramid.pushConstantSize = sizeof(gpu_data::PyramidConstants);
+    pyramid.debugName = "main view depth pyramid";
+    pyramid_ = device_.createComputePipeline(pyramid);
     using gpu::MemoryKind;
     counters_ = device_.createBuffer(sizeof(gpu_data::RasterCounters), gpu::kBufferStorage | gpu::kBufferIndirect,
                                      MemoryKind::DeviceLocal, nullptr, "visibility raster counters");
@@ -66,17 +74,20 @@ void VisibilityPass::create() {
 }
 
 void VisibilityPass::destroyAll() {
-    for (gpu::PipelineHandle p : {raster_, bin_, chunks_, args_}) device_.destroy(p);
+    for (gpu::PipelineHandle p : {raster_, bin_, chunks_, args_, pyramid_}) device_.destroy(p);
     for (auto& [key, pipeline] : resolve_) device_.destroy(pipeline);
     resolve_.clear();
-    for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, color_, depth_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_})
+        device_.destroy(b);
 }
 
 void VisibilityPass::ensureSize(uint32_t width, uint32_t height) {
     if (visibility_ && width == width_ && height == height_) return;
-    for (gpu::BufferHandle b : {visibility_, color_, depth_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {visibility_, color_, depth_, pyramidTexels_}) device_.destroy(b);
     const uint64_t pixels = uint64_t(width) * height;
     using gpu::MemoryKind;
+    pyramidTexels_ = device_.createBuffer(uint64_t(depthPyramidLayout(width, height).texels) * 4, gpu::kBufferStorage,
+                                          MemoryKind::DeviceLocal, nullptr, "main view depth pyramid");
     visibility_ = device_.createBuffer(pixels * 8, gpu::kBufferStorage | gpu::kBufferTransferDst, MemoryKind::DeviceLocal,
                                        nullptr, "visibility buffer");
     if (!fragmentResolve_) color_ = device_.createBuffer(pixels * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
@@ -164,8 +175,55 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
     commands.memoryBarrier();
 }
 
+void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+                                  gpu_data::VisibilityConstants constants, uint32_t list) {
+    constants.list = glm::uvec4(list, scene_.instanceCount(), 0u, 0u);
+    auto bind = [&](gpu::PipelineHandle pipeline) {
+        commands.bindPipeline(pipeline);
+        commands.pushDescriptors(writes);
+        commands.bindTextureTable(scene_.textureTable());
+        commands.pushConstants(&constants, sizeof(constants));
+    };
+    auto sizeDispatch = [&](uint32_t which) {
+        recordRasterDispatchSize(commands, args_, counters_, which, kLargeCapacity, kChunkCapacity);
+    };
+    commands.fillBuffer(counters_, 0);
+    commands.memoryBarrier();
+    const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
+    bind(raster_);
+    commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
+                      (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
+    sizeDispatch(0);
+    bind(bin_);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
+    sizeDispatch(1);
+    bind(chunks_);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
+    commands.memoryBarrier();
+}
+
+void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
+    const DepthPyramidLayout layout = depthPyramidLayout(width_, height_);
+    commands.bindPipeline(pyramid_);
+    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kBindingPyramidVisibility, visibility_, {}, {}},
+                                                      {gpu_data::kBindingPyramid, pyramidTexels_, {}, {}}};
+    commands.pushDescriptors(writes);
+    for (size_t level = 0; level < layout.sizes.size(); ++level) {
+        const glm::uvec2 target = layout.sizes[level];
+        gpu_data::PyramidConstants constants{};
+        constants.source = level == 0 ? glm::uvec4(0u, width_, height_, 1u)
+                                      : glm::uvec4(layout.offsets[level - 1], layout.sizes[level - 1], 0u);
+        constants.target = glm::uvec4(layout.offsets[level], target, 0u);
+        commands.pushConstants(&constants, sizeof(constants));
+        const uint32_t group = gpu_data::kPyramidGroupSize;
+        commands.dispatch((target.x + group - 1) / group, (target.y + group - 1) / group);
+        commands.memoryBarrier();  // the next level reads this one
+    }
+}
+
 void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                            const Target& target) {
+                            const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
+                            ViewCulling viewCulling) {
     ensureSize(target.width, target.height);
     gpu_data::VisibilityConstants constants{};
     constants.view = glm::uvec4(target.width, target.height, scene_.triangleIdBits(),
@@ -179,35 +237,26 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
     rasterWrites.push_back({9, counters_, {}, {}});
     rasterWrites.push_back({10, large_, {}, {}});
     rasterWrites.push_back({11, chunkList_, {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingRasterInstances, scene_.cullInstanceBuffer(), {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingMeshInstances, scene_.meshInstanceBuffer(), {}, {}});
-    auto bind = [&](gpu::PipelineHandle pipeline, const std::vector<gpu::DescriptorWrite>& set) {
-        commands.bindPipeline(pipeline);
-        commands.pushDescriptors(set);
-        commands.bindTextureTable(scene_.textureTable());
-        commands.pushConstants(&constants, sizeof(constants));
-    };
-    auto sizeDispatch = [&](uint32_t which) {
-        recordRasterDispatchSize(commands, args_, counters_, which, kLargeCapacity, kChunkCapacity);
-    };
+    rasterWrites.push_back({gpu_data::kBindingViewListCounts, culling.listCounts(), {}, {}});
+    rasterWrites.push_back({gpu_data::kBindingViewLists, culling.visibleInstances(), {}, {}});
 
-    commands.beginTimer("main/raster");
+    commands.beginTimer("main/cull");
     commands.memoryBarrier();  // the previous frame may still read these buffers
     commands.fillBuffer(visibility_, 0);
-    commands.fillBuffer(counters_, 0);
-    commands.memoryBarrier();
-    const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
-    bind(raster_, rasterWrites);
-    commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
-                      (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
-    sizeDispatch(0);
-    bind(bin_, rasterWrites);
-    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-    sizeDispatch(1);
-    bind(chunks_, rasterWrites);
-    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
-    commands.memoryBarrier();
+    culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraEarly, pyramidTexels_);
     commands.endTimer();
+    commands.beginTimer("main/raster");
+    recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraEarly);
+    commands.endTimer();
+    if (viewCulling == ViewCulling::Occlusion) {
+        commands.beginTimer("main/occlusion");
+        recordPyramid(commands);
+        culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraLate, pyramidTexels_);
+        commands.endTimer();
+        commands.beginTimer("main/rasterLate");
+        recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraLate);
+        commands.endTimer();
+    }
 
     commands.beginTimer("main/resolve");
     recordResolve(commands, writes, target, constants);

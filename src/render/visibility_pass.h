@@ -6,7 +6,10 @@
 // forward pass draws the blended materials afterwards (MainPass::Target::opaqueDone).
 // Raster passes as the shadow atlases' compute rasterizer: per instance batch (small triangles at
 // once, large ones queued), per large triangle (split into chunks), per chunk; a full queue makes
-// the earlier pass draw the rest itself, so nothing is dropped.
+// the earlier pass draw the rest itself, so nothing is dropped. The instances come from the shadow
+// culling pass's main-view lists (render.viewCulling): with occlusion culling the early list is
+// rasterized, a depth pyramid built from the visibility buffer, the late list culled against it and
+// rasterized on top (cull_structs.h).
 // On CPU devices (lavapipe) the resolve runs as a full-screen fragment pass of the same functions
 // (visibility_resolve.frag): Mesa 22.3's lavapipe corrupts its heap now and then running the shading
 // functions in a compute shader (seen as crashes in later, unrelated calls; it does not happen with the
@@ -15,7 +18,9 @@
 #include <vector>
 
 #include "gpu/device.h"
+#include "penumbra/render_settings.h"
 #include "render/gpu_scene.h"
+#include "render/shadow_culling_pass.h"
 #include "visibility_structs.h"
 
 namespace penumbra {
@@ -45,23 +50,29 @@ public:
         ensureSize(width, height);
     }
     bool fragmentResolve() const { return fragmentResolve_; }
-    // `writes`: the shaded scene bindings 0-16 (MainPassInputs). Timed as main/raster, main/resolve, main/copy.
-    void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target);
+    // `writes`: the shaded scene bindings 0-16 (MainPassInputs); `cullFrame` holds CullFrame::camera
+    // of this view and `culling`. Timed as main/cull, main/raster, main/occlusion (pyramid and late
+    // culling), main/rasterLate, main/resolve, main/copy.
+    void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
+                ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling);
 
 private:
     void create();
     void destroyAll();
     void ensureSize(uint32_t width, uint32_t height);
     gpu::PipelineHandle resolvePipeline(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat);
+    void recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+                      gpu_data::VisibilityConstants constants, uint32_t list);
+    void recordPyramid(gpu::CommandList& commands);
     void recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
                        const gpu_data::VisibilityConstants& constants);
 
     gpu::Device& device_;
     const GpuScene& scene_;
-    gpu::PipelineHandle raster_, bin_, chunks_, args_;
+    gpu::PipelineHandle raster_, bin_, chunks_, args_, pyramid_;
     std::map<std::pair<std::vector<std::pair<uint32_t, uint32_t>>, gpu::Format>, gpu::PipelineHandle> resolve_;
     bool fragmentResolve_ = false;
-    gpu::BufferHandle counters_, large_, chunkList_, visibility_, color_, depth_;
+    gpu::BufferHandle counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_;
     uint32_t width_ = 0, height_ = 0;
     static constexpr uint32_t kLargeCapacity = 1u << 18, kChunkCapacity = 1u << 20;
 };

@@ -68,4 +68,34 @@ void packRasterTiles(gpu_data::CullFrame& frame, const std::vector<uint32_t>& ti
     for (size_t i = 0; i < tiles.size() && i < gpu_data::kMaxCullTiles; ++i) frame.rasterTiles[i / 4][i % 4] = tiles[i];
 }
 
+DepthPyramidLayout depthPyramidLayout(uint32_t width, uint32_t height) {
+    PENUMBRA_ASSERT(width > 0 && height > 0);
+    DepthPyramidLayout layout;
+    glm::uvec2 size((width + 1) / 2, (height + 1) / 2);
+    while (true) {
+        layout.sizes.push_back(size);
+        layout.offsets.push_back(layout.texels);
+        layout.texels += size.x * size.y;
+        if (size == glm::uvec2(1)) break;
+        size = (size + 1u) / 2u;
+    }
+    return layout;
+}
+
+gpu_data::CullCamera packCullCamera(const glm::mat4& clipFromWorld, uint32_t width, uint32_t height, ViewCulling culling) {
+    const uint32_t mode = culling == ViewCulling::Occlusion ? gpu_data::kViewCullingOcclusion
+                          : culling == ViewCulling::Frustum ? gpu_data::kViewCullingFrustum
+                                                            : gpu_data::kViewCullingNone;
+    const DepthPyramidLayout pyramid = depthPyramidLayout(width, height);
+    if (pyramid.sizes.size() > gpu_data::kMaxPyramidLevels)
+        throw Error("internal: a " + std::to_string(width) + "x" + std::to_string(height) + " view needs " +
+                    std::to_string(pyramid.sizes.size()) + " depth pyramid levels (at most " +
+                    std::to_string(gpu_data::kMaxPyramidLevels) + ")");
+    gpu_data::CullCamera camera{};
+    camera.clipFromWorld = clipFromWorld;
+    camera.view = glm::uvec4(width, height, uint32_t(pyramid.sizes.size()), mode);
+    camera.pyramid = glm::uvec4(pyramid.sizes[0], 0, 0);
+    return camera;
+}
+
 }  // namespace penumbra

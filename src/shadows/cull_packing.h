@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "cull_structs.h"
+#include "penumbra/render_settings.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -16,5 +19,17 @@ namespace penumbra {
 gpu_data::CullFrame packCullFrame(const ShadowFrame& frame, uint32_t instanceCount, uint32_t meshCount);
 // Sets CullFrame::rasterTiles to `tiles` (culling tile indices, at most kMaxCullTiles).
 void packRasterTiles(gpu_data::CullFrame& frame, const std::vector<uint32_t>& tiles);
+
+// The main view's depth pyramid (cull_structs.h CullCamera): level 0 is half the view rounded up,
+// each next level half the one below rounded up, down to 1 x 1; the levels lie one after the other.
+struct DepthPyramidLayout {
+    std::vector<glm::uvec2> sizes;
+    std::vector<uint32_t> offsets;  // first texel of each level
+    uint32_t texels = 0;            // all levels
+};
+DepthPyramidLayout depthPyramidLayout(uint32_t width, uint32_t height);
+
+// The camera the main view's culling tests (CullFrame::camera).
+gpu_data::CullCamera packCullCamera(const glm::mat4& clipFromWorld, uint32_t width, uint32_t height, ViewCulling culling);
 
 }  // namespace penumbra

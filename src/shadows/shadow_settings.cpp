@@ -14,6 +14,7 @@ constexpr const char* kFitNames[] = {"sphere", "tight"};
 constexpr const char* kFadeModeNames[] = {"linear", "squared"};
 constexpr const char* kSplitModeNames[] = {"manual", "log", "practical"};
 constexpr const char* kLightCullingNames[] = {"clustered", "none"};
+constexpr const char* kViewCullingNames[] = {"occlusion", "frustum", "none"};
 constexpr const char* kMainViewNames[] = {"forward", "visibility", "auto"};
 constexpr const char* kToneMappingNames[] = {"none", "neutral", "aces"};
 constexpr const char* kBackgroundNames[] = {"gradient", "black"};
@@ -45,6 +46,12 @@ const char* mainViewName(MainView view) { return enumName(kMainViewNames, int(vi
 std::optional<MainView> parseMainView(const std::string& name) { return parseEnum<MainView>(kMainViewNames, name); }
 std::optional<LightCulling> parseLightCulling(const std::string& name) {
     return parseEnum<LightCulling>(kLightCullingNames, name);
+}
+
+const char* viewCullingName(ViewCulling culling) { return enumName(kViewCullingNames, int(culling)); }
+
+std::optional<ViewCulling> parseViewCulling(const std::string& name) {
+    return parseEnum<ViewCulling>(kViewCullingNames, name);
 }
 const char* toneMappingName(ToneMapping toneMapping) { return enumName(kToneMappingNames, int(toneMapping)); }
 std::optional<ToneMapping> parseToneMapping(const std::string& name) {

@@ -169,6 +169,16 @@ TEST(SettingsJson, LightCullingIsClusteredUnlessTurnedOff) {
     EXPECT_EQ(settings.render.lightCulling, LightCulling::None);
 }
 
+TEST(SettingsJson, ViewCullingIsOcclusionUnlessChosen) {
+    EXPECT_EQ(Settings{}.render.viewCulling, ViewCulling::Occlusion);
+    EXPECT_EQ(parseSettingsJson(R"({"render": {"viewCulling": "frustum"}})", "test.json").render.viewCulling,
+              ViewCulling::Frustum);
+    Settings settings;
+    applySettingOverride(settings, "render.viewCulling=none");
+    EXPECT_EQ(settings.render.viewCulling, ViewCulling::None);
+    EXPECT_THROW(applySettingOverride(settings, "render.viewCulling=hiz"), Error);
+}
+
 TEST(SettingsValidation, DefaultsAreValid) { EXPECT_NO_THROW(validateSettings(Settings{})); }
 
 TEST(SettingsJson, ParsesTheKeysOfIssue13) {
