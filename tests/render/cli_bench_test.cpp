@@ -54,6 +54,11 @@ TEST(CliBench, JsonHasEveryDocumentedKey) {
     }
     expectStatistics(json["frame"], {"median_ms", "p95_ms"}, "frame");
     EXPECT_GT(json["frame"]["median_ms"].get<double>(), 0.0);
+    // GPU timestamps of whole frames (lavapipe has them): commands first to last, and the period.
+    expectStatistics(json["gpuFrame"], {"median_ms", "p95_ms"}, "gpuFrame");
+    expectStatistics(json["gpuFramePeriod"], {"median_ms", "p95_ms"}, "gpuFramePeriod");
+    EXPECT_GE(json["gpuFrame"]["median_ms"].get<double>(), json["passes"]["main"]["median_ms"].get<double>());
+    EXPECT_GE(json["gpuFramePeriod"]["median_ms"].get<double>(), json["gpuFrame"]["median_ms"].get<double>() * 0.99);
     for (const char* memory : {"host_rss_mb", "device_mb"}) expectStatistics(json["memory"][memory], {"first", "last"}, memory);
     EXPECT_GT(json["memory"]["host_rss_mb"]["first"].get<double>(), 1.0);
     EXPECT_GT(json["atlases"]["shadows.directional"]["draws"].get<uint32_t>(), 0u);
@@ -61,6 +66,19 @@ TEST(CliBench, JsonHasEveryDocumentedKey) {
     for (const char* key : {"rendered", "reused"}) EXPECT_TRUE(json["tiles"][key].is_number()) << key;
     EXPECT_EQ(json["shadowRaster"]["dropped"], 0);
     for (const char* key : {"mean", "max"}) EXPECT_TRUE(json["lightsPerCluster"][key].is_number()) << key;
+    for (const char* key : {"instances", "drawnEarly", "drawnLate", "triangles"})
+        EXPECT_TRUE(json["mainView"][key].is_number()) << key;
+}
+
+TEST(CliBench, ReportsTheVisibilityBuffersCulling) {
+    const nlohmann::json json =
+        runBenchJson("--frames 3 --warmup 2 --camera static --main-view visibility --set render.viewCulling=frustum");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_EQ(json["mainView"]["used"], "visibility");
+    EXPECT_GT(json["mainView"]["drawnEarly"].get<double>(), 0.0);
+    EXPECT_LE(json["mainView"]["drawnEarly"].get<double>(), json["mainView"]["instances"].get<double>());
+    EXPECT_EQ(json["mainView"]["drawnLate"].get<double>(), 0.0);  // frustum culling has no late phase
+    EXPECT_GT(json["mainView"]["triangles"].get<double>(), 0.0);
 }
 
 TEST(CliBench, SteadyStateFramesMakeNoGpuObject) {
@@ -74,7 +92,7 @@ TEST(CliBench, PrintsATableOfPassesPhasesAndMemory) {
     const CliRun run = runPenumbra("bench --frames 2 --warmup 1 --width 64 --height 48 --device cpu");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     for (const char* line : {"gpu main", "gpu shadows.directional", "cpu plan", "cpu culling", "frame (submit to fence)",
-                             "host RSS", "after warm-up: 0 GPU objects made"})
+                             "frame (GPU, first to last)", "frame period (GPU end to end)", "host RSS", "after warm-up: 0 GPU objects made"})
         EXPECT_NE(run.out.find(line), std::string::npos) << line << " missing from:\n" << run.out;
     // Not a terminal: no progress bar.
     EXPECT_EQ(run.out.find('\r'), std::string::npos);
