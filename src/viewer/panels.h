@@ -26,6 +26,8 @@ struct PanelContext {
 };
 
 void drawPanels(PanelContext& context);
+// One red line at the bottom of the window (a scene that did not load), drawn with or without panels.
+void drawErrorLine(const std::string& message);
 void drawStatsPanel(PanelContext& context);
 // The settings inspector: one widget per key of settingKeys() (penumbra/settings_keys.h).
 void drawSettingsInspector(PanelContext& context);

@@ -21,7 +21,11 @@ Controls:
   Tab          show / hide the inspector and stats panels
   F12          save a screenshot (penumbra-viewer-N.png)
   Esc          quit
-The scene file reloads when it changes on disk; drop a .gltf / .glb on the window to open it.)";
+  R            reload the scene file now
+The scene file reloads when it changes on disk (checked every --watch-poll-ms), keeping the camera, the
+settings and the view; a file that does not load leaves the old scene and shows why. Drop a .gltf / .glb
+on the window, or use File > Open, to open another; File > Save scene writes the scene with its edited
+shadow extras as glTF.)";
 
 }  // namespace
 
@@ -59,6 +63,9 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
                    "play a recorded camera path (JSON); with --screenshot, frame i of N shows i / (N - 1) of it");
     app.add_option("--record-camera-path", options.recordCameraPath,
                    "record the camera path from the first frame into this JSON file (P stops and starts)");
+    app.add_option("--watch-poll-ms", options.watchPollMs,
+                   "check the scene file for changes every N ms and reload it (0: every frame; default 250)")
+        ->check(CLI::Range(0u, 3600000u));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
