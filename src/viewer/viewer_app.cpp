@@ -12,6 +12,7 @@
 #include "penumbra/scene_loading.h"
 #include "penumbra/vulkan.h"
 #include "viewer/atlas_overlay.h"
+#include "viewer/cascade_frusta.h"
 #include "viewer/imgui_layer.h"
 #include "viewer/panels.h"
 #include "viewer/presenter.h"
@@ -240,6 +241,7 @@ void ViewerApp::onKey(int key, int action, int mods) {
         case GLFW_KEY_2: state_.view = ViewMode::Shadow; break;
         case GLFW_KEY_3: state_.view = ViewMode::Cascades; break;
         case GLFW_KEY_4: state_.view = ViewMode::Atlas; break;
+        case GLFW_KEY_5: state_.view = ViewMode::Frusta; break;
         case GLFW_KEY_LEFT_BRACKET: if (lights) state_.light = (state_.light + lights - 1) % lights; break;
         case GLFW_KEY_RIGHT_BRACKET: if (lights) state_.light = (state_.light + 1) % lights; break;
         case GLFW_KEY_O:
@@ -340,6 +342,7 @@ void ViewerApp::collectStats() {
 // One frame: false when the swapchain must be re-made before it can be drawn.
 bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     if (!presenter_->beginFrame()) return false;
+    switchView();
     moveCamera(seconds);
     const VkExtent2D extent = swapchain_->extent();
     const CameraView view = makeCameraView(camera_->camera(), extent.width, extent.height);
@@ -357,6 +360,7 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         atlas_->update(atlas.atlas);
         labels = atlasTileLabels(atlas.stats.shadowStatsJson, renderer_->scene());
     }
+    const std::vector<WorldLine> lines = state_.view == ViewMode::Frusta ? observedCascades(request) : std::vector<WorldLine>();
     const ExternalImage target = presenter_->sceneTarget(request.output != OutputMode::Color);
     renderer_->submitFrame(request, settings_, view, &target);
     collectStats();
@@ -365,6 +369,7 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     PanelContext panels{state_, settings_, *renderer_, *camera_, context_->deviceName, sceneSource_};
     if (state_.view == ViewMode::Atlas && atlas_->ready()) drawAtlasLabels(labels, atlas_->windowRect(extent),
                                                                             glm::vec2(atlas_->width(), atlas_->height()));
+    if (!lines.empty()) drawWorldLines(lines, view);
     if (state_.showPanels) drawPanels(panels);
     if (!state_.sceneError.empty()) drawErrorLine(state_.sceneError);
     const bool overlay = state_.view == ViewMode::Atlas;
@@ -376,6 +381,29 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         screenshot);
     if (!presented) recreateSwapchain();
     return true;
+}
+
+// Into the frusta view the camera is kept as the observed one and the fly camera moves outside; out of
+// it the camera comes back.
+void ViewerApp::switchView() {
+    if (state_.view == shownView_) return;
+    if (state_.view == ViewMode::Frusta) {
+        observed_ = camera_->camera();
+        const float distance = std::min(settings_.shadows.maxDistance, observed_.zFar);
+        camera_->reset(outsideCamera(observed_, distance));
+    } else if (shownView_ == ViewMode::Frusta) {
+        camera_->reset(observed_);
+    }
+    shownView_ = state_.view;
+}
+
+// The observed camera's cascades: a frame planned (and drawn, not shown) from it, for its shadow plan.
+std::vector<WorldLine> ViewerApp::observedCascades(const RenderRequest& request) {
+    RenderRequest planned = request;
+    planned.readback = false;
+    const CameraView observed = makeCameraView(observed_, request.width, request.height);
+    const RenderResult result = renderer_->render(planned, settings_, observed);
+    return cascadeLines(cascadeGeometry(result.stats.shadowStatsJson), observed);
 }
 
 void ViewerApp::recreateSwapchain() {

@@ -12,6 +12,7 @@
 #include "penumbra/settings.h"
 #include "viewer/camera_controller.h"
 #include "viewer/camera_path.h"
+#include "viewer/cascade_frusta.h"
 #include "viewer/file_watcher.h"
 #include "viewer/viewer_options.h"
 
@@ -64,6 +65,8 @@ private:
     void toggleRecording();
     void collectStats();
     void recreateSwapchain();
+    void switchView();
+    std::vector<WorldLine> observedCascades(const RenderRequest& request);
     void nextSceneCamera();
     void saveScreenshot(const Image& image, const std::string& path);
 
@@ -83,6 +86,8 @@ private:
     FileWatcher watcher_;  // the scene file, when it is one
     float wheel_ = 0.0f;
     double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+    ViewMode shownView_ = ViewMode::Final;  // the view of the last frame (switchView acts on a change)
+    Camera observed_;                       // the frusta view's observed camera
     int sceneCamera_ = -1;  // -1: the scene's camera, else an index into Scene::cameras
     uint32_t screenshotCount_ = 0;
     bool screenshotRequested_ = false;

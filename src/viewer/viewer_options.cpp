@@ -8,7 +8,7 @@ namespace penumbra::viewer {
 
 namespace {
 
-constexpr const char* kViewNames[] = {"final", "shadow", "cascades", "atlas"};
+constexpr const char* kViewNames[] = {"final", "shadow", "cascades", "atlas", "frusta"};
 
 constexpr const char* kControls = R"(
 Controls:
@@ -17,7 +17,9 @@ Controls:
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
-  1 2 3 4      view: final, shadow term, cascades, atlas overlay; [ / ] previous / next light
+  1 2 3 4 5    view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
+               camera seen from outside (the fly camera moves out; leaving the view brings it back);
+               [ / ] previous / next light
   Tab          show / hide the inspector and stats panels
   F12          save a screenshot (penumbra-viewer-N.png)
   Esc          quit
@@ -32,7 +34,7 @@ shadow extras as glTF.)";
 const char* viewModeName(ViewMode mode) { return kViewNames[int(mode)]; }
 
 std::optional<ViewMode> parseViewMode(const std::string& name) {
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < 5; ++i)
         if (name == kViewNames[i]) return ViewMode(i);
     return std::nullopt;
 }
@@ -55,8 +57,8 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     app.add_option("--screenshot", options.screenshotPath, "render --frames frames, save the last one as PNG, exit");
     app.add_option("--frames", options.frames, "frames to render before --screenshot (default 5)")
         ->check(CLI::Range(1u, 100000u));
-    app.add_option("--view", view, "first view: final | shadow | cascades | atlas")
-        ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas"}));
+    app.add_option("--view", view, "first view: final | shadow | cascades | atlas | frusta")
+        ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas", "frusta"}));
     app.add_option("--light", options.light, "light (index in KHR_lights_punctual) of the shadow and cascade views");
     app.add_flag("--panels", options.panels, "with --screenshot: show the panels in it too");
     app.add_option("--camera-path", options.cameraPath,

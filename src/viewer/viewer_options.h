@@ -8,7 +8,8 @@
 
 namespace penumbra::viewer {
 
-enum class ViewMode { Final, Shadow, Cascades, Atlas };
+// Frusta: the cascades of the camera at the moment the view is entered, seen from an outside camera.
+enum class ViewMode { Final, Shadow, Cascades, Atlas, Frusta };
 
 const char* viewModeName(ViewMode mode);
 std::optional<ViewMode> parseViewMode(const std::string& name);

@@ -1,6 +1,7 @@
 // penumbra-viewer as CI runs it: under Xvfb on lavapipe with the validation layers on (a message makes
 // it exit 1), scripted with --screenshot, and the PNG measured: the window's size, the shadow view
 // against penumbra render --aov shadow for the same camera and size, the atlas overlay.
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -359,4 +360,45 @@ TEST(Viewer, BadFileOnReloadKeepsTheOldSceneAndShowsTheError) {
     EXPECT_EQ(differ, 0u) << "the old scene was not kept";
     EXPECT_GT(red, 40u) << "no error line over the view";
     EXPECT_EQ(redBefore, 0u) << "the measure of the error line sees red in the scene itself";
+}
+
+namespace {
+
+// Pixels of each cascade's line colour (red, green, blue, yellow: src/viewer/panels.cpp's
+// cascadeLineColor), which nothing in cube.gltf on a black background has.
+std::array<size_t, 4> cascadeLinePixels(const Image& image) {
+    std::array<size_t, 4> counts{};
+    for (size_t p = 0; p < image.pixels.size(); p += 3) {
+        const int r = image.pixels[p], g = image.pixels[p + 1], b = image.pixels[p + 2];
+        counts[0] += r > 200 && g < 60 && b < 60;
+        counts[1] += g > 200 && r < 60 && b < 60;
+        counts[2] += b > 200 && r < 60 && g < 140;
+        counts[3] += r > 200 && g > 200 && b < 60;
+    }
+    return counts;
+}
+
+}  // namespace
+
+TEST(Viewer, FrustaViewDrawsTheLinesOfEachCascade) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf", black = "--set render.background=black ";
+    auto linePixels = [&](const std::string& name, const std::string& options) {
+        const Image image = viewerScreenshot(scene, name, black + options, 240, 135, 3);
+        EXPECT_FALSE(image.empty()) << options;
+        return cascadeLinePixels(image);
+    };
+    const std::array<size_t, 4> four = linePixels("frusta4.png", "--view frusta");
+    const std::array<size_t, 4> two = linePixels("frusta2.png", "--view frusta --set shadows.directional.cascadeCount=2");
+    const std::array<size_t, 4> final = linePixels("final_lines.png", "--view final");
+    std::printf("line pixels per cascade: four cascades %zu %zu %zu %zu, two %zu %zu\n", four[0], four[1], four[2], four[3],
+                two[0], two[1]);
+    for (size_t c = 0; c < 4; ++c) {
+        EXPECT_GT(four[c], 5u) << "cascade " << c << ": no lines of its colour in the frusta view";
+        EXPECT_EQ(final[c], 0u) << "cascade " << c << ": its colour is in the final view, which draws no lines";
+    }
+    EXPECT_GT(two[0], 5u);
+    EXPECT_GT(two[1], 5u);
+    EXPECT_EQ(two[2], 0u) << "two cascades, yet a third one's lines";
+    EXPECT_EQ(two[3], 0u) << "two cascades, yet a fourth one's lines";
 }
