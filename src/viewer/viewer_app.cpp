@@ -192,6 +192,7 @@ bool ViewerApp::openScene(const std::string& source) {
         camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
         sceneCamera_ = -1;
         setSceneSavePath(state_, source);
+        if (shownView_ == ViewMode::Frusta) shownView_ = ViewMode::Final;  // switchView observes the new camera
     }
     watcher_ = std::move(watcher);
     sceneSource_ = source;
