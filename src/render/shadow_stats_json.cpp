@@ -46,7 +46,19 @@ std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>
         pancakedDepth.push_back(tile.pancakedDepth);
         texelSize.push_back(tile.wsTexelSize);
     }
-    for (const CascadeSphere& cascade : plan.directional.cascades) splits.push_back(cascade.vsFar);
+    // The culling spheres (x, y, z, radius) and each tile's worldFromClip box, for debug views that draw them.
+    nlohmann::json spheres = nlohmann::json::array(), boxes = nlohmann::json::array();
+    for (const CascadeSphere& cascade : plan.directional.cascades) {
+        splits.push_back(cascade.vsFar);
+        spheres.push_back({cascade.wsCenter.x, cascade.wsCenter.y, cascade.wsCenter.z, cascade.radius});
+    }
+    for (const ShadowTile& tile : plan.directional.tiles) {
+        const glm::mat4 worldFromClip = glm::inverse(tile.clipFromWorld);
+        std::vector<float> matrix(&worldFromClip[0][0], &worldFromClip[0][0] + 16);  // column-major
+        boxes.push_back({{"light", tile.lightSlot}, {"cascade", tile.cascadeIndex}, {"worldFromClip", matrix}});
+    }
+    directional["cullingSpheres"] = spheres;
+    directional["tileBoxes"] = boxes;
     directional["texelSizeMetres"] = texelSize;
     directional["cascadeSplits"] = splits;
     directional["fit"] = plan.directional.tight ? "tight" : "sphere";

@@ -139,7 +139,9 @@ json writeLight(const Light& light) {
                   {"shadowBias", light.shadowBias},
                   {"shadowNormalBias", light.shadowNormalBias},
                   {"shadowNearPlane", light.shadowNearPlane}}}};
-    if (light.shadows == LightShadows::Pcss) out["extras"]["shadowLightSize"] = light.shadowLightSize;
+    // Also an edited size without pcss (a later edit may pick pcss); a default one only with it.
+    if (light.shadows == LightShadows::Pcss || light.shadowLightSize != defaultShadowLightSize(light.type))
+        out["extras"]["shadowLightSize"] = light.shadowLightSize;
     if (light.range > 0.0f && light.type != LightType::Directional) out["range"] = light.range;
     if (light.type == LightType::Spot)
         out["spot"] = {{"innerConeAngle", light.innerConeAngle}, {"outerConeAngle", light.outerConeAngle}};

@@ -22,8 +22,8 @@ double totalGpuMs(const FrameStats& stats) {
 void drawViewControls(PanelContext& c) {
     ViewerState& state = c.state;
     int view = int(state.view);
-    const char* names[] = {"final", "shadow", "cascades", "atlas"};
-    ImGui::Combo("view", &view, names, 4);
+    const char* names[] = {"final", "shadow", "cascades", "atlas", "frusta"};
+    ImGui::Combo("view", &view, names, 5);
     state.view = ViewMode(view);
     const int lights = int(c.renderer.scene().lights.size());
     if (lights > 0) {
@@ -40,12 +40,71 @@ void drawViewControls(PanelContext& c) {
     ImGui::Text("camera at (%.2f, %.2f, %.2f)", p.x, p.y, p.z);
 }
 
+// A path field and a button, the File menu's Open and Save scene.
+bool pathField(const char* label, char* path, size_t size, const char* button) {
+    ImGui::PushID(label);
+    ImGui::SetNextItemWidth(260.0f);
+    bool go = ImGui::InputText(label, path, size, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    go |= ImGui::Button(button);
+    ImGui::PopID();
+    return go && path[0] != '\0';
+}
+
+void drawFileMenu(ViewerState& state) {
+    if (!ImGui::BeginMenuBar()) return;
+    if (ImGui::BeginMenu("File")) {
+        ImGui::TextUnformatted("Open a .gltf / .glb (or drop one on the window):");
+        if (pathField("##open", state.openPath, sizeof state.openPath, "Open")) {
+            state.openRequested = state.openPath;
+            ImGui::CloseCurrentPopup();
+        }
+        if (ImGui::MenuItem("Reload", "R")) state.reloadRequested = true;
+        ImGui::Separator();
+        ImGui::TextUnformatted("Save the scene with its edited shadow extras (.gltf / .glb):");
+        if (pathField("##save", state.sceneSavePath, sizeof state.sceneSavePath, "Save scene")) {
+            state.saveSceneRequested = true;
+            ImGui::CloseCurrentPopup();
+        }
+        ImGui::EndMenu();
+    }
+    ImGui::EndMenuBar();
+}
+
 }  // namespace
+
+void drawErrorLine(const std::string& message) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float height = ImGui::GetTextLineHeight();
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const ImVec2 min(0.0f, display.y - height - 8.0f);
+    draw->AddRectFilled(min, display, IM_COL32(0, 0, 0, 200));
+    draw->AddText(ImVec2(6.0f, min.y + 4.0f), IM_COL32(255, 40, 40, 255), message.c_str());
+}
+
+uint32_t cascadeLineColor(uint32_t cascade) {
+    const uint32_t colors[4] = {IM_COL32(255, 0, 0, 255), IM_COL32(0, 255, 0, 255), IM_COL32(0, 90, 255, 255),
+                                IM_COL32(255, 255, 0, 255)};
+    return colors[cascade % 4];
+}
+
+void drawWorldLines(const std::vector<WorldLine>& lines, const CameraView& view) {
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();  // under the panels
+    const glm::vec2 scale(ImGui::GetIO().DisplaySize.x / float(view.width), ImGui::GetIO().DisplaySize.y / float(view.height));
+    for (const WorldLine& line : lines) {
+        const auto pixels = projectToPixels(view, line.wsFrom, line.wsTo);
+        if (!pixels) continue;
+        const glm::vec2 a = pixels->first * scale, b = pixels->second * scale;
+        const uint32_t color = line.kind == LineKind::ObservedFrustum ? IM_COL32(255, 255, 255, 255) : cascadeLineColor(line.cascade);
+        draw->AddLine(ImVec2(a.x, a.y), ImVec2(b.x, b.y), color, line.kind == LineKind::Box ? 2.0f : 1.0f);
+    }
+}
 
 void drawPanels(PanelContext& c) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380, 560), ImGuiCond_FirstUseEver);
-    if (ImGui::Begin("Penumbra")) {
+    if (ImGui::Begin("Penumbra", nullptr, ImGuiWindowFlags_MenuBar)) {
+        drawFileMenu(c.state);
         ImGui::TextWrapped("%s on %s", c.sceneSource.empty() ? "demo scene" : c.sceneSource.c_str(), c.deviceName.c_str());
         if (!c.state.status.empty()) ImGui::TextWrapped("%s", c.state.status.c_str());
         drawViewControls(c);

@@ -11,6 +11,7 @@
 #include "penumbra/settings.h"
 #include "viewer/atlas_overlay.h"
 #include "viewer/camera_controller.h"
+#include "viewer/cascade_frusta.h"
 
 namespace penumbra::viewer {
 
@@ -26,6 +27,13 @@ struct PanelContext {
 };
 
 void drawPanels(PanelContext& context);
+// One red line at the bottom of the window (a scene that did not load), drawn with or without panels.
+void drawErrorLine(const std::string& message);
+// The frusta view's lines over the image of `view`: boxes and spheres in the cascade's colour
+// (cascadeLineColor), the observed camera's frustum white.
+void drawWorldLines(const std::vector<WorldLine>& lines, const CameraView& view);
+// Cascade 0..3: red, green, blue, yellow (the cascades view's hues, saturated to stand out).
+uint32_t cascadeLineColor(uint32_t cascade);
 void drawStatsPanel(PanelContext& context);
 // The settings inspector: one widget per key of settingKeys() (penumbra/settings_keys.h).
 void drawSettingsInspector(PanelContext& context);

@@ -1,15 +1,18 @@
 #include "viewer/viewer_app.h"
 
 #include <cstdio>
+#include <utility>
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "core/files.h"
+#include "scene/gltf_writer.h"
 #include "penumbra/error.h"
 #include "penumbra/scene_loading.h"
 #include "penumbra/vulkan.h"
 #include "viewer/atlas_overlay.h"
+#include "viewer/cascade_frusta.h"
 #include "viewer/imgui_layer.h"
 #include "viewer/panels.h"
 #include "viewer/presenter.h"
@@ -49,6 +52,36 @@ Scene loadSceneWithWarnings(const std::string& source) {
     return scene;
 }
 
+// The scene file to watch: none for the demo scene and gen: scenes.
+FileWatcher watcherFor(const std::string& source, uint32_t pollMs) {
+    std::error_code error;
+    const bool file = !source.empty() && std::filesystem::is_regular_file(source, error);
+    return FileWatcher(file ? source : std::string(), std::chrono::milliseconds(pollMs));
+}
+
+std::string sceneLabel(const std::string& source) { return source.empty() ? "the demo scene" : source; }
+
+// One line on stdout per scene opened or reloaded, for scripts and tests that follow the viewer.
+void announce(const std::string& message) {
+    std::printf("penumbra-viewer: %s\n", message.c_str());
+    std::fflush(stdout);
+}
+
+// File > Save scene's default: next to a scene file as NAME.edited.gltf, else in the working directory.
+void setSceneSavePath(ViewerState& state, const std::string& source) {
+    std::error_code error;
+    std::filesystem::path path = "penumbra-scene.gltf";
+    if (!source.empty() && std::filesystem::is_regular_file(source, error))
+        path = std::filesystem::path(source).replace_extension(".edited.gltf");
+    std::snprintf(state.sceneSavePath, sizeof state.sceneSavePath, "%s", path.string().c_str());
+}
+
+std::unique_ptr<Renderer> makeRenderer(Device& device, Scene scene) {
+    RendererOptions options;
+    options.warmup = PipelineWarmup::Background;  // a setting change never stalls a frame
+    return std::make_unique<Renderer>(device, std::move(scene), options);
+}
+
 Camera startCamera(const Scene& scene) { return scene.camera ? *scene.camera : autoFramingCamera(scene.wsBounds); }
 
 OutputMode outputOf(ViewMode view) {
@@ -62,6 +95,7 @@ OutputMode outputOf(ViewMode view) {
 ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
     // Bad input first, so it is one line before any window opens.
     userSettings_ = loadUserSettings(options);
+    watcher_ = watcherFor(options.scenePath, options.watchPollMs);  // the stamp before the read: a write during it is seen
     Scene scene = loadSceneWithWarnings(options.scenePath);
     if ((options.view == ViewMode::Shadow || options.view == ViewMode::Cascades) && options.light >= scene.lights.size())
         throw Error("--light " + std::to_string(options.light) + ": the scene has " + std::to_string(scene.lights.size()) +
@@ -103,16 +137,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
                                                             context_->queue, context_->queueFamily, context_->bufferInt64Atomics),
                                        deviceOptions);
     sceneSource_ = options.scenePath;
-    RendererOptions rendererOptions;
-    rendererOptions.warmup = PipelineWarmup::Background;  // a setting change never stalls a frame
-    renderer_ = std::make_unique<Renderer>(*device_, std::move(scene), rendererOptions);
+    renderer_ = makeRenderer(*device_, std::move(scene));
     camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
     settings_ = userSettings_;
     const CameraView view = makeCameraView(camera_->camera(), swapchain_->extent().width, swapchain_->extent().height);
     for (const std::string& warning : applySceneDefaults(settings_, renderer_->scene(), view))
         std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
-    if (!sceneSource_.empty() && std::filesystem::is_regular_file(sceneSource_))
-        sceneTime_ = std::filesystem::last_write_time(sceneSource_);
+    setSceneSavePath(state_, sceneSource_);
+    announce("opened " + sceneLabel(sceneSource_));
 }
 
 ViewerApp::~ViewerApp() {
@@ -128,46 +160,75 @@ ViewerApp::~ViewerApp() {
     glfwTerminate();
 }
 
-// A new scene (File > Open, a dropped file, the file changed on disk): the renderer is made again for
-// it; on failure the old scene stays and the panel says why.
-void ViewerApp::openScene(const std::string& source) {
+// A scene from File > Open, a dropped file, R or a change on disk: a renderer is made for it (before
+// the old one goes, so a scene the GPU cannot take leaves the old one too). Reloading the open scene
+// keeps the camera; another starts at its own camera. The settings and the view stay either way. On
+// failure the old scene stays, and the error goes to stderr and over the view until a load succeeds.
+bool ViewerApp::openScene(const std::string& source) {
+    const bool sameScene = source == sceneSource_;
+    FileWatcher watcher = watcherFor(source, options_.watchPollMs);
     try {
         Scene scene = loadSceneWithWarnings(source);
+        // The old renderer goes first: its queued pipeline builds are dropped, where next to a new
+        // renderer's builds each of its pipelines would wait for one (30 s on lavapipe). A copy of its
+        // scene (the inspector's edits included) rebuilds it if the GPU cannot take the new scene.
+        Scene previous = renderer_->scene();
         renderer_->waitIdle();
-        vkDeviceWaitIdle(context_->device);
-        RendererOptions rendererOptions;
-        rendererOptions.warmup = PipelineWarmup::Background;
+        VIEWER_VK(vkDeviceWaitIdle(context_->device));
         renderer_.reset();
-        renderer_ = std::make_unique<Renderer>(*device_, std::move(scene), rendererOptions);
-        const bool sameScene = source == sceneSource_;
-        if (!sameScene) {
-            camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
-            sceneCamera_ = -1;
+        try {
+            renderer_ = makeRenderer(*device_, std::move(scene));
+        } catch (const Error&) {
+            renderer_ = makeRenderer(*device_, std::move(previous));
+            throw;
         }
-        sceneSource_ = source;
-        sceneTime_ = std::filesystem::is_regular_file(source) ? std::filesystem::last_write_time(source) : sceneTime_;
-        if (state_.light >= renderer_->scene().lights.size()) state_.light = 0;
-        state_.status = "opened " + source;
+    } catch (const Error& error) {
+        state_.sceneError = error.what();
+        state_.status = error.what();
+        std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
+        return false;
+    }
+    if (!sameScene) {
+        camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
+        sceneCamera_ = -1;
+        setSceneSavePath(state_, source);
+        if (shownView_ == ViewMode::Frusta) shownView_ = ViewMode::Final;  // switchView observes the new camera
+    }
+    watcher_ = std::move(watcher);
+    sceneSource_ = source;
+    if (state_.light >= renderer_->scene().lights.size()) state_.light = 0;
+    state_.sceneError.clear();
+    state_.status = (sameScene ? "reloaded " : "opened ") + sceneLabel(source);
+    announce(state_.status);
+    return true;
+}
+
+// Between frames: what the File menu, R and a dropped file asked for, and the watched file's changes.
+void ViewerApp::handleSceneFiles() {
+    if (std::exchange(state_.saveSceneRequested, false)) saveScene(state_.sceneSavePath);
+    std::string open = std::exchange(pendingScene_, std::string());
+    if (open.empty()) open = std::exchange(state_.openRequested, std::string());
+    if (!open.empty()) {
+        openScene(open);
+        return;
+    }
+    const bool changed = watcher_.poll(FileWatcher::Clock::now());
+    if (std::exchange(state_.reloadRequested, false) || changed) openScene(sceneSource_);
+}
+
+// File > Save scene: the scene as it is now (the inspector's edits included) as glTF.
+void ViewerApp::saveScene(const std::string& path) {
+    try {
+        writeGltfScene(renderer_->scene(), path);
     } catch (const Error& error) {
         state_.status = error.what();
         std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
-        if (std::filesystem::is_regular_file(source)) sceneTime_ = std::filesystem::last_write_time(source);
-    }
-}
-
-void ViewerApp::reloadIfChanged() {
-    if (!pendingScene_.empty()) {
-        const std::string path = std::move(pendingScene_);
-        pendingScene_.clear();
-        openScene(path);
         return;
     }
-    const auto now = std::chrono::steady_clock::now();
-    if (sceneSource_.empty() || now - lastReloadCheck_ < std::chrono::milliseconds(500)) return;
-    lastReloadCheck_ = now;
+    state_.status = "saved the scene to " + path;
     std::error_code error;
-    const auto time = std::filesystem::last_write_time(sceneSource_, error);
-    if (!error && time != sceneTime_) openScene(sceneSource_);
+    if (!watcher_.path().empty() && std::filesystem::equivalent(path, watcher_.path(), error))
+        watcher_.markLoaded();  // our own write is what is loaded: no reload
 }
 
 void ViewerApp::onKey(int key, int action, int mods) {
@@ -181,6 +242,7 @@ void ViewerApp::onKey(int key, int action, int mods) {
         case GLFW_KEY_2: state_.view = ViewMode::Shadow; break;
         case GLFW_KEY_3: state_.view = ViewMode::Cascades; break;
         case GLFW_KEY_4: state_.view = ViewMode::Atlas; break;
+        case GLFW_KEY_5: state_.view = ViewMode::Frusta; break;
         case GLFW_KEY_LEFT_BRACKET: if (lights) state_.light = (state_.light + lights - 1) % lights; break;
         case GLFW_KEY_RIGHT_BRACKET: if (lights) state_.light = (state_.light + 1) % lights; break;
         case GLFW_KEY_O:
@@ -190,6 +252,7 @@ void ViewerApp::onKey(int key, int action, int mods) {
         case GLFW_KEY_C: nextSceneCamera(); break;
         case GLFW_KEY_F12: screenshotRequested_ = true; break;
         case GLFW_KEY_P: toggleRecording(); break;
+        case GLFW_KEY_R: state_.reloadRequested = true; break;
         default: break;
     }
 }
@@ -280,6 +343,7 @@ void ViewerApp::collectStats() {
 // One frame: false when the swapchain must be re-made before it can be drawn.
 bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     if (!presenter_->beginFrame()) return false;
+    switchView();
     moveCamera(seconds);
     const VkExtent2D extent = swapchain_->extent();
     const CameraView view = makeCameraView(camera_->camera(), extent.width, extent.height);
@@ -297,6 +361,7 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         atlas_->update(atlas.atlas);
         labels = atlasTileLabels(atlas.stats.shadowStatsJson, renderer_->scene());
     }
+    const std::vector<WorldLine> lines = state_.view == ViewMode::Frusta ? observedCascades(request) : std::vector<WorldLine>();
     const ExternalImage target = presenter_->sceneTarget(request.output != OutputMode::Color);
     renderer_->submitFrame(request, settings_, view, &target);
     collectStats();
@@ -305,7 +370,9 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     PanelContext panels{state_, settings_, *renderer_, *camera_, context_->deviceName, sceneSource_};
     if (state_.view == ViewMode::Atlas && atlas_->ready()) drawAtlasLabels(labels, atlas_->windowRect(extent),
                                                                             glm::vec2(atlas_->width(), atlas_->height()));
+    if (!lines.empty()) drawWorldLines(lines, view);
     if (state_.showPanels) drawPanels(panels);
+    if (!state_.sceneError.empty()) drawErrorLine(state_.sceneError);
     const bool overlay = state_.view == ViewMode::Atlas;
     const bool presented = presenter_->endFrame(
         *imgui_,
@@ -315,6 +382,29 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         screenshot);
     if (!presented) recreateSwapchain();
     return true;
+}
+
+// Into the frusta view the camera is kept as the observed one and the fly camera moves outside; out of
+// it the camera comes back.
+void ViewerApp::switchView() {
+    if (state_.view == shownView_) return;
+    if (state_.view == ViewMode::Frusta) {
+        observed_ = camera_->camera();
+        const float distance = std::min(settings_.shadows.maxDistance, observed_.zFar);
+        camera_->reset(outsideCamera(observed_, distance));
+    } else if (shownView_ == ViewMode::Frusta) {
+        camera_->reset(observed_);
+    }
+    shownView_ = state_.view;
+}
+
+// The observed camera's cascades: a frame planned (and drawn, not shown) from it, for its shadow plan.
+std::vector<WorldLine> ViewerApp::observedCascades(const RenderRequest& request) {
+    RenderRequest planned = request;
+    planned.readback = false;
+    const CameraView observed = makeCameraView(observed_, request.width, request.height);
+    const RenderResult result = renderer_->render(planned, settings_, observed);
+    return cascadeLines(cascadeGeometry(result.stats.shadowStatsJson), observed);
 }
 
 void ViewerApp::recreateSwapchain() {
@@ -343,7 +433,7 @@ int ViewerApp::run() {
         }
         if (uint32_t(width) != swapchain_->extent().width || uint32_t(height) != swapchain_->extent().height)
             recreateSwapchain();
-        reloadIfChanged();
+        handleSceneFiles();
         const auto now = std::chrono::steady_clock::now();
         const float seconds = std::chrono::duration<float>(now - last).count();
         last = now;

@@ -12,6 +12,8 @@
 #include "penumbra/settings.h"
 #include "viewer/camera_controller.h"
 #include "viewer/camera_path.h"
+#include "viewer/cascade_frusta.h"
+#include "viewer/file_watcher.h"
 #include "viewer/viewer_options.h"
 
 struct GLFWwindow;
@@ -31,7 +33,14 @@ struct ViewerState {
     bool showPanels = true;
     std::deque<FrameStats> history;  // the last frames the GPU finished, oldest first
     std::string status;              // the last reload error or saved file, shown in the panel
+    std::string sceneError;          // why the last open / reload failed; shown over the view until one succeeds
     char settingsSavePath[512] = "penumbra-settings.json";  // the inspector's text field
+    // File menu: the paths of its Open and Save scene fields, and what the user asked for this frame
+    // (the app acts on it after the frame).
+    char openPath[512] = "";
+    char sceneSavePath[512] = "penumbra-scene.gltf";
+    std::string openRequested;
+    bool reloadRequested = false, saveSceneRequested = false;
 };
 
 class ViewerApp {
@@ -47,14 +56,17 @@ public:
     void onKey(int key, int action, int mods);
 
 private:
-    void openScene(const std::string& source);
-    void reloadIfChanged();
+    bool openScene(const std::string& source);
+    void handleSceneFiles();
+    void saveScene(const std::string& path);
     bool renderFrame(float seconds, Image* screenshot);
     CameraInput pollCameraInput();
     void moveCamera(float seconds);
     void toggleRecording();
     void collectStats();
     void recreateSwapchain();
+    void switchView();
+    std::vector<WorldLine> observedCascades(const RenderRequest& request);
     void nextSceneCamera();
     void saveScreenshot(const Image& image, const std::string& path);
 
@@ -71,10 +83,11 @@ private:
     Settings userSettings_, settings_;
     ViewerState state_;
     std::string sceneSource_, pendingScene_;
-    std::filesystem::file_time_type sceneTime_{};
-    std::chrono::steady_clock::time_point lastReloadCheck_{};
+    FileWatcher watcher_;  // the scene file, when it is one
     float wheel_ = 0.0f;
     double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+    ViewMode shownView_ = ViewMode::Final;  // the view of the last frame (switchView acts on a change)
+    Camera observed_;                       // the frusta view's observed camera
     int sceneCamera_ = -1;  // -1: the scene's camera, else an index into Scene::cameras
     uint32_t screenshotCount_ = 0;
     bool screenshotRequested_ = false;

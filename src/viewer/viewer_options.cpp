@@ -8,7 +8,7 @@ namespace penumbra::viewer {
 
 namespace {
 
-constexpr const char* kViewNames[] = {"final", "shadow", "cascades", "atlas"};
+constexpr const char* kViewNames[] = {"final", "shadow", "cascades", "atlas", "frusta"};
 
 constexpr const char* kControls = R"(
 Controls:
@@ -17,18 +17,24 @@ Controls:
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
-  1 2 3 4      view: final, shadow term, cascades, atlas overlay; [ / ] previous / next light
+  1 2 3 4 5    view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
+               camera seen from outside (the fly camera moves out; leaving the view brings it back);
+               [ / ] previous / next light
   Tab          show / hide the inspector and stats panels
   F12          save a screenshot (penumbra-viewer-N.png)
   Esc          quit
-The scene file reloads when it changes on disk; drop a .gltf / .glb on the window to open it.)";
+  R            reload the scene file now
+The scene file reloads when it changes on disk (checked every --watch-poll-ms), keeping the camera, the
+settings and the view; a file that does not load leaves the old scene and shows why. Drop a .gltf / .glb
+on the window, or use File > Open, to open another; File > Save scene writes the scene with its edited
+shadow extras as glTF.)";
 
 }  // namespace
 
 const char* viewModeName(ViewMode mode) { return kViewNames[int(mode)]; }
 
 std::optional<ViewMode> parseViewMode(const std::string& name) {
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < 5; ++i)
         if (name == kViewNames[i]) return ViewMode(i);
     return std::nullopt;
 }
@@ -51,14 +57,17 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     app.add_option("--screenshot", options.screenshotPath, "render --frames frames, save the last one as PNG, exit");
     app.add_option("--frames", options.frames, "frames to render before --screenshot (default 5)")
         ->check(CLI::Range(1u, 100000u));
-    app.add_option("--view", view, "first view: final | shadow | cascades | atlas")
-        ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas"}));
+    app.add_option("--view", view, "first view: final | shadow | cascades | atlas | frusta")
+        ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas", "frusta"}));
     app.add_option("--light", options.light, "light (index in KHR_lights_punctual) of the shadow and cascade views");
     app.add_flag("--panels", options.panels, "with --screenshot: show the panels in it too");
     app.add_option("--camera-path", options.cameraPath,
                    "play a recorded camera path (JSON); with --screenshot, frame i of N shows i / (N - 1) of it");
     app.add_option("--record-camera-path", options.recordCameraPath,
                    "record the camera path from the first frame into this JSON file (P stops and starts)");
+    app.add_option("--watch-poll-ms", options.watchPollMs,
+                   "check the scene file for changes every N ms and reload it (0: every frame; default 250)")
+        ->check(CLI::Range(0u, 3600000u));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -8,7 +8,8 @@
 
 namespace penumbra::viewer {
 
-enum class ViewMode { Final, Shadow, Cascades, Atlas };
+// Frusta: the cascades of the camera at the moment the view is entered, seen from an outside camera.
+enum class ViewMode { Final, Shadow, Cascades, Atlas, Frusta };
 
 const char* viewModeName(ViewMode mode);
 std::optional<ViewMode> parseViewMode(const std::string& name);
@@ -28,6 +29,7 @@ struct ViewerOptions {
     bool panels = false;  // --screenshot: keep the panels (hidden by default so the image is the view alone)
     std::string cameraPath;        // --camera-path: play this recorded path (camera_path.h)
     std::string recordCameraPath;  // --record-camera-path: record from the first frame into this file
+    uint32_t watchPollMs = 250;    // --watch-poll-ms: how often the scene file is checked for changes (0: every frame)
 };
 
 // Parses argv. Returns nullopt after printing --help; throws penumbra::Error with one line on a

@@ -1,11 +1,15 @@
 // penumbra-viewer as CI runs it: under Xvfb on lavapipe with the validation layers on (a message makes
 // it exit 1), scripted with --screenshot, and the PNG measured: the window's size, the shadow view
 // against penumbra render --aov shadow for the same camera and size, the atlas overlay.
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <sstream>
 #include <string>
 
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -37,20 +41,47 @@ bool canRunViewer() { return kViewer && std::system("command -v xvfb-run >/dev/n
 #define SKIP_WITHOUT_XVFB()                                                                           \
     if (!canRunViewer()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb)"
 
-// The viewer's screenshot after `frames` frames of `scene` at width x height; fails the test on a
-// non-zero exit (a validation message included).
-Image viewerScreenshot(const std::string& scene, const std::string& name, const std::string& options,
-                       uint32_t width = 320, uint32_t height = 180, uint32_t frames = 5) {
-    const fs::path out = tempPath(name);
-    fs::remove(out);
-    const CliRun run = runProgram(kViewer, scene + " --device cpu --validation --width " + std::to_string(width) +
-                                               " --height " + std::to_string(height) + " --frames " +
-                                               std::to_string(frames) + " --screenshot " + out.string() + " " + options,
-                                  "xvfb-run -a");
+// The scripted viewer's arguments: `frames` frames of `scene` at width x height, the last saved to `out`.
+std::string scriptedArguments(const std::string& scene, const fs::path& out, const std::string& options, uint32_t width,
+                              uint32_t height, uint32_t frames) {
+    return scene + " --device cpu --validation --width " + std::to_string(width) + " --height " + std::to_string(height) +
+           " --frames " + std::to_string(frames) + " --screenshot " + out.string() + " " + options;
+}
+
+// The screenshot of a run; fails the test on a non-zero exit (a validation message included).
+Image screenshotOf(const CliRun& run, const fs::path& out) {
     EXPECT_EQ(run.exitCode, 0) << run.err;
     EXPECT_EQ(run.err.find("validation"), std::string::npos) << run.err;
     if (run.exitCode != 0 || !fs::exists(out)) return Image{};
     return readPng(out.string());
+}
+
+// The viewer's screenshot after `frames` frames of `scene` at width x height.
+Image viewerScreenshot(const std::string& scene, const std::string& name, const std::string& options,
+                       uint32_t width = 320, uint32_t height = 180, uint32_t frames = 5) {
+    const fs::path out = tempPath(name);
+    fs::remove(out);
+    return screenshotOf(runProgram(kViewer, scriptedArguments(scene, out, options, width, height, frames), "xvfb-run -a"), out);
+}
+
+// Runs the viewer under Xvfb with `arguments`, calling `onLine` with each line of its stdout as it
+// comes (the viewer prints one per scene it opens or reloads, and flushes it).
+CliRun runViewerFollowingStdout(const std::string& arguments, const std::function<void(const std::string&)>& onLine) {
+    const fs::path errPath = tempPath("follow_stderr.txt");
+    CliRun run;
+    FILE* pipe = ::popen(("xvfb-run -a " + std::string(kViewer) + " " + arguments + " 2>" + errPath.string()).c_str(), "r");
+    if (!pipe) return run;
+    char line[4096];
+    while (std::fgets(line, sizeof line, pipe)) {
+        run.out += line;
+        onLine(line);
+    }
+    const int status = ::pclose(pipe);
+    if (WIFEXITED(status)) run.exitCode = WEXITSTATUS(status);
+    std::stringstream err;
+    err << std::ifstream(errPath).rdbuf();
+    run.err = err.str();
+    return run;
 }
 
 Image renderedShadowAov(const std::string& scene, uint32_t light, uint32_t width, uint32_t height) {
@@ -239,4 +270,135 @@ TEST(Viewer, BadCameraPathIsOneLineError) {
         EXPECT_EQ(run.err.rfind("penumbra-viewer: camera path " + file.string(), 0), 0u) << run.err;
         EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
     }
+}
+
+namespace {
+
+// Frames of a reload run: the reload comes about 3 frames in.
+constexpr uint32_t kReloadFrames = 12;
+
+// cube.gltf with the ground's base colour set to blue; `wsCameraMove` added to the camera's position.
+std::string editedCubeScene(const glm::vec3& wsCameraMove) {
+    nlohmann::json gltf = nlohmann::json::parse(std::ifstream(kScenes + "cube.gltf"));
+    gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.1, 0.2, 0.9, 1.0};
+    for (nlohmann::json& node : gltf["nodes"])
+        if (node.value("name", "") == "camera")
+            for (int i = 0; i < 3; ++i) node["matrix"][12 + i] = node["matrix"][12 + i].get<float>() + wsCameraMove[i];
+    return gltf.dump();
+}
+
+// Runs the viewer on a copy of cube.gltf and, as soon as it says it opened it, writes `replacement`
+// over the copy; --watch-poll-ms 0 checks the file every frame, so the reload comes a few frames later
+// (the viewer waits until the file's stamp held for two checks), long before the last frame.
+CliRun reloadRun(const std::string& replacement, const fs::path& out, const std::string& options) {
+    const fs::path scene = tempPath("reloaded.gltf");
+    fs::copy_file(kScenes + "cube.gltf", scene, fs::copy_options::overwrite_existing);
+    fs::remove(out);
+    bool written = false;
+    const CliRun run = runViewerFollowingStdout(
+        scriptedArguments(scene.string(), out, "--watch-poll-ms 0 " + options, 240, 135, kReloadFrames), [&](const std::string& line) {
+            if (written || line.find("opened " + scene.string()) == std::string::npos) return;
+            std::ofstream(scene) << replacement;
+            written = true;
+        });
+    EXPECT_TRUE(written) << run.out;
+    return run;
+}
+
+// Sphere-fitted cascades and the hardware shadow raster: a frame's image depends on its camera and
+// scene only, not on the frames before it (what a reload restarts).
+const std::string kRepeatable = "--set shadows.directional.fit=sphere --set shadows.raster=hw --set render.toneMapping=aces";
+
+}  // namespace
+
+TEST(Viewer, ReloadsTheSceneFileWhenItChangesAndKeepsCameraAndSettings) {
+    SKIP_WITHOUT_XVFB();
+    // The new file moves its camera: the viewer keeps the user's, so the image must be the new scene seen
+    // from the old camera, with the settings given at the start (aces tone mapping).
+    const fs::path out = tempPath("reloaded.png");
+    const CliRun run = reloadRun(editedCubeScene(glm::vec3(-3.0f, 2.0f, 1.0f)), out, kRepeatable);
+    const Image reloaded = screenshotOf(run, out);
+    EXPECT_NE(run.out.find("penumbra-viewer: reloaded "), std::string::npos) << run.out;
+    const fs::path expectedScene = writeText("expected.gltf", editedCubeScene(glm::vec3(0.0f)));
+    const Image expected = viewerScreenshot(expectedScene.string(), "expected.png", kRepeatable, 240, 135, kReloadFrames);
+    ASSERT_FALSE(reloaded.empty());
+    ASSERT_EQ(reloaded.pixels.size(), expected.pixels.size());
+    size_t blue = 0;  // cube.gltf's ground is gray
+    for (size_t p = 0; p < reloaded.pixels.size(); p += 3) blue += reloaded.pixels[p + 2] > reloaded.pixels[p] + 40;
+    EXPECT_GT(double(blue) / double(reloaded.pixels.size() / 3), 0.2) << "the blue ground of the changed file is not shown";
+    EXPECT_LT(differingFraction(reloaded, expected), 0.001) << "the reload did not keep the camera or the settings";
+}
+
+TEST(Viewer, BadFileOnReloadKeepsTheOldSceneAndShowsTheError) {
+    SKIP_WITHOUT_XVFB();
+    nlohmann::json bad = nlohmann::json::parse(std::ifstream(kScenes + "cube.gltf"));
+    bad["materials"][0]["extras"]["shadows"] = "sometimes";
+    const fs::path out = tempPath("bad_reload.png");
+    const CliRun run = reloadRun(bad.dump(), out, kRepeatable);
+    const Image kept = screenshotOf(run, out);
+    const Image old = viewerScreenshot(kScenes + "cube.gltf", "old.png", kRepeatable, 240, 135, kReloadFrames);
+    ASSERT_FALSE(kept.empty());
+    ASSERT_EQ(kept.pixels.size(), old.pixels.size());
+    // One line on stderr, the loader's message.
+    EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    EXPECT_NE(run.err.find("sometimes"), std::string::npos) << run.err;
+    // The old scene above the error line; the line's red text at the bottom (24 px) of the window.
+    const uint32_t lineTop = kept.height - 24;
+    size_t differ = 0, red = 0, redBefore = 0;
+    for (uint32_t y = 0; y < kept.height; ++y)
+        for (uint32_t x = 0; x < kept.width; ++x) {
+            const size_t p = (size_t(y) * kept.width + x) * 3;
+            auto isRed = [&](const Image& i) {  // the text's red, sRGB-encoded by the swapchain
+                return i.pixels[p] > 180 && i.pixels[p] > i.pixels[p + 1] + 60 && i.pixels[p] > i.pixels[p + 2] + 60;
+            };
+            const bool same = kept.pixels[p] == old.pixels[p] && kept.pixels[p + 1] == old.pixels[p + 1] &&
+                              kept.pixels[p + 2] == old.pixels[p + 2];
+            if (y < lineTop) differ += !same;
+            else red += isRed(kept), redBefore += isRed(old);
+        }
+    EXPECT_EQ(differ, 0u) << "the old scene was not kept";
+    EXPECT_GT(red, 40u) << "no error line over the view";
+    EXPECT_EQ(redBefore, 0u) << "the measure of the error line sees red in the scene itself";
+}
+
+namespace {
+
+// Pixels of each cascade's line colour (red, green, blue, yellow: src/viewer/panels.cpp's
+// cascadeLineColor), which nothing in cube.gltf on a black background has.
+std::array<size_t, 4> cascadeLinePixels(const Image& image) {
+    std::array<size_t, 4> counts{};
+    for (size_t p = 0; p < image.pixels.size(); p += 3) {
+        const int r = image.pixels[p], g = image.pixels[p + 1], b = image.pixels[p + 2];
+        counts[0] += r > 200 && g < 60 && b < 60;
+        counts[1] += g > 200 && r < 60 && b < 60;
+        counts[2] += b > 200 && r < 60 && g < 140;
+        counts[3] += r > 200 && g > 200 && b < 60;
+    }
+    return counts;
+}
+
+}  // namespace
+
+TEST(Viewer, FrustaViewDrawsTheLinesOfEachCascade) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf", black = "--set render.background=black ";
+    auto linePixels = [&](const std::string& name, const std::string& options) {
+        const Image image = viewerScreenshot(scene, name, black + options, 240, 135, 3);
+        EXPECT_FALSE(image.empty()) << options;
+        return cascadeLinePixels(image);
+    };
+    const std::array<size_t, 4> four = linePixels("frusta4.png", "--view frusta");
+    const std::array<size_t, 4> two = linePixels("frusta2.png", "--view frusta --set shadows.directional.cascadeCount=2");
+    const std::array<size_t, 4> final = linePixels("final_lines.png", "--view final");
+    std::printf("line pixels per cascade: four cascades %zu %zu %zu %zu, two %zu %zu\n", four[0], four[1], four[2], four[3],
+                two[0], two[1]);
+    for (size_t c = 0; c < 4; ++c) {
+        EXPECT_GT(four[c], 5u) << "cascade " << c << ": no lines of its colour in the frusta view";
+        EXPECT_EQ(final[c], 0u) << "cascade " << c << ": its colour is in the final view, which draws no lines";
+    }
+    EXPECT_GT(two[0], 5u);
+    EXPECT_GT(two[1], 5u);
+    EXPECT_EQ(two[2], 0u) << "two cascades, yet a third one's lines";
+    EXPECT_EQ(two[3], 0u) << "two cascades, yet a fourth one's lines";
 }
