@@ -6,6 +6,7 @@
 #include <imgui.h>
 #include <nlohmann/json.hpp>
 
+#include "viewer/scene_document.h"
 #include "viewer/viewer_app.h"
 
 namespace penumbra::viewer {
@@ -51,19 +52,19 @@ bool pathField(const char* label, char* path, size_t size, const char* button) {
     return go && path[0] != '\0';
 }
 
-void drawFileMenu(ViewerState& state) {
+void drawFileMenu(ViewerState& state, SceneDocument& document) {
     if (!ImGui::BeginMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
         ImGui::TextUnformatted("Open a .gltf / .glb (or drop one on the window):");
         if (pathField("##open", state.openPath, sizeof state.openPath, "Open")) {
-            state.openRequested = state.openPath;
+            document.requestOpen(state.openPath);
             ImGui::CloseCurrentPopup();
         }
-        if (ImGui::MenuItem("Reload", "R")) state.reloadRequested = true;
+        if (ImGui::MenuItem("Reload", "R")) document.requestReload();
         ImGui::Separator();
         ImGui::TextUnformatted("Save the scene with its edited shadow extras (.gltf / .glb):");
         if (pathField("##save", state.sceneSavePath, sizeof state.sceneSavePath, "Save scene")) {
-            state.saveSceneRequested = true;
+            document.requestSave(state.sceneSavePath);
             ImGui::CloseCurrentPopup();
         }
         ImGui::EndMenu();
@@ -104,8 +105,8 @@ void drawPanels(PanelContext& c) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380, 560), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Penumbra", nullptr, ImGuiWindowFlags_MenuBar)) {
-        drawFileMenu(c.state);
-        ImGui::TextWrapped("%s on %s", c.sceneSource.empty() ? "demo scene" : c.sceneSource.c_str(), c.deviceName.c_str());
+        drawFileMenu(c.state, c.document);
+        ImGui::TextWrapped("%s on %s", c.document.label().c_str(), c.deviceName.c_str());
         if (!c.state.status.empty()) ImGui::TextWrapped("%s", c.state.status.c_str());
         drawViewControls(c);
         if (ImGui::CollapsingHeader("Settings", ImGuiTreeNodeFlags_DefaultOpen)) drawSettingsInspector(c);

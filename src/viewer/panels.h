@@ -16,6 +16,7 @@
 namespace penumbra::viewer {
 
 struct ViewerState;
+class SceneDocument;
 
 struct PanelContext {
     ViewerState& state;
@@ -23,7 +24,7 @@ struct PanelContext {
     Renderer& renderer;  // scene edits go through its setters
     CameraController& camera;
     const std::string& deviceName;
-    const std::string& sceneSource;
+    SceneDocument& document;  // File > Open, Reload, Save scene go to it
 };
 
 void drawPanels(PanelContext& context);

@@ -7,7 +7,6 @@
 #include <imgui.h>
 
 #include "core/files.h"
-#include "scene/gltf_writer.h"
 #include "penumbra/error.h"
 #include "penumbra/scene_loading.h"
 #include "penumbra/vulkan.h"
@@ -26,6 +25,11 @@ namespace {
 constexpr size_t kStatsHistory = 240;
 
 ViewerApp& appOf(GLFWwindow* window) { return *static_cast<ViewerApp*>(glfwGetWindowUserPointer(window)); }
+
+// File > Save scene's field starts at the document's default.
+void setSceneSavePath(ViewerState& state, const SceneDocument& document) {
+    std::snprintf(state.sceneSavePath, sizeof state.sceneSavePath, "%s", document.defaultSavePath().c_str());
+}
 
 void installCallbacks(GLFWwindow* window) {
     glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) {
@@ -46,34 +50,10 @@ Settings loadUserSettings(const ViewerOptions& options) {
     return settings;
 }
 
-Scene loadSceneWithWarnings(const std::string& source) {
-    Scene scene = loadScene(source);
-    for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
-    return scene;
-}
-
-// The scene file to watch: none for the demo scene and gen: scenes.
-FileWatcher watcherFor(const std::string& source, uint32_t pollMs) {
-    std::error_code error;
-    const bool file = !source.empty() && std::filesystem::is_regular_file(source, error);
-    return FileWatcher(file ? source : std::string(), std::chrono::milliseconds(pollMs));
-}
-
-std::string sceneLabel(const std::string& source) { return source.empty() ? "the demo scene" : source; }
-
 // One line on stdout per scene opened or reloaded, for scripts and tests that follow the viewer.
 void announce(const std::string& message) {
     std::printf("penumbra-viewer: %s\n", message.c_str());
     std::fflush(stdout);
-}
-
-// File > Save scene's default: next to a scene file as NAME.edited.gltf, else in the working directory.
-void setSceneSavePath(ViewerState& state, const std::string& source) {
-    std::error_code error;
-    std::filesystem::path path = "penumbra-scene.gltf";
-    if (!source.empty() && std::filesystem::is_regular_file(source, error))
-        path = std::filesystem::path(source).replace_extension(".edited.gltf");
-    std::snprintf(state.sceneSavePath, sizeof state.sceneSavePath, "%s", path.string().c_str());
 }
 
 std::unique_ptr<Renderer> makeRenderer(Device& device, Scene scene) {
@@ -81,8 +61,6 @@ std::unique_ptr<Renderer> makeRenderer(Device& device, Scene scene) {
     options.warmup = PipelineWarmup::Background;  // a setting change never stalls a frame
     return std::make_unique<Renderer>(device, std::move(scene), options);
 }
-
-Camera startCamera(const Scene& scene) { return scene.camera ? *scene.camera : autoFramingCamera(scene.wsBounds); }
 
 OutputMode outputOf(ViewMode view) {
     if (view == ViewMode::Shadow) return OutputMode::ShadowAov;
@@ -92,11 +70,11 @@ OutputMode outputOf(ViewMode view) {
 
 }  // namespace
 
-ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
+ViewerApp::ViewerApp(const ViewerOptions& options)
+    : options_(options), document_(options.scenePath, options.watchPollMs) {
     // Bad input first, so it is one line before any window opens.
     userSettings_ = loadUserSettings(options);
-    watcher_ = watcherFor(options.scenePath, options.watchPollMs);  // the stamp before the read: a write during it is seen
-    Scene scene = loadSceneWithWarnings(options.scenePath);
+    Scene scene = document_.loadFirst();
     if ((options.view == ViewMode::Shadow || options.view == ViewMode::Cascades) && options.light >= scene.lights.size())
         throw Error("--light " + std::to_string(options.light) + ": the scene has " + std::to_string(scene.lights.size()) +
                     " lights");
@@ -136,15 +114,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
     device_ = std::make_unique<Device>(externalVulkanDevice(context_->instance, context_->physicalDevice, context_->device,
                                                             context_->queue, context_->queueFamily, context_->bufferInt64Atomics),
                                        deviceOptions);
-    sceneSource_ = options.scenePath;
     renderer_ = makeRenderer(*device_, std::move(scene));
     camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
     settings_ = userSettings_;
     const CameraView view = makeCameraView(camera_->camera(), swapchain_->extent().width, swapchain_->extent().height);
     for (const std::string& warning : applySceneDefaults(settings_, renderer_->scene(), view))
         std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
-    setSceneSavePath(state_, sceneSource_);
-    announce("opened " + sceneLabel(sceneSource_));
+    setSceneSavePath(state_, document_);
+    announce("opened " + document_.label());
 }
 
 ViewerApp::~ViewerApp() {
@@ -160,75 +137,40 @@ ViewerApp::~ViewerApp() {
     glfwTerminate();
 }
 
-// A scene from File > Open, a dropped file, R or a change on disk: a renderer is made for it (before
-// the old one goes, so a scene the GPU cannot take leaves the old one too). Reloading the open scene
-// keeps the camera; another starts at its own camera. The settings and the view stay either way. On
-// failure the old scene stays, and the error goes to stderr and over the view until a load succeeds.
-bool ViewerApp::openScene(const std::string& source) {
-    const bool sameScene = source == sceneSource_;
-    FileWatcher watcher = watcherFor(source, options_.watchPollMs);
+// The renderer's part of opening a scene: a renderer is made for it (before the old one goes, so a
+// scene the GPU cannot take leaves the old one too). The old renderer goes first: its queued pipeline
+// builds are dropped, where next to a new renderer's builds each of its pipelines would wait for one
+// (30 s on lavapipe). A copy of its scene (the inspector's edits included) rebuilds it if the GPU
+// cannot take the new scene; the error goes on to SceneDocument, which keeps the old source.
+void ViewerApp::installScene(Scene&& scene) {
+    Scene previous = renderer_->scene();
+    renderer_->waitIdle();
+    VIEWER_VK(vkDeviceWaitIdle(context_->device));
+    renderer_.reset();
     try {
-        Scene scene = loadSceneWithWarnings(source);
-        // The old renderer goes first: its queued pipeline builds are dropped, where next to a new
-        // renderer's builds each of its pipelines would wait for one (30 s on lavapipe). A copy of its
-        // scene (the inspector's edits included) rebuilds it if the GPU cannot take the new scene.
-        Scene previous = renderer_->scene();
-        renderer_->waitIdle();
-        VIEWER_VK(vkDeviceWaitIdle(context_->device));
-        renderer_.reset();
-        try {
-            renderer_ = makeRenderer(*device_, std::move(scene));
-        } catch (const Error&) {
-            renderer_ = makeRenderer(*device_, std::move(previous));
-            throw;
-        }
-    } catch (const Error& error) {
-        state_.sceneError = error.what();
-        state_.status = error.what();
-        std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
-        return false;
+        renderer_ = makeRenderer(*device_, std::move(scene));
+    } catch (const Error&) {
+        renderer_ = makeRenderer(*device_, std::move(previous));
+        throw;
     }
-    if (!sameScene) {
-        camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
+}
+
+// Between frames: what the File menu, R and a dropped file asked of the document, and the watched
+// file's changes. Another scene starts at its own camera; the settings and the view stay.
+void ViewerApp::handleSceneFiles() {
+    const std::optional<SceneEvent> event = document_.update(FileWatcher::Clock::now(), renderer_->scene(),
+                                                             [this](Scene&& scene) { installScene(std::move(scene)); });
+    if (!event) return;
+    state_.status = event->message;
+    if (!event->opened) return;
+    if (event->camera) {
+        camera_ = std::make_unique<CameraController>(*event->camera, renderer_->scene().wsBounds);
         sceneCamera_ = -1;
-        setSceneSavePath(state_, source);
+        setSceneSavePath(state_, document_);
         if (shownView_ == ViewMode::Frusta) shownView_ = ViewMode::Final;  // switchView observes the new camera
     }
-    watcher_ = std::move(watcher);
-    sceneSource_ = source;
     if (state_.light >= renderer_->scene().lights.size()) state_.light = 0;
-    state_.sceneError.clear();
-    state_.status = (sameScene ? "reloaded " : "opened ") + sceneLabel(source);
-    announce(state_.status);
-    return true;
-}
-
-// Between frames: what the File menu, R and a dropped file asked for, and the watched file's changes.
-void ViewerApp::handleSceneFiles() {
-    if (std::exchange(state_.saveSceneRequested, false)) saveScene(state_.sceneSavePath);
-    std::string open = std::exchange(pendingScene_, std::string());
-    if (open.empty()) open = std::exchange(state_.openRequested, std::string());
-    if (!open.empty()) {
-        openScene(open);
-        return;
-    }
-    const bool changed = watcher_.poll(FileWatcher::Clock::now());
-    if (std::exchange(state_.reloadRequested, false) || changed) openScene(sceneSource_);
-}
-
-// File > Save scene: the scene as it is now (the inspector's edits included) as glTF.
-void ViewerApp::saveScene(const std::string& path) {
-    try {
-        writeGltfScene(renderer_->scene(), path);
-    } catch (const Error& error) {
-        state_.status = error.what();
-        std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
-        return;
-    }
-    state_.status = "saved the scene to " + path;
-    std::error_code error;
-    if (!watcher_.path().empty() && std::filesystem::equivalent(path, watcher_.path(), error))
-        watcher_.markLoaded();  // our own write is what is loaded: no reload
+    announce(event->message);
 }
 
 void ViewerApp::onKey(int key, int action, int mods) {
@@ -252,7 +194,7 @@ void ViewerApp::onKey(int key, int action, int mods) {
         case GLFW_KEY_C: nextSceneCamera(); break;
         case GLFW_KEY_F12: screenshotRequested_ = true; break;
         case GLFW_KEY_P: toggleRecording(); break;
-        case GLFW_KEY_R: state_.reloadRequested = true; break;
+        case GLFW_KEY_R: document_.requestReload(); break;
         default: break;
     }
 }
@@ -367,12 +309,12 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     collectStats();
 
     imgui_->newFrame();
-    PanelContext panels{state_, settings_, *renderer_, *camera_, context_->deviceName, sceneSource_};
+    PanelContext panels{state_, settings_, *renderer_, *camera_, context_->deviceName, document_};
     if (state_.view == ViewMode::Atlas && atlas_->ready()) drawAtlasLabels(labels, atlas_->windowRect(extent),
                                                                             glm::vec2(atlas_->width(), atlas_->height()));
     if (!lines.empty()) drawWorldLines(lines, view);
     if (state_.showPanels) drawPanels(panels);
-    if (!state_.sceneError.empty()) drawErrorLine(state_.sceneError);
+    if (!document_.error().empty()) drawErrorLine(document_.error());
     const bool overlay = state_.view == ViewMode::Atlas;
     const bool presented = presenter_->endFrame(
         *imgui_,

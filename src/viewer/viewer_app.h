@@ -14,6 +14,7 @@
 #include "viewer/camera_path.h"
 #include "viewer/cascade_frusta.h"
 #include "viewer/file_watcher.h"
+#include "viewer/scene_document.h"
 #include "viewer/viewer_options.h"
 
 struct GLFWwindow;
@@ -33,14 +34,11 @@ struct ViewerState {
     bool showPanels = true;
     std::deque<FrameStats> history;  // the last frames the GPU finished, oldest first
     std::string status;              // the last reload error or saved file, shown in the panel
-    std::string sceneError;          // why the last open / reload failed; shown over the view until one succeeds
     char settingsSavePath[512] = "penumbra-settings.json";  // the inspector's text field
-    // File menu: the paths of its Open and Save scene fields, and what the user asked for this frame
-    // (the app acts on it after the frame).
+    // File menu: the paths of its Open and Save scene fields (what they ask goes to the SceneDocument,
+    // acted on after the frame).
     char openPath[512] = "";
     char sceneSavePath[512] = "penumbra-scene.gltf";
-    std::string openRequested;
-    bool reloadRequested = false, saveSceneRequested = false;
 };
 
 class ViewerApp {
@@ -52,13 +50,12 @@ public:
 
     // GLFW callbacks' targets.
     void onScroll(double ticks) { wheel_ += float(ticks); }
-    void onDrop(const std::string& path) { pendingScene_ = path; }
+    void onDrop(const std::string& path) { document_.requestOpen(path); }
     void onKey(int key, int action, int mods);
 
 private:
-    bool openScene(const std::string& source);
+    void installScene(Scene&& scene);
     void handleSceneFiles();
-    void saveScene(const std::string& path);
     bool renderFrame(float seconds, Image* screenshot);
     CameraInput pollCameraInput();
     void moveCamera(float seconds);
@@ -71,6 +68,7 @@ private:
     void saveScreenshot(const Image& image, const std::string& path);
 
     ViewerOptions options_;
+    SceneDocument document_;  // the scene file: open, reload, save, the last error
     GLFWwindow* window_ = nullptr;
     std::unique_ptr<VulkanContext> context_;
     std::unique_ptr<Swapchain> swapchain_;
@@ -82,8 +80,6 @@ private:
     std::unique_ptr<CameraController> camera_;
     Settings userSettings_, settings_;
     ViewerState state_;
-    std::string sceneSource_, pendingScene_;
-    FileWatcher watcher_;  // the scene file, when it is one
     float wheel_ = 0.0f;
     double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
     ViewMode shownView_ = ViewMode::Final;  // the view of the last frame (switchView acts on a change)
