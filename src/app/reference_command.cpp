@@ -13,20 +13,6 @@
 
 namespace penumbra {
 
-namespace {
-
-ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view, uint32_t softSamples) {
-    ReferenceOptions options;
-    // The rasterizer's shadow distance: maxDistance, or the camera's far plane when nearer (seed 000 §3.6).
-    options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
-    options.distanceFade = settings.shadows.distanceFade;
-    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
-    options.softSamples = softSamples;
-    return options;
-}
-
-}  // namespace
-
 int runReferenceCommand(const RenderOptions& options) {
     checkWritable(options.outputPath);
     checkWritable(options.maskPath);

@@ -196,6 +196,15 @@ private:
 
 }  // namespace
 
+ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view, uint32_t softSamples) {
+    ReferenceOptions options;
+    options.maxShadowDistance = std::min(settings.shadows.maxDistance, view.zFar);
+    options.distanceFade = settings.shadows.distanceFade;
+    options.squaredFade = settings.shadows.fadeMode == ShadowFadeMode::Squared;
+    options.softSamples = softSamples;
+    return options;
+}
+
 ReferenceImages traceReferenceShadow(const Scene& scene, const CameraView& view, uint32_t lightIndex,
                                      bool showProgress, const ReferenceOptions& options) {
     const Light& light = shadowedLight(scene, lightIndex);
@@ -207,15 +216,17 @@ ReferenceImages traceReferenceShadow(const Scene& scene, const CameraView& view,
     std::vector<PixelSample> samples(size_t(width) * height);
 
     Progress progress(showProgress, height);
+    auto cancelled = [&] { return options.cancel && options.cancel->load(); };
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, height), [&](const tbb::blocked_range<uint32_t>& rows) {
-        for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
+        for (uint32_t y = rows.begin(); y != rows.end() && !cancelled(); ++y) {
             for (uint32_t x = 0; x < width; ++x)
                 result.shadow.at(x, y) = tracer.tracePixel(x, y, samples[size_t(y) * width + x]);
         }
         progress.rowsDone(uint32_t(rows.size()));
+        if (options.rowsDone) options.rowsDone->fetch_add(uint32_t(rows.size()));
     });
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, height), [&](const tbb::blocked_range<uint32_t>& rows) {
-        for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
+        for (uint32_t y = rows.begin(); y != rows.end() && !cancelled(); ++y) {
             for (uint32_t x = 0; x < width; ++x) {
                 const PixelSample& s = samples[size_t(y) * width + x];
                 if (s.hit && s.surfaceValid && tracer.continuousWithNeighbours(samples, x, y))

@@ -2,12 +2,14 @@
 // Ray-traced ground truth for the `--aov shadow` image (DESIGN.md "Images and their conventions"):
 // one camera ray per pixel centre with the rasterizer's camera convention, one shadow ray from the
 // visible surface to the light, and a mask of the pixels where a comparison is meaningful.
+#include <atomic>
 #include <cstdint>
 #include <limits>
 
 #include "penumbra/image.h"
 #include "penumbra/camera.h"
 #include "penumbra/scene.h"
+#include "penumbra/settings.h"
 
 namespace penumbra {
 
@@ -34,7 +36,16 @@ struct ReferenceOptions {
     // shadowLightSize (area_light.h) and each pixel's shadow term is the fraction of N rays to it that
     // reach it: the truth for pcss shadows (penumbra reference --soft N).
     uint32_t softSamples = 0;
+    // For a caller on another thread (the viewer's reference view): the rows traced so far are added
+    // to *rowsDone (view.height in all), and once *cancel is true the remaining rows are
+    // skipped (the result is then incomplete: discard it). Either may be null.
+    std::atomic<uint32_t>* rowsDone = nullptr;
+    const std::atomic<bool>* cancel = nullptr;
 };
+
+// The options that match the rasterizer's shadow term for `settings` and `view`: its shadow distance
+// (maxDistance, or the camera's far plane when nearer, seed 000 §3.6) and its distance fade.
+ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view, uint32_t softSamples);
 
 // Traces light `lightIndex`'s shadow as seen by `view`. A pixel is valid when all of these hold:
 // - its camera ray hits a visible surface;

@@ -1,12 +1,9 @@
 #include "viewer/atlas_overlay.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include <nlohmann/json.hpp>
 
-#include "viewer/presenter.h"
-#include "viewer/vulkan_context.h"
 
 namespace penumbra::viewer {
 
@@ -47,80 +44,6 @@ std::vector<AtlasTileLabel> atlasTileLabels(const std::string& shadowStatsJson, 
         }
     }
     return labels;
-}
-
-AtlasOverlay::AtlasOverlay(VulkanContext& context) : context_(context) {}
-
-AtlasOverlay::~AtlasOverlay() { release(); }
-
-void AtlasOverlay::release() {
-    if (image_) vkDestroyImage(context_.device, image_, nullptr);
-    if (imageMemory_) vkFreeMemory(context_.device, imageMemory_, nullptr);
-    if (staging_) vkDestroyBuffer(context_.device, staging_, nullptr);
-    if (stagingMemory_) vkFreeMemory(context_.device, stagingMemory_, nullptr);
-    image_ = VK_NULL_HANDLE;
-    imageMemory_ = VK_NULL_HANDLE;
-    staging_ = VK_NULL_HANDLE;
-    stagingMemory_ = VK_NULL_HANDLE;
-}
-
-void AtlasOverlay::update(const Image& atlas) {
-    if (atlas.width == 0 || atlas.height == 0 || atlas.channels != 1) return;
-    VIEWER_VK(vkQueueWaitIdle(context_.queue));  // a debug view: the frames in flight may still read the last copy
-    if (atlas.width != width_ || atlas.height != height_) {
-        release();
-        width_ = atlas.width;
-        height_ = atlas.height;
-        image_ = context_.createImage(VK_FORMAT_R8G8B8A8_UNORM, {width_, height_},
-                                      VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &imageMemory_);
-        staging_ = context_.createHostBuffer(VkDeviceSize(width_) * height_ * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                             &stagingMemory_);
-    }
-    void* mapped = nullptr;
-    VIEWER_VK(vkMapMemory(context_.device, stagingMemory_, 0, VK_WHOLE_SIZE, 0, &mapped));
-    auto* rgba = static_cast<uint8_t*>(mapped);
-    for (size_t p = 0; p < atlas.pixels.size(); ++p) {
-        std::memset(rgba + p * 4, atlas.pixels[p], 3);
-        rgba[p * 4 + 3] = 255;
-    }
-    vkUnmapMemory(context_.device, stagingMemory_);
-    uploadPending_ = true;
-}
-
-glm::vec4 AtlasOverlay::windowRect(VkExtent2D extent) const {
-    const float margin = 8.0f;
-    const float scale = std::min({0.45f * float(extent.height) / float(height_),
-                                  (float(extent.width) - 2.0f * margin) / float(width_), 1.0f});
-    const float w = float(width_) * scale, h = float(height_) * scale;
-    return {margin, float(extent.height) - margin - h, margin + w, float(extent.height) - margin};
-}
-
-void AtlasOverlay::record(VkCommandBuffer commands, VkImage swapchainImage, VkExtent2D extent) {
-    if (!ready()) return;
-    if (uploadPending_) {
-        colorImageBarrier(commands, image_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = {width_, height_, 1};
-        vkCmdCopyBufferToImage(commands, staging_, image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-        colorImageBarrier(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                          VK_ACCESS_2_TRANSFER_READ_BIT);
-        uploadPending_ = false;
-    }
-    const glm::vec4 rect = windowRect(extent);
-    VkImageBlit blit{};
-    blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(width_), int32_t(height_), 1};
-    blit.dstOffsets[0] = {int32_t(rect.x), int32_t(rect.y), 0};
-    blit.dstOffsets[1] = {int32_t(rect.z), int32_t(rect.w), 1};
-    // The scene copy wrote the swapchain image just before: order the blit after it.
-    colorImageBarrier(commands, swapchainImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    vkCmdBlitImage(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swapchainImage,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
 }
 
 }  // namespace penumbra::viewer

@@ -23,8 +23,9 @@ double totalGpuMs(const FrameStats& stats) {
 void drawViewControls(PanelContext& c) {
     ViewerState& state = c.state;
     int view = int(state.view);
-    const char* names[] = {"final", "shadow", "cascades", "atlas", "frusta"};
-    ImGui::Combo("view", &view, names, 5);
+    const char* names[kViewModes];
+    for (int i = 0; i < kViewModes; ++i) names[i] = viewModeName(ViewMode(i));
+    ImGui::Combo("view", &view, names, kViewModes);
     state.view = ViewMode(view);
     const int lights = int(c.renderer.scene().lights.size());
     if (lights > 0) {
@@ -157,6 +158,31 @@ void drawStatsPanel(PanelContext& c) {
     }
     for (const std::string& warning : last.warnings) ImGui::TextWrapped("warning: %s", warning.c_str());
     ImGui::End();
+}
+
+bool drawReferencePanel(ReferenceComparison& comparison, bool showPanels) {
+    const ReferenceComparison::State state = comparison.state();
+    if (state == ReferenceComparison::State::Ready && !showPanels) return false;  // the picture alone
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y - 8.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowSize(ImVec2(std::min(display.x - 16.0f, 360.0f), 0.0f), ImGuiCond_Always);
+    bool pressed = false;
+    if (ImGui::Begin("Reference", nullptr, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize)) {
+        if (state == ReferenceComparison::State::Tracing) {
+            ImGui::ProgressBar(comparison.progress(), ImVec2(-1.0f, 0.0f), "tracing the reference");
+        } else if (state == ReferenceComparison::State::Ready) {
+            const CompareMetrics& m = comparison.metrics();
+            ImGui::Text("misclassified %.3f %% of %llu valid pixels", m.misclassifiedPercent,
+                        static_cast<unsigned long long>(m.validPixels));
+            ImGui::Text("false shadow (red) %.3f %%, false lit (cyan) %.3f %%", m.falseShadowPercent, m.falseLitPercent);
+            pressed = ImGui::Button("Trace again (T)");
+        } else {
+            if (state == ReferenceComparison::State::Failed) ImGui::TextWrapped("%s", comparison.error().c_str());
+            pressed = ImGui::Button("Compare with the ray-traced reference (T)");
+        }
+    }
+    ImGui::End();
+    return pressed;
 }
 
 void drawAtlasLabels(const std::vector<AtlasTileLabel>& labels, const glm::vec4& windowRect, const glm::vec2& atlasSize) {

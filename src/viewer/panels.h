@@ -12,6 +12,7 @@
 #include "viewer/atlas_overlay.h"
 #include "viewer/camera_controller.h"
 #include "viewer/cascade_frusta.h"
+#include "viewer/reference_view.h"
 
 namespace penumbra::viewer {
 
@@ -36,6 +37,9 @@ void drawWorldLines(const std::vector<WorldLine>& lines, const CameraView& view)
 // Cascade 0..3: red, green, blue, yellow (the cascades view's hues, saturated to stand out).
 uint32_t cascadeLineColor(uint32_t cascade);
 void drawStatsPanel(PanelContext& context);
+// The reference view's window: until a comparison is shown, its button (true when pressed), its
+// progress bar or its error; over a finished picture (with the panels) the metrics and the colours' key.
+bool drawReferencePanel(ReferenceComparison& comparison, bool showPanels);
 // The settings inspector: one widget per key of settingKeys() (penumbra/settings_keys.h).
 void drawSettingsInspector(PanelContext& context);
 void drawSceneInspector(PanelContext& context);

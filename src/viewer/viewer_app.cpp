@@ -11,6 +11,7 @@
 #include "penumbra/scene_loading.h"
 #include "penumbra/vulkan.h"
 #include "viewer/atlas_overlay.h"
+#include "viewer/image_overlay.h"
 #include "viewer/cascade_frusta.h"
 #include "viewer/imgui_layer.h"
 #include "viewer/panels.h"
@@ -75,7 +76,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     // Bad input first, so it is one line before any window opens.
     userSettings_ = loadUserSettings(options);
     Scene scene = document_.loadFirst();
-    if ((options.view == ViewMode::Shadow || options.view == ViewMode::Cascades) && options.light >= scene.lights.size())
+    const bool oneLight = options.view == ViewMode::Shadow || options.view == ViewMode::Cascades || options.view == ViewMode::Reference;
+    if (oneLight && options.light >= scene.lights.size())
         throw Error("--light " + std::to_string(options.light) + ": the scene has " + std::to_string(scene.lights.size()) +
                     " lights");
     if (!options.cameraPath.empty()) {
@@ -108,7 +110,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     swapchain_->recreate(uint32_t(width), uint32_t(height));
     presenter_ = std::make_unique<Presenter>(*context_, *swapchain_);
     imgui_ = std::make_unique<ImGuiLayer>(*context_, window_, *swapchain_, presenter_->commandPool());
-    atlas_ = std::make_unique<AtlasOverlay>(*context_);
+    atlas_ = std::make_unique<ImageOverlay>(*context_, ImageOverlay::Placement::BottomLeft);
+    referenceOverlay_ = std::make_unique<ImageOverlay>(*context_, ImageOverlay::Placement::Window);
     DeviceOptions deviceOptions;
     deviceOptions.framesInFlight = Presenter::kFramesInFlight;
     device_ = std::make_unique<Device>(externalVulkanDevice(context_->instance, context_->physicalDevice, context_->device,
@@ -128,7 +131,9 @@ ViewerApp::~ViewerApp() {
     if (renderer_) renderer_->waitIdle();
     renderer_.reset();
     device_.reset();
+    reference_.clear();
     atlas_.reset();
+    referenceOverlay_.reset();
     imgui_.reset();
     presenter_.reset();
     swapchain_.reset();
@@ -170,6 +175,7 @@ void ViewerApp::handleSceneFiles() {
         if (shownView_ == ViewMode::Frusta) shownView_ = ViewMode::Final;  // switchView observes the new camera
     }
     if (state_.light >= renderer_->scene().lights.size()) state_.light = 0;
+    reference_.clear();  // of the old scene
     announce(event->message);
 }
 
@@ -185,6 +191,11 @@ void ViewerApp::onKey(int key, int action, int mods) {
         case GLFW_KEY_3: state_.view = ViewMode::Cascades; break;
         case GLFW_KEY_4: state_.view = ViewMode::Atlas; break;
         case GLFW_KEY_5: state_.view = ViewMode::Frusta; break;
+        case GLFW_KEY_6: state_.view = ViewMode::Reference; break;
+        case GLFW_KEY_T:
+            state_.view = ViewMode::Reference;
+            referenceRequested_ = true;
+            break;
         case GLFW_KEY_LEFT_BRACKET: if (lights) state_.light = (state_.light + lights - 1) % lights; break;
         case GLFW_KEY_RIGHT_BRACKET: if (lights) state_.light = (state_.light + 1) % lights; break;
         case GLFW_KEY_O:
@@ -300,10 +311,11 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         atlasRequest.captureAtlas = true;
         atlasRequest.readback = false;
         const RenderResult atlas = renderer_->render(atlasRequest, settings_, view);
-        atlas_->update(atlas.atlas);
+        atlas_->update(atlas.atlas, swapchain_->format());
         labels = atlasTileLabels(atlas.stats.shadowStatsJson, renderer_->scene());
     }
     const std::vector<WorldLine> lines = state_.view == ViewMode::Frusta ? observedCascades(request) : std::vector<WorldLine>();
+    const bool reference = state_.view == ViewMode::Reference && updateReference(view, screenshot != nullptr);
     const ExternalImage target = presenter_->sceneTarget(request.output != OutputMode::Color);
     renderer_->submitFrame(request, settings_, view, &target);
     collectStats();
@@ -314,16 +326,60 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
                                                                             glm::vec2(atlas_->width(), atlas_->height()));
     if (!lines.empty()) drawWorldLines(lines, view);
     if (state_.showPanels) drawPanels(panels);
+    if (state_.view == ViewMode::Reference) referenceRequested_ |= drawReferencePanel(reference_, state_.showPanels);
     if (!document_.error().empty()) drawErrorLine(document_.error());
     const bool overlay = state_.view == ViewMode::Atlas;
     const bool presented = presenter_->endFrame(
         *imgui_,
         [&](VkCommandBuffer commands, VkImage image, VkExtent2D size) {
             if (overlay) atlas_->record(commands, image, size);
+            if (reference) referenceOverlay_->record(commands, image, size);
         },
         screenshot);
     if (!presented) recreateSwapchain();
     return true;
+}
+
+// The reference view, each frame: a comparison of another camera (or window size, light, settings) is
+// dropped; T starts one, and so does a screenshot, which waits for it (a scripted run fails with the
+// tracer's message, e.g. a light without shadows). True when the finished picture is to be shown.
+bool ViewerApp::updateReference(const CameraView& view, bool beforeScreenshot) {
+    const ReferenceKey key = referenceKeyOf(view, state_.light, settings_);
+    reference_.keepOnlyFor(key);
+    const ReferenceComparison::State state = reference_.state();
+    const bool idle = state == ReferenceComparison::State::None || state == ReferenceComparison::State::Failed;
+    const bool requested = std::exchange(referenceRequested_, false);  // again when shown: after scene edits
+    if ((requested && state != ReferenceComparison::State::Tracing) || (beforeScreenshot && idle)) startReference(view, key);
+    if (beforeScreenshot && reference_.wait() == ReferenceComparison::State::Failed && !options_.screenshotPath.empty())
+        throw Error("reference view: " + reference_.error());
+    if (reference_.state() != ReferenceComparison::State::Ready) {
+        referenceUploaded_ = false;
+        return false;
+    }
+    if (!referenceUploaded_) referenceOverlay_->update(reference_.diff(), swapchain_->format());
+    referenceUploaded_ = true;
+    return true;
+}
+
+// Our side of the comparison, rendered now for `view` (the shadow AOV and the colour image, as
+// penumbra compare renders them); the reference is traced on the comparison's worker.
+void ViewerApp::startReference(const CameraView& view, const ReferenceKey& key) {
+    ReferenceJob job{renderer_->scene(), view, state_.light, referenceOptionsFor(settings_, view, 0), {}, {}};
+    RenderRequest request;
+    request.width = view.width;
+    request.height = view.height;
+    request.aovLight = state_.light;
+    try {
+        request.output = OutputMode::ShadowAov;
+        job.oursShadow = renderer_->render(request, settings_, view).image;
+        request.output = OutputMode::Color;
+        job.colour = renderer_->render(request, settings_, view).image;
+    } catch (const Error& error) {
+        state_.status = error.what();
+        std::fprintf(stderr, "penumbra-viewer: %s\n", error.what());
+        return;
+    }
+    reference_.start(std::move(job), key);
 }
 
 // Into the frusta view the camera is kept as the observed one and the fly camera moves outside; out of

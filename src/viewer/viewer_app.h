@@ -14,6 +14,7 @@
 #include "viewer/camera_path.h"
 #include "viewer/cascade_frusta.h"
 #include "viewer/file_watcher.h"
+#include "viewer/reference_view.h"
 #include "viewer/scene_document.h"
 #include "viewer/viewer_options.h"
 
@@ -21,7 +22,7 @@ struct GLFWwindow;
 
 namespace penumbra::viewer {
 
-class AtlasOverlay;
+class ImageOverlay;
 class ImGuiLayer;
 class Presenter;
 class Swapchain;
@@ -65,6 +66,8 @@ private:
     void switchView();
     std::vector<WorldLine> observedCascades(const RenderRequest& request);
     void nextSceneCamera();
+    bool updateReference(const CameraView& view, bool beforeScreenshot);
+    void startReference(const CameraView& view, const ReferenceKey& key);
     void saveScreenshot(const Image& image, const std::string& path);
 
     ViewerOptions options_;
@@ -74,7 +77,7 @@ private:
     std::unique_ptr<Swapchain> swapchain_;
     std::unique_ptr<Presenter> presenter_;
     std::unique_ptr<ImGuiLayer> imgui_;
-    std::unique_ptr<AtlasOverlay> atlas_;
+    std::unique_ptr<ImageOverlay> atlas_, referenceOverlay_;
     std::unique_ptr<Device> device_;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<CameraController> camera_;
@@ -88,6 +91,10 @@ private:
     uint32_t screenshotCount_ = 0;
     bool screenshotRequested_ = false;
     uint32_t framesDone_ = 0;
+    // The reference view: the comparison (traced on its worker), T's request, and whether its finished
+    // picture is in referenceOverlay_.
+    ReferenceComparison reference_;
+    bool referenceRequested_ = false, referenceUploaded_ = false;
     // Camera paths: one played from the first frame (until its end; scripted: by frame index), one
     // being recorded (P, or --record-camera-path from the first frame), with their clocks in seconds.
     CameraPath playback_, recording_;

@@ -8,7 +8,7 @@ namespace penumbra::viewer {
 
 namespace {
 
-constexpr const char* kViewNames[] = {"final", "shadow", "cascades", "atlas", "frusta"};
+constexpr const char* kViewNames[kViewModes] = {"final", "shadow", "cascades", "atlas", "frusta", "reference"};
 
 constexpr const char* kControls = R"(
 Controls:
@@ -17,9 +17,11 @@ Controls:
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
-  1 2 3 4 5    view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
-               camera seen from outside (the fly camera moves out; leaving the view brings it back);
-               [ / ] previous / next light
+  1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
+               camera seen from outside (the fly camera moves out; leaving the view brings it back),
+               reference difference; [ / ] previous / next light
+  T            reference view: trace the ray-traced reference for this camera and light (a progress bar),
+               then show penumbra compare's picture (false shadow red, false lit cyan); moving drops it
   Tab          show / hide the inspector and stats panels
   F12          save a screenshot (penumbra-viewer-N.png)
   Esc          quit
@@ -34,7 +36,7 @@ shadow extras as glTF.)";
 const char* viewModeName(ViewMode mode) { return kViewNames[int(mode)]; }
 
 std::optional<ViewMode> parseViewMode(const std::string& name) {
-    for (int i = 0; i < 5; ++i)
+    for (int i = 0; i < kViewModes; ++i)
         if (name == kViewNames[i]) return ViewMode(i);
     return std::nullopt;
 }
@@ -57,8 +59,9 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     app.add_option("--screenshot", options.screenshotPath, "render --frames frames, save the last one as PNG, exit");
     app.add_option("--frames", options.frames, "frames to render before --screenshot (default 5)")
         ->check(CLI::Range(1u, 100000u));
-    app.add_option("--view", view, "first view: final | shadow | cascades | atlas | frusta")
-        ->check(CLI::IsMember({"final", "shadow", "cascades", "atlas", "frusta"}));
+    app.add_option("--view", view,
+                   "first view: final | shadow | cascades | atlas | frusta | reference (with --screenshot: traced first)")
+        ->check(CLI::IsMember(std::vector<std::string>(std::begin(kViewNames), std::end(kViewNames))));
     app.add_option("--light", options.light, "light (index in KHR_lights_punctual) of the shadow and cascade views");
     app.add_flag("--panels", options.panels, "with --screenshot: show the panels in it too");
     app.add_option("--camera-path", options.cameraPath,

@@ -9,7 +9,9 @@
 namespace penumbra::viewer {
 
 // Frusta: the cascades of the camera at the moment the view is entered, seen from an outside camera.
-enum class ViewMode { Final, Shadow, Cascades, Atlas, Frusta };
+// Reference: our shadow term against the ray-traced reference, in penumbra compare --diff's colours.
+enum class ViewMode { Final, Shadow, Cascades, Atlas, Frusta, Reference };
+constexpr int kViewModes = 6;
 
 const char* viewModeName(ViewMode mode);
 std::optional<ViewMode> parseViewMode(const std::string& name);

@@ -402,3 +402,64 @@ TEST(Viewer, FrustaViewDrawsTheLinesOfEachCascade) {
     EXPECT_EQ(two[2], 0u) << "two cascades, yet a third one's lines";
     EXPECT_EQ(two[3], 0u) << "two cascades, yet a fourth one's lines";
 }
+
+namespace {
+
+// Pixels of exactly one colour of penumbra compare --diff's picture (red: false shadow, cyan: false lit).
+size_t pixelsOf(const Image& image, uint8_t r, uint8_t g, uint8_t b) {
+    size_t n = 0;
+    for (size_t p = 0; p + 2 < image.pixels.size(); p += 3)
+        n += image.pixels[p] == r && image.pixels[p + 1] == g && image.pixels[p + 2] == b;
+    return n;
+}
+
+}  // namespace
+
+TEST(Viewer, ReferenceViewIsPenumbraComparesPicture) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf";
+    // Sphere fit and the hardware raster: the viewer's shadow AOV after a few frames is penumbra
+    // compare's first frame. At 160x90 cube.gltf has a few false lit pixels (cyan) along the cube's
+    // shadow and no false shadow (red); tests/unit/reference_view_test.cpp has both colours.
+    const std::string settings = "--set shadows.directional.fit=sphere --set shadows.raster=hw";
+    const Image viewer = viewerScreenshot(scene, "reference.png", "--view reference " + settings, 160, 90, 2);
+    const fs::path diffPath = tempPath("compare_diff.png");
+    const CliRun run =
+        runPenumbra("compare " + scene + " --device cpu --width 160 --height 90 --json --diff " + diffPath.string() + " " + settings);
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json metrics = nlohmann::json::parse(run.out);
+    const Image compare = readPng(diffPath.string());
+    ASSERT_EQ(viewer.pixels.size(), compare.pixels.size());
+    const double differing = differingFraction(viewer, compare);
+    const size_t red = pixelsOf(viewer, 255, 0, 0), cyan = pixelsOf(viewer, 0, 255, 255);
+    std::printf("%.3f %% of pixels differ from penumbra compare --diff; red %zu (compare %zu), cyan %zu (compare %zu)\n",
+                100.0 * differing, red, pixelsOf(compare, 255, 0, 0), cyan, pixelsOf(compare, 0, 255, 255));
+    EXPECT_LT(differing, 0.005);
+    ASSERT_EQ(pixelsOf(compare, 255, 0, 0), metrics["falseShadow"].get<size_t>()) << "the measure misreads compare's picture";
+    ASSERT_EQ(pixelsOf(compare, 0, 255, 255), metrics["falseLit"].get<size_t>()) << "the measure misreads compare's picture";
+    ASSERT_EQ(metrics["falseShadow"].get<size_t>(), 0u) << "the scene no longer has the expected disagreements";
+    ASSERT_GT(metrics["falseLit"].get<size_t>(), 0u) << "the scene no longer has the expected disagreements";
+    EXPECT_EQ(red, 0u) << "false shadow (red) where penumbra compare has none";
+    EXPECT_NEAR(double(cyan), double(metrics["falseLit"].get<size_t>()), 2.0) << "false lit (cyan) as penumbra compare counts it";
+}
+
+TEST(Viewer, ReferenceViewOfABadLightIsOneLineError) {
+    if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
+    // Past the end: refused before any window opens.
+    const CliRun past = runProgram(kViewer, kScenes + "cube.gltf --view reference --light 3 --screenshot " + tempPath("x.png").string());
+    EXPECT_EQ(past.exitCode, 1);
+    EXPECT_EQ(past.err, "penumbra-viewer: --light 3: the scene has 1 lights\n");
+    if (!canRunViewer()) return;
+    // A light without shadows: the tracer's message, from the scripted run's trace.
+    nlohmann::json gltf = nlohmann::json::parse(std::ifstream(kScenes + "cube.gltf"));
+    gltf["extensions"]["KHR_lights_punctual"]["lights"][0]["extras"]["shadows"] = "none";
+    const fs::path scene = writeText("no_shadows.gltf", gltf.dump());
+    const fs::path out = tempPath("no_shadows.png");
+    fs::remove(out);
+    const CliRun none = runProgram(kViewer, scriptedArguments(scene.string(), out, "--view reference", 64, 36, 1), "xvfb-run -a");
+    EXPECT_EQ(none.exitCode, 1);
+    EXPECT_EQ(none.err.rfind("penumbra-viewer: reference view: ", 0), 0u) << none.err;
+    EXPECT_EQ(none.err.find('\n'), none.err.size() - 1) << none.err;
+    EXPECT_NE(none.err.find("light 0"), std::string::npos) << none.err;
+    EXPECT_FALSE(fs::exists(out));
+}
