@@ -36,7 +36,7 @@ void ImageOverlay::update(const Image& image, VkFormat swapchainFormat) {
         staging_ = context_.createHostBuffer(VkDeviceSize(width_) * height_ * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                              &stagingMemory_);
     }
-    const bool blueFirst = placement_ == Placement::Window && (swapchainFormat == VK_FORMAT_B8G8R8A8_SRGB ||
+    const bool blueFirst = placement_ != Placement::BottomLeft && (swapchainFormat == VK_FORMAT_B8G8R8A8_SRGB ||
                                                                 swapchainFormat == VK_FORMAT_B8G8R8A8_UNORM);
     void* mapped = nullptr;
     VIEWER_VK(vkMapMemory(context_.device, stagingMemory_, 0, VK_WHOLE_SIZE, 0, &mapped));
@@ -54,8 +54,9 @@ void ImageOverlay::update(const Image& image, VkFormat swapchainFormat) {
 }
 
 glm::vec4 ImageOverlay::windowRect(VkExtent2D extent) const {
-    if (placement_ == Placement::Window)
-        return {0.0f, 0.0f, float(std::min(width_, extent.width)), float(std::min(height_, extent.height))};
+    const float right = float(std::min(width_, extent.width)), bottom = float(std::min(height_, extent.height));
+    if (placement_ == Placement::Window) return {0.0f, 0.0f, right, bottom};
+    if (placement_ == Placement::RightHalf) return {float(extent.width / 2), 0.0f, right, bottom};
     const float margin = 8.0f;
     const float scale = std::min({0.45f * float(extent.height) / float(height_),
                                   (float(extent.width) - 2.0f * margin) / float(width_), 1.0f});
@@ -85,10 +86,12 @@ void ImageOverlay::record(VkCommandBuffer commands, VkImage swapchainImage, VkEx
     colorImageBarrier(commands, swapchainImage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    if (placement_ == Placement::Window) {
+    if (placement_ != Placement::BottomLeft) {
+        if (rect.z <= rect.x || rect.w <= rect.y) return;
         VkImageCopy copy{};
         copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.extent = {uint32_t(rect.z), uint32_t(rect.w), 1};
+        copy.srcOffset = copy.dstOffset = {int32_t(rect.x), int32_t(rect.y), 0};
+        copy.extent = {uint32_t(rect.z - rect.x), uint32_t(rect.w - rect.y), 1};
         vkCmdCopyImage(commands, image_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swapchainImage,
                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
         return;

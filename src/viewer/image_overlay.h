@@ -1,7 +1,8 @@
 #pragma once
 // A CPU image drawn over the window after the scene copy: the shadow atlases (--view atlas, scaled
-// into the bottom-left corner) or the reference-difference picture (--view reference, the whole
-// window pixel for pixel, its bytes as they are, like the AOV views).
+// into the bottom-left corner), the reference-difference picture (--view reference, the whole window)
+// or the second settings' image (--compare-settings, the right half), the last two pixel for pixel
+// with their bytes as they are, like the AOV views.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -17,7 +18,8 @@ class ImageOverlay {
 public:
     // BottomLeft: scaled (linear filter) to at most 45 % of the window's height, 8 px from the corner.
     // Window: copied at the top left, one image pixel per window pixel, byte for byte.
-    enum class Placement { BottomLeft, Window };
+    // RightHalf: the same for the right half of the window only (x >= width / 2) of a window-sized image.
+    enum class Placement { BottomLeft, Window, RightHalf };
 
     ImageOverlay(VulkanContext& context, Placement placement);
     ~ImageOverlay();

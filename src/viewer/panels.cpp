@@ -160,6 +160,15 @@ void drawStatsPanel(PanelContext& c) {
     ImGui::End();
 }
 
+void drawSplitLabels(const std::string& compareSettingsPath) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    draw->AddLine(ImVec2(display.x * 0.5f, 0.0f), ImVec2(display.x * 0.5f, display.y), IM_COL32(255, 255, 255, 160));
+    const float y = display.y - ImGui::GetTextLineHeight() - 30.0f;
+    draw->AddText(ImVec2(display.x * 0.5f - 130.0f, y), IM_COL32(255, 255, 255, 255), "current settings");
+    draw->AddText(ImVec2(display.x * 0.5f + 8.0f, y), IM_COL32(255, 255, 255, 255), compareSettingsPath.c_str());
+}
+
 bool drawReferencePanel(ReferenceComparison& comparison, bool showPanels) {
     const ReferenceComparison::State state = comparison.state();
     if (state == ReferenceComparison::State::Ready && !showPanels) return false;  // the picture alone

@@ -37,6 +37,8 @@ void drawWorldLines(const std::vector<WorldLine>& lines, const CameraView& view)
 // Cascade 0..3: red, green, blue, yellow (the cascades view's hues, saturated to stand out).
 uint32_t cascadeLineColor(uint32_t cascade);
 void drawStatsPanel(PanelContext& context);
+// The split screen's labels at the top of each half: "current settings" and the second settings' file.
+void drawSplitLabels(const std::string& compareSettingsPath);
 // The reference view's window: until a comparison is shown, its button (true when pressed), its
 // progress bar or its error; over a finished picture (with the panels) the metrics and the colours' key.
 bool drawReferencePanel(ReferenceComparison& comparison, bool showPanels);

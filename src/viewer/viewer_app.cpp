@@ -44,6 +44,22 @@ void installCallbacks(GLFWwindow* window) {
     });
 }
 
+void applyDefaultsWithWarnings(Settings& settings, const Scene& scene, const CameraView& view) {
+    for (const std::string& warning : applySceneDefaults(settings, scene, view))
+        std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
+}
+
+// The split screen's right half: the settings file alone (no --set), validated like the left's.
+std::optional<Settings> loadCompareSettings(const ViewerOptions& options) {
+    if (options.compareSettingsPath.empty()) return std::nullopt;
+    Settings settings = loadSettingsFile(options.compareSettingsPath);
+    validateSettings(settings);
+    return settings;
+}
+
+// The views the split screen applies to: the ones the renderer draws whole.
+bool splitsView(ViewMode view) { return view == ViewMode::Final || view == ViewMode::Shadow || view == ViewMode::Cascades; }
+
 Settings loadUserSettings(const ViewerOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
     for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
@@ -75,6 +91,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     : options_(options), document_(options.scenePath, options.watchPollMs) {
     // Bad input first, so it is one line before any window opens.
     userSettings_ = loadUserSettings(options);
+    compareSettings_ = loadCompareSettings(options);
     Scene scene = document_.loadFirst();
     const bool oneLight = options.view == ViewMode::Shadow || options.view == ViewMode::Cascades || options.view == ViewMode::Reference;
     if (oneLight && options.light >= scene.lights.size())
@@ -112,6 +129,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     imgui_ = std::make_unique<ImGuiLayer>(*context_, window_, *swapchain_, presenter_->commandPool());
     atlas_ = std::make_unique<ImageOverlay>(*context_, ImageOverlay::Placement::BottomLeft);
     referenceOverlay_ = std::make_unique<ImageOverlay>(*context_, ImageOverlay::Placement::Window);
+    splitOverlay_ = std::make_unique<ImageOverlay>(*context_, ImageOverlay::Placement::RightHalf);
     DeviceOptions deviceOptions;
     deviceOptions.framesInFlight = Presenter::kFramesInFlight;
     device_ = std::make_unique<Device>(externalVulkanDevice(context_->instance, context_->physicalDevice, context_->device,
@@ -121,8 +139,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options)
     camera_ = std::make_unique<CameraController>(startCamera(renderer_->scene()), renderer_->scene().wsBounds);
     settings_ = userSettings_;
     const CameraView view = makeCameraView(camera_->camera(), swapchain_->extent().width, swapchain_->extent().height);
-    for (const std::string& warning : applySceneDefaults(settings_, renderer_->scene(), view))
-        std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
+    applyDefaultsWithWarnings(settings_, renderer_->scene(), view);
+    if (compareSettings_) applyDefaultsWithWarnings(*compareSettings_, renderer_->scene(), view);
     setSceneSavePath(state_, document_);
     announce("opened " + document_.label());
 }
@@ -134,6 +152,7 @@ ViewerApp::~ViewerApp() {
     reference_.clear();
     atlas_.reset();
     referenceOverlay_.reset();
+    splitOverlay_.reset();
     imgui_.reset();
     presenter_.reset();
     swapchain_.reset();
@@ -316,6 +335,8 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
     }
     const std::vector<WorldLine> lines = state_.view == ViewMode::Frusta ? observedCascades(request) : std::vector<WorldLine>();
     const bool reference = state_.view == ViewMode::Reference && updateReference(view, screenshot != nullptr);
+    const bool split = compareSettings_ && splitsView(state_.view);
+    if (split) renderRightHalf(request, view);
     const ExternalImage target = presenter_->sceneTarget(request.output != OutputMode::Color);
     renderer_->submitFrame(request, settings_, view, &target);
     collectStats();
@@ -326,6 +347,7 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
                                                                             glm::vec2(atlas_->width(), atlas_->height()));
     if (!lines.empty()) drawWorldLines(lines, view);
     if (state_.showPanels) drawPanels(panels);
+    if (split && state_.showPanels) drawSplitLabels(options_.compareSettingsPath);
     if (state_.view == ViewMode::Reference) referenceRequested_ |= drawReferencePanel(reference_, state_.showPanels);
     if (!document_.error().empty()) drawErrorLine(document_.error());
     const bool overlay = state_.view == ViewMode::Atlas;
@@ -334,6 +356,7 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         [&](VkCommandBuffer commands, VkImage image, VkExtent2D size) {
             if (overlay) atlas_->record(commands, image, size);
             if (reference) referenceOverlay_->record(commands, image, size);
+            if (split) splitOverlay_->record(commands, image, size);
         },
         screenshot);
     if (!presented) recreateSwapchain();
@@ -380,6 +403,14 @@ void ViewerApp::startReference(const CameraView& view, const ReferenceKey& key) 
         return;
     }
     reference_.start(std::move(job), key);
+}
+
+// The split screen's right half: this frame rendered with the second settings and read back (a debug
+// view: a synchronous frame more per frame), shown over the right half of the window.
+void ViewerApp::renderRightHalf(const RenderRequest& request, const CameraView& view) {
+    RenderRequest right = request;
+    right.readback = true;
+    splitOverlay_->update(renderer_->render(right, *compareSettings_, view).image, swapchain_->format());
 }
 
 // Into the frusta view the camera is kept as the observed one and the fly camera moves outside; out of

@@ -5,6 +5,7 @@
 #include <deque>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "penumbra/device.h"
@@ -68,6 +69,7 @@ private:
     void nextSceneCamera();
     bool updateReference(const CameraView& view, bool beforeScreenshot);
     void startReference(const CameraView& view, const ReferenceKey& key);
+    void renderRightHalf(const RenderRequest& request, const CameraView& view);
     void saveScreenshot(const Image& image, const std::string& path);
 
     ViewerOptions options_;
@@ -77,11 +79,12 @@ private:
     std::unique_ptr<Swapchain> swapchain_;
     std::unique_ptr<Presenter> presenter_;
     std::unique_ptr<ImGuiLayer> imgui_;
-    std::unique_ptr<ImageOverlay> atlas_, referenceOverlay_;
+    std::unique_ptr<ImageOverlay> atlas_, referenceOverlay_, splitOverlay_;
     std::unique_ptr<Device> device_;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<CameraController> camera_;
     Settings userSettings_, settings_;
+    std::optional<Settings> compareSettings_;  // --compare-settings: the split screen's right half
     ViewerState state_;
     float wheel_ = 0.0f;
     double lastCursorX_ = 0.0, lastCursorY_ = 0.0;

@@ -68,6 +68,9 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
                    "play a recorded camera path (JSON); with --screenshot, frame i of N shows i / (N - 1) of it");
     app.add_option("--record-camera-path", options.recordCameraPath,
                    "record the camera path from the first frame into this JSON file (P stops and starts)");
+    app.add_option("--compare-settings", options.compareSettingsPath,
+                   "split screen: the right half of the final, shadow and cascades views rendered with this settings "
+                   "JSON (--set applies to the left half only)");
     app.add_option("--watch-poll-ms", options.watchPollMs,
                    "check the scene file for changes every N ms and reload it (0: every frame; default 250)")
         ->check(CLI::Range(0u, 3600000u));

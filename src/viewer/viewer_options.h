@@ -31,6 +31,7 @@ struct ViewerOptions {
     bool panels = false;  // --screenshot: keep the panels (hidden by default so the image is the view alone)
     std::string cameraPath;        // --camera-path: play this recorded path (camera_path.h)
     std::string recordCameraPath;  // --record-camera-path: record from the first frame into this file
+    std::string compareSettingsPath;  // --compare-settings: the right half rendered with this settings file
     uint32_t watchPollMs = 250;    // --watch-poll-ms: how often the scene file is checked for changes (0: every frame)
 };
 

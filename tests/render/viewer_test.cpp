@@ -463,3 +463,57 @@ TEST(Viewer, ReferenceViewOfABadLightIsOneLineError) {
     EXPECT_NE(none.err.find("light 0"), std::string::npos) << none.err;
     EXPECT_FALSE(fs::exists(out));
 }
+
+namespace {
+
+// Pixels that differ between two RGB images of one size, over columns [x0, x1).
+double differingFractionInColumns(const Image& a, const Image& b, uint32_t x0, uint32_t x1) {
+    size_t differ = 0, count = 0;
+    for (uint32_t y = 0; y < a.height; ++y)
+        for (uint32_t x = x0; x < x1; ++x, ++count) {
+            const size_t p = (size_t(y) * a.width + x) * 3;
+            differ += a.pixels[p] != b.pixels[p] || a.pixels[p + 1] != b.pixels[p + 1] || a.pixels[p + 2] != b.pixels[p + 2];
+        }
+    return double(differ) / double(count);
+}
+
+Image renderedWithSettings(const std::string& scene, const fs::path& settings, const std::string& name) {
+    const fs::path out = tempPath(name);
+    const CliRun run = runPenumbra("render " + scene + " --device cpu --width 160 --height 90 --settings " + settings.string() +
+                                   " -o " + out.string());
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    return readPng(out.string());
+}
+
+}  // namespace
+
+TEST(Viewer, CompareSettingsSplitsTheWindowBetweenTwoSettings) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf";
+    // Both repeatable (sphere fit, hardware raster); the second with one cascade and ACES tone mapping.
+    const fs::path current = writeText("split_current.json", R"({"shadows": {"raster": "hw", "directional": {"fit": "sphere"}}})");
+    const fs::path second = writeText("split_second.json", R"({"shadows": {"raster": "hw", "directional": {"fit": "sphere",
+        "cascadeCount": 1}}, "render": {"toneMapping": "aces"}})");
+    const Image split = viewerScreenshot(scene, "split.png", "--settings " + current.string() + " --compare-settings " + second.string(),
+                                         160, 90, 2);
+    const Image left = renderedWithSettings(scene, current, "split_left.png");
+    const Image right = renderedWithSettings(scene, second, "split_right.png");
+    ASSERT_EQ(split.pixels.size(), left.pixels.size());
+    ASSERT_EQ(split.pixels.size(), right.pixels.size());
+    const double leftDiffers = differingFractionInColumns(split, left, 0, 80);
+    const double rightDiffers = differingFractionInColumns(split, right, 80, 160);
+    std::printf("left half vs penumbra render --settings current: %.3f %% differ; right half vs --settings second: %.3f %%\n",
+                100.0 * leftDiffers, 100.0 * rightDiffers);
+    ASSERT_GT(differingFractionInColumns(left, right, 0, 160), 0.3) << "the two settings must give different images";
+    EXPECT_LT(leftDiffers, 0.002) << "the left half is not the current settings' image";
+    EXPECT_LT(rightDiffers, 0.002) << "the right half is not the second settings' image";
+}
+
+TEST(Viewer, MissingCompareSettingsIsOneLineError) {
+    if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
+    const CliRun run = runProgram(kViewer, "--compare-settings /nonexistent/settings.json --screenshot " + tempPath("x.png").string());
+    EXPECT_EQ(run.exitCode, 1);
+    EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+    EXPECT_NE(run.err.find("/nonexistent/settings.json"), std::string::npos) << run.err;
+}
