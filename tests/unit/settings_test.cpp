@@ -169,10 +169,10 @@ TEST(SettingsJson, LightCullingIsClusteredUnlessTurnedOff) {
     EXPECT_EQ(settings.render.lightCulling, LightCulling::None);
 }
 
-TEST(SettingsJson, ViewCullingIsOcclusionUnlessChosen) {
-    EXPECT_EQ(Settings{}.render.viewCulling, ViewCulling::Occlusion);
-    EXPECT_EQ(parseSettingsJson(R"({"render": {"viewCulling": "frustum"}})", "test.json").render.viewCulling,
-              ViewCulling::Frustum);
+TEST(SettingsJson, ViewCullingIsFrustumUnlessChosen) {
+    EXPECT_EQ(Settings{}.render.viewCulling, ViewCulling::Frustum);
+    EXPECT_EQ(parseSettingsJson(R"({"render": {"viewCulling": "occlusion"}})", "test.json").render.viewCulling,
+              ViewCulling::Occlusion);
     Settings settings;
     applySettingOverride(settings, "render.viewCulling=none");
     EXPECT_EQ(settings.render.viewCulling, ViewCulling::None);
