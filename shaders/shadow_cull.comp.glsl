@@ -89,14 +89,20 @@ bool perspectiveKeeps(CullTile tile, vec3 wsMin, vec3 wsMax) {
 
 // ---- the main view
 
-// Where the world box lies on screen, if it lies wholly beyond the near plane: the pixel rectangle
+// The 8 corners of a world box in the camera's clip space (both tests below read them).
+void cameraClipCorners(vec3 wsMin, vec3 wsMax, out vec4 corners[8]) {
+    for (int i = 0; i < 8; ++i)
+        corners[i] = cull.camera.clipFromWorld * vec4((i & 1) != 0 ? wsMax.x : wsMin.x, (i & 2) != 0 ? wsMax.y : wsMin.y,
+                                                      (i & 4) != 0 ? wsMax.z : wsMin.z, 1.0);
+}
+
+// Where the box lies on screen, if it lies wholly beyond the near plane: the pixel rectangle
 // (inclusive) of its projected corners and the nearest (largest, reversed Z) depth of any of them.
-bool projectBox(vec3 wsMin, vec3 wsMax, out ivec4 pixels, out float nearestDepth) {
+bool projectBox(vec4 corners[8], out ivec4 pixels, out float nearestDepth) {
     vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
     nearestDepth = 0.0;
     for (int i = 0; i < 8; ++i) {
-        vec4 clip = cull.camera.clipFromWorld * vec4((i & 1) != 0 ? wsMax.x : wsMin.x, (i & 2) != 0 ? wsMax.y : wsMin.y,
-                                                     (i & 4) != 0 ? wsMax.z : wsMin.z, 1.0);
+        vec4 clip = corners[i];
         if (!(clip.w > 0.0) || clip.z > clip.w) return false;  // a corner before the near plane
         ndcMin = min(ndcMin, clip.xy / clip.w);
         ndcMax = max(ndcMax, clip.xy / clip.w);
@@ -125,10 +131,10 @@ float pyramidTexel(uint level, ivec2 texel) {
 // Whether what the early list drew hides the whole box: at the pyramid level where the box's pixel
 // rectangle spans at most 2 x 2 texels, the farthest depth there is nearer than the box's nearest.
 // (Those texels cover the rectangle: texel x of level L covers pixels x * 2^(L+1) .. + 2^(L+1) - 1.)
-bool occluded(vec3 wsMin, vec3 wsMax) {
+bool occluded(vec4 corners[8]) {
     ivec4 pixels;
     float nearestDepth;
-    if (!projectBox(wsMin, wsMax, pixels, nearestDepth)) return false;
+    if (!projectBox(corners, pixels, nearestDepth)) return false;
     uint level = 0u;
     while (level + 1u < cull.camera.view.z &&
            any(greaterThan((pixels.zw >> int(level + 1u)) - (pixels.xy >> int(level + 1u)), ivec2(1))))
@@ -142,11 +148,7 @@ bool occluded(vec3 wsMin, vec3 wsMax) {
 }
 
 // The visibility rasterizer's frustum test (0 <= z <= w, |x|, |y| <= w): no plane has all 8 corners outside.
-bool boxInCameraFrustum(vec3 wsMin, vec3 wsMax) {
-    vec4 corners[8];
-    for (int i = 0; i < 8; ++i)
-        corners[i] = cull.camera.clipFromWorld * vec4((i & 1) != 0 ? wsMax.x : wsMin.x, (i & 2) != 0 ? wsMax.y : wsMin.y,
-                                                      (i & 4) != 0 ? wsMax.z : wsMin.z, 1.0);
+bool boxInCameraFrustum(vec4 corners[8]) {
     for (int plane = 0; plane < 6; ++plane) {
         bool allOutside = true;
         for (int i = 0; i < 8; ++i) {
@@ -179,8 +181,9 @@ void cullCamera(uint instance) {
     if (materials[mesh.draw.w].flags.z == kAlphaBlend) return;  // the forward pass draws them afterwards
     uint culling = cull.camera.view.w;
     bool bounded = (candidate.info.y & kCullInstanceBounded) != 0u;
-    bool inFrustum = culling == kViewCullingNone || !bounded ||
-                     boxInCameraFrustum(candidate.wsMin.xyz, candidate.wsMax.xyz);
+    vec4 corners[8];
+    cameraClipCorners(candidate.wsMin.xyz, candidate.wsMax.xyz, corners);
+    bool inFrustum = culling == kViewCullingNone || !bounded || boxInCameraFrustum(corners);
     uint history = viewHistory[instance];
     if (constants.mode.x == kCullPassCameraEarly) {
         bool early = inFrustum && (culling != kViewCullingOcclusion || !bounded || (history & kViewVisible) != 0u);
@@ -188,7 +191,7 @@ void cullCamera(uint instance) {
         if (early) appendToView(kCullListCameraEarly, instance, mesh, meshSlot);
         return;
     }
-    bool visible = inFrustum && (!bounded || !occluded(candidate.wsMin.xyz, candidate.wsMax.xyz));
+    bool visible = inFrustum && (!bounded || !occluded(corners));
     viewHistory[instance] = visible ? kViewVisible : 0u;
     if (visible && (history & kViewDrawnEarly) == 0u) appendToView(kCullListCameraLate, instance, mesh, meshSlot);
 }
