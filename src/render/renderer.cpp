@@ -201,14 +201,14 @@ void applyCullStats(FrameStats& stats, const ShadowFrame& plan, const std::vecto
     std::vector<gpu_data::CullTileStats> tiles(tileCount);
     if (readback.size() >= tileCount * sizeof(gpu_data::CullTileStats) && tileCount > 0)
         std::memcpy(tiles.data(), readback.data(), tileCount * sizeof(gpu_data::CullTileStats));
-    std::vector<uint32_t> casters;
+    std::vector<CullTileCount> counts;
     for (size_t i = 0; i < tileCount; ++i) {
         AtlasDrawStats& atlas = stats.atlases[i < plan.directional.tiles.size() ? 0 : 1];
         atlas.draws += tiles[i].counts.x;
         atlas.triangles += tiles[i].counts.z;
-        casters.push_back(tiles[i].counts.y);
+        counts.push_back({tiles[i].counts.y, tiles[i].counts.z});
     }
-    stats.shadowStatsJson = shadowStatsJson(plan, &casters);
+    stats.shadowStatsJson = shadowStatsJson(plan, &counts);
 }
 
 }  // namespace

@@ -7,26 +7,41 @@ namespace penumbra {
 namespace {
 
 // Casters per tile of `tiles`, the culling tiles from `first` on (GPU counts) or the CPU lists.
-std::vector<uint32_t> castersPerTile(const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>* gpu, size_t first) {
+std::vector<uint32_t> castersPerTile(const std::vector<ShadowTile>& tiles, const std::vector<CullTileCount>* gpu, size_t first) {
     std::vector<uint32_t> counts;
     for (size_t i = 0; i < tiles.size(); ++i)
-        counts.push_back(gpu && first + i < gpu->size() ? (*gpu)[first + i] : uint32_t(tiles[i].casterInstances.size()));
+        counts.push_back(gpu && first + i < gpu->size() ? (*gpu)[first + i].casters : uint32_t(tiles[i].casterInstances.size()));
     return counts;
 }
 
-uint32_t sum(const std::vector<uint32_t>& values) {
-    uint32_t total = 0;
-    for (uint32_t v : values) total += v;
+// Triangles drawn per tile of `tiles` as the GPU counted them (culling tiles from `first` on).
+std::vector<uint64_t> trianglesPerTile(size_t tileCount, const std::vector<CullTileCount>& gpu, size_t first) {
+    std::vector<uint64_t> counts;
+    for (size_t i = 0; i < tileCount; ++i) counts.push_back(first + i < gpu.size() ? gpu[first + i].triangles : 0);
+    return counts;
+}
+
+template <typename T>
+T sum(const std::vector<T>& values) {
+    T total = 0;
+    for (T v : values) total += v;
     return total;
+}
+
+// The share of an atlas's area its tiles cover (0 for an atlas with no tile).
+double occupancy(const AtlasLayout& atlas) {
+    if (atlas.atlasSize == 0) return 0.0;
+    const double side = double(atlas.atlasSize);
+    return double(atlas.tileCount) * double(atlas.tileSize) * double(atlas.tileSize) / (side * side);
 }
 
 }  // namespace
 
-std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>* castersPerCullTile) {
+std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<CullTileCount>* gpuCounts) {
     const ShadowStats& stats = plan.stats;
-    const std::vector<uint32_t> directionalCasters = castersPerTile(plan.directional.tiles, castersPerCullTile, 0);
-    const std::vector<uint32_t> otherCasters =
-        castersPerTile(plan.other.tiles, castersPerCullTile, plan.directional.tiles.size());
+    const size_t directionalTiles = plan.directional.tiles.size();
+    const std::vector<uint32_t> directionalCasters = castersPerTile(plan.directional.tiles, gpuCounts, 0);
+    const std::vector<uint32_t> otherCasters = castersPerTile(plan.other.tiles, gpuCounts, directionalTiles);
     nlohmann::json json;
     nlohmann::json directional;
     directional["lightsConsidered"] = stats.directionalLightsConsidered;
@@ -35,8 +50,10 @@ std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>
     directional["tiles"] = plan.directional.atlas.tileCount;
     directional["split"] = plan.directional.atlas.split;
     directional["tileSize"] = plan.directional.atlas.tileSize;
+    directional["occupancy"] = occupancy(plan.directional.atlas);
     directional["castersPerTile"] = directionalCasters;
     directional["casterDraws"] = sum(directionalCasters);
+    if (gpuCounts) directional["trianglesPerTile"] = trianglesPerTile(directionalTiles, *gpuCounts, 0);
     directional["skippedByCascadeBlendCulling"] = stats.skippedByBlendCulling;
     // Depth range per tile in metres (near + far distance) and how far casters reach in front of it.
     // World texel size per tile (the tight fit's gain shows here) and each cascade's split.
@@ -82,8 +99,10 @@ std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<uint32_t>
     other["split"] = otherPlan.atlas.split;
     other["tileSize"] = otherPlan.atlas.tileSize;
     other["tileBorder"] = otherPlan.atlas.border;
+    other["occupancy"] = occupancy(otherPlan.atlas.asAtlasLayout());
     other["castersPerTile"] = otherCasters;
     other["casterDraws"] = sum(otherCasters);
+    if (gpuCounts) other["trianglesPerTile"] = trianglesPerTile(plan.other.tiles.size(), *gpuCounts, directionalTiles);
     json["other"] = other;
     json["shadowCasters"] = stats.shadowCasters;
     return json.dump();

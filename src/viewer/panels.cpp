@@ -153,8 +153,13 @@ void drawStatsPanel(PanelContext& c) {
         ImGui::Text("directional lights reserved %d; spot/point reserved %d, dropped %d",
                     shadows["directional"].value("lightsReserved", 0), shadows["other"].value("lightsReserved", 0),
                     shadows["other"].value("lightsDropped", 0));
-        ImGui::TextWrapped("casters per cascade tile: %s", shadows["directional"]["castersPerTile"].dump().c_str());
-        ImGui::TextWrapped("casters per spot/point tile: %s", shadows["other"]["castersPerTile"].dump().c_str());
+        for (const char* atlas : {"directional", "other"}) {
+            const nlohmann::json& a = shadows[atlas];
+            ImGui::Text("%s %d^2: %d tiles of %d^2, %.0f %% used", atlas, a.value("atlasSize", 0), a.value("tiles", 0),
+                        a.value("tileSize", 0), 100.0 * a.value("occupancy", 0.0));
+            ImGui::TextWrapped("  casters per tile: %s", a["castersPerTile"].dump().c_str());
+            if (a.contains("trianglesPerTile")) ImGui::TextWrapped("  triangles per tile: %s", a["trianglesPerTile"].dump().c_str());
+        }
     }
     for (const std::string& warning : last.warnings) ImGui::TextWrapped("warning: %s", warning.c_str());
     ImGui::End();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include <nlohmann/json.hpp>
+
 #include "penumbra/scene_loading.h"
 #include "render/gpu_scene.h"
 #include "render/shadow_culling_pass.h"
@@ -89,6 +91,40 @@ TEST_F(ShadowCullingTest, NonCastingNodesAndShadowlessMaterialsAreNeverListed) {
     for (uint32_t i = 0; i < scene.instances.size(); i += 2) scene.instances[i].castShadows = false;
     scene.materials[0].shadows = MaterialShadowMode::Off;
     expectSameLists(scene, Settings{}, "demo with half the casters off");
+}
+
+// The stats (--stats, the viewer's stats panel) count the triangles each tile drew: with every caster a
+// box of one triangle count, a tile's triangles are its casters times that count, and the tiles of an
+// atlas add up to the atlas's triangles.
+TEST_F(ShadowCullingTest, StatsCountTheTrianglesEachTileDrew) {
+    Scene scene = loadScene("gen:boxes:100:0");
+    uint32_t boxTriangles = 0;
+    for (Instance& instance : scene.instances) {
+        const uint32_t triangles = uint32_t(scene.meshes[instance.meshIndex].indices.size() / 3);
+        if (instance.nodeName == "ground") instance.castShadows = false;
+        else boxTriangles = triangles;
+    }
+    ASSERT_GT(boxTriangles, 2u);
+    Settings settings;
+    settings.shadows.directional.cascadeCount = 3;
+    RenderRequest request;
+    request.width = 96;
+    request.height = 54;
+    const RenderResult result = renderScene(scene, request, settings);
+    const nlohmann::json stats = nlohmann::json::parse(result.stats.shadowStatsJson)["directional"];
+    ASSERT_TRUE(stats.contains("trianglesPerTile"));
+    ASSERT_EQ(stats["trianglesPerTile"].size(), 3u);
+    uint64_t total = 0, casters = 0;
+    for (size_t tile = 0; tile < 3; ++tile) {
+        const uint64_t triangles = stats["trianglesPerTile"][tile];
+        EXPECT_EQ(triangles, uint64_t(stats["castersPerTile"][tile]) * boxTriangles) << "tile " << tile;
+        total += triangles;
+        casters += uint64_t(stats["castersPerTile"][tile]);
+    }
+    EXPECT_GT(casters, 0u);
+    EXPECT_EQ(total, result.stats.atlases[0].triangles);
+    // Three tiles of a 2 x 2 split: three quarters of the atlas.
+    EXPECT_DOUBLE_EQ(double(stats["occupancy"]), 0.75);
 }
 
 }  // namespace

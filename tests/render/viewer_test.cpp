@@ -276,8 +276,14 @@ TEST(Viewer, BadCameraPathIsOneLineError) {
 
 namespace {
 
-// Frames of a reload run: the reload comes about 3 frames in.
-constexpr uint32_t kReloadFrames = 12;
+// Frames of a reload run. The test writes the file when it reads the viewer's "opened" line, and the
+// viewer reloads two polls (frames) after it sees the change; but a loaded CI machine (2 cores, two
+// tests at once, lavapipe's threads) can wake the test a few hundred ms late, while a 240x135 frame
+// takes 15-40 ms: 12 frames were once over before the write (CI, 2026-12-02). 90 frames leave seconds.
+constexpr uint32_t kReloadFrames = 90;
+// Frames of the runs the reloaded image is compared with: these images depend on the camera and the
+// scene only (kRepeatable), not on how many frames came before.
+constexpr uint32_t kComparedFrames = 4;
 
 // cube.gltf with the ground's base colour set to blue; `wsCameraMove` added to the camera's position.
 std::string editedCubeScene(const glm::vec3& wsCameraMove) {
@@ -322,7 +328,7 @@ TEST(Viewer, ReloadsTheSceneFileWhenItChangesAndKeepsCameraAndSettings) {
     const Image reloaded = screenshotOf(run, out);
     EXPECT_NE(run.out.find("penumbra-viewer: reloaded "), std::string::npos) << run.out;
     const fs::path expectedScene = writeText("expected.gltf", editedCubeScene(glm::vec3(0.0f)));
-    const Image expected = viewerScreenshot(expectedScene.string(), "expected.png", kRepeatable, 240, 135, kReloadFrames);
+    const Image expected = viewerScreenshot(expectedScene.string(), "expected.png", kRepeatable, 240, 135, kComparedFrames);
     ASSERT_FALSE(reloaded.empty());
     ASSERT_EQ(reloaded.pixels.size(), expected.pixels.size());
     size_t blue = 0;  // cube.gltf's ground is gray
@@ -338,7 +344,7 @@ TEST(Viewer, BadFileOnReloadKeepsTheOldSceneAndShowsTheError) {
     const fs::path out = tempPath("bad_reload.png");
     const CliRun run = reloadRun(bad.dump(), out, kRepeatable);
     const Image kept = screenshotOf(run, out);
-    const Image old = viewerScreenshot(kScenes + "cube.gltf", "old.png", kRepeatable, 240, 135, kReloadFrames);
+    const Image old = viewerScreenshot(kScenes + "cube.gltf", "old.png", kRepeatable, 240, 135, kComparedFrames);
     ASSERT_FALSE(kept.empty());
     ASSERT_EQ(kept.pixels.size(), old.pixels.size());
     // One line on stderr, the loader's message.
