@@ -7,6 +7,7 @@
 #   lavapipe 320x180, field 1..16, boxes 1k..100k (a 2-core CPU renders these in minutes)
 #   raster   1920x1080: issue 10's rows: hw vs compute rasterizer per atlas against triangles
 #            (field 1..400, 16 spots), cached vs uncached tiles with a still camera, objects 1k..1M
+#   meshlets 1920x1080: issue 11's meshlet culling on and off (visibility buffer, compute shadows)
 # Every run uses the issue-8 configuration: 4 cascades in a 4096² atlas, PCF5x5, soft cascade blend,
 # spot/point shadows in a 4096² atlas (PCF5x5).
 set -euo pipefail
@@ -41,6 +42,17 @@ run() {  # NAME SCENE FRAMES [extra options]
         "$@" --json "$out/$name.json" > "$out/$name.txt"
     tail -n 4 "$out/$name.txt" >&2
 }
+if [ "$preset" = meshlets ]; then  # issue 11: render.meshletCulling on and off, compute rasterizers
+    size=(--width 1920 --height 1080); frames=30; warmup=5
+    for m in true false; do
+        for scene in gen:field:25:16 gen:field:100:16 gen:field:100:16:1008 gen:field:400:16; do
+            name=$(echo "${scene#gen:}" | tr : _)
+            run "${name}_meshlets_$m" "$scene" "$frames" --camera orbit --main-view visibility --raster compute \
+                --set "render.meshletCulling=$m"
+        done
+    done
+    exit 0
+fi
 if [ "$preset" = raster ]; then
     size=(--width 1920 --height 1080); frames=15; warmup=5
     for n in 1 4 16 25 64 100 200 400; do

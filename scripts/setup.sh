@@ -9,7 +9,7 @@ packages=(
   build-essential cmake pkg-config git
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
-  libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev
+  libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth
   clang libclang-rt-14-dev llvm

@@ -1,9 +1,10 @@
 // What both compute rasterizers (shadow_raster.glsl, visibility_raster.glsl) read of the scene's
-// meshes and share of their queues: the work items of pass 1 (every mesh slot's instances x triangle
-// batches, CullMesh.counts), the queue of large pieces (pass 2) and of their chunks (pass 3).
+// meshes and share of their queues: the work items of pass 1 (every mesh slot's instances x meshlets,
+// CullMesh.counts), the meshlets, the queue of large pieces (pass 2) and of their chunks (pass 3).
 #ifndef PENUMBRA_RASTER_MESH_GLSL
 #define PENUMBRA_RASTER_MESH_GLSL
 #include "cull_structs.h"
+#include "meshlet_culling.glsl"
 #include "raster_core.glsl"
 
 layout(set = 0, binding = 6, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
@@ -11,6 +12,7 @@ layout(set = 0, binding = 7, std430) readonly buffer IndexBlock { uint indices[]
 layout(set = 0, binding = 9, std430) buffer CounterBlock { RasterCounters counters; };
 layout(set = 0, binding = 10, std430) buffer LargeBlock { RasterPiece largePieces[]; };
 layout(set = 0, binding = 11, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
+layout(set = 0, binding = kBindingRasterMeshlets, std430) readonly buffer MeshletBlock { Meshlet meshlets[]; };
 
 layout(push_constant) uniform RasterConstants {
     uvec4 pass;      // shadows: x = first entry of CullFrame::rasterTiles for this atlas, y = their count,
@@ -21,7 +23,7 @@ layout(push_constant) uniform RasterConstants {
 #endif
 } raster;
 
-// The mesh slot whose work items (instances x batches) hold work item `item`, in mesh order.
+// The mesh slot whose work items (instances x meshlets) hold work item `item`, in mesh order.
 uint meshOfWorkItem(uint item, uint meshCount) {
     uint lo = 0u, hi = meshCount - 1u;
     while (lo < hi) {

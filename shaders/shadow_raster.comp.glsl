@@ -1,7 +1,8 @@
 #version 460
-// Compute rasterizer, pass 1 (shadow_raster.glsl): one workgroup per batch of kRasterBatch triangles
-// of a slot of a tile's visible list (the GPU culling pass's output), its threads over the triangles. Small pieces are
-// rasterized by their thread; large ones are queued, set up, for the chunked passes.
+// Compute rasterizer, pass 1 (shadow_raster.glsl): one workgroup per meshlet (at most kRasterBatch
+// triangles) of a slot of a tile's visible list (the GPU culling pass's output), its threads over the
+// triangles; a meshlet whose box lies outside the tile is skipped whole (render.meshletCulling). Small
+// pieces are rasterized by their thread; large ones are queued, set up, for the chunked passes.
 #include "shadow_raster.glsl"
 
 layout(local_size_x = 64) in;
@@ -10,6 +11,7 @@ layout(set = 0, binding = 12, std430) readonly buffer ListCountBlock { uint list
 layout(set = 0, binding = 13, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 shared mat4 clipFromObject;
+shared bool meshletSkipped;
 
 // Rasterizes a small piece at once; queues a large one, set up, for passes 2 and 3.
 void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
@@ -33,15 +35,23 @@ void main() {
     CullMesh mesh = cullMeshes[meshSlot];
     uint local = item - mesh.counts.z;
     if (mesh.counts.w == 0u || local >= mesh.counts.y * mesh.counts.w) return;  // past the last item
-    uint instanceInMesh = local / mesh.counts.w, batch = local % mesh.counts.w;
+    uint instanceInMesh = local / mesh.counts.w;
     if (instanceInMesh >= listCounts[tileIndex * meshCount + meshSlot]) return;  // culled slot
     uint instance = visibleInstances[tileIndex * instanceCount + mesh.counts.x + instanceInMesh];
+    Meshlet meshlet = meshlets[mesh.meshlets.x + local % mesh.counts.w];
     CullTile tile = cull.tiles[tileIndex];
     float slopeBias = tile.wsLightDirection.w;
-    if (gl_LocalInvocationID.x == 0u) clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;
+    if (gl_LocalInvocationID.x == 0u) {
+        clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;
+        // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.
+        meshletSkipped = raster.pass.w != 0u && meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
+                                                                  kMeshletSidesXY | kMeshletSideNearW);
+        if (meshletSkipped) atomicAdd(counters.meshlets.x, 1u);
+    }
     barrier();
-    uint lastTriangle = min((batch + 1u) * kRasterBatch, mesh.draw.x / 3u);
-    for (uint triangle = batch * kRasterBatch + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
+    if (meshletSkipped) return;
+    uint lastTriangle = meshlet.triangles.x + meshlet.triangles.y;
+    for (uint triangle = meshlet.triangles.x + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         RasterTriangleSetup t;

@@ -1,9 +1,10 @@
 #version 460
-// Visibility rasterizer, pass 1 (visibility_raster.glsl): one workgroup per batch of kRasterBatch
-// triangles of a slot of one of the main view's culling lists (cull_structs.h: the camera frustum and
-// occlusion culled, blended materials left out), as the shadow rasterizer reads a tile's list. Small
-// pieces are rasterized by their thread; large ones are queued, set up, for passes 2 and 3 (or
-// rasterized here when the queue is full).
+// Visibility rasterizer, pass 1 (visibility_raster.glsl): one workgroup per meshlet (at most
+// kRasterBatch triangles) of a slot of one of the main view's culling lists (cull_structs.h: the camera
+// frustum and occlusion culled, blended materials left out), as the shadow rasterizer reads a tile's
+// list. With render.meshletCulling a meshlet outside the view, or one whose every triangle faces away
+// from the camera (single-sided materials), is skipped whole. Small pieces are rasterized by their
+// thread; large ones are queued, set up, for passes 2 and 3 (or rasterized here when the queue is full).
 #include "visibility_raster.glsl"
 
 layout(local_size_x = 64) in;
@@ -12,6 +13,7 @@ layout(set = 0, binding = kBindingViewListCounts, std430) readonly buffer ListCo
 layout(set = 0, binding = kBindingViewLists, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 shared mat4 clipFromObject;
+shared bool meshletSkipped;
 
 void rasterizeOrQueue(RasterTriangleSetup t, uint materialIndex, uint payload) {
     t.materialIndex = materialIndex;
@@ -27,23 +29,43 @@ void rasterizeOrQueue(RasterTriangleSetup t, uint materialIndex, uint payload) {
     rasterizePiece(t, payload);
 }
 
+// Whether the meshlet draws nothing (counted): outside the view's sides or depth range, or, for a
+// single-sided material on an instance that is not mirrored, every triangle facing away from the camera.
+bool skipMeshlet(Meshlet meshlet, uint instance, bool doubleSided) {
+    if (meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz, kMeshletSidesXY | kMeshletSidesDepth)) {
+        atomicAdd(counters.meshlets.x, 1u);
+        return true;
+    }
+    mat4 worldFromObject = instances[instance].worldFromObject;
+    if (doubleSided || determinant(mat3(worldFromObject)) <= 0.0) return false;
+    vec3 osEye = meshletObjectEye(worldFromObject, frame.wsCameraPosition.xyz);
+    if (!meshletFacesAway(meshlet.coneApex, meshlet.coneAxis, osEye)) return false;
+    atomicAdd(counters.meshlets.y, 1u);
+    return true;
+}
+
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
     uint meshSlot = meshOfWorkItem(item, raster.capacity.w);
     CullMesh mesh = cullMeshes[meshSlot];
     uint local = item - mesh.counts.z;
     if (mesh.counts.w == 0u || local >= mesh.counts.y * mesh.counts.w) return;  // past the last item
-    uint list = raster.list.x, instanceInMesh = local / mesh.counts.w, batch = local % mesh.counts.w;
+    uint list = raster.list.x, instanceInMesh = local / mesh.counts.w;
     if (instanceInMesh >= listCounts[list * raster.capacity.w + meshSlot]) return;  // culled slot
     uint instance = visibleInstances[list * raster.list.y + mesh.counts.x + instanceInMesh];
+    Meshlet meshlet = meshlets[mesh.meshlets.x + local % mesh.counts.w];
     MaterialData material = materials[mesh.draw.w];
-    if (gl_LocalInvocationID.x == 0u) clipFromObject = frame.clipFromWorld * instances[instance].worldFromObject;
-    barrier();
     bool doubleSided = (material.flags.y & kMaterialDoubleSided) != 0u;
+    if (gl_LocalInvocationID.x == 0u) {
+        clipFromObject = frame.clipFromWorld * instances[instance].worldFromObject;
+        meshletSkipped = raster.list.z != 0u && skipMeshlet(meshlet, instance, doubleSided);
+    }
+    barrier();
+    if (meshletSkipped) return;
     vec4 viewport = vec4(0.0, 0.0, float(viewWidth()), float(viewHeight()));
     uvec4 scissor = uvec4(0u, 0u, viewWidth(), viewHeight());
-    uint lastTriangle = min((batch + 1u) * kRasterBatch, mesh.draw.x / 3u);
-    for (uint triangle = batch * kRasterBatch + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
+    uint lastTriangle = meshlet.triangles.x + meshlet.triangles.y;
+    for (uint triangle = meshlet.triangles.x + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         if (!facesShown(v, doubleSided)) continue;

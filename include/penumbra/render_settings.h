@@ -50,6 +50,10 @@ struct RenderSettings {
     LightCulling lightCulling = LightCulling::Clustered;
     MainView mainView = MainView::Auto;
     ViewCulling viewCulling = ViewCulling::Frustum;  // occlusion measured slower where little is hidden (docs/performance.md)
+    // The compute rasterizers (visibility buffer, compute shadow raster) skip whole meshlets outside
+    // the view or shadow tile, and, in the main view, meshlets whose every triangle faces away from
+    // the camera. The image is the same.
+    bool meshletCulling = true;
     ToneMapping toneMapping = ToneMapping::Neutral;
     Background background = Background::Gradient;
 };

@@ -73,6 +73,9 @@ struct FrameStats {
     // late one (found visible by the depth pyramid), and their triangles; all 0 for forward frames.
     uint32_t viewInstances = 0, viewInstancesEarly = 0, viewInstancesLate = 0;
     uint64_t viewTriangles = 0;
+    // Meshlets the compute rasterizers skipped (render.meshletCulling): in the shadow atlases, those
+    // outside their tile; in the visibility buffer, those outside the view and those facing away.
+    uint64_t shadowMeshletsOutside = 0, viewMeshletsOutside = 0, viewMeshletsFacingAway = 0;
     // The compute rasterizer (both atlases): large triangle pieces split into chunks, the chunks, and what
     // its queues could not hold (drawn incompletely: a warning names it).
     uint64_t rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;

@@ -59,9 +59,26 @@ PENUMBRA_CHECK_SIZE(CullInstance, 48)
 struct CullMesh {
     uvec4 draw;    // x = index count, y = first index, z = vertex offset (int bits), w = material index
     uvec4 counts;  // x = first slot of the mesh's instances in a tile's list, y = its instance count,
-                   // z = its first compute-raster work item, w = triangle batches per instance
+                   // z = its first compute-raster work item, w = its meshlets (work items per instance)
+    uvec4 meshlets;  // x = its first Meshlet; yzw unused
 };
-PENUMBRA_CHECK_SIZE(CullMesh, 32)
+PENUMBRA_CHECK_SIZE(CullMesh, 48)
+PENUMBRA_CHECK_LAYOUT(CullMesh, counts, 16)
+
+// The compute rasterizers' unit of work (scene/meshlets.h): up to kRasterBatch triangles of one mesh,
+// near each other (meshoptimizer's meshlets), stored consecutively in the index buffer, with bounds
+// that let a whole meshlet be skipped (shaders/meshlet_culling.glsl, render.meshletCulling): outside
+// the view or tile, or, for the main view, every triangle facing away from the camera.
+struct Meshlet {
+    vec4 osMin;       // xyz: object-space bounds of its vertices; w unused
+    vec4 osMax;
+    vec4 coneApex;    // xyz: apex of its normal cone (meshopt_computeClusterBounds); w unused
+    vec4 coneAxis;    // xyz: the cone's axis; w = its cutoff (>= 1: the normals spread too far for a cone)
+    uvec4 triangles;  // x = first triangle, counted from the mesh's first index / 3; y = triangles
+};
+PENUMBRA_CHECK_SIZE(Meshlet, 80)
+PENUMBRA_CHECK_LAYOUT(Meshlet, triangles, 64)
+PENUMBRA_CONST(uint, kBindingRasterMeshlets, 14u)  // both compute rasterizers' pass 1
 
 // Per shadow tile of the frame (both atlases, directional first).
 struct CullTile {
@@ -130,7 +147,7 @@ PENUMBRA_CHECK_SIZE(CullTileStats, 16)
 // kRasterChunk chunks, and rasterized one workgroup per chunk, kRasterChunk^2 / 256 texels a thread.
 PENUMBRA_CONST(uint, kRasterSmallArea, 64u)
 PENUMBRA_CONST(uint, kRasterChunk, 16u)
-// Pass 1 works in batches of kRasterBatch triangles of one instance (one workgroup each), so a mesh
+// Pass 1 works in meshlets of at most kRasterBatch triangles of one instance (one workgroup each), so a mesh
 // of many triangles on few instances still fills the GPU.
 PENUMBRA_CONST(uint, kRasterBatch, 128u)
 // The queues of large pieces and chunks start at these capacities and grow when a frame overflows
@@ -152,13 +169,16 @@ struct RasterPiece {
 PENUMBRA_CHECK_SIZE(RasterPiece, 112)
 
 // Counters of one atlas pass: x = large triangles queued, y = chunks queued, z = large triangles
-// dropped (queue full), w = chunks dropped; then the two indirect dispatches (x, y, z) sized from them.
+// dropped (queue full), w = chunks dropped; then the two indirect dispatches (x, y, z) sized from them;
+// then the meshlets skipped (render.meshletCulling): x = outside the view or tile, y = facing away.
 struct RasterCounters {
     uvec4 counts;
     uvec4 largeDispatch;
     uvec4 chunkDispatch;
+    uvec4 meshlets;
 };
-PENUMBRA_CHECK_SIZE(RasterCounters, 48)
+PENUMBRA_CHECK_SIZE(RasterCounters, 64)
+PENUMBRA_CHECK_LAYOUT(RasterCounters, meshlets, 48)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

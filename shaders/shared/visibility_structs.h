@@ -29,7 +29,8 @@ PENUMBRA_CONST(uint, kResolveGroupSize, 8u)           // the resolve's 8 x 8 wor
 struct VisibilityConstants {
     uvec4 view;      // x = width, y = height, z = triangle bits of the payload, w = 1: encode sRGB
     uvec4 capacity;  // x = large pieces, y = chunks the queues hold; z = background colour (RGBA8); w = mesh slots
-    uvec4 list;      // the rasterizer: x = the culling list it draws (kCullListCamera*), y = instances
+    uvec4 list;      // the rasterizer: x = the culling list it draws (kCullListCamera*), y = instances,
+                     // z = 1: skip meshlets outside the view or facing away (render.meshletCulling)
 };
 PENUMBRA_CHECK_SIZE(VisibilityConstants, 48)
 PENUMBRA_CHECK_LAYOUT(VisibilityConstants, capacity, 16)

@@ -90,6 +90,7 @@ struct Measurements {
     std::string mainView, mainViewChoice;
     uint32_t viewInstances = 0;  // of the last timed frame
     Series viewEarly, viewLate, viewTriangles;
+    Series shadowMeshletsOutside, viewMeshletsOutside, viewMeshletsFacingAway;  // render.meshletCulling
     uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
     double lightsPerClusterMean = 0.0;  // of the last timed frame
@@ -118,6 +119,9 @@ struct Measurements {
         viewEarly.values.push_back(stats.viewInstancesEarly);
         viewLate.values.push_back(stats.viewInstancesLate);
         viewTriangles.values.push_back(double(stats.viewTriangles));
+        shadowMeshletsOutside.values.push_back(double(stats.shadowMeshletsOutside));
+        viewMeshletsOutside.values.push_back(double(stats.viewMeshletsOutside));
+        viewMeshletsFacingAway.values.push_back(double(stats.viewMeshletsFacingAway));
         lightsPerClusterMean = stats.lightsPerClusterMean;
         lightsPerClusterMax = stats.lightsPerClusterMax;
     }
@@ -216,6 +220,9 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
                         {"drawnEarly", measured.viewEarly.median()},
                         {"drawnLate", measured.viewLate.median()},
                         {"triangles", measured.viewTriangles.median()}};
+    json["meshletsSkipped"] = {{"shadowOutside", measured.shadowMeshletsOutside.median()},
+                               {"viewOutside", measured.viewMeshletsOutside.median()},
+                               {"viewFacingAway", measured.viewMeshletsFacingAway.median()}};
     if (bench.varyPeriod > 0) json["vary"] = variationJson(bench.varyPeriod, run.samples);
     return json;
 }
@@ -251,6 +258,9 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
         std::printf("main view culling (median): %.0f early + %.0f late of %u instances, %.0f triangles\n",
                     measured.viewEarly.median(), measured.viewLate.median(), measured.viewInstances,
                     measured.viewTriangles.median());
+    std::printf("meshlets skipped (median): shadows %.0f outside their tile; main view %.0f outside, %.0f facing away\n",
+                measured.shadowMeshletsOutside.median(), measured.viewMeshletsOutside.median(),
+                measured.viewMeshletsFacingAway.median());
     std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
                 measured.tilesReused.median());
     std::printf("spot/point lights per cluster: %.2f mean, %u most\n", measured.lightsPerClusterMean,

@@ -102,6 +102,9 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
                          {"drawnEarly", result.stats.viewInstancesEarly},
                          {"drawnLate", result.stats.viewInstancesLate},
                          {"triangles", result.stats.viewTriangles}};
+    stats["meshletsSkipped"] = {{"shadowOutside", result.stats.shadowMeshletsOutside},
+                                {"viewOutside", result.stats.viewMeshletsOutside},
+                                {"viewFacingAway", result.stats.viewMeshletsFacingAway}};
     stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
     stats["lightsPerCluster"] = {{"mean", result.stats.lightsPerClusterMean}, {"max", result.stats.lightsPerClusterMax}};
     return stats.dump(2);

@@ -192,6 +192,11 @@ void CommandList::dispatchIndirect(BufferHandle arguments, uint64_t offset) {
 
 void CommandList::fillBuffer(BufferHandle buffer, uint32_t value) { clearBuffer(buffer, value); }
 
+void CommandList::fillBuffer(const BufferSlice& slice, uint32_t value) {
+    PENUMBRA_ASSERT(slice.offset % 4 == 0 && slice.size % 4 == 0 && slice.size > 0);
+    vkCmdFillBuffer(native(*this), impl(*this).buffers.at(slice.buffer.id).buffer, slice.offset, slice.size, value);
+}
+
 void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState) {
     Device::Impl& d = impl(*this);
     const TextureResource& t = d.textures.at(texture.id);

@@ -33,6 +33,7 @@ public:
     void dispatch(uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ = 1);
     void dispatchIndirect(BufferHandle arguments, uint64_t offset);  // a VkDispatchIndirectCommand
     void fillBuffer(BufferHandle buffer, uint32_t value);             // every 32-bit word
+    void fillBuffer(const BufferSlice& slice, uint32_t value);        // the words of the slice (size a multiple of 4)
     // Copies a tightly packed buffer into level 0 of `texture` (depth aspect for depth formats); the
     // texture goes from Undefined to `finalState`.
     void copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState);

@@ -52,6 +52,7 @@ void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue) {
     desc.bindings = sceneBindings();
     desc.bindings.push_back({5, DescriptorType::UniformBuffer});
     for (uint32_t binding = 6; binding <= 13; ++binding) desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
+    desc.bindings.push_back({gpu_data::kBindingRasterMeshlets, DescriptorType::StorageBuffer});
     desc.pushConstantSize = 2 * sizeof(glm::uvec4);
     desc.textureTable = gpuScene.textureTable();
     for (auto [pipeline, shader] : {std::pair{&clear_, "shadow_raster_clear.comp"}, std::pair{&small_, "shadow_raster.comp"},
@@ -92,7 +93,7 @@ void ComputeRasterPass::destroyAll() {
 void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling,
                                const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
-                               gpu::BufferHandle depth, const std::string& timerPrefix) {
+                               gpu::BufferHandle depth, bool meshletCulling, const std::string& timerPrefix) {
     if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the atlas stays as it is
         commands.memoryBarrier();
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
@@ -110,7 +111,9 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
     rasterWrites.push_back({11, chunkList_, {}, {}});
     rasterWrites.push_back({12, culling.listCounts(), {}, {}});
     rasterWrites.push_back({13, culling.visibleInstances(), {}, {}});
-    const glm::uvec4 constants[2] = {{tiles.listOffset, tileCount, atlasSize, 0}, {largeCapacity_, chunkCapacity_, 0, 0}};
+    rasterWrites.push_back({gpu_data::kBindingRasterMeshlets, scene_.meshletBuffer(), {}, {}});
+    const glm::uvec4 constants[2] = {{tiles.listOffset, tileCount, atlasSize, meshletCulling ? 1u : 0u},
+                                     {largeCapacity_, chunkCapacity_, 0, 0}};
     auto bind = [&](gpu::PipelineHandle pipeline) {
         commands.bindPipeline(pipeline);
         commands.pushDescriptors(rasterWrites);

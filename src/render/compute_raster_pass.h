@@ -6,6 +6,7 @@
 // large triangle (split into chunks), per chunk.
 #include <string>
 
+#include "cull_structs.h"
 #include "gpu/device.h"
 #include "render/gpu_scene.h"
 #include "render/shadow_culling_pass.h"
@@ -35,13 +36,16 @@ public:
         bool freshAtlas = false;  // the atlas and its depth hold nothing yet: clear and copy all of it
     };
     // Draws the tiles into `depth` (atlasSize^2 uints, kept across frames for the cached tiles) and
-    // copies them into `atlas` (D32, left in ShaderRead). `writes`: the scene bindings 0-4. Its steps
-    // are timed as PREFIX/clear, /instances, /chunks, /copy.
+    // copies them into `atlas` (D32, left in ShaderRead). `writes`: the scene bindings 0-4.
+    // meshletCulling: skip the meshlets whose box lies outside their tile (render.meshletCulling). Its
+    // steps are timed as PREFIX/clear, /instances, /chunks, /copy.
     void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                 const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling, const AtlasTiles& tiles,
-                gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle depth, const std::string& timerPrefix);
-    // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles.
-    gpu::BufferSlice counters() const { return {counters_, 0, 48}; }
+                gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling,
+                const std::string& timerPrefix);
+    // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles and
+    // skipped meshlets.
+    gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
     // Grows the queues to hold a frame that asked for this many (what its counters said).
     void reserve(uint32_t largePieces, uint32_t chunks);
     static constexpr uint32_t kMaxLargeCapacity = 4u << 20, kMaxChunkCapacity = 32u << 20;

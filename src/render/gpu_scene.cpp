@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "cull_structs.h"
 #include "penumbra/image.h"
+#include "scene/meshlets.h"
 #include "scene_structs.h"
 
 namespace penumbra {
@@ -41,6 +42,16 @@ gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance
     data.normalFromObject = glm::mat4(normalMatrix(instance.worldFromObject));
     data.info = glm::uvec4(scene.meshes.at(instance.meshIndex).materialIndex, 0, 0, 0);
     return data;
+}
+
+gpu_data::Meshlet packMeshlet(const Meshlet& meshlet) {
+    gpu_data::Meshlet packed{};
+    packed.osMin = glm::vec4(meshlet.osMin, 0.0f);
+    packed.osMax = glm::vec4(meshlet.osMax, 0.0f);
+    packed.coneApex = glm::vec4(meshlet.coneApex, 0.0f);
+    packed.coneAxis = glm::vec4(meshlet.coneAxis, meshlet.coneCutoff);
+    packed.triangles = glm::uvec4(meshlet.firstTriangle, meshlet.triangleCount, 0u, 0u);
+    return packed;
 }
 
 gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshSlot) {
@@ -141,11 +152,16 @@ void GpuScene::create(const Scene& scene) {
     std::vector<uint32_t> indices;
     struct MeshRange { uint32_t firstIndex, indexCount; int32_t vertexOffset; };
     std::vector<MeshRange> ranges;
+    // Each mesh's triangles in meshlet order (the compute rasterizers' work items; every pass draws the
+    // same triangles, in this order).
+    std::vector<MeshletMesh> meshletMeshes;
     for (const Mesh& mesh : scene.meshes) {
-        ranges.push_back({uint32_t(indices.size()), uint32_t(mesh.indices.size()), int32_t(vertices.size())});
+        meshletMeshes.push_back(buildMeshlets(mesh, gpu_data::kRasterBatch));
+        const std::vector<uint32_t>& meshIndices = meshletMeshes.back().indices;
+        ranges.push_back({uint32_t(indices.size()), uint32_t(meshIndices.size()), int32_t(vertices.size())});
         for (const Vertex& v : mesh.vertices)
             vertices.push_back({glm::vec4(v.osPosition, v.uv.x), glm::vec4(v.osNormal, v.uv.y)});
-        indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+        indices.insert(indices.end(), meshIndices.begin(), meshIndices.end());
     }
     std::vector<gpu_data::InstanceData> instances;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
@@ -158,6 +174,7 @@ void GpuScene::create(const Scene& scene) {
     }
     // Culling: a slot per mesh with geometry; its instances get consecutive places in a tile's list.
     std::vector<gpu_data::CullMesh> cullMeshes;
+    std::vector<gpu_data::Meshlet> meshlets;
     meshSlotOfMesh_.assign(scene.meshes.size(), ~0u);
     for (uint32_t m = 0; m < scene.meshes.size(); ++m) {
         if (ranges[m].indexCount == 0) continue;
@@ -165,8 +182,12 @@ void GpuScene::create(const Scene& scene) {
         gpu_data::CullMesh mesh{};
         mesh.draw = glm::uvec4(ranges[m].indexCount, ranges[m].firstIndex, uint32_t(ranges[m].vertexOffset),
                                scene.meshes[m].materialIndex);
+        mesh.meshlets.x = uint32_t(meshlets.size());
+        mesh.counts.w = uint32_t(meshletMeshes[m].meshlets.size());
+        for (const Meshlet& meshlet : meshletMeshes[m].meshlets) meshlets.push_back(packMeshlet(meshlet));
         cullMeshes.push_back(mesh);
     }
+    meshletCount_ = uint32_t(meshlets.size());
     std::vector<gpu_data::CullInstance> cullInstances;
     for (const Instance& instance : scene.instances) {
         const uint32_t slot = meshSlotOfMesh_[instance.meshIndex];
@@ -177,10 +198,8 @@ void GpuScene::create(const Scene& scene) {
     for (gpu_data::CullMesh& mesh : cullMeshes) {
         mesh.counts.x = firstSlot;
         firstSlot += mesh.counts.y;
-        const uint32_t batches = (mesh.draw.x / 3 + gpu_data::kRasterBatch - 1) / gpu_data::kRasterBatch;
         mesh.counts.z = rasterWorkItems_;
-        mesh.counts.w = batches;
-        rasterWorkItems_ += mesh.counts.y * batches;
+        rasterWorkItems_ += mesh.counts.y * mesh.counts.w;
     }
     uint32_t maxTriangles = 1;
     for (const gpu_data::CullMesh& mesh : cullMeshes) maxTriangles = std::max(maxTriangles, mesh.draw.x / 3);
@@ -188,6 +207,7 @@ void GpuScene::create(const Scene& scene) {
     const uint64_t largestId = (uint64_t(scene.instances.size()) << triangleIdBits_) + 1;
     visibilityIdsFit_ = largestId <= UINT32_MAX;
     if (cullMeshes.empty()) cullMeshes.push_back({});
+    if (meshlets.empty()) meshlets.push_back({});
     if (cullInstances.empty()) cullInstances.push_back({});
     instanceCount_ = uint32_t(scene.instances.size());
     meshSlotCount_ = uint32_t(cullMeshes.size());
@@ -209,6 +229,8 @@ void GpuScene::create(const Scene& scene) {
                                          MemoryKind::DeviceLocal, cullInstances.data(), "cull instances");
     cullMeshes_ = device.createBuffer(cullMeshes.size() * sizeof(cullMeshes[0]), gpu::kBufferStorage,
                                       MemoryKind::DeviceLocal, cullMeshes.data(), "cull meshes");
+    meshlets_ = device.createBuffer(meshlets.size() * sizeof(meshlets[0]), gpu::kBufferStorage, MemoryKind::DeviceLocal,
+                                    meshlets.data(), "meshlets");
 
     // Base-colour textures (sRGB, full mip chain), each with its glTF sampler. An empty scene still gets
     // one white texel so the table is never empty.
@@ -249,12 +271,12 @@ void GpuScene::destroyAll() {
     device_.destroy(textureTable_);
     for (gpu::SamplerHandle sampler : samplers_) device_.destroy(sampler);
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
-    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_})
+    for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshlets_})
         device_.destroy(b);
     textureTable_ = {};
     samplers_.clear();
     textures_.clear();
-    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = {};
+    vertices_ = indices_ = instances_ = materials_ = cullInstances_ = cullMeshes_ = meshlets_ = {};
 }
 
 GpuScene::~GpuScene() { destroyAll(); }

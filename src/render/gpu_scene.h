@@ -51,7 +51,11 @@ public:
     gpu::BufferHandle cullMeshBuffer() const { return cullMeshes_; }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t meshSlotCount() const { return meshSlotCount_; }
-    // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's triangle batches.
+    // The meshlets of every mesh (cull_structs.h Meshlet; CullMesh.meshlets.x is a mesh's first); each
+    // mesh's triangles lie in the index buffer meshlet by meshlet.
+    gpu::BufferHandle meshletBuffer() const { return meshlets_; }
+    uint32_t meshletCount() const { return meshletCount_; }
+    // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's meshlets.
     uint32_t rasterWorkItems() const { return rasterWorkItems_; }
     uint64_t triangleCount() const { return triangles_; }
     // The main view's compute rasterizer: the bits a triangle index takes in a visibility payload
@@ -77,9 +81,9 @@ private:
     gpu::Device& device_;
     std::vector<DrawItem> draws_;
     uint64_t triangles_ = 0;
-    gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_;
+    gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshlets_;
     std::vector<uint32_t> meshSlotOfMesh_;  // per Scene::meshes entry: its CullMesh slot, ~0u without geometry
-    uint32_t instanceCount_ = 0, meshSlotCount_ = 0, rasterWorkItems_ = 0, triangleIdBits_ = 0;
+    uint32_t instanceCount_ = 0, meshSlotCount_ = 0, meshletCount_ = 0, rasterWorkItems_ = 0, triangleIdBits_ = 0;
     bool visibilityIdsFit_ = true;
     std::vector<gpu::TextureHandle> textures_;
     std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler

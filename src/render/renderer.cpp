@@ -129,6 +129,7 @@ void applyRasterCounters(FrameStats& stats, const ShadowFrame& plan, const std::
         stats.rasterLargeTriangles += counters.counts.x;
         stats.rasterChunks += counters.counts.y;
         stats.rasterDropped += counters.counts.z + counters.counts.w;
+        stats.shadowMeshletsOutside += counters.meshlets.x;
         needed = glm::max(needed, glm::uvec2(counters.counts.x, counters.counts.y));
     }
     if (stats.rasterDropped > 0)
@@ -137,15 +138,20 @@ void applyRasterCounters(FrameStats& stats, const ShadowFrame& plan, const std::
                                  "; the queues grow for the next frames");
 }
 
-// The main view culling's counts: the two CullTileStats before the light cluster counts, if any.
+// The main view culling's counts: the two CullTileStats and the visibility rasterizer's meshlet counts,
+// before the light cluster counts, if any.
 void applyViewStats(FrameStats& stats, const std::vector<uint8_t>& readback, bool clusterStats) {
     gpu_data::CullTileStats lists[2]{};
-    const size_t tail = sizeof(lists) + (clusterStats ? sizeof(gpu_data::LightClusterStats) : 0);
+    glm::uvec4 meshlets{0u};
+    const size_t tail = sizeof(lists) + sizeof(meshlets) + (clusterStats ? sizeof(gpu_data::LightClusterStats) : 0);
     if (readback.size() < tail) return;
     std::memcpy(lists, readback.data() + readback.size() - tail, sizeof(lists));
+    std::memcpy(&meshlets, readback.data() + readback.size() - tail + sizeof(lists), sizeof(meshlets));
     stats.viewInstancesEarly = lists[0].counts.y;
     stats.viewInstancesLate = lists[1].counts.y;
     stats.viewTriangles = uint64_t(lists[0].counts.z) + lists[1].counts.z;
+    stats.viewMeshletsOutside = meshlets.x;
+    stats.viewMeshletsFacingAway = meshlets.y;
 }
 
 // The light cluster pass's counts, the last bytes of the frame's readback.
@@ -491,7 +497,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
                     atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
                                                 tiles[i].rect.size, tiles[i].rect.size});
                 computeRaster.record(commands, casterWrites, cullSlice, culling, atlasTiles, atlas, size, rasterDepth,
-                                     "shadows." + name);
+                                     settings.render.meshletCulling, "shadows." + name);
                 device.readBackAtFrameEnd(commands, computeRaster.counters());
             } else {
                 casterPass.record(commands, tiles, draw, fresh, firstTile, atlas, size, casterWrites, culling);
@@ -548,7 +554,8 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
                                           main.variant.specialization};
             std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
             // Leaves both targets in their target states.
-            visibility->record(commands, inputs.writes, opaque, culling, cullSlice, settings.render.viewCulling);
+            visibility->record(commands, inputs.writes, opaque, culling, cullSlice, settings.render.viewCulling,
+                               settings.render.meshletCulling);
             main.opaqueDone = true;
             stats.viewInstances = gpuScene.viewInstanceCount(scene);
         } else {
@@ -565,7 +572,10 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
 
         // Last in the readback (collectCompleted reads them from the end).
         frame.viewStats = frame.visibilityView;
-        if (frame.viewStats) device.readBackAtFrameEnd(commands, culling.viewStats());
+        if (frame.viewStats) {
+            device.readBackAtFrameEnd(commands, culling.viewStats());
+            device.readBackAtFrameEnd(commands, visibility->meshletCounts());
+        }
         if (clustered) device.readBackAtFrameEnd(commands, lightClusters.stats());
         stage = "readback";
         if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());

@@ -46,7 +46,7 @@ void VisibilityPass::create() {
     gpu::ComputePipelineDesc desc;
     desc.bindings = sceneBindings();
     for (uint32_t binding : {6u, 7u, gpu_data::kBindingVisibility, 9u, 10u, 11u, gpu_data::kBindingViewListCounts,
-                             gpu_data::kBindingViewLists})
+                             gpu_data::kBindingViewLists, gpu_data::kBindingRasterMeshlets})
         desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
     desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
     desc.textureTable = scene_.textureTable();
@@ -176,8 +176,8 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
 }
 
 void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                                  gpu_data::VisibilityConstants constants, uint32_t list) {
-    constants.list = glm::uvec4(list, scene_.instanceCount(), 0u, 0u);
+                                  gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling) {
+    constants.list = glm::uvec4(list, scene_.instanceCount(), meshletCulling ? 1u : 0u, 0u);
     auto bind = [&](gpu::PipelineHandle pipeline) {
         commands.bindPipeline(pipeline);
         commands.pushDescriptors(writes);
@@ -187,7 +187,8 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<
     auto sizeDispatch = [&](uint32_t which) {
         recordRasterDispatchSize(commands, args_, counters_, which, kLargeCapacity, kChunkCapacity);
     };
-    commands.fillBuffer(counters_, 0);
+    // The queues' counters; the meshlet counts add up over both phases of the frame.
+    commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshlets)}, 0);
     commands.memoryBarrier();
     const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
     bind(raster_);
@@ -223,7 +224,7 @@ void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
 
 void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                             const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
-                            ViewCulling viewCulling) {
+                            ViewCulling viewCulling, bool meshletCulling) {
     ensureSize(target.width, target.height);
     gpu_data::VisibilityConstants constants{};
     constants.view = glm::uvec4(target.width, target.height, scene_.triangleIdBits(),
@@ -239,14 +240,16 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
     rasterWrites.push_back({11, chunkList_, {}, {}});
     rasterWrites.push_back({gpu_data::kBindingViewListCounts, culling.listCounts(), {}, {}});
     rasterWrites.push_back({gpu_data::kBindingViewLists, culling.visibleInstances(), {}, {}});
+    rasterWrites.push_back({gpu_data::kBindingRasterMeshlets, scene_.meshletBuffer(), {}, {}});
 
     commands.beginTimer("main/cull");
     commands.memoryBarrier();  // the previous frame may still read these buffers
     commands.fillBuffer(visibility_, 0);
+    commands.fillBuffer(gpu::BufferSlice{counters_, offsetof(gpu_data::RasterCounters, meshlets), sizeof(glm::uvec4)}, 0);
     culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraEarly, pyramidTexels_);
     commands.endTimer();
     commands.beginTimer("main/raster");
-    recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraEarly);
+    recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraEarly, meshletCulling);
     commands.endTimer();
     if (viewCulling == ViewCulling::Occlusion) {
         commands.beginTimer("main/occlusion");
@@ -254,7 +257,7 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
         culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraLate, pyramidTexels_);
         commands.endTimer();
         commands.beginTimer("main/rasterLate");
-        recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraLate);
+        recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraLate, meshletCulling);
         commands.endTimer();
     }
 

@@ -17,6 +17,7 @@
 #include <map>
 #include <vector>
 
+#include "cull_structs.h"
 #include "gpu/device.h"
 #include "penumbra/render_settings.h"
 #include "render/gpu_scene.h"
@@ -51,10 +52,17 @@ public:
     }
     bool fragmentResolve() const { return fragmentResolve_; }
     // `writes`: the shaded scene bindings 0-16 (MainPassInputs); `cullFrame` holds CullFrame::camera
-    // of this view and `culling`. Timed as main/cull, main/raster, main/occlusion (pyramid and late
+    // of this view and `culling`. meshletCulling: skip meshlets outside the view or facing away
+    // (render.meshletCulling). Timed as main/cull, main/raster, main/occlusion (pyramid and late
     // culling), main/rasterLate, main/resolve, main/copy.
     void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
-                ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling);
+                ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
+                bool meshletCulling);
+    // The meshlets skipped in the last recorded frame (RasterCounters::meshlets: x outside, y facing
+    // away), for the frame-end readback.
+    gpu::BufferSlice meshletCounts() const {
+        return {counters_, offsetof(gpu_data::RasterCounters, meshlets), sizeof(glm::uvec4)};
+    }
 
 private:
     void create();
@@ -62,7 +70,7 @@ private:
     void ensureSize(uint32_t width, uint32_t height);
     gpu::PipelineHandle resolvePipeline(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat);
     void recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                      gpu_data::VisibilityConstants constants, uint32_t list);
+                      gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling);
     void recordPyramid(gpu::CommandList& commands);
     void recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
                        const gpu_data::VisibilityConstants& constants);

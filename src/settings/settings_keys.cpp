@@ -100,6 +100,7 @@ std::vector<SettingKey> makeTable() {
     t.push_back(ranged("render.ambient", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(render.ambient)));
     t.push_back(choice("render.lightCulling", {"clustered", "none"}, PENUMBRA_FIELD(render.lightCulling)));
     t.push_back(choice("render.viewCulling", {"occlusion", "frustum", "none"}, PENUMBRA_FIELD(render.viewCulling)));
+    t.push_back(ranged("render.meshletCulling", SettingType::Bool, 0, 1, "true, false", PENUMBRA_FIELD(render.meshletCulling)));
     t.push_back(choice("render.mainView", {"forward", "visibility", "auto"}, PENUMBRA_FIELD(render.mainView)));
     t.push_back(choice("render.toneMapping", {"none", "neutral", "aces"}, PENUMBRA_FIELD(render.toneMapping)));
     t.push_back(choice("render.background", {"gradient", "black"}, PENUMBRA_FIELD(render.background)));

@@ -1,0 +1,68 @@
+// Whether a compute rasterizer may skip a whole meshlet (issue 11, render.meshletCulling;
+// cull_structs.h Meshlet): its box lies outside the view or shadow tile, or every triangle of it faces
+// away from the camera. Both tests are conservative: a skipped meshlet would have drawn nothing.
+// Written in the common subset of GLSL and C++ (glm), like tone_mapping.glsl: the rasterizers include
+// it and tests/unit/meshlet_culling_test.cpp checks the very same functions against every triangle.
+#ifndef PENUMBRA_MESHLET_CULLING_GLSL
+#define PENUMBRA_MESHLET_CULLING_GLSL
+#include "cull_structs.h"
+
+#ifdef __cplusplus
+namespace penumbra::gpu_data::meshlet_culling {
+using namespace glm;
+#endif
+
+// The sides of a clip volume a box is tested against (bit masks): x and y within [-w, w] (what the
+// viewport covers: a rasterizer writes no pixel outside it), w above kMeshletNearW (perspective
+// shadow tiles clip there), and the main view's reversed-Z depth range 0 <= z <= w.
+const uint kMeshletSidesXY = 15u, kMeshletSideNearW = 16u, kMeshletSidesDepth = 96u;
+const float kMeshletNearW = 1e-5f;
+// Relative slack of both tests, so that rounding in the box's corners or the cone never skips a
+// meshlet that touches the boundary.
+const float kMeshletSlack = 1e-4f;
+
+// The sides of `sides` that clip-space point `c` lies beyond.
+PENUMBRA_INLINE uint meshletOutcode(vec4 c, uint sides) {
+    float slack = kMeshletSlack * abs(c.w);
+    uint code = 0u;
+    if (c.x < -c.w - slack) code |= 1u;
+    if (c.x > c.w + slack) code |= 2u;
+    if (c.y < -c.w - slack) code |= 4u;
+    if (c.y > c.w + slack) code |= 8u;
+    if (c.w < kMeshletNearW) code |= 16u;
+    if (c.z < -slack) code |= 32u;
+    if (c.z > c.w + slack) code |= 64u;
+    return code & sides;
+}
+
+// Whether the object-space box [osMin, osMax] lies wholly beyond one side of `sides` of the clip
+// volume of clipFromObject (then so does every triangle inside it).
+PENUMBRA_INLINE bool meshletBoxOutside(mat4 clipFromObject, vec3 osMin, vec3 osMax, uint sides) {
+    uint outside = sides;
+    for (int i = 0; i < 8; ++i) {
+        vec3 corner = vec3((i & 1) != 0 ? osMax.x : osMin.x, (i & 2) != 0 ? osMax.y : osMin.y, (i & 4) != 0 ? osMax.z : osMin.z);
+        outside &= meshletOutcode(clipFromObject * vec4(corner, 1.0f), sides);
+    }
+    return outside != 0u;
+}
+
+// The camera's position in an instance's object space (worldFromObject affine and invertible).
+PENUMBRA_INLINE vec3 meshletObjectEye(mat4 worldFromObject, vec3 wsEye) {
+    return inverse(mat3(worldFromObject)) * (wsEye - vec3(worldFromObject[3]));
+}
+
+// Whether every triangle of a meshlet faces away from an eye at osEye (object space): meshoptimizer's
+// cone test, dot(normalize(apex - eye), axis) >= cutoff. A triangle's facing is the sign of
+// dot(p - eye, n), which an affine transform keeps (times the sign of its determinant), so the test in
+// object space is the test in the world for instances that are not mirrored (the caller checks).
+PENUMBRA_INLINE bool meshletFacesAway(vec4 coneApex, vec4 coneAxis, vec3 osEye) {
+    float cutoff = coneAxis.w + kMeshletSlack;
+    if (cutoff >= 1.0f) return false;
+    vec3 d = vec3(coneApex) - osEye;
+    return dot(d, vec3(coneAxis)) >= cutoff * length(d);
+}
+
+#ifdef __cplusplus
+}  // namespace penumbra::gpu_data::meshlet_culling
+#endif
+#endif

@@ -1,0 +1,122 @@
+// Meshlet culling of the compute rasterizers (issue 11, render.meshletCulling): the visibility buffer
+// skips meshlets outside the view and meshlets whose every triangle faces away from the camera, the
+// compute shadow rasterizer meshlets outside their tile. Skipping changes what is drawn, never the
+// image: frames with and without are compared pixel for pixel (both rasterizers keep the nearest
+// depth by an atomic, whatever the order, so the tolerance is exact equality).
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "penumbra/scene_builder.h"
+#include "render_test_support.h"
+#include "scene/canonical_scenes.h"
+#include "scene/meshlets.h"
+#include "cull_structs.h"
+
+namespace penumbra::test {
+namespace {
+
+constexpr int kSphereSegments = 96, kSphereRings = 48;
+
+Settings computeSettings(bool meshletCulling) {
+    Settings settings;
+    settings.render.mainView = MainView::Visibility;
+    settings.render.meshletCulling = meshletCulling;
+    settings.shadows.raster = ShadowRaster::Compute;
+    settings.shadows.directional.atlasSize = 512;  // lavapipe: keep the shadow passes small
+    settings.shadows.spot.atlasSize = 512;
+    return settings;
+}
+
+RenderRequest smallRequest() {
+    RenderRequest request;
+    request.width = 160;
+    request.height = 90;
+    return request;
+}
+
+// A finely tessellated sphere in front of the camera over a ground plane, lit by the sun; the
+// sphere's material single- or double-sided, its instance mirrored (scale -1 in x) or not.
+Scene sphereScene(bool doubleSided, bool mirrored) {
+    SceneBuilder builder;
+    Material white;
+    white.metallic = 0.0f;
+    white.doubleSided = doubleSided;
+    const uint32_t material = builder.addMaterial(white);
+    const uint32_t sphere = builder.addMesh(makeSphereMesh(1.0f, material, kSphereSegments, kSphereRings));
+    const uint32_t ground = builder.addMesh(makePlaneMesh({20.0f, 20.0f}, material));
+    glm::mat4 place = glm::translate(glm::mat4(1.0f), {0.0f, 1.2f, 0.0f});
+    if (mirrored) place = glm::scale(place, {-1.0f, 1.0f, 1.0f});
+    builder.addInstance(sphere, place);
+    builder.addInstance(ground, glm::mat4(1.0f));
+    builder.addLight(makeDirectionalLight({-0.3f, -1.0f, -0.4f}, 3.0f));
+    builder.setCamera(makeLookAtCamera({0.0f, 2.0f, 5.0f}, {0.0f, 1.0f, 0.0f}, 0.9f));
+    return builder.build();
+}
+
+size_t sphereMeshlets() {
+    return buildMeshlets(makeSphereMesh(1.0f, 0, kSphereSegments, kSphereRings), gpu_data::kRasterBatch).meshlets.size();
+}
+
+class MeshletCullingTest : public RenderTest {};
+
+TEST_F(MeshletCullingTest, ImagesEqualThoseWithoutMeshletCullingOnEveryCanonicalScene) {
+    for (const CanonicalSceneInfo& info : canonicalScenes()) {
+        const Scene scene = makeCanonicalScene(info.name);
+        Renderer renderer(device(), scene);
+        const RenderResult culled = renderer.render(smallRequest(), computeSettings(true));
+        const RenderResult unculled = renderer.render(smallRequest(), computeSettings(false));
+        ASSERT_EQ(culled.stats.mainView, "visibility") << info.name;
+        ASSERT_EQ(culled.stats.shadowRaster, "compute") << info.name;
+        EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0) << info.name;
+        EXPECT_EQ(unculled.stats.viewMeshletsOutside + unculled.stats.viewMeshletsFacingAway +
+                      unculled.stats.shadowMeshletsOutside, 0u) << info.name;
+    }
+}
+
+TEST_F(MeshletCullingTest, MeshletsFacingAwayFromTheCameraAreSkipped) {
+    const Scene scene = sphereScene(false, false);
+    Renderer renderer(device(), scene);
+    const RenderResult culled = renderer.render(smallRequest(), computeSettings(true));
+    const RenderResult unculled = renderer.render(smallRequest(), computeSettings(false));
+    // About half the sphere faces away; the meshlets on the silhouette hold both kinds.
+    const double share = double(culled.stats.viewMeshletsFacingAway) / double(sphereMeshlets());
+    std::printf("sphere meshlets facing away: %llu of %zu\n", (unsigned long long)culled.stats.viewMeshletsFacingAway,
+                sphereMeshlets());
+    EXPECT_GT(share, 0.25);
+    EXPECT_LT(share, 0.6);
+    EXPECT_EQ(unculled.stats.viewMeshletsFacingAway, 0u);
+    EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
+}
+
+TEST_F(MeshletCullingTest, DoubleSidedMaterialsAndMirroredInstancesSkipNothingForFacing) {
+    for (const auto& [doubleSided, mirrored] : {std::pair{true, false}, std::pair{false, true}}) {
+        const Scene scene = sphereScene(doubleSided, mirrored);
+        Renderer renderer(device(), scene);
+        const RenderResult culled = renderer.render(smallRequest(), computeSettings(true));
+        const RenderResult unculled = renderer.render(smallRequest(), computeSettings(false));
+        EXPECT_EQ(culled.stats.viewMeshletsFacingAway, 0u) << "double-sided " << doubleSided << ", mirrored " << mirrored;
+        EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
+    }
+}
+
+// The camera close to the sphere sees part of it; the cascades' tiles hold parts of the ground's
+// meshlets only (a 20 m plane of 2 triangles is one meshlet: the sphere's are what lie outside).
+TEST_F(MeshletCullingTest, MeshletsOutsideTheViewAndOutsideShadowTilesAreSkipped) {
+    const Scene scene = sphereScene(false, false);
+    Renderer renderer(device(), scene);
+    const CameraView close = makeCameraView(makeLookAtCamera({0.3f, 1.3f, 1.6f}, {0.6f, 1.0f, 0.0f}, 0.5f), 160, 90);
+    Settings settings = computeSettings(true);
+    settings.shadows.directional.cascadeCount = 4;
+    settings.shadows.maxDistance = 30.0f;
+    const RenderResult culled = renderer.render(smallRequest(), settings, close);
+    settings.render.meshletCulling = false;
+    const RenderResult unculled = renderer.render(smallRequest(), settings, close);
+    std::printf("meshlets outside: view %llu, shadow tiles %llu\n", (unsigned long long)culled.stats.viewMeshletsOutside,
+                (unsigned long long)culled.stats.shadowMeshletsOutside);
+    EXPECT_GT(culled.stats.viewMeshletsOutside, sphereMeshlets() / 10);
+    EXPECT_GT(culled.stats.shadowMeshletsOutside, 0u);
+    EXPECT_EQ(unculled.stats.viewMeshletsOutside + unculled.stats.shadowMeshletsOutside, 0u);
+    EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
+}
+
+}  // namespace
+}  // namespace penumbra::test

@@ -1,0 +1,189 @@
+// Meshlets (scene/meshlets.h) and the tests that let a compute rasterizer skip one whole
+// (shaders/meshlet_culling.glsl, compiled here as C++): the split keeps every triangle, and whatever a
+// test skips would have drawn nothing, checked triangle by triangle on real meshes from many views.
+#include <algorithm>
+#include <array>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "meshlet_culling.glsl"
+#include "penumbra/scene_builder.h"
+#include "penumbra/scene_loading.h"
+#include "scene/meshlets.h"
+
+using namespace penumbra;
+namespace mc = penumbra::gpu_data::meshlet_culling;
+
+namespace {
+
+constexpr uint32_t kMaxTriangles = 128;
+
+// A triangle as its vertex indices rotated to start at the smallest (winding kept).
+std::array<uint32_t, 3> canonical(const uint32_t* t) {
+    const int first = t[0] <= t[1] && t[0] <= t[2] ? 0 : (t[1] <= t[2] ? 1 : 2);
+    return {t[first], t[(first + 1) % 3], t[(first + 2) % 3]};
+}
+
+std::vector<std::array<uint32_t, 3>> sortedTriangles(const std::vector<uint32_t>& indices) {
+    std::vector<std::array<uint32_t, 3>> triangles;
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) triangles.push_back(canonical(&indices[i]));
+    std::sort(triangles.begin(), triangles.end());
+    return triangles;
+}
+
+// The largest mesh of the CAD engine (tests/scenes/cad_engine.glb), many flat faces in many directions.
+Mesh engineMesh() {
+    const Scene scene = loadScene(std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/cad_engine.glb");
+    const Mesh* largest = &scene.meshes.front();
+    for (const Mesh& mesh : scene.meshes)
+        if (mesh.indices.size() > largest->indices.size()) largest = &mesh;
+    return *largest;
+}
+
+std::vector<Mesh> testMeshes() {
+    return {makeSphereMesh(1.0f, 0, 96, 48), makeBoxMesh(glm::vec3(1.0f, 2.0f, 0.5f), 0), makeCylinderMesh(0.5f, 2.0f, 0, 64),
+            engineMesh()};
+}
+
+glm::vec3 position(const Mesh& mesh, uint32_t index) { return mesh.vertices[index].osPosition; }
+
+// The mesh's centre and the diagonal of its box.
+std::pair<glm::vec3, float> centreAndSize(const Mesh& mesh) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const Vertex& v : mesh.vertices) lo = glm::min(lo, v.osPosition), hi = glm::max(hi, v.osPosition);
+    return {0.5f * (lo + hi), glm::length(hi - lo)};
+}
+
+}  // namespace
+
+TEST(Meshlets, EveryTriangleIsKeptOnceWithItsWinding) {
+    for (const Mesh& mesh : testMeshes()) {
+        const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+        ASSERT_EQ(split.indices.size(), mesh.indices.size());
+        EXPECT_EQ(sortedTriangles(split.indices), sortedTriangles(mesh.indices));
+    }
+}
+
+TEST(Meshlets, MeshletsAreConsecutiveRunsOfAtMostTheLimit) {
+    for (const Mesh& mesh : testMeshes()) {
+        const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+        uint32_t next = 0;
+        for (const Meshlet& meshlet : split.meshlets) {
+            EXPECT_EQ(meshlet.firstTriangle, next);
+            EXPECT_GT(meshlet.triangleCount, 0u);
+            EXPECT_LE(meshlet.triangleCount, kMaxTriangles);
+            next += meshlet.triangleCount;
+        }
+        EXPECT_EQ(size_t(next) * 3, split.indices.size());
+    }
+    // Full meshlets: a smooth mesh needs few more work items than triangles / kMaxTriangles.
+    const MeshletMesh sphere = buildMeshlets(makeSphereMesh(1.0f, 0, 96, 48), kMaxTriangles);
+    const double fill = double(sphere.indices.size() / 3) / double(sphere.meshlets.size() * kMaxTriangles);
+    std::printf("sphere: %zu meshlets, %.1f %% full\n", sphere.meshlets.size(), 100.0 * fill);
+    EXPECT_GT(fill, 0.75);
+}
+
+TEST(Meshlets, BoxesHoldTheirVertices) {
+    for (const Mesh& mesh : testMeshes()) {
+        const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+        for (const Meshlet& meshlet : split.meshlets)
+            for (uint32_t i = meshlet.firstTriangle * 3; i < (meshlet.firstTriangle + meshlet.triangleCount) * 3; ++i) {
+                const glm::vec3 p = position(mesh, split.indices[i]);
+                EXPECT_TRUE(glm::all(glm::lessThanEqual(meshlet.osMin, p)) && glm::all(glm::lessThanEqual(p, meshlet.osMax)));
+            }
+    }
+}
+
+TEST(Meshlets, DegenerateTrianglesGetMeshletsWithoutACone) {
+    Mesh mesh = makeSphereMesh(1.0f, 0, 16, 8);
+    mesh.indices.insert(mesh.indices.end(), {0, 0, 1, 2, 3, 3});
+    const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+    EXPECT_EQ(sortedTriangles(split.indices), sortedTriangles(mesh.indices));
+    const Meshlet& last = split.meshlets.back();
+    EXPECT_EQ(last.triangleCount, 2u);
+    EXPECT_GE(last.coneCutoff, 1.0f);
+}
+
+// meshletFacesAway says yes only when every triangle faces away from the eye (dot(p - eye, n) >= 0,
+// n by the counter-clockwise winding), and says it for a good share of the meshlets of a closed mesh.
+TEST(MeshletCulling, ConeTestSkipsOnlyMeshletsWhoseEveryTriangleFacesAway) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    // testMeshes(): a smooth closed sphere turns almost half its meshlets away from an eye outside; a
+    // box's or a cylinder's meshlet holds faces in every direction; the engine's flat faces point every
+    // way within most meshlets, so few of its meshlets are skipped.
+    const double least[] = {0.3, 0.0, 0.0, 0.03};
+    const std::vector<Mesh> meshes = testMeshes();
+    for (size_t m = 0; m < meshes.size(); ++m) {
+        const Mesh& mesh = meshes[m];
+        const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+        const auto [center, size] = centreAndSize(mesh);
+        size_t skipped = 0, tested = 0;
+        for (int view = 0; view < 64; ++view) {
+            glm::vec3 direction(unit(random), unit(random), unit(random));
+            if (glm::length(direction) < 0.1f) continue;
+            const glm::vec3 eye = center + glm::normalize(direction) * size * (0.6f + 2.0f * std::abs(unit(random)));
+            for (const Meshlet& meshlet : split.meshlets) {
+                ++tested;
+                if (!mc::meshletFacesAway(glm::vec4(meshlet.coneApex, 0.0f), glm::vec4(meshlet.coneAxis, meshlet.coneCutoff), eye))
+                    continue;
+                ++skipped;
+                for (uint32_t t = meshlet.firstTriangle; t < meshlet.firstTriangle + meshlet.triangleCount; ++t) {
+                    const glm::vec3 a = position(mesh, split.indices[t * 3]), b = position(mesh, split.indices[t * 3 + 1]),
+                                    c = position(mesh, split.indices[t * 3 + 2]);
+                    const glm::vec3 n = glm::cross(b - a, c - a);
+                    ASSERT_GE(glm::dot(a - eye, n), -1e-6f * glm::length(n) * size) << "a skipped triangle faces the eye";
+                }
+            }
+        }
+        std::printf("%zu of %zu meshlets face away\n", skipped, tested);
+        EXPECT_GE(double(skipped) / double(tested), least[m]) << "mesh " << m << ": the cone test skips too little";
+    }
+}
+
+// meshletBoxOutside says yes only when every triangle's vertices lie beyond one side of the clip
+// volume; from cameras inside and around the mesh, part of the meshlets lie outside.
+TEST(MeshletCulling, BoxTestSkipsOnlyMeshletsOutsideOneSide) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const Mesh mesh = engineMesh();
+    const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+    const auto [center, size] = centreAndSize(mesh);
+    const uint32_t sides = mc::kMeshletSidesXY | mc::kMeshletSidesDepth;
+    size_t skipped = 0, tested = 0;
+    for (int view = 0; view < 64; ++view) {
+        // Inside the mesh's box, looking at a part of it.
+        const glm::vec3 eye = center + 0.4f * size * glm::vec3(unit(random), unit(random), unit(random));
+        const glm::vec3 target = center + 0.4f * size * glm::vec3(unit(random), unit(random), unit(random));
+        // Reversed Z, as the main view: near at z = w.
+        glm::mat4 projection = glm::perspective(0.4f + 0.4f * std::abs(unit(random)), 1.6f, 0.02f * size, 0.5f * size);
+        const glm::mat4 reverse(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, -1, 0), glm::vec4(0, 0, 1, 1));
+        const glm::mat4 clipFromObject = reverse * projection * glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+        for (const Meshlet& meshlet : split.meshlets) {
+            ++tested;
+            if (!mc::meshletBoxOutside(clipFromObject, meshlet.osMin, meshlet.osMax, sides)) continue;
+            ++skipped;
+            for (uint32_t t = meshlet.firstTriangle; t < meshlet.firstTriangle + meshlet.triangleCount; ++t) {
+                uint32_t common = sides;
+                for (int i = 0; i < 3; ++i)
+                    common &= mc::meshletOutcode(clipFromObject * glm::vec4(position(mesh, split.indices[t * 3 + i]), 1.0f), sides);
+                ASSERT_NE(common, 0u) << "a skipped triangle reaches into the view";
+            }
+        }
+    }
+    std::printf("%zu of %zu meshlets outside the view\n", skipped, tested);
+    EXPECT_GT(skipped, tested / 10);
+    EXPECT_LT(skipped, tested);
+}
+
+TEST(MeshletCulling, ObjectEyeIsTheInverseTransformOfTheWorldEye) {
+    const glm::mat4 worldFromObject = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(3, -2, 5)), 0.7f,
+                                                             glm::normalize(glm::vec3(1, 2, 3))),
+                                                 glm::vec3(2.0f, 0.5f, 1.5f));
+    const glm::vec3 osEye(0.3f, -1.2f, 2.5f);
+    const glm::vec3 wsEye = glm::vec3(worldFromObject * glm::vec4(osEye, 1.0f));
+    const glm::vec3 back = mc::meshletObjectEye(worldFromObject, wsEye);
+    EXPECT_NEAR(glm::distance(back, osEye), 0.0f, 1e-4f);
+}
