@@ -30,7 +30,7 @@ void drawViewControls(PanelContext& c) {
     const int lights = int(c.renderer.scene().lights.size());
     if (lights > 0) {
         int light = int(state.light);
-        ImGui::SliderInt("light", &light, 0, lights - 1);
+        ImGui::SliderInt("light", &light, 0, lights - 1, "%d", ImGuiSliderFlags_AlwaysClamp);
         state.light = uint32_t(std::clamp(light, 0, lights - 1));
     }
     bool orbit = c.camera.mode() == CameraMode::Orbit;

@@ -1,5 +1,6 @@
 // The settings inspector: one widget per key of the settings table (penumbra/settings_keys.h), with
-// the table's range; a change applies to the next frame.
+// the table's range (each slider and drag clamps to it, a typed Ctrl+click value too); a change
+// applies to the next frame, one validation refuses is the status line.
 #include <algorithm>
 #include <cfloat>
 #include <string>
@@ -56,16 +57,16 @@ double keyWidget(const SettingKey& key, size_t i, double value, const std::strin
         }
         case SettingType::Integer: {
             int n = int(value);
-            ImGui::SliderInt(label.c_str(), &n, int(key.min), int(key.max));
+            ImGui::SliderInt(label.c_str(), &n, int(key.min), int(key.max), "%d", ImGuiSliderFlags_AlwaysClamp);
             return double(n);
         }
         case SettingType::Number:
         case SettingType::Ratios: {
             float f = float(value);
             if (key.max <= 1000.0)
-                ImGui::SliderFloat(label.c_str(), &f, float(offered[0]), float(offered[1]), "%.3f");
+                ImGui::SliderFloat(label.c_str(), &f, float(offered[0]), float(offered[1]), "%.3f", ImGuiSliderFlags_AlwaysClamp);
             else
-                ImGui::DragFloat(label.c_str(), &f, 0.1f, float(offered[0]), FLT_MAX, "%.3f");
+                ImGui::DragFloat(label.c_str(), &f, 0.1f, float(offered[0]), FLT_MAX, "%.3f", ImGuiSliderFlags_AlwaysClamp);
             (void)i;
             return double(f);
         }
