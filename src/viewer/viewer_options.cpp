@@ -16,6 +16,7 @@ Controls:
   right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
+               (the Penumbra panel's camera list picks one by name)
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
                camera seen from outside (the fly camera moves out; leaving the view brings it back),
