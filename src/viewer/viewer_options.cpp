@@ -17,6 +17,7 @@ Controls:
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
                (the Penumbra panel's camera list picks one by name)
+               (the Penumbra panel's camera list picks one by name)
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
                camera seen from outside (the fly camera moves out; leaving the view brings it back),
@@ -54,7 +55,8 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     app.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
     app.add_option("--width", options.width, "window width in pixels")->check(CLI::Range(16u, 16384u));
     app.add_option("--height", options.height, "window height in pixels")->check(CLI::Range(16u, 16384u));
-    app.add_option("--present", options.present, "present mode: fifo (vsync) | mailbox")
+    app.add_option("--present", options.present,
+                   "present mode: fifo (vsync) | mailbox (fifo, with a warning, where the window's surface lacks it)")
         ->check(CLI::IsMember({"fifo", "mailbox"}));
     app.add_flag("--validation", options.validation, "enable the Vulkan validation layers (a message fails the exit code)");
     app.add_option("--screenshot", options.screenshotPath, "render --frames frames, save the last one as PNG, exit");
