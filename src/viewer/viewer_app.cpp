@@ -67,7 +67,8 @@ Settings loadUserSettings(const ViewerOptions& options) {
     return settings;
 }
 
-// One line on stdout per scene opened or reloaded, for scripts and tests that follow the viewer.
+// One line on stdout per scene opened or reloaded and per screenshot saved, for scripts and tests
+// that follow the viewer.
 void announce(const std::string& message) {
     std::printf("penumbra-viewer: %s\n", message.c_str());
     std::fflush(stdout);
@@ -443,6 +444,7 @@ void ViewerApp::recreateSwapchain() {
 void ViewerApp::saveScreenshot(const Image& image, const std::string& path) {
     writePng(image, path);
     state_.status = "saved " + path;
+    announce(state_.status);
 }
 
 int ViewerApp::run() {

@@ -17,7 +17,6 @@ Controls:
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
                (the Penumbra panel's camera list picks one by name)
-               (the Penumbra panel's camera list picks one by name)
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
                camera seen from outside (the fly camera moves out; leaving the view brings it back),
@@ -25,7 +24,7 @@ Controls:
   T            reference view: trace the ray-traced reference for this camera and light (a progress bar),
                then show penumbra compare's picture (false shadow red, false lit cyan); moving drops it
   Tab          show / hide the inspector and stats panels
-  F12          save a screenshot (penumbra-viewer-N.png)
+  F12          save a screenshot (penumbra-viewer-N.png in the working directory; one line on stdout)
   Esc          quit
   R            reload the scene file now
 The scene file reloads when it changes on disk (checked every --watch-poll-ms), keeping the camera, the
