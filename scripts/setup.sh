@@ -11,7 +11,7 @@ packages=(
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  xvfb xauth
+  xvfb xauth xdotool
   clang libclang-rt-14-dev llvm
   assimp-testmodels
 )

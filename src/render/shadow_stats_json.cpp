@@ -46,6 +46,9 @@ std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<CullTileC
     nlohmann::json directional;
     directional["lightsConsidered"] = stats.directionalLightsConsidered;
     directional["lightsReserved"] = stats.directionalLightsReserved;
+    std::vector<uint32_t> reservedSuns;  // the scene light of each slot (tile i: slot i / cascades)
+    for (const ReservedDirectionalLight& light : plan.directional.lights) reservedSuns.push_back(light.sceneLightIndex);
+    directional["reservedLights"] = reservedSuns;
     directional["atlasSize"] = plan.directional.atlas.atlasSize;
     directional["tiles"] = plan.directional.atlas.tileCount;
     directional["split"] = plan.directional.atlas.split;

@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-
 namespace penumbra::viewer {
 
 namespace {
@@ -25,13 +24,14 @@ std::vector<AtlasTileLabel> atlasTileLabels(const std::string& shadowStatsJson, 
     const uint32_t tiles = directional.value("tiles", 0u), lights = directional.value("lightsReserved", 0u);
     const uint32_t split = std::max(directional.value("split", 1u), 1u), tileSize = directional.value("tileSize", 0u);
     const uint32_t cascades = lights > 0 ? tiles / lights : 0;
-    for (uint32_t t = 0; t < tiles && cascades > 0; ++t) {
+    const auto sceneLights = directional.value("reservedLights", std::vector<uint32_t>{});  // per slot
+    for (uint32_t t = 0; t < tiles && cascades > 0 && t / cascades < sceneLights.size(); ++t) {
         const glm::vec2 corner = tileCorner(t, split, tileSize);
         labels.push_back({corner, corner + glm::vec2(float(tileSize)),
-                          "sun" + std::to_string(t / cascades) + " c" + std::to_string(t % cascades)});
+                          "sun" + std::to_string(sceneLights[t / cascades]) + " c" + std::to_string(t % cascades)});
     }
     const float otherLeft = tiles > 0 ? float(directional.value("atlasSize", 0u)) : 1.0f;
-    const nlohmann::json& other = stats["other"];
+    const nlohmann::json other = stats.value("other", nlohmann::json::object());
     const uint32_t otherSplit = std::max(other.value("split", 1u), 1u), otherTileSize = other.value("tileSize", 0u);
     uint32_t tile = 0;
     for (const auto& lightIndex : other.value("reservedLights", std::vector<uint32_t>{})) {

@@ -11,8 +11,9 @@
 
 namespace penumbra::viewer {
 
-// A tile of the atlas image in its pixels, with its label: "sun0 c1" (reserved sun 0, cascade 1),
-// "spot2", "point3 +X" (scene light 2, 3; the cube face).
+// A tile of the atlas image in its pixels, with its label naming the scene light (its index in
+// Scene::lights, as --light, the inspector and the stats JSON count) and the cascade or cube face:
+// "sun1 c2" (light 1, cascade 2), "spot2", "point3 +X".
 struct AtlasTileLabel {
     glm::vec2 min{0.0f}, max{0.0f};
     std::string text;

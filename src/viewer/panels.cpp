@@ -6,6 +6,7 @@
 #include <imgui.h>
 #include <nlohmann/json.hpp>
 
+#include "viewer/panel_data.h"
 #include "viewer/scene_document.h"
 #include "viewer/viewer_app.h"
 
@@ -20,6 +21,20 @@ double totalGpuMs(const FrameStats& stats) {
     return total;
 }
 
+// The scene's camera and each glTF camera by name; C steps through the same list.
+void drawCameraCombo(PanelContext& c) {
+    const Scene& scene = c.renderer.scene();
+    const std::vector<std::string> choices = cameraChoices(scene);
+    const int shown = c.state.sceneCamera < int(scene.cameras.size()) ? c.state.sceneCamera : -1;
+    if (!ImGui::BeginCombo("camera (C)", choices[size_t(shown + 1)].c_str())) return;
+    for (int i = -1; i + 1 < int(choices.size()); ++i) {
+        ImGui::PushID(i);
+        if (ImGui::Selectable(choices[size_t(i + 1)].c_str(), i == shown)) selectSceneCamera(c.state, c.camera, scene, i);
+        ImGui::PopID();
+    }
+    ImGui::EndCombo();
+}
+
 void drawViewControls(PanelContext& c) {
     ViewerState& state = c.state;
     int view = int(state.view);
@@ -30,9 +45,10 @@ void drawViewControls(PanelContext& c) {
     const int lights = int(c.renderer.scene().lights.size());
     if (lights > 0) {
         int light = int(state.light);
-        ImGui::SliderInt("light", &light, 0, lights - 1);
+        ImGui::SliderInt("light", &light, 0, lights - 1, "%d", ImGuiSliderFlags_AlwaysClamp);
         state.light = uint32_t(std::clamp(light, 0, lights - 1));
     }
+    drawCameraCombo(c);
     bool orbit = c.camera.mode() == CameraMode::Orbit;
     if (ImGui::Checkbox("orbit camera", &orbit)) c.camera.setMode(orbit ? CameraMode::Orbit : CameraMode::Fly);
     ImGui::SameLine();
@@ -74,6 +90,13 @@ void drawFileMenu(ViewerState& state, SceneDocument& document) {
 }
 
 }  // namespace
+
+void selectSceneCamera(ViewerState& state, CameraController& camera, const Scene& scene, int index) {
+    state.sceneCamera = index;
+    camera.reset(index < 0 ? startCamera(scene) : scene.cameras[size_t(index)]);
+    state.status = index < 0 ? "the scene's camera"
+                             : "glTF camera " + std::to_string(index) + " (" + cameraChoices(scene)[size_t(index + 1)] + ")";
+}
 
 void drawErrorLine(const std::string& message) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -150,9 +173,7 @@ void drawStatsPanel(PanelContext& c) {
                     static_cast<unsigned long long>(atlas.triangles));
     const nlohmann::json shadows = nlohmann::json::parse(last.shadowStatsJson, nullptr, false);
     if (!shadows.is_discarded() && shadows.contains("other")) {
-        ImGui::Text("directional lights reserved %d; spot/point reserved %d, dropped %d",
-                    shadows["directional"].value("lightsReserved", 0), shadows["other"].value("lightsReserved", 0),
-                    shadows["other"].value("lightsDropped", 0));
+        ImGui::TextWrapped("%s", shadowLightCounts(last.shadowStatsJson).c_str());
         for (const char* atlas : {"directional", "other"}) {
             const nlohmann::json& a = shadows[atlas];
             ImGui::Text("%s %d^2: %d tiles of %d^2, %.0f %% used", atlas, a.value("atlasSize", 0), a.value("tiles", 0),

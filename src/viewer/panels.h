@@ -29,6 +29,8 @@ struct PanelContext {
 };
 
 void drawPanels(PanelContext& context);
+// Moves `camera` to the scene's camera (index -1) or glTF camera `index` of `scene` (C, the camera combo).
+void selectSceneCamera(ViewerState& state, CameraController& camera, const Scene& scene, int index);
 // One red line at the bottom of the window (a scene that did not load), drawn with or without panels.
 void drawErrorLine(const std::string& message);
 // The frusta view's lines over the image of `view`: boxes and spheres in the cascade's colour

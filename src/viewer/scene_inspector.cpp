@@ -1,17 +1,32 @@
 // The scene inspector: per light its shadows (none / hard / soft / pcss), strength, biases, near
 // plane, emitter size, direction and position; per material its shadow mode and receive shadows; per
-// node cast shadows. Every change goes through the Renderer's scene-edit API and shows next frame.
+// node cast shadows. Every change goes through the Renderer's scene-edit API and shows next frame; a
+// value the API refuses is the status line (scene_edit.h). Every slider and drag clamps to its range,
+// a typed (Ctrl+click) value too.
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
 #include <imgui.h>
 
 #include "viewer/panels.h"
+#include "viewer/scene_edit.h"
+#include "viewer/viewer_app.h"
 
 namespace penumbra::viewer {
 
 namespace {
+
+constexpr ImGuiSliderFlags kClamp = ImGuiSliderFlags_AlwaysClamp;
+
+// One edit through the Renderer; a refused one is the status line and one line on stderr.
+void edit(PanelContext& c, const std::function<void()>& change) {
+    const std::string error = applySceneEdit(change);
+    if (error.empty()) return;
+    c.state.status = error;
+    std::fprintf(stderr, "penumbra-viewer: %s\n", error.c_str());
+}
 
 const char* lightTypeName(LightType type) {
     return type == LightType::Directional ? "sun" : type == LightType::Spot ? "spot" : "point";
@@ -21,8 +36,8 @@ bool editDirection(glm::vec3& wsDirection) {
     // Azimuth and elevation of the direction the light travels, in degrees.
     float azimuth = glm::degrees(std::atan2(wsDirection.x, -wsDirection.z));
     float elevation = glm::degrees(std::asin(glm::clamp(-wsDirection.y, -1.0f, 1.0f)));
-    bool changed = ImGui::SliderFloat("azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
-    changed |= ImGui::SliderFloat("elevation", &elevation, -89.9f, 89.9f, "%.1f deg");
+    bool changed = ImGui::SliderFloat("azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg", kClamp);
+    changed |= ImGui::SliderFloat("elevation", &elevation, -89.9f, 89.9f, "%.1f deg", kClamp);
     if (changed) {
         const float a = glm::radians(azimuth), e = glm::radians(elevation);
         wsDirection = glm::vec3(std::sin(a) * std::cos(e), -std::sin(e), -std::cos(a) * std::cos(e));
@@ -30,23 +45,21 @@ bool editDirection(glm::vec3& wsDirection) {
     return changed;
 }
 
-void editLight(Renderer& renderer, uint32_t index) {
-    Light light = renderer.scene().lights[index];
+void editLight(PanelContext& c, uint32_t index) {
+    Light light = c.renderer.scene().lights[index];
     bool changed = false;
     int shadows = int(light.shadows);
     const char* modes[] = {"none", "hard", "soft", "pcss"};
     changed |= ImGui::Combo("shadows", &shadows, modes, 4);
     light.shadows = LightShadows(shadows);
-    changed |= ImGui::SliderFloat("strength", &light.shadowStrength, 0.0f, 1.0f);
-    changed |= ImGui::DragFloat("slope bias", &light.shadowBias, 0.01f, 0.0f, 10.0f);
-    changed |= ImGui::DragFloat("normal bias", &light.shadowNormalBias, 0.01f, 0.0f, 10.0f);
-    changed |= ImGui::DragFloat("near plane", &light.shadowNearPlane, 0.01f, 0.0f, 100.0f);
-    const bool sun = light.type == LightType::Directional;
-    changed |= ImGui::DragFloat(sun ? "light size (deg)" : "light radius (m)", &light.shadowLightSize, 0.01f, 0.0f,
-                                sun ? 20.0f : 10.0f);
+    for (const LightWidget& w : lightWidgets(light.type))
+        changed |= w.speed > 0.0f ? ImGui::DragFloat(w.label, &(light.*w.field), w.speed, w.min, w.max, "%.3f", kClamp)
+                                  : ImGui::SliderFloat(w.label, &(light.*w.field), w.min, w.max, "%.3f", kClamp);
     changed |= editDirection(light.wsDirection);
-    if (!sun) changed |= ImGui::DragFloat3("position", glm::value_ptr(light.wsPosition), 0.05f);
-    if (changed) renderer.setLight(index, light);
+    if (light.type != LightType::Directional)
+        changed |= ImGui::DragFloat3("position", glm::value_ptr(light.wsPosition), 0.05f, -kLightPositionLimit,
+                                     kLightPositionLimit, "%.3f", kClamp);
+    if (changed) edit(c, [&] { c.renderer.setLight(index, light); });
 }
 
 }  // namespace
@@ -58,7 +71,7 @@ void drawSceneInspector(PanelContext& c) {
         for (uint32_t i = 0; i < scene.lights.size(); ++i) {
             ImGui::PushID(int(i));
             if (ImGui::TreeNode("light", "%u: %s", i, lightTypeName(scene.lights[i].type))) {
-                editLight(renderer, i);
+                editLight(c, i);
                 ImGui::TreePop();
             }
             ImGui::PopID();
@@ -75,7 +88,7 @@ void drawSceneInspector(PanelContext& c) {
             bool changed = ImGui::Combo("shadow mode", &mode, modes, 4);
             material.shadows = MaterialShadowMode(mode);
             changed |= ImGui::Checkbox("receive shadows", &material.receiveShadows);
-            if (changed) renderer.setMaterial(i, material);
+            if (changed) edit(c, [&] { renderer.setMaterial(i, material); });
             ImGui::PopID();
         }
         ImGui::TreePop();
@@ -86,7 +99,7 @@ void drawSceneInspector(PanelContext& c) {
             bool cast = scene.instances[i].castShadows;
             const std::string& name = scene.instances[i].nodeName;
             if (ImGui::Checkbox(name.empty() ? ("instance " + std::to_string(i)).c_str() : name.c_str(), &cast))
-                renderer.setInstanceCastShadows(i, cast);
+                edit(c, [&] { renderer.setInstanceCastShadows(i, cast); });
             ImGui::PopID();
         }
         ImGui::TreePop();

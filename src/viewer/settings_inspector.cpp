@@ -1,11 +1,13 @@
 // The settings inspector: one widget per key of the settings table (penumbra/settings_keys.h), with
-// the table's range; a change applies to the next frame.
+// the table's range (each slider and drag clamps to it, a typed Ctrl+click value too); a change
+// applies to the next frame, one validation refuses is the status line.
 #include <algorithm>
 #include <cfloat>
 #include <string>
 
 #include <imgui.h>
 
+#include "viewer/panel_data.h"
 #include "viewer/panels.h"
 #include "viewer/settings_edit.h"
 #include "viewer/viewer_app.h"
@@ -14,20 +16,25 @@ namespace penumbra::viewer {
 
 namespace {
 
-// The cascade ratios as a bar split like Unity's (seed 004): one coloured span per cascade.
-void drawSplitBar(const Settings& settings) {
-    const auto& ratios = settings.shadows.directional.cascadeRatios;
-    const uint32_t cascades = settings.shadows.directional.cascadeCount;
+// The cascades as a bar split like Unity's (seed 004): one coloured span per cascade, where it ends
+// as a share of shadows.maxDistance: the ratios with manual splits, else the last frame's computed
+// splits (marked so: the ratios below apply to manual splits only).
+void drawSplitBar(const Settings& settings, const std::string& shadowStatsJson) {
+    const SplitBar bar = splitBarOf(settings, shadowStatsJson);
+    if (bar.computed)
+        ImGui::TextDisabled("computed %s splits of the last frame (ratios: manual only)",
+                            cascadeSplitModeName(settings.shadows.directional.cascadeSplits));
     const ImU32 colours[] = {IM_COL32(90, 140, 230, 255), IM_COL32(90, 200, 110, 255), IM_COL32(230, 200, 80, 255),
                              IM_COL32(220, 90, 90, 255)};
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     const float width = ImGui::GetContentRegionAvail().x, height = 16.0f;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height), IM_COL32(60, 60, 60, 255));  // beyond the last
     float start = 0.0f;
-    for (uint32_t c = 0; c < cascades; ++c) {
-        const float end = c + 1 < cascades ? ratios[c] : 1.0f;
-        ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(origin.x + start * width, origin.y),
-                                                  ImVec2(origin.x + end * width, origin.y + height), colours[c]);
-        start = end;
+    for (size_t c = 0; c < bar.ends.size(); ++c) {
+        draw->AddRectFilled(ImVec2(origin.x + start * width, origin.y), ImVec2(origin.x + bar.ends[c] * width, origin.y + height),
+                            colours[c % 4]);
+        start = bar.ends[c];
     }
     ImGui::Dummy(ImVec2(width, height));
 }
@@ -56,16 +63,16 @@ double keyWidget(const SettingKey& key, size_t i, double value, const std::strin
         }
         case SettingType::Integer: {
             int n = int(value);
-            ImGui::SliderInt(label.c_str(), &n, int(key.min), int(key.max));
+            ImGui::SliderInt(label.c_str(), &n, int(key.min), int(key.max), "%d", ImGuiSliderFlags_AlwaysClamp);
             return double(n);
         }
         case SettingType::Number:
         case SettingType::Ratios: {
             float f = float(value);
             if (key.max <= 1000.0)
-                ImGui::SliderFloat(label.c_str(), &f, float(offered[0]), float(offered[1]), "%.3f");
+                ImGui::SliderFloat(label.c_str(), &f, float(offered[0]), float(offered[1]), "%.3f", ImGuiSliderFlags_AlwaysClamp);
             else
-                ImGui::DragFloat(label.c_str(), &f, 0.1f, float(offered[0]), FLT_MAX, "%.3f");
+                ImGui::DragFloat(label.c_str(), &f, 0.1f, float(offered[0]), FLT_MAX, "%.3f", ImGuiSliderFlags_AlwaysClamp);
             (void)i;
             return double(f);
         }
@@ -79,7 +86,8 @@ void drawSettingsInspector(PanelContext& c) {
     for (const SettingKey& key : settingKeys()) {
         ImGui::PushID(key.key);
         const std::string label = std::string(key.key).substr(std::string(key.key).find('.') + 1);
-        if (key.type == SettingType::Ratios) drawSplitBar(c.settings);
+        if (key.type == SettingType::Ratios)
+            drawSplitBar(c.settings, c.state.history.empty() ? std::string() : c.state.history.back().shadowStatsJson);
         for (size_t i = 0; i < key.elements(); ++i) {
             ImGui::PushID(int(i));
             const double value = key.get(c.settings, i);

@@ -1,6 +1,7 @@
 #include "viewer/swapchain.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "penumbra/error.h"
 #include "viewer/vulkan_context.h"
@@ -25,7 +26,10 @@ VkPresentModeKHR supportedPresentMode(VkPhysicalDevice physicalDevice, VkSurface
     vkGetPhysicalDeviceSurfacePresentModesKHR(physicalDevice, surface, &count, nullptr);
     std::vector<VkPresentModeKHR> modes(count);
     vkGetPhysicalDeviceSurfacePresentModesKHR(physicalDevice, surface, &count, modes.data());
-    return std::find(modes.begin(), modes.end(), wanted) != modes.end() ? wanted : VK_PRESENT_MODE_FIFO_KHR;
+    if (std::find(modes.begin(), modes.end(), wanted) != modes.end()) return wanted;
+    // FIFO is the one mode every surface offers.
+    std::fprintf(stderr, "penumbra-viewer: warning: the window's surface offers no mailbox present mode; presenting with fifo\n");
+    return VK_PRESENT_MODE_FIFO_KHR;
 }
 
 }  // namespace

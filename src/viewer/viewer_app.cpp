@@ -67,7 +67,8 @@ Settings loadUserSettings(const ViewerOptions& options) {
     return settings;
 }
 
-// One line on stdout per scene opened or reloaded, for scripts and tests that follow the viewer.
+// One line on stdout per scene opened or reloaded and per screenshot saved, for scripts and tests
+// that follow the viewer.
 void announce(const std::string& message) {
     std::printf("penumbra-viewer: %s\n", message.c_str());
     std::fflush(stdout);
@@ -189,7 +190,7 @@ void ViewerApp::handleSceneFiles() {
     if (!event->opened) return;
     if (event->camera) {
         camera_ = std::make_unique<CameraController>(*event->camera, renderer_->scene().wsBounds);
-        sceneCamera_ = -1;
+        state_.sceneCamera = -1;
         setSceneSavePath(state_, document_);
         if (shownView_ == ViewMode::Frusta) shownView_ = ViewMode::Final;  // switchView observes the new camera
     }
@@ -231,11 +232,8 @@ void ViewerApp::onKey(int key, int action, int mods) {
 
 // C: the scene's camera, then each glTF camera in node order, then the scene's camera again.
 void ViewerApp::nextSceneCamera() {
-    const std::vector<Camera>& cameras = renderer_->scene().cameras;
-    sceneCamera_ = sceneCamera_ + 1 < int(cameras.size()) ? sceneCamera_ + 1 : -1;
-    camera_->reset(sceneCamera_ < 0 ? startCamera(renderer_->scene()) : cameras[size_t(sceneCamera_)]);
-    state_.status = sceneCamera_ < 0 ? "the scene's camera" : "glTF camera " + std::to_string(sceneCamera_) + " (" +
-                                                                 cameras[size_t(sceneCamera_)].name + ")";
+    const int cameras = int(renderer_->scene().cameras.size());
+    selectSceneCamera(state_, *camera_, renderer_->scene(), state_.sceneCamera + 1 < cameras ? state_.sceneCamera + 1 : -1);
 }
 
 // P: starts a new recording, or stops the one running and writes it.
@@ -446,6 +444,7 @@ void ViewerApp::recreateSwapchain() {
 void ViewerApp::saveScreenshot(const Image& image, const std::string& path) {
     writePng(image, path);
     state_.status = "saved " + path;
+    announce(state_.status);
 }
 
 int ViewerApp::run() {

@@ -33,6 +33,7 @@ class VulkanContext;
 struct ViewerState {
     ViewMode view = ViewMode::Final;
     uint32_t light = 0;
+    int sceneCamera = -1;  // the camera last picked (C, the camera combo): -1 the scene's, else Scene::cameras
     bool showPanels = true;
     std::deque<FrameStats> history;  // the last frames the GPU finished, oldest first
     std::string status;              // the last reload error or saved file, shown in the panel
@@ -90,7 +91,6 @@ private:
     double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
     ViewMode shownView_ = ViewMode::Final;  // the view of the last frame (switchView acts on a change)
     Camera observed_;                       // the frusta view's observed camera
-    int sceneCamera_ = -1;  // -1: the scene's camera, else an index into Scene::cameras
     uint32_t screenshotCount_ = 0;
     bool screenshotRequested_ = false;
     uint32_t framesDone_ = 0;

@@ -16,6 +16,7 @@ Controls:
   right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
   O            orbit camera around the scene, F frames the scene (orbit)
   C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
+               (the Penumbra panel's camera list picks one by name)
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
                camera seen from outside (the fly camera moves out; leaving the view brings it back),
@@ -23,7 +24,7 @@ Controls:
   T            reference view: trace the ray-traced reference for this camera and light (a progress bar),
                then show penumbra compare's picture (false shadow red, false lit cyan); moving drops it
   Tab          show / hide the inspector and stats panels
-  F12          save a screenshot (penumbra-viewer-N.png)
+  F12          save a screenshot (penumbra-viewer-N.png in the working directory; one line on stdout)
   Esc          quit
   R            reload the scene file now
 The scene file reloads when it changes on disk (checked every --watch-poll-ms), keeping the camera, the
@@ -53,7 +54,8 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     app.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
     app.add_option("--width", options.width, "window width in pixels")->check(CLI::Range(16u, 16384u));
     app.add_option("--height", options.height, "window height in pixels")->check(CLI::Range(16u, 16384u));
-    app.add_option("--present", options.present, "present mode: fifo (vsync) | mailbox")
+    app.add_option("--present", options.present,
+                   "present mode: fifo (vsync) | mailbox (fifo, with a warning, where the window's surface lacks it)")
         ->check(CLI::IsMember({"fifo", "mailbox"}));
     app.add_flag("--validation", options.validation, "enable the Vulkan validation layers (a message fails the exit code)");
     app.add_option("--screenshot", options.screenshotPath, "render --frames frames, save the last one as PNG, exit");

@@ -1,6 +1,7 @@
 // penumbra-viewer as CI runs it: under Xvfb on lavapipe with the validation layers on (a message makes
 // it exit 1), scripted with --screenshot, and the PNG measured: the window's size, the shadow view
 // against penumbra render --aov shadow for the same camera and size, the atlas overlay.
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <filesystem>
@@ -15,74 +16,13 @@
 
 #include "cli_process.h"
 #include "penumbra/image.h"
+#include "viewer_test_support.h"
 
 using namespace penumbra;
 using namespace penumbra::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-const std::string kScenes = std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/";
-
-fs::path tempPath(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "penumbra_viewer_test";
-    fs::create_directories(dir);
-    return dir / name;
-}
-
-#ifdef PENUMBRA_VIEWER_PATH
-const char* const kViewer = PENUMBRA_VIEWER_PATH;
-#else
-const char* const kViewer = nullptr;
-#endif
-
-bool canRunViewer() { return kViewer && std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
-
-#define SKIP_WITHOUT_XVFB()                                                                           \
-    if (!canRunViewer()) GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs xvfb)"
-
-// The scripted viewer's arguments: `frames` frames of `scene` at width x height, the last saved to `out`.
-std::string scriptedArguments(const std::string& scene, const fs::path& out, const std::string& options, uint32_t width,
-                              uint32_t height, uint32_t frames) {
-    return scene + " --device cpu --validation --width " + std::to_string(width) + " --height " + std::to_string(height) +
-           " --frames " + std::to_string(frames) + " --screenshot " + out.string() + " " + options;
-}
-
-// The screenshot of a run; fails the test on a non-zero exit (a validation message included).
-Image screenshotOf(const CliRun& run, const fs::path& out) {
-    EXPECT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_EQ(run.err.find("validation"), std::string::npos) << run.err;
-    if (run.exitCode != 0 || !fs::exists(out)) return Image{};
-    return readPng(out.string());
-}
-
-// The viewer's screenshot after `frames` frames of `scene` at width x height.
-Image viewerScreenshot(const std::string& scene, const std::string& name, const std::string& options,
-                       uint32_t width = 320, uint32_t height = 180, uint32_t frames = 5) {
-    const fs::path out = tempPath(name);
-    fs::remove(out);
-    return screenshotOf(runProgram(kViewer, scriptedArguments(scene, out, options, width, height, frames), "xvfb-run -a"), out);
-}
-
-// Runs the viewer under Xvfb with `arguments`, calling `onLine` with each line of its stdout as it
-// comes (the viewer prints one per scene it opens or reloads, and flushes it).
-CliRun runViewerFollowingStdout(const std::string& arguments, const std::function<void(const std::string&)>& onLine) {
-    const fs::path errPath = tempPath("follow_stderr.txt");
-    CliRun run;
-    FILE* pipe = ::popen(("xvfb-run -a " + std::string(kViewer) + " " + arguments + " 2>" + errPath.string()).c_str(), "r");
-    if (!pipe) return run;
-    char line[4096];
-    while (std::fgets(line, sizeof line, pipe)) {
-        run.out += line;
-        onLine(line);
-    }
-    const int status = ::pclose(pipe);
-    if (WIFEXITED(status)) run.exitCode = WEXITSTATUS(status);
-    std::stringstream err;
-    err << std::ifstream(errPath).rdbuf();
-    run.err = err.str();
-    return run;
-}
 
 Image renderedShadowAov(const std::string& scene, uint32_t light, uint32_t width, uint32_t height) {
     const fs::path out = tempPath("aov_" + std::to_string(light) + ".png");
@@ -105,19 +45,6 @@ double shadowedFraction(const Image& aov) {
     size_t shadowed = 0;
     for (uint8_t v : aov.pixels) shadowed += v < 128;
     return double(shadowed) / double(aov.pixels.size());
-}
-
-double differingFraction(const Image& a, const Image& b) {
-    size_t differ = 0;
-    for (size_t p = 0; p < a.pixels.size(); p += 3)
-        differ += a.pixels[p] != b.pixels[p] || a.pixels[p + 1] != b.pixels[p + 1] || a.pixels[p + 2] != b.pixels[p + 2];
-    return double(differ) / double(a.pixels.size() / 3);
-}
-
-fs::path writeText(const std::string& name, const std::string& text) {
-    const fs::path path = tempPath(name);
-    std::ofstream(path) << text;
-    return path;
 }
 
 }  // namespace
@@ -312,10 +239,6 @@ CliRun reloadRun(const std::string& replacement, const fs::path& out, const std:
     EXPECT_TRUE(written) << run.out;
     return run;
 }
-
-// Sphere-fitted cascades and the hardware shadow raster: a frame's image depends on its camera and
-// scene only, not on the frames before it (what a reload restarts).
-const std::string kRepeatable = "--set shadows.directional.fit=sphere --set shadows.raster=hw --set render.toneMapping=aces";
 
 }  // namespace
 
@@ -515,4 +438,86 @@ TEST(Viewer, CompareSettingsSplitsTheWindowBetweenTwoSettings) {
     ASSERT_GT(differingFractionInColumns(left, right, 0, 160), 0.3) << "the two settings must give different images";
     EXPECT_LT(leftDiffers, 0.002) << "the left half is not the current settings' image";
     EXPECT_LT(rightDiffers, 0.002) << "the right half is not the second settings' image";
+}
+
+namespace {
+
+// penumbra render's colour image or --aov cascades of `scene` at width x height with `options`.
+Image rendered(const std::string& scene, const std::string& name, const std::string& options, uint32_t width,
+               uint32_t height) {
+    const fs::path out = tempPath(name);
+    const CliRun run = runPenumbra("render " + scene + " --device cpu --width " + std::to_string(width) + " --height " +
+                                   std::to_string(height) + " " + options + " -o " + out.string());
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    return run.exitCode == 0 ? readPng(out.string()) : Image{};
+}
+
+// The cascade of a cascades-view pixel: the nearest of the shader's colours (shade_surface.glsl's
+// cascadeColor: none black, then red, green, blue, yellow), -1 for none.
+int cascadeOf(const Image& image, size_t pixel) {
+    const glm::vec3 colours[5] = {{0, 0, 0}, {1, 0.25f, 0.25f}, {0.25f, 1, 0.25f}, {0.25f, 0.4f, 1}, {1, 1, 0.25f}};
+    const glm::vec3 c = glm::vec3(image.pixels[pixel * 3], image.pixels[pixel * 3 + 1], image.pixels[pixel * 3 + 2]) / 255.0f;
+    int best = 0;
+    for (int i = 1; i < 5; ++i)
+        if (glm::distance(c, colours[i]) < glm::distance(c, colours[best])) best = i;
+    return best - 1;
+}
+
+}  // namespace
+
+TEST(Viewer, CascadesViewIsTheCascadesAovOfPenumbraRender) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf";
+    // Sphere-fitted cascades: the tight fit reads the previous frame's depth, which moves the viewer's
+    // fifth frame's cascade borders by a pixel row from penumbra render's first (2.7 % of the pixels).
+    // Manual splits of 30 m put three cascades in view.
+    const std::string sphere = " --set shadows.directional.fit=sphere --set shadows.directional.cascadeSplits=manual"
+                               " --set shadows.maxDistance=30";
+    const Image viewer = viewerScreenshot(scene, "cascades.png", "--view cascades" + sphere);
+    const Image aov = rendered(scene, "cascades_aov.png", "--aov cascades" + sphere, 320, 180);
+    ASSERT_EQ(viewer.width, aov.width);
+    ASSERT_EQ(viewer.height, aov.height);
+    ASSERT_EQ(viewer.channels, aov.channels);
+    // Tolerance: the cascade differs in fewer than 0.1 % of the pixels (the shadow view's).
+    size_t differ = 0, pixels = size_t(aov.width) * aov.height;
+    std::array<size_t, 5> used{};
+    for (size_t p = 0; p < pixels; ++p) {
+        differ += cascadeOf(viewer, p) != cascadeOf(aov, p);
+        ++used[size_t(cascadeOf(aov, p) + 1)];
+    }
+    std::printf("cascade differs in %.4f %% of pixels; pixels per cascade (none, 0..3): %zu %zu %zu %zu %zu\n",
+                100.0 * double(differ) / double(pixels), used[0], used[1], used[2], used[3], used[4]);
+    EXPECT_GE(std::count_if(used.begin() + 1, used.end(), [&](size_t n) { return n > pixels / 100; }), 3)
+        << "the comparison needs three cascades in view";
+    EXPECT_LT(double(differ) / double(pixels), 0.001);
+}
+
+TEST(Viewer, MailboxPresentsTheSameImageAsFifo) {
+    SKIP_WITHOUT_XVFB();
+    const std::string scene = kScenes + "cube.gltf";
+    const fs::path fifoPath = tempPath("fifo.png"), mailboxPath = tempPath("mailbox.png");
+    auto run = [&](const std::string& mode, const fs::path& out) {
+        return runProgram(kViewer, scriptedArguments(scene, out, "--present " + mode + " " + kRepeatable, 240, 135, 3), "xvfb-run -a");
+    };
+    const CliRun fifoRun = run("fifo", fifoPath), mailboxRun = run("mailbox", mailboxPath);
+    const Image fifo = screenshotOf(fifoRun, fifoPath), mailbox = screenshotOf(mailboxRun, mailboxPath);
+    ASSERT_FALSE(fifo.empty());
+    ASSERT_EQ(fifo.pixels.size(), mailbox.pixels.size());
+    EXPECT_EQ(differingFraction(fifo, mailbox), 0.0);
+    // Lavapipe's Xvfb surface offers mailbox: no fallback, no warning.
+    EXPECT_EQ(mailboxRun.err, "");
+    EXPECT_EQ(fifoRun.err, "");
+}
+
+TEST(Viewer, GeneratedSceneIsPenumbraRendersImage) {
+    SKIP_WITHOUT_XVFB();
+    const Image viewer = viewerScreenshot("gen:boxes:20", "gen_boxes.png", kRepeatable, 240, 135, 3);
+    const Image render = rendered("gen:boxes:20", "gen_boxes_render.png", kRepeatable, 240, 135);
+    ASSERT_FALSE(viewer.empty());
+    ASSERT_EQ(viewer.width, 240u);
+    ASSERT_EQ(viewer.height, 135u);
+    ASSERT_EQ(viewer.pixels.size(), render.pixels.size());
+    const double differing = differingFraction(viewer, render);
+    std::printf("gen:boxes:20: %.4f %% of pixels differ from penumbra render\n", 100.0 * differing);
+    EXPECT_LT(differing, 0.001);
 }

@@ -94,3 +94,26 @@ TEST(SettingsKeys, TableRangesAreTheValidationRanges) {
         }
     }
 }
+
+TEST(SaveSettingsFile, WritesJsonThatLoadSettingsFileReadsBackAsTheSameSettings) {
+    Settings edited;
+    const SettingKey* count = nullptr;
+    for (const SettingKey& key : settingKeys())
+        if (std::string(key.key) == "shadows.directional.cascadeCount") count = &key;
+    ASSERT_NE(count, nullptr);
+    ASSERT_EQ(viewer::applyInspectorEdit(edited, *count, 0, 2.0), "");
+    edited.shadows.maxDistance = 37.5f;
+    const std::string path = ::testing::TempDir() + "penumbra_saved_settings.json";
+    ASSERT_EQ(viewer::saveSettingsFile(edited, path), "");
+    const Settings loaded = loadSettingsFile(path);
+    expectSameValues(loaded, edited, "saveSettingsFile and loadSettingsFile");
+    EXPECT_EQ(loaded.shadows.directional.cascadeCount, 2u);
+    EXPECT_EQ(loaded.shadows.maxDistance, 37.5f);
+}
+
+TEST(SaveSettingsFile, UnwritablePathIsOneError) {
+    const std::string path = "/nonexistent-directory/settings.json";
+    const std::string error = viewer::saveSettingsFile(Settings{}, path);
+    EXPECT_NE(error.find(path), std::string::npos) << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}

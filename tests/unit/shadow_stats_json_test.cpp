@@ -68,3 +68,16 @@ TEST(ShadowStatsJson, SpotAtlasOccupancyCountsItsTilesOfTheSplit) {
         EXPECT_DOUBLE_EQ(double(stats["occupancy"]), expected) << count << " spot lights";
     }
 }
+
+TEST(ShadowStatsJson, ReservedSunsAreNamedByTheirSceneLightIndex) {
+    Scene scene = baseScene();
+    addBox(scene, {-20, -1, -20}, {20, 0, 20});
+    addBox(scene, {-1, 0, -1}, {1, 2, 1});
+    addDirectionalLight(scene, {0.3f, -1, 0.2f}, 1.0f, LightShadows::None);  // not reserved
+    addDirectionalLight(scene, {0.3f, -1, 0.2f});
+    addDirectionalLight(scene, {-0.2f, -1, 0.1f});
+    const ShadowFrame plan = ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), seedCascadeSettings());
+    const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson(plan))["directional"];
+    EXPECT_EQ(stats["lightsReserved"], 2);
+    EXPECT_EQ(stats["reservedLights"], nlohmann::json::array({1, 2}));
+}
