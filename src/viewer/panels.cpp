@@ -153,8 +153,9 @@ void drawStatsPanel(PanelContext& c) {
     for (const FrameStats& stats : c.state.history) gpu.push_back(float(totalGpuMs(stats)));
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "GPU %.2f ms", gpu.back());
+    // PlotLines (ImGui 1.86) takes its width as given: -1 would be a graph one pixel wide.
     ImGui::PlotLines("##gpu", gpu.data(), int(gpu.size()), 0, overlay, 0.0f, *std::max_element(gpu.begin(), gpu.end()) * 1.2f,
-                     ImVec2(-1, 60));
+                     ImVec2(ImGui::GetContentRegionAvail().x, 60));
     if (ImGui::BeginTable("passes", 2)) {
         for (const PassTiming& timing : last.gpuTimings) {
             ImGui::TableNextColumn();
