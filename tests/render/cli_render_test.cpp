@@ -21,7 +21,9 @@ const std::string kEngine = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF
 const std::string kBoxTextured = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
 
 fs::path tempPath(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "penumbra_cli_render";
+    // One folder per test process: ctest runs tests in parallel, and two tests writing one file (two
+    // viewers watching the same reloaded.gltf) fail each other.
+    const fs::path dir = fs::temp_directory_path() / ("penumbra_cli_render_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir / name;
 }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "cli_process.h"
 #include "penumbra/image.h"
 
@@ -16,7 +18,9 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path tempPath(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "penumbra_look_test";
+    // One folder per test process: ctest runs tests in parallel, and two tests writing one file (two
+    // viewers watching the same reloaded.gltf) fail each other.
+    const fs::path dir = fs::temp_directory_path() / ("penumbra_look_test_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir / name;
 }

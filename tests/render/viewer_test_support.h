@@ -10,6 +10,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "cli_process.h"
@@ -22,7 +24,9 @@ namespace fs = std::filesystem;
 inline const std::string kScenes = std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/";
 
 inline fs::path tempPath(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "penumbra_viewer_test";
+    // One folder per test process: ctest runs tests in parallel, and two tests writing one file (two
+    // viewers watching the same reloaded.gltf) fail each other.
+    const fs::path dir = fs::temp_directory_path() / ("penumbra_viewer_test_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir / name;
 }
