@@ -135,7 +135,7 @@ TEST(Viewer, MissingFileIsOneLineError) {
 
 TEST(Viewer, BadOptionIsOneLineError) {
     if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
-    for (const std::string arguments : {"--view sideways", "--frames 0", "--set shadows.directional.cascadeCount=9"}) {
+    for (const char* arguments : {"--view sideways", "--frames 0", "--set shadows.directional.cascadeCount=9"}) {
         const CliRun run = runProgram(kViewer, arguments);
         EXPECT_EQ(run.exitCode, 1) << arguments;
         EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
