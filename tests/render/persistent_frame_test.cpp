@@ -239,7 +239,11 @@ TEST_F(PipelineVariantTest, GenericVariantGivesTheSpecializedImage) {
         const Image a = specialized.render(colour, settings).image, b = fallback.render(colour, settings).image;
         std::printf("filter %d: %.5f %% over 0, %.5f %% over 1\n", int(filter), 100.0 * shareOfPixelsOver(a, b, 0),
                     100.0 * shareOfPixelsOver(a, b, 1));
-        EXPECT_TRUE(a.pixels == b.pixels);
+        // The shadow terms above are equal bit for bit; the colour may round one level apart: lavapipe
+        // compiles the two variants' lighting (constant vs runtime loop bounds) to differently ordered
+        // float arithmetic, and one pixel in ~10 000 came out one level off in some runs (CI and here,
+        // 2026-12-02, the same binary passing and failing). More than one level is a real difference.
+        EXPECT_EQ(shareOfPixelsOver(a, b, 1), 0.0) << "filter " << int(filter);
     }
 }
 

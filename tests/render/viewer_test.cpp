@@ -124,7 +124,8 @@ TEST(Viewer, PanelsDrawOverTheViewWithoutValidationMessages) {
 
 TEST(Viewer, MissingFileIsOneLineError) {
     if (!kViewer) GTEST_SKIP() << "penumbra-viewer is not built";
-    for (const std::string& missing : {"/nonexistent/scene.gltf", "--compare-settings /nonexistent/settings.json"}) {
+    const std::vector<std::string> missingFiles = {"/nonexistent/scene.gltf", "--compare-settings /nonexistent/settings.json"};
+    for (const std::string& missing : missingFiles) {
         const CliRun run = runProgram(kViewer, missing + " --screenshot " + tempPath("x.png").string());
         EXPECT_EQ(run.exitCode, 1) << missing;
         EXPECT_EQ(run.err.rfind("penumbra-viewer: ", 0), 0u) << run.err;
