@@ -11,6 +11,8 @@
 #include "scene/meshlets.h"
 #include "cull_structs.h"
 
+#include <vector>
+
 namespace penumbra::test {
 namespace {
 
@@ -116,6 +118,23 @@ TEST_F(MeshletCullingTest, MeshletsOutsideTheViewAndOutsideShadowTilesAreSkipped
     EXPECT_GT(culled.stats.shadowMeshletsOutside, 0u);
     EXPECT_EQ(unculled.stats.viewMeshletsOutside + unculled.stats.shadowMeshletsOutside, 0u);
     EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
+}
+
+// The compute rasterizers' objects (both raster passes, the visibility buffer, the meshlets) go with
+// their renderer: what the device holds afterwards is what it held before. (The asan preset's leak
+// check leaves lavapipe's own allocations out, tests/lsan.supp; this is the check of ours.)
+TEST_F(MeshletCullingTest, ARendererOfTheComputeRasterizersLeavesNoObjectBehind) {
+    auto held = [&] {
+        const DeviceObjectCounts c = device().liveObjects();
+        return std::vector<uint32_t>{c.buffers, c.textures, c.samplers, c.pipelines, c.textureTables, c.pendingDestroys};
+    };
+    const std::vector<uint32_t> before = held();
+    {
+        Renderer renderer(device(), sphereScene(false, false));
+        for (bool culling : {true, false}) renderer.render(smallRequest(), computeSettings(culling));
+        EXPECT_NE(held(), before);
+    }
+    EXPECT_EQ(held(), before);
 }
 
 }  // namespace
