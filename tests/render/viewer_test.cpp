@@ -389,7 +389,7 @@ TEST(Viewer, ReferenceViewOfABadLightIsOneLineError) {
     const fs::path scene = writeText("no_shadows.gltf", gltf.dump());
     const fs::path out = tempPath("no_shadows.png");
     fs::remove(out);
-    const CliRun none = runProgram(kViewer, scriptedArguments(scene.string(), out, "--view reference", 64, 36, 1), "xvfb-run -a");
+    const CliRun none = runProgram(kViewer, scriptedArguments(scene.string(), out, "--view reference", 64, 36, 1), xvfbRun());
     EXPECT_EQ(none.exitCode, 1);
     EXPECT_EQ(none.err.rfind("penumbra-viewer: reference view: ", 0), 0u) << none.err;
     EXPECT_EQ(none.err.find('\n'), none.err.size() - 1) << none.err;
@@ -499,7 +499,7 @@ TEST(Viewer, MailboxPresentsTheSameImageAsFifo) {
     const std::string scene = kScenes + "cube.gltf";
     const fs::path fifoPath = tempPath("fifo.png"), mailboxPath = tempPath("mailbox.png");
     auto run = [&](const std::string& mode, const fs::path& out) {
-        return runProgram(kViewer, scriptedArguments(scene, out, "--present " + mode + " " + kRepeatable, 240, 135, 3), "xvfb-run -a");
+        return runProgram(kViewer, scriptedArguments(scene, out, "--present " + mode + " " + kRepeatable, 240, 135, 3), xvfbRun());
     };
     const CliRun fifoRun = run("fifo", fifoPath), mailboxRun = run("mailbox", mailboxPath);
     const Image fifo = screenshotOf(fifoRun, fifoPath), mailbox = screenshotOf(mailboxRun, mailboxPath);

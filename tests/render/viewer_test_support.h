@@ -37,6 +37,16 @@ inline const char* const kViewer = PENUMBRA_VIEWER_PATH;
 inline const char* const kViewer = nullptr;
 #endif
 
+// The wrapper the viewer runs under. -noreset: by default Xvfb resets once its last client leaves and
+// signals xvfb-run (SIGUSR1), and a signal that lands while xvfb-run's shell waits for a command spoils
+// that command's exit status: a viewer that ended with 1 came back as "xvfb-run: error: problem while
+// cleaning up temporary directory" and 5 (seen under ctest -j2, reproduced in 2-3 of 12 concurrent
+// runs, none of 16 with -noreset). -n: `-a` takes the first free display from 99 on, and two test
+// processes that look at once can take the same one; each process starts its search at its own number.
+inline std::string xvfbRun() {
+    return "xvfb-run -a -n " + std::to_string(100 + ::getpid() % 2000) + " -s '-screen 0 1280x1024x24 -noreset'";
+}
+
 inline bool canRunViewer() { return kViewer && std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
 
 #define SKIP_WITHOUT_XVFB()                                                                           \
@@ -62,7 +72,7 @@ inline Image viewerScreenshot(const std::string& scene, const std::string& name,
                               uint32_t width = 320, uint32_t height = 180, uint32_t frames = 5) {
     const fs::path out = tempPath(name);
     fs::remove(out);
-    return screenshotOf(runProgram(kViewer, scriptedArguments(scene, out, options, width, height, frames), "xvfb-run -a"), out);
+    return screenshotOf(runProgram(kViewer, scriptedArguments(scene, out, options, width, height, frames), xvfbRun()), out);
 }
 
 // Runs `command` (a shell command line), calling `onLine` with each line of its stdout as it comes;
@@ -89,7 +99,7 @@ inline CliRun followStdout(const std::string& command, const std::function<void(
 // Runs the viewer under Xvfb with `arguments`, following its stdout (it prints one line per scene it
 // opens or reloads and per screenshot it saves, and flushes it).
 inline CliRun runViewerFollowingStdout(const std::string& arguments, const std::function<void(const std::string&)>& onLine) {
-    return followStdout("xvfb-run -a " + std::string(kViewer) + " " + arguments, onLine);
+    return followStdout(xvfbRun() + " " + std::string(kViewer) + " " + arguments, onLine);
 }
 
 inline double differingFraction(const Image& a, const Image& b) {

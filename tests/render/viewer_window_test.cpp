@@ -83,7 +83,7 @@ WindowRun driveViewer(const std::string& scene, const std::string& options, uint
     const std::string viewer = std::string(kViewer) + " " + scene + " --device cpu --validation --width " +
                                std::to_string(width) + " --height " + std::to_string(height) + " " + options;
     // The viewer's own time limit: a lost key would otherwise leave it running.
-    const std::string command = "cd " + dir.string() + " && timeout 300 xvfb-run -a sh -c 'echo \"" + kDisplayLine +
+    const std::string command = "cd " + dir.string() + " && timeout 300 " + xvfbRun() + " sh -c 'echo \"" + kDisplayLine +
                                 "$DISPLAY $XAUTHORITY\"; exec " + viewer + "'";
     WindowRun result;
     WindowDriver driver;
