@@ -82,8 +82,9 @@ public:
     // slot is free for the next beginFrame, objects destroyed meanwhile go with the next submission.
     void abandonFrame(CommandList& commands);
     // Copies `source` (GPU-written, e.g. counters) at the end of this frame's work into memory the host
-    // reads once the frame is done: the bytes arrive in CompletedFrame::readback, in call order.
-    void readBackAtFrameEnd(CommandList& commands, const BufferSlice& source);
+    // reads once the frame is done: the bytes arrive in CompletedFrame::readback, in call order, and
+    // the result is where these ones start there.
+    uint64_t readBackAtFrameEnd(CommandList& commands, const BufferSlice& source);
     void waitFrame(uint64_t frameIndex);  // returns once that frame has finished on the GPU
     void waitIdle();                      // every submitted frame (fence waits, no vkDeviceWaitIdle)
     // After waitIdle: frees memory blocks that hold nothing (a renderer's end, say).

@@ -221,14 +221,18 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
     return allocation;
 }
 
-void Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& source) {
+uint64_t Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& source) {
     Impl& d = *impl_;
     if (d.recordingSlot < 0) throw Error("internal: readBackAtFrameEnd outside beginFrame/submitFrame");
     const FrameAllocation target = allocateFrameData(source.size, 16);
     commands.memoryBarrier();
     commands.copyBuffer(source, target.slice.buffer, target.slice.offset);
     commands.hostReadBarrier();
-    d.frames[d.recordingSlot].readbackRanges.emplace_back(target.slice.offset, source.size);
+    auto& ranges = d.frames[d.recordingSlot].readbackRanges;
+    uint64_t start = 0;  // the completed frame's readback joins the ranges in this order
+    for (const auto& range : ranges) start += range.second;
+    ranges.emplace_back(target.slice.offset, source.size);
+    return start;
 }
 
 uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) {

@@ -78,7 +78,7 @@ VisibleSurfaces VisibleSurfacePass::now(const Scene& scene, const CameraView& vi
     return visibleSurfacesFromDepth(depth, view);
 }
 
-void VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view) {
+uint64_t VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view) {
     ensureTargets(view.width, view.height);
     const glm::uvec2 size = subsampleSize(view);
     commands.transition(depth, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
@@ -89,7 +89,7 @@ void VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::Textur
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch((size.x + 7) / 8, (size.y + 7) / 8);
     commands.transition(depth, gpu::TextureState::ShaderRead, gpu::TextureState::DepthTarget);
-    device_.readBackAtFrameEnd(commands, {depths_, 0, readbackBytes(view)});
+    return device_.readBackAtFrameEnd(commands, {depths_, 0, readbackBytes(view)});
 }
 
 uint64_t VisibleSurfacePass::readbackBytes(const CameraView& view) {

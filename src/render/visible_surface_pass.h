@@ -27,8 +27,9 @@ public:
     VisibleSurfacePass& operator=(const VisibleSurfacePass&) = delete;
 
     VisibleSurfaces now(const Scene& scene, const CameraView& view);
-    // `depth`: the frame's main depth target, in DepthTarget state (left there).
-    void recordSubsample(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view);
+    // `depth`: the frame's main depth target, in DepthTarget state (left there). Returns where the
+    // subsample starts in the frame's readback.
+    uint64_t recordSubsample(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view);
     static VisibleSurfaces fromReadback(const uint8_t* bytes, const CameraView& view);
     static uint64_t readbackBytes(const CameraView& view);
 

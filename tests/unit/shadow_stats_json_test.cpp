@@ -11,24 +11,9 @@
 using namespace penumbra;
 using namespace penumbra::shadow_test;
 
-namespace {
-
-ShadowFrame planWithCascades(uint32_t cascades) {
-    Scene scene = baseScene();
-    addBox(scene, {-20, -1, -20}, {20, 0, 20});
-    addBox(scene, {-1, 0, -1}, {1, 2, 1});
-    addDirectionalLight(scene, {0.3f, -1, 0.2f});
-    ShadowSettings settings = seedCascadeSettings();
-    settings.maxDistance = 40.0f;
-    settings.directional.cascadeCount = cascades;
-    return ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), settings);
-}
-
-}  // namespace
-
 TEST(ShadowStatsJson, OccupancyIsTheShareOfTheAtlasItsTilesTake) {
     for (uint32_t cascades = 1; cascades <= 4; ++cascades) {
-        const ShadowFrame plan = planWithCascades(cascades);
+        const ShadowFrame plan = groundAndBoxPlan(cascades);
         const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson(plan));
         // 1 tile fills the atlas; 2-4 tiles are quarters of a 2 x 2 split.
         const double expected = cascades == 1 ? 1.0 : 0.25 * double(cascades);
@@ -38,7 +23,7 @@ TEST(ShadowStatsJson, OccupancyIsTheShareOfTheAtlasItsTilesTake) {
 }
 
 TEST(ShadowStatsJson, CastersAndTrianglesPerTileAreTheGpuCounts) {
-    const ShadowFrame plan = planWithCascades(2);
+    const ShadowFrame plan = groundAndBoxPlan(2);
     ASSERT_EQ(plan.directional.tiles.size(), 2u);
     const std::vector<CullTileCount> gpu = {{3, 1200}, {5, 70000}};
     const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson(plan, &gpu))["directional"];
@@ -48,7 +33,7 @@ TEST(ShadowStatsJson, CastersAndTrianglesPerTileAreTheGpuCounts) {
 }
 
 TEST(ShadowStatsJson, WithoutGpuCountsCastersComeFromThePlanAndTrianglesAreLeftOut) {
-    const ShadowFrame plan = planWithCascades(2);
+    const ShadowFrame plan = groundAndBoxPlan(2);
     const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson(plan))["directional"];
     ASSERT_EQ(stats["castersPerTile"].size(), 2u);
     for (size_t tile = 0; tile < 2; ++tile)

@@ -5,6 +5,7 @@
 #include "penumbra/camera.h"
 #include "penumbra/scene.h"
 #include "penumbra/shadow_settings.h"
+#include "shadows/shadow_planner.h"
 
 namespace penumbra::shadow_test {
 
@@ -61,6 +62,19 @@ inline CameraView cameraLookingAt(glm::vec3 eye, glm::vec3 target, float zFar = 
     camera.zNear = 0.1f;
     camera.zFar = zFar;
     return makeCameraView(camera, width, height);
+}
+
+// The plan of a 40 m ground with a box on it under one sun, with `cascades` cascades (seed settings,
+// 40 m shadow distance), seen from (0, 6, 15).
+inline ShadowFrame groundAndBoxPlan(uint32_t cascades) {
+    Scene scene = baseScene();
+    addBox(scene, {-20, -1, -20}, {20, 0, 20});
+    addBox(scene, {-1, 0, -1}, {1, 2, 1});
+    addDirectionalLight(scene, {0.3f, -1, 0.2f});
+    ShadowSettings settings = seedCascadeSettings();
+    settings.maxDistance = 40.0f;
+    settings.directional.cascadeCount = cascades;
+    return ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), settings);
 }
 
 }  // namespace penumbra::shadow_test

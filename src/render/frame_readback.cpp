@@ -1,0 +1,100 @@
+#include "render/frame_readback.h"
+
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+#include "cull_structs.h"
+#include "light_cluster_structs.h"
+#include "render/shadow_stats_json.h"
+
+namespace penumbra {
+
+namespace {
+
+// Copies `count` values of T from `offset`; false where the piece is absent. A piece beyond the readback
+// is an internal error (the layout and the readback come from one frame).
+template <typename T>
+bool readPiece(const std::vector<uint8_t>& readback, uint64_t offset, T* values, size_t count = 1) {
+    if (offset == FrameReadbackLayout::kAbsent) return false;
+    const bool inside = offset <= readback.size() && count * sizeof(T) <= readback.size() - offset;
+    PENUMBRA_ASSERT(inside);
+    if (!inside) return false;
+    std::memcpy(values, readback.data() + offset, count * sizeof(T));
+    return true;
+}
+
+void applyCullTiles(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
+                    const std::vector<uint8_t>& readback) {
+    const size_t directionalTiles = plan.directional.tiles.size();
+    std::vector<gpu_data::CullTileStats> tiles(directionalTiles + plan.other.tiles.size());
+    if (!tiles.empty()) readPiece(readback, layout.cullTiles, tiles.data(), tiles.size());  // else zero counts
+    std::vector<CullTileCount> counts;
+    for (size_t i = 0; i < tiles.size(); ++i) {
+        const size_t atlasIndex = i < directionalTiles ? 0 : 1;
+        if (atlasIndex < stats.atlases.size()) {
+            stats.atlases[atlasIndex].draws += tiles[i].counts.x;
+            stats.atlases[atlasIndex].triangles += tiles[i].counts.z;
+        }
+        counts.push_back({tiles[i].counts.y, tiles[i].counts.z});
+    }
+    stats.shadowStatsJson = shadowStatsJson(plan, &counts);
+}
+
+void applyRasterCounters(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback,
+                         glm::uvec2& rasterNeeded) {
+    for (uint64_t offset : layout.rasterCounters) {
+        gpu_data::RasterCounters counters{};
+        if (!readPiece(readback, offset, &counters)) continue;
+        stats.rasterLargeTriangles += counters.counts.x;
+        stats.rasterChunks += counters.counts.y;
+        stats.rasterDropped += uint64_t(counters.counts.z) + counters.counts.w;
+        stats.shadowMeshletsOutside += counters.meshlets.x;
+        rasterNeeded = glm::max(rasterNeeded, glm::uvec2(counters.counts.x, counters.counts.y));
+    }
+    if (stats.rasterDropped > 0)
+        stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
+                                 " large pieces or chunks were not drawn in frame " + std::to_string(stats.frameIndex) +
+                                 "; the queues grow for the next frames");
+}
+
+void applyViewCulling(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback) {
+    gpu_data::CullTileStats lists[2]{};
+    if (readPiece(readback, layout.viewLists, lists, 2)) {
+        stats.viewInstancesEarly = lists[0].counts.y;
+        stats.viewInstancesLate = lists[1].counts.y;
+        stats.viewTriangles = uint64_t(lists[0].counts.z) + lists[1].counts.z;
+    }
+    glm::uvec4 meshlets{0u};
+    if (readPiece(readback, layout.viewMeshlets, &meshlets)) {
+        stats.viewMeshletsOutside = meshlets.x;
+        stats.viewMeshletsFacingAway = meshlets.y;
+    }
+}
+
+void applyLightClusters(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback) {
+    gpu_data::LightClusterStats counts{};
+    if (!readPiece(readback, layout.lightClusters, &counts)) return;
+    stats.lightsPerClusterMean = double(counts.counts.x) / double(gpu_data::kClusterCount);
+    stats.lightsPerClusterMax = counts.counts.y;
+}
+
+}  // namespace
+
+void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
+                        const std::vector<uint8_t>& readback, glm::uvec2& rasterNeeded) {
+    applyCullTiles(stats, plan, layout, readback);
+    applyRasterCounters(stats, layout, readback, rasterNeeded);
+    applyViewCulling(stats, layout, readback);
+    applyLightClusters(stats, layout, readback);
+}
+
+double timedMilliseconds(const FrameStats& stats, std::initializer_list<const char*> names) {
+    double total = 0.0;
+    for (const PassTiming& timing : stats.gpuTimings)
+        for (const char* name : names)
+            if (timing.name == name) total += timing.milliseconds;
+    return total;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,37 @@
+#pragma once
+// What the GPU counts during a frame and the renderer reads back once the frame is done
+// (gpu::Device::readBackAtFrameEnd): where each piece lies in the frame's readback, and how the pieces
+// become the frame's FrameStats. No GPU here: the decoding is tested on plain bytes.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "penumbra/renderer.h"
+#include "shadows/shadow_planner.h"
+
+namespace penumbra {
+
+// Byte offsets in CompletedFrame::readback, as readBackAtFrameEnd returned them; kAbsent where the
+// frame did not read that piece back.
+struct FrameReadbackLayout {
+    static constexpr uint64_t kAbsent = ~0ull;
+    uint64_t cullTiles = kAbsent;                       // CullTileStats per shadow tile, directional first
+    uint64_t rasterCounters[2] = {kAbsent, kAbsent};    // RasterCounters of the directional and spot/point atlas
+    uint64_t visibleSurfaces = kAbsent;                 // the tight fit's depth subsample (VisibleSurfacePass)
+    uint64_t viewLists = kAbsent;                       // 2 CullTileStats: the main view's early and late lists
+    uint64_t viewMeshlets = kAbsent;                    // uvec4: visibility-buffer meshlets outside, facing away
+    uint64_t lightClusters = kAbsent;                   // LightClusterStats
+};
+
+// Fills `stats` from the pieces `layout` names: casters and triangles per atlas and the shadow stats JSON
+// (from the plan, with the GPU's counts where they came back), the compute rasterizer's counters (and a
+// warning when its queues overflowed), the main view's culling and the light clusters' counts.
+// `rasterNeeded` grows to the most large pieces (x) and chunks (y) one atlas pass asked for.
+void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
+                        const std::vector<uint8_t>& readback, glm::uvec2& rasterNeeded);
+
+// The sum of the GPU timings with these names (0 for names the frame did not time).
+double timedMilliseconds(const FrameStats& stats, std::initializer_list<const char*> names);
+
+}  // namespace penumbra

@@ -1,0 +1,112 @@
+#include "render/frame_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "render/frame_data.h"
+#include "shadows/shadow_planner.h"
+
+namespace penumbra {
+
+gpu::Format colorFormatOf(OutputMode output) {
+    return output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
+}
+
+MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter) {
+    MainPassVariant variant;
+    variant.colorFormat = format;
+    variant.drawBlended = format == gpu::Format::RGBA8Srgb;  // the AOVs show the opaque surface only
+    const bool soft = (otherShadowMode & gpu_data::kOtherShadowsSoft) != 0;
+    variant.specialization = {{2, otherShadowMode}, {3, soft ? spotFilter : gpu_data::kShadowFilterPcf5x5}};
+    return variant;
+}
+
+const std::vector<gpu::SpecConstant>& genericLitSpecialization() {
+    static const std::vector<gpu::SpecConstant> generic = {
+        {2, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft}, {3, gpu_data::kShadowFilterFromData}};
+    return generic;
+}
+
+gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
+                                  const Settings& settings, bool screenSpaceShadows) {
+    gpu_data::FrameData frame = cameraFrameData(view);
+    uint32_t mode = gpu_data::kOutputColor;
+    if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
+    if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
+    frame.counts = glm::uvec4(lights.directionalCount, lights.otherCount, mode, request.aovLight);
+    static_assert(uint32_t(ToneMapping::Neutral) == gpu_data::kToneMapNeutral &&
+                  uint32_t(ToneMapping::Aces) == gpu_data::kToneMapAces);
+    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f,
+                             float(settings.render.toneMapping));
+    return frame;
+}
+
+PackedLights packFrameLights(const Scene& scene, const ShadowFrame& plan) {
+    return packLights(scene, [&](uint32_t i) {
+        const bool directional = scene.lights[i].type == LightType::Directional;
+        const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
+        return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
+    });
+}
+
+FrameTargetSizes frameTargetSizes(const ShadowFrame& plan, const CameraView& view, OutputMode output,
+                                  const ShadowSettings& shadows) {
+    FrameTargetSizes sizes;
+    sizes.directionalAtlas = plan.directional.atlas.tileCount > 0 ? plan.directional.atlas.atlasSize : 1u;
+    sizes.otherAtlas = plan.other.atlas.tileCount > 0 ? plan.other.atlas.atlasSize : 1u;
+    sizes.width = view.width;
+    sizes.height = view.height;
+    sizes.colorFormat = colorFormatOf(output);
+    sizes.computeRaster = shadows.raster != ShadowRaster::Hw;
+    return sizes;
+}
+
+gpu::BufferSlice uploadFrameData(gpu::Device& device, const void* data, size_t size) {
+    const gpu::FrameAllocation allocation = device.allocateFrameData(std::max<size_t>(size, 16));
+    std::memcpy(allocation.mapped, data, size);
+    return allocation.slice;
+}
+
+namespace {
+
+bool finite(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+// The largest power of two that is <= limit (limit >= 1).
+uint32_t powerOfTwoAtMost(uint32_t limit) {
+    uint32_t size = 1;
+    while (size <= limit / 2) size *= 2;
+    return size;
+}
+
+}  // namespace
+
+void checkCameraView(const CameraView& view) {
+    if (!finite(view.clipFromWorld) || !finite(view.worldFromView) || !finite(view.viewFromWorld))
+        throw Error("camera view: a matrix has a non-finite element");
+    if (!(view.yfov > 0.0f && view.yfov < 3.14159265f)) throw Error("camera view: yfov must be in (0, pi)");
+    if (!(std::isfinite(view.zNear) && view.zNear > 0.0f && view.zFar > view.zNear))
+        throw Error("camera view: needs 0 < zNear < zFar");
+}
+
+ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, std::vector<std::string>& warnings) {
+    ShadowSettings fitted = requested;
+    const uint32_t largest = powerOfTwoAtMost(maxImageSize);
+    auto fit = [&](uint32_t& atlasSize, const char* key) {
+        if (atlasSize <= largest) return;
+        warnings.push_back(std::string(key) + " = " + std::to_string(atlasSize) + " is larger than the device's largest image (" +
+                           std::to_string(maxImageSize) + "): using " + std::to_string(largest));
+        atlasSize = largest;
+    };
+    fit(fitted.directional.atlasSize, "shadows.directional.atlasSize");
+    fit(fitted.spot.atlasSize, "shadows.spot.atlasSize");
+    return fitted;
+}
+
+}  // namespace penumbra

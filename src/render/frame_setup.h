@@ -1,0 +1,47 @@
+#pragma once
+// The renderer's per-frame decisions that need no GPU: checks of a caller's camera, the shadow settings
+// a device can hold, the lit pass variant of a frame, and the frame data block the shaders read.
+#include <string>
+#include <vector>
+
+#include "gpu/device.h"
+#include "penumbra/renderer.h"
+#include "penumbra/settings.h"
+#include "render/frame_targets.h"
+#include "render/light_packing.h"
+#include "render/main_pass.h"
+#include "scene_structs.h"
+#include "shadows/shadow_planner.h"
+
+namespace penumbra {
+
+gpu::Format colorFormatOf(OutputMode output);
+
+// The lit pass variant for a colour format and the frame's spot/point shadow kinds and filter
+// (seed 001 §6.4). The filter only matters when some light is soft, so the others share one variant.
+MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter);
+// The specialization of the generic lit variant, which every frame can fall back on.
+const std::vector<gpu::SpecConstant>& genericLitSpecialization();
+
+gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
+                                  const Settings& settings, bool screenSpaceShadows);
+
+// The scene's lights for the GPU, each shadowed one with its slot in the plan's atlases.
+PackedLights packFrameLights(const Scene& scene, const ShadowFrame& plan);
+
+// The targets and atlases a frame of this plan, view and output draws into.
+FrameTargetSizes frameTargetSizes(const ShadowFrame& plan, const CameraView& view, OutputMode output,
+                                  const ShadowSettings& shadows);
+
+// Copies `size` bytes into this frame's upload ring and returns where they are.
+gpu::BufferSlice uploadFrameData(gpu::Device& device, const void* data, size_t size);
+
+// A caller's CameraView (render(request, settings, view), submitFrame) is checked like a scene camera;
+// throws Error naming what is wrong.
+void checkCameraView(const CameraView& view);
+
+// The shadow settings a device whose largest image side is maxImageSize can hold: a larger atlas is made
+// as large as the device allows (the largest power of two), with a warning.
+ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, std::vector<std::string>& warnings);
+
+}  // namespace penumbra

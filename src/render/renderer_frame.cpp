@@ -1,0 +1,391 @@
+// Renderer::State's frame: checked, planned, recorded in steps (shadow atlases, lighting inputs, main
+// view, outputs), submitted, and collected once the GPU is done (renderer_state.h).
+#include <algorithm>
+#include <string>
+
+#include "core/error.h"
+#include "core/stopwatch.h"
+#include "cull_structs.h"
+#include "render/frame_setup.h"
+#include "render/light_clusters.h"
+#include "render/renderer_state.h"
+#include "scene/scene_validation.h"
+#include "scene_structs.h"
+#include "shadows/cull_packing.h"
+
+namespace penumbra {
+
+namespace {
+
+constexpr size_t kMaxLights = gpu_data::kMaxDirectionalLights + gpu_data::kMaxOtherLights;
+static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
+
+}  // namespace
+
+void Renderer::State::checkRequest(const RenderRequest& request, const CameraView& view) const {
+    if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
+        throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
+                    std::to_string(scene.lights.size()) + " lights)");
+    const uint32_t limit = device.maxImageSize();
+    if (request.width == 0 || request.height == 0 || request.width > limit || request.height > limit)
+        throw Error("the output size " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                    " is out of range (allowed 1.." + std::to_string(limit) + " per side on " + device.info().name + ")");
+    if (view.width != request.width || view.height != request.height)
+        throw Error("internal: the camera view is " + std::to_string(view.width) + "x" + std::to_string(view.height) +
+                    " but the request " + std::to_string(request.width) + "x" + std::to_string(request.height));
+    checkCameraView(view);
+}
+
+bool Renderer::State::chooseMainView(const Settings& settings, PendingFrame& frame) const {
+    const bool visibilityOk = VisibilityPass::supported(device, gpuScene);
+    if (settings.render.mainView == MainView::Visibility && !visibilityOk)
+        throw Error(std::string("render.mainView = visibility is not available: ") +
+                    (!device.hasBufferInt64Atomics() ? device.info().name + " has no 64-bit buffer atomics (or an embedder's device did not enable them)"
+                                                     : "the scene has too many instances x triangles per mesh for 32-bit ids") +
+                    "; use forward or auto");
+    // auto keeps the forward pass on CPU devices, where the resolve is a fragment pass anyway.
+    const bool autoCanChoose = visibilityOk && !device.info().isCpu;
+    const bool automatic = settings.render.mainView == MainView::Auto;
+    // The frames that may draw with the visibility buffer (auto: while measuring too).
+    const bool visibilityWanted = settings.render.mainView == MainView::Visibility || (autoCanChoose && automatic);
+    frame.visibilityView = automatic ? autoCanChoose && mainViewChoice.useCompute(ShadowRaster::Auto) : visibilityWanted;
+    frame.autoMainView = autoCanChoose && automatic && !mainViewChoice.decided();
+    frame.stats.mainView = frame.visibilityView ? "visibility" : "forward";
+    return visibilityWanted;
+}
+
+void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view, bool oneShot) {
+    PlanOptions planOptions;
+    planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
+    // The tight cascade fit's depth reduction (issue 13 item 8): this view's, waited for, when the
+    // caller waits anyway or nothing earlier matches; else the latest finished frame's.
+    const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
+    const glm::uvec2 viewSize(view.width, view.height);
+    std::optional<VisibleSurfaces> visible;
+    if (tight && (oneShot || !latestVisible || latestVisibleSize != viewSize)) {
+        try {
+            visible = visiblePass.now(scene, view);
+        } catch (const Error& error) {
+            throw Error(std::string("the tight fit's visible surfaces: ") + error.what());
+        }
+    }
+    const VisibleSurfaces* planVisible = !tight ? nullptr : visible ? &*visible : &*latestVisible;
+    frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions);
+}
+
+MainPassVariant Renderer::State::prepareMainView(const Settings& settings, const ShadowFrame& plan,
+                                                 const FrameTargetSizes& sizes, bool visibilityWanted) {
+    MainPassVariant litPass = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+    if (options.forceGenericVariants) litPass.specialization = genericLitSpecialization();
+    // Also while auto still draws forward frames to measure: the visibility frames that follow then
+    // make nothing (the steady state allocates no GPU object).
+    if (visibilityWanted) {  // before the frame: its pipelines and buffers are made here, not while recording
+        if (!visibility) visibility = std::make_unique<VisibilityPass>(device, gpuScene);
+        visibility->prepare(litPass.specialization, sizes.colorFormat, sizes.width, sizes.height);
+    }
+    return litPass;
+}
+
+void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderRequest& request,
+                                        const PackedLights& lights) {
+    const Settings& settings = recording.settings;
+    const ShadowFrame& plan = recording.frame.plan;
+    recording.stage = "frame data upload";
+    recording.screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
+    const gpu_data::FrameData frameData = makeFrameData(recording.view, lights, request, settings, recording.screenSpace);
+    recording.frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
+    recording.lightSlice =
+        uploadFrameData(device, lights.lights.data(), lights.lights.size() * sizeof(gpu_data::LightData));
+    recording.clustered = settings.render.lightCulling == LightCulling::Clustered && lights.otherCount > 0;
+    const gpu_data::LightClusterData clusterData = makeLightClusterData(
+        recording.view, scene.wsBounds, lights.directionalCount, lights.otherCount, recording.clustered);
+    recording.clusterSlice = uploadFrameData(device, &clusterData, sizeof(clusterData));
+    recording.directionalSlice = uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
+    recording.otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
+    recording.casterWrites = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
+}
+
+TilesToDraw Renderer::State::chooseTilesToDraw(FrameRecording& recording) {
+    const ShadowFrame& plan = recording.frame.plan;
+    const ShadowSettings& shadows = recording.settings.shadows;
+    const bool compute = recording.frame.computeRaster;
+    std::vector<TileSignature> directionalSignatures, otherSignatures;
+    for (const ShadowTile& tile : plan.directional.tiles)
+        directionalSignatures.push_back(directionalTileSignature(tile, plan.directional));
+    for (const ShadowTile& tile : plan.other.tiles) otherSignatures.push_back(otherTileSignature(tile));
+    TilesToDraw draw;
+    draw.freshDirectional = targets.directionalGeneration != directionalGenerationDrawn;
+    draw.freshOther = targets.otherGeneration != otherGenerationDrawn;
+    draw.directional = directionalCache.tilesToDraw(directionalSignatures, targets.directionalGeneration, compute,
+                                                    sceneVersion, shadows.cacheTiles);
+    draw.other = otherCache.tilesToDraw(otherSignatures, targets.otherGeneration, compute, sceneVersion, shadows.cacheTiles);
+    directionalGenerationDrawn = targets.directionalGeneration;
+    otherGenerationDrawn = targets.otherGeneration;
+    FrameStats& stats = recording.frame.stats;
+    stats.tilesRendered = uint32_t(draw.directional.size() + draw.other.size());
+    stats.tilesReused = directionalCache.reused() + otherCache.reused();
+
+    // The culling pass's frame: every planned tile is culled, the drawn ones rasterized.
+    const CameraView& view = recording.view;
+    gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
+    cullFrame.camera = packCullCamera(view.clipFromWorld, view.width, view.height, recording.settings.render.viewCulling);
+    std::vector<uint32_t> rasterTiles = draw.directional;
+    for (uint32_t i : draw.other) rasterTiles.push_back(uint32_t(plan.directional.tiles.size()) + i);
+    packRasterTiles(cullFrame, rasterTiles);
+    recording.cullSlice = uploadFrameData(device, &cullFrame, sizeof(cullFrame));
+    return draw;
+}
+
+void Renderer::State::recordShadowAtlases(FrameRecording& recording, const TilesToDraw& draw) {
+    gpu::CommandList& commands = recording.commands;
+    PendingFrame& frame = recording.frame;
+    const ShadowFrame& plan = frame.plan;
+    const uint32_t directionalTiles = uint32_t(plan.directional.tiles.size());
+    const uint32_t cullTiles = directionalTiles + uint32_t(plan.other.tiles.size());
+    recording.stage = "shadows.culling";
+    commands.beginTimer("shadows.culling");
+    culling.record(commands, recording.cullSlice, cullTiles);
+    commands.endTimer();
+    // Twice what a frame asked for: a moving camera rarely needs another growth (each is one allocation).
+    if (frame.computeRaster) computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y);
+    frame.readback.cullTiles = device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
+    auto drawAtlas = [&](size_t pass, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& drawn,
+                         bool fresh, uint32_t firstTile, uint32_t listOffset, gpu::TextureHandle atlas, uint32_t size,
+                         gpu::BufferHandle rasterDepth, const std::string& name) {
+        recording.stage = pass == 0 ? "shadows.directional" : "shadows.other";
+        commands.beginTimer(recording.stage);
+        if (frame.computeRaster) {
+            ComputeRasterPass::AtlasTiles atlasTiles;
+            atlasTiles.listOffset = listOffset;
+            atlasTiles.freshAtlas = fresh;
+            for (uint32_t i : drawn)
+                atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
+                                            tiles[i].rect.size, tiles[i].rect.size});
+            computeRaster.record(commands, recording.casterWrites, recording.cullSlice, culling, atlasTiles, atlas, size,
+                                 rasterDepth, recording.settings.render.meshletCulling, name);
+            frame.readback.rasterCounters[pass] = device.readBackAtFrameEnd(commands, computeRaster.counters());
+        } else {
+            casterPass.record(commands, tiles, drawn, fresh, firstTile, atlas, size, recording.casterWrites, culling);
+        }
+        commands.endTimer();
+    };
+    const FrameTargetSizes& sizes = recording.sizes;
+    drawAtlas(0, plan.directional.tiles, draw.directional, draw.freshDirectional, 0, 0, targets.directionalAtlas,
+              sizes.directionalAtlas, targets.directionalRasterDepth, "shadows.directional");
+    drawAtlas(1, plan.other.tiles, draw.other, draw.freshOther, directionalTiles, uint32_t(draw.directional.size()),
+              targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth, "shadows.other");
+    frame.stats.atlases = {{"shadows.directional", directionalTiles, 0, 0},
+                           {"shadows.other", cullTiles - directionalTiles, 0, 0}};
+}
+
+MainPassInputs Renderer::State::recordLightingInputs(FrameRecording& recording) {
+    gpu::CommandList& commands = recording.commands;
+    recording.stage = "light clusters";
+    commands.beginTimer("lightClusters");
+    lightClusters.record(commands, recording.clusterSlice, recording.lightSlice, recording.clustered);
+    commands.endTimer();
+    if (recording.clustered) recording.frame.readback.lightClusters = device.readBackAtFrameEnd(commands, lightClusters.stats());
+
+    MainPassInputs inputs;
+    inputs.writes = recording.casterWrites;
+    inputs.writes.push_back({gpu_data::kBindingLightClusters, recording.clusterSlice});
+    inputs.writes.push_back({gpu_data::kBindingClusterMasks, lightClusters.masks(), {}, {}});
+    inputs.writes.push_back({5, recording.directionalSlice});
+    inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
+    inputs.writes.push_back({7, recording.otherSlice});
+    inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
+    // 12, 13: the same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
+    inputs.writes.push_back({12, {}, targets.directionalAtlas, pointSampler});
+    inputs.writes.push_back({13, {}, targets.otherAtlas, pointSampler});
+    inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
+    recording.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
+    if (recording.screenSpace)
+        inputs.writes.back().texture = screenSpacePass.record(commands, scene, recording.view, inputs, 0);
+    return inputs;
+}
+
+void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,
+                                     const MainPassVariant& litPass, bool oneShot) {
+    gpu::CommandList& commands = recording.commands;
+    PendingFrame& frame = recording.frame;
+    const CameraView& view = recording.view;
+    const RenderSettings& render = recording.settings.render;
+    recording.stage = frame.visibilityView ? "main (visibility buffer)" : "main";
+    commands.beginTimer("main");
+    MainPass::Target main;
+    main.color = targets.color;
+    main.depth = targets.depth;
+    main.width = view.width;
+    main.height = view.height;
+    main.variant = litPass;
+    main.genericSpecialization = genericLitSpecialization();
+    // Shadow AOV: 1 (lit) where no geometry is; cascades: black; colour: black under the background.
+    if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+    main.background = request.output == OutputMode::Color && render.background == Background::Gradient;
+    if (frame.visibilityView) {
+        VisibilityPass::Target opaque{targets.color, targets.depth, recording.sizes.colorFormat, view.width, view.height, {},
+                                      main.variant.specialization};
+        std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
+        // Leaves both targets in their target states.
+        visibility->record(commands, inputs.writes, opaque, culling, recording.cullSlice, render.viewCulling,
+                           render.meshletCulling);
+        main.opaqueDone = true;
+        frame.stats.viewInstances = gpuScene.viewInstanceCount(scene);
+        frame.readback.viewLists = device.readBackAtFrameEnd(commands, culling.viewStats());
+        frame.readback.viewMeshlets = device.readBackAtFrameEnd(commands, visibility->meshletCounts());
+    } else {
+        commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+        commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    }
+    mainPass.record(commands, scene, view, inputs, main);
+    commands.endTimer();
+    if (recording.settings.shadows.directional.fit == CascadeFit::Tight && !oneShot) {
+        frame.readback.visibleSurfaces = visiblePass.recordSubsample(commands, targets.depth, view);
+        frame.view = view;
+    }
+}
+
+gpu::ExternalTarget Renderer::State::recordOutputs(FrameRecording& recording, const ExternalImage* target,
+                                                   bool readback, bool captureAtlas) {
+    gpu::CommandList& commands = recording.commands;
+    recording.stage = "readback";
+    if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
+    if (captureAtlas) {
+        commands.copyTextureToBuffer(targets.directionalAtlas, gpu::TextureState::ShaderRead, targets.directionalReadback());
+        commands.copyTextureToBuffer(targets.otherAtlas, gpu::TextureState::ShaderRead, targets.otherReadback());
+    }
+    gpu::ExternalTarget sync;
+    if (target) {
+        sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
+                target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
+        commands.blitToExternal(targets.color, importedTexture(*target), sync);
+    }
+    return sync;
+}
+
+uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& requestedSettings,
+                                 const CameraView& view, const ExternalImage* target, bool readback, bool captureAtlas,
+                                 bool oneShot) {
+    validateSettings(requestedSettings);
+    checkRequest(request, view);
+    PendingFrame frame;
+    FrameStats& stats = frame.stats;
+    stats.warnings = gpuScene.warnings();
+    // The settings this device can hold (an atlas over its largest image is shrunk, with a warning).
+    Settings settings = requestedSettings;
+    settings.shadows = fitShadowSettings(requestedSettings.shadows, device.maxImageSize(), stats.warnings);
+    const bool visibilityWanted = chooseMainView(settings, frame);
+    const uint64_t frameIndex = device.nextFrameIndex();
+    const auto failed = [&](const std::string& stage, const Error& error) {
+        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
+    };
+
+    Stopwatch phase;
+    try {
+        planShadows(frame, settings, view, oneShot);
+    } catch (const Error& error) {
+        throw Error("frame " + std::to_string(frameIndex) + ", " + error.what());
+    }
+    const ShadowFrame& plan = frame.plan;
+    const PackedLights lights = packFrameLights(scene, plan);
+    stats.cpu.culling = plan.stats.cullingMilliseconds;
+    stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
+    stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
+    stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
+
+    const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
+    try {
+        targets.ensure(sizes);
+    } catch (const Error& error) {
+        throw failed("render targets and shadow atlases", error);
+    }
+
+    MainPassVariant litPass;
+    try {
+        litPass = prepareMainView(settings, plan, sizes, visibilityWanted);
+    } catch (const Error& error) {
+        throw failed("the visibility-buffer main view", error);
+    }
+    frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
+    frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
+    frame.rasterSetting = settings.shadows.raster;
+    stats.shadowRaster = frame.computeRaster ? "compute" : "hw";
+
+    gpu::CommandList commands = device.beginFrame();
+    // A failure from here to the submission drops the frame (the next one starts clean) and names the
+    // part being recorded.
+    FrameRecording recording{commands, frame, settings, view, sizes};
+    try {
+        phase.restart();  // the wait for the slot's previous frame is not CPU work
+        stats.sceneBytesUploaded = gpuScene.recordUpdates(commands, scene);
+        uploadFrameInputs(recording, request, lights);
+        const TilesToDraw draw = chooseTilesToDraw(recording);
+        stats.cpu.upload = phase.milliseconds();
+
+        phase.restart();
+        recordShadowAtlases(recording, draw);
+        MainPassInputs inputs = recordLightingInputs(recording);
+        recordMainView(recording, request, inputs, litPass, oneShot);
+        gpu::ExternalTarget sync = recordOutputs(recording, target, readback, captureAtlas);
+        stats.cpu.record = phase.milliseconds();
+
+        phase.restart();
+        recording.stage = "submit";
+        frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);  // its errors name the frame
+    } catch (const Error& error) {
+        device.abandonFrame(commands);
+        // The tile caches counted this frame's tiles as drawn: draw every tile of the next frame.
+        directionalCache.invalidate();
+        otherCache.invalidate();
+        directionalGenerationDrawn = otherGenerationDrawn = ~0ull;
+        if (std::string(recording.stage) == "submit") throw;
+        throw failed(recording.stage, error);
+    }
+    gpuScene.updatesSubmitted();
+    stats.cpu.submit = phase.milliseconds();
+    stats.frameIndex = frame.frameIndex;
+    pending.push_back(std::move(frame));
+    collectCompleted();
+    return pending.back().frameIndex;
+}
+
+// A frame the GPU has finished: its readback into its stats, its timings into the auto choices.
+void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finished) {
+    FrameStats& stats = finished.stats;
+    applyFrameReadback(stats, finished.plan, finished.readback, done.readback, rasterNeeded);
+    if (stats.rasterDropped > 0) {  // those tiles are incomplete: draw them all again
+        directionalCache.invalidate();
+        otherCache.invalidate();
+    }
+    const uint64_t visibleAt = finished.readback.visibleSurfaces;
+    if (visibleAt != FrameReadbackLayout::kAbsent &&
+        done.readback.size() >= visibleAt + VisibleSurfacePass::readbackBytes(finished.view)) {
+        latestVisible = VisibleSurfacePass::fromReadback(done.readback.data() + visibleAt, finished.view);
+        latestVisibleSize = glm::uvec2(finished.view.width, finished.view.height);
+    }
+    for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
+    if (finished.autoRaster)
+        rasterChoice.measured(finished.computeRaster, timedMilliseconds(stats, {"shadows.directional", "shadows.other"}));
+    if (finished.autoMainView) mainViewChoice.measured(finished.visibilityView, timedMilliseconds(stats, {"main"}));
+    stats.mainViewChoice = device.info().isCpu ? "forward (a CPU device: auto keeps the forward pass)"
+                                               : mainViewChoice.describe();
+    stats.shadowRasterChoice = finished.rasterSetting == ShadowRaster::Auto
+                                   ? "auto: " + rasterChoice.describe()
+                                   : std::string("shadows.raster = ") + shadowRasterName(finished.rasterSetting);
+    stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
+    stats.gpuFrameMilliseconds = done.gpuFrameMilliseconds;
+    if (lastGpuFrameEnd > 0.0) stats.gpuFramePeriodMilliseconds = done.gpuEndMilliseconds - lastGpuFrameEnd;
+    lastGpuFrameEnd = done.gpuEndMilliseconds;
+}
+
+void Renderer::State::collectCompleted() {
+    for (gpu::CompletedFrame& done : device.takeCompletedFrames()) {
+        while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.pop_front();  // not ours
+        if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
+        finishFrame(done, pending.front());
+        completed.push_back(std::move(pending.front().stats));
+        pending.pop_front();
+    }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,135 @@
+#pragma once
+// Renderer::State: what a Renderer keeps across frames (its passes, targets, caches and the frames
+// still on the GPU), shared by renderer.cpp (the public API, construction) and renderer_frame.cpp
+// (recording, submitting and collecting a frame).
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "gpu/device.h"
+#include "penumbra/renderer.h"
+#include "render/compute_raster_pass.h"
+#include "render/frame_readback.h"
+#include "render/frame_targets.h"
+#include "render/gpu_scene.h"
+#include "render/light_cluster_pass.h"
+#include "render/light_packing.h"
+#include "render/main_pass.h"
+#include "render/raster_choice.h"
+#include "render/screen_space_shadow_pass.h"
+#include "render/shadow_caster_pass.h"
+#include "render/shadow_culling_pass.h"
+#include "render/tile_cache.h"
+#include "render/visibility_pass.h"
+#include "render/visible_surface_pass.h"
+#include "shadows/shadow_planner.h"
+
+namespace penumbra {
+
+// An imported caller image, remembered so a swapchain's images are imported once each.
+struct ImportedImage {
+    uint64_t vkImage = 0;
+    uint32_t width = 0, height = 0, format = 0;
+    gpu::TextureHandle texture;
+};
+constexpr size_t kMaxImportedImages = 8;
+
+// What a submitted frame still owes its caller once the GPU is done.
+struct PendingFrame {
+    uint64_t frameIndex = 0;
+    FrameStats stats;
+    ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
+    FrameReadbackLayout readback;
+    bool computeRaster = false;
+    bool autoRaster = false;      // shadows.raster = auto and still measuring: its timings feed the choice
+    bool visibilityView = false;  // the main view came from the visibility buffer
+    bool autoMainView = false;    // render.mainView = auto and still measuring: its main pass time feeds the choice
+    CameraView view;              // for the tight fit's depth subsample
+    ShadowRaster rasterSetting = ShadowRaster::Auto;
+};
+
+// One frame being recorded: what submit() decided and uploaded, passed along its recording steps.
+struct FrameRecording {
+    gpu::CommandList& commands;
+    PendingFrame& frame;
+    const Settings& settings;
+    const CameraView& view;
+    const FrameTargetSizes& sizes;
+    const char* stage = "scene updates";  // the part being recorded, named by a failure
+    // Upload ring slices, all made before the frame's first readback (Device::allocateFrameData).
+    gpu::BufferSlice frameSlice, lightSlice, clusterSlice, directionalSlice, otherSlice, cullSlice;
+    std::vector<gpu::DescriptorWrite> casterWrites;  // scene bindings 0-4
+    bool clustered = false;    // the spot/point lights go through the light clusters
+    bool screenSpace = false;  // URP's screen-space resolve of the directional shadows
+};
+
+// The shadow tiles a frame draws (indices into the plan's tiles of each atlas), the rest cached.
+struct TilesToDraw {
+    std::vector<uint32_t> directional, other;
+    bool freshDirectional = false, freshOther = false;  // the atlas is new: nothing to keep, clear it
+};
+
+struct Renderer::State {
+    gpu::Device& device;
+    Scene scene;
+    RendererOptions options;
+    GpuScene gpuScene;
+    ShadowCullingPass culling;
+    MainPass mainPass;
+    ShadowCasterPass casterPass;
+    ScreenSpaceShadowPass screenSpacePass;
+    VisibleSurfacePass visiblePass;
+    ComputeRasterPass computeRaster;
+    LightClusterPass lightClusters;
+    RasterChoice rasterChoice;
+    std::unique_ptr<VisibilityPass> visibility;  // made by the first visibility-buffer frame
+    RasterChoice mainViewChoice;
+    std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
+    glm::uvec2 latestVisibleSize{0};
+    glm::uvec2 rasterNeeded{0};  // the most large pieces / chunks a finished frame asked the compute rasterizer for
+    TileCache directionalCache, otherCache;
+    uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
+    uint64_t sceneVersion = 0;  // bumped by every change to the casters (transforms, cast flags, materials)
+    FrameTargets targets;
+    gpu::SamplerHandle shadowSampler, pointSampler;
+    gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
+    std::vector<ImportedImage> imported;
+    std::deque<PendingFrame> pending;
+    std::vector<FrameStats> completed;
+    double lastGpuFrameEnd = 0.0;  // the latest finished frame's CompletedFrame::gpuEndMilliseconds
+
+    State(gpu::Device& d, Scene s, const RendererOptions& o);
+    ~State();
+    void destroyOwnObjects();
+    // Every variant a setting can reach: the generic sets first (what frames fall back on), then the
+    // specialized ones.
+    void requestAllVariants();
+    gpu::TextureHandle importedTexture(const ExternalImage& target);
+
+    // renderer_frame.cpp. oneShot: the caller waits for this frame (render()): the tight fit reduces
+    // this very view's depth.
+    void checkRequest(const RenderRequest& request, const CameraView& view) const;
+    uint64_t submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
+                    const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot);
+    void collectCompleted();
+
+private:
+    // The steps of submit(), in order.
+    bool chooseMainView(const Settings& settings, PendingFrame& frame) const;  // true: the visibility pass is wanted
+    void planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view, bool oneShot);
+    // The frame's lit pass variant; makes what the visibility-buffer main view needs when it may draw.
+    MainPassVariant prepareMainView(const Settings& settings, const ShadowFrame& plan, const FrameTargetSizes& sizes,
+                                    bool visibilityWanted);
+    void uploadFrameInputs(FrameRecording& recording, const RenderRequest& request, const PackedLights& lights);
+    TilesToDraw chooseTilesToDraw(FrameRecording& recording);
+    void recordShadowAtlases(FrameRecording& recording, const TilesToDraw& draw);
+    MainPassInputs recordLightingInputs(FrameRecording& recording);
+    void recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,
+                        const MainPassVariant& litPass, bool oneShot);
+    gpu::ExternalTarget recordOutputs(FrameRecording& recording, const ExternalImage* target, bool readback,
+                                      bool captureAtlas);
+    void finishFrame(gpu::CompletedFrame& done, PendingFrame& finished);
+};
+
+}  // namespace penumbra
