@@ -67,7 +67,7 @@ struct FrameStats {
     std::string shadowRaster = "hw";         // the rasterizer that drew this frame's shadow maps: hw | compute
     std::string shadowRasterChoice;          // shadows.raster = auto: how it was chosen
     std::string mainView = "forward";        // how the main view was drawn: forward | visibility
-    std::string mainViewChoice;              // render.mainView = auto: how it was chosen (or "measuring")
+    std::string mainViewChoice;              // how it was chosen: "render.mainView = forward|visibility", or auto's choice (or "measuring")
     // The visibility buffer's GPU culling (render.viewCulling): the opaque and alpha-tested instances
     // with geometry, those drawn in the early phase (the frustum's instances visible last frame) and the
     // late one (found visible by the depth pyramid), and their triangles; all 0 for forward frames.

@@ -51,6 +51,7 @@ bool Renderer::State::chooseMainView(const Settings& settings, PendingFrame& fra
     frame.visibilityView = automatic ? autoCanChoose && mainViewChoice.useCompute(ShadowRaster::Auto) : visibilityWanted;
     frame.autoMainView = autoCanChoose && automatic && !mainViewChoice.decided();
     frame.stats.mainView = frame.visibilityView ? "visibility" : "forward";
+    frame.mainViewSetting = settings.render.mainView;
     return visibilityWanted;
 }
 
@@ -367,8 +368,11 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
     if (finished.autoRaster)
         rasterChoice.measured(finished.computeRaster, timedMilliseconds(stats, {"shadows.directional", "shadows.other"}));
     if (finished.autoMainView) mainViewChoice.measured(finished.visibilityView, timedMilliseconds(stats, {"main"}));
-    stats.mainViewChoice = device.info().isCpu ? "forward (a CPU device: auto keeps the forward pass)"
-                                               : mainViewChoice.describe();
+    if (finished.mainViewSetting != MainView::Auto)
+        stats.mainViewChoice = std::string("render.mainView = ") + mainViewName(finished.mainViewSetting);
+    else
+        stats.mainViewChoice = device.info().isCpu ? "forward (a CPU device: auto keeps the forward pass)"
+                                                   : mainViewChoice.describe();
     stats.shadowRasterChoice = finished.rasterSetting == ShadowRaster::Auto
                                    ? "auto: " + rasterChoice.describe()
                                    : std::string("shadows.raster = ") + shadowRasterName(finished.rasterSetting);

@@ -47,6 +47,7 @@ struct PendingFrame {
     bool autoMainView = false;    // render.mainView = auto and still measuring: its main pass time feeds the choice
     CameraView view;              // for the tight fit's depth subsample
     ShadowRaster rasterSetting = ShadowRaster::Auto;
+    MainView mainViewSetting = MainView::Auto;
 };
 
 // One frame being recorded: what submit() decided and uploaded, passed along its recording steps.

@@ -120,6 +120,16 @@ TEST_F(VisibilityViewTest, AutoKeepsTheForwardPassOnACpuDevice) {
     }
 }
 
+TEST_F(VisibilityViewTest, StatsSayWhetherTheSettingOrAutoChoseTheMainView) {
+    Renderer renderer(device(), makeCanonicalScene(canonicalScenes().front().name));
+    const RenderResult forward = renderWith(renderer, settingsFor(MainView::Forward), OutputMode::Color);
+    EXPECT_EQ(forward.stats.mainViewChoice, "render.mainView = forward");
+    const RenderResult visibility = renderWith(renderer, settingsFor(MainView::Visibility), OutputMode::Color);
+    EXPECT_EQ(visibility.stats.mainViewChoice, "render.mainView = visibility") << "not auto's \"measuring\"";
+    const RenderResult automatic = renderWith(renderer, settingsFor(MainView::Auto), OutputMode::Color);
+    EXPECT_EQ(automatic.stats.mainViewChoice, "forward (a CPU device: auto keeps the forward pass)");
+}
+
 TEST_F(VisibilityViewTest, BackFacesShowOnlyForDoubleSidedMaterials) {
     // Two unlit quads seen from behind: the left single-sided (culled: the background shows), the
     // right double-sided (green). The visibility buffer culls as the forward pass does.
