@@ -10,18 +10,21 @@
 
 namespace penumbra {
 
+const uint8_t* readbackPiece(const std::vector<uint8_t>& readback, uint64_t offset, uint64_t bytes) {
+    if (offset == FrameReadbackLayout::kAbsent) return nullptr;
+    const bool inside = offset <= readback.size() && bytes <= readback.size() - offset;
+    PENUMBRA_ASSERT(inside);
+    return inside ? readback.data() + offset : nullptr;
+}
+
 namespace {
 
-// Copies `count` values of T from `offset`; false where the piece is absent. A piece beyond the readback
-// is an internal error (the layout and the readback come from one frame).
+// Copies `count` values of T from `offset`; false where the piece is absent.
 template <typename T>
 bool readPiece(const std::vector<uint8_t>& readback, uint64_t offset, T* values, size_t count = 1) {
-    if (offset == FrameReadbackLayout::kAbsent) return false;
-    const bool inside = offset <= readback.size() && count * sizeof(T) <= readback.size() - offset;
-    PENUMBRA_ASSERT(inside);
-    if (!inside) return false;
-    std::memcpy(values, readback.data() + offset, count * sizeof(T));
-    return true;
+    const uint8_t* piece = readbackPiece(readback, offset, count * sizeof(T));
+    if (piece) std::memcpy(values, piece, count * sizeof(T));
+    return piece != nullptr;
 }
 
 void applyCullTiles(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,

@@ -24,6 +24,10 @@ struct FrameReadbackLayout {
     uint64_t lightClusters = kAbsent;                   // LightClusterStats
 };
 
+// The `bytes` bytes at `offset` in a frame's readback; null where the piece is absent. A piece beyond
+// the readback is an internal error (the layout and the readback come from one frame): asserted, null.
+const uint8_t* readbackPiece(const std::vector<uint8_t>& readback, uint64_t offset, uint64_t bytes);
+
 // Fills `stats` from the pieces `layout` names: casters and triangles per atlas and the shadow stats JSON
 // (from the plan, with the GPU's counts where they came back), the compute rasterizer's counters (and a
 // warning when its queues overflowed), the main view's culling and the light clusters' counts.

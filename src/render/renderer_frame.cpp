@@ -19,6 +19,8 @@ namespace {
 
 constexpr size_t kMaxLights = gpu_data::kMaxDirectionalLights + gpu_data::kMaxOtherLights;
 static_assert(kMaxLights * sizeof(gpu_data::LightData) < (1u << 20));
+// The two shadow atlas passes, as timed and reported (FrameStats::atlases): directional, then spot/point.
+constexpr const char* kAtlasPassNames[2] = {"shadows.directional", "shadows.other"};
 
 }  // namespace
 
@@ -55,22 +57,21 @@ bool Renderer::State::chooseMainView(const Settings& settings, PendingFrame& fra
     return visibilityWanted;
 }
 
-void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view, bool oneShot) {
+std::optional<VisibleSurfaces> Renderer::State::tightFitSurfacesNow(const Settings& settings, const CameraView& view,
+                                                                   bool oneShot) {
+    // The tight cascade fit's depth reduction (issue 13 item 8): this view's, waited for, when the
+    // caller waits anyway or nothing earlier matches; else the latest finished frame's (none here).
+    if (settings.shadows.directional.fit != CascadeFit::Tight) return std::nullopt;
+    if (!oneShot && latestVisible && latestVisibleSize == glm::uvec2(view.width, view.height)) return std::nullopt;
+    return visiblePass.now(scene, view);
+}
+
+void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view,
+                                  const std::optional<VisibleSurfaces>& visibleNow) {
     PlanOptions planOptions;
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
-    // The tight cascade fit's depth reduction (issue 13 item 8): this view's, waited for, when the
-    // caller waits anyway or nothing earlier matches; else the latest finished frame's.
     const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
-    const glm::uvec2 viewSize(view.width, view.height);
-    std::optional<VisibleSurfaces> visible;
-    if (tight && (oneShot || !latestVisible || latestVisibleSize != viewSize)) {
-        try {
-            visible = visiblePass.now(scene, view);
-        } catch (const Error& error) {
-            throw Error(std::string("the tight fit's visible surfaces: ") + error.what());
-        }
-    }
-    const VisibleSurfaces* planVisible = !tight ? nullptr : visible ? &*visible : &*latestVisible;
+    const VisibleSurfaces* planVisible = !tight ? nullptr : visibleNow ? &*visibleNow : &*latestVisible;
     frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions);
 }
 
@@ -152,9 +153,10 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
     frame.readback.cullTiles = device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
     auto drawAtlas = [&](size_t pass, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& drawn,
                          bool fresh, uint32_t firstTile, uint32_t listOffset, gpu::TextureHandle atlas, uint32_t size,
-                         gpu::BufferHandle rasterDepth, const std::string& name) {
-        recording.stage = pass == 0 ? "shadows.directional" : "shadows.other";
-        commands.beginTimer(recording.stage);
+                         gpu::BufferHandle rasterDepth) {
+        const char* name = kAtlasPassNames[pass];
+        recording.stage = name;
+        commands.beginTimer(name);
         if (frame.computeRaster) {
             ComputeRasterPass::AtlasTiles atlasTiles;
             atlasTiles.listOffset = listOffset;
@@ -172,11 +174,10 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
     };
     const FrameTargetSizes& sizes = recording.sizes;
     drawAtlas(0, plan.directional.tiles, draw.directional, draw.freshDirectional, 0, 0, targets.directionalAtlas,
-              sizes.directionalAtlas, targets.directionalRasterDepth, "shadows.directional");
+              sizes.directionalAtlas, targets.directionalRasterDepth);
     drawAtlas(1, plan.other.tiles, draw.other, draw.freshOther, directionalTiles, uint32_t(draw.directional.size()),
-              targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth, "shadows.other");
-    frame.stats.atlases = {{"shadows.directional", directionalTiles, 0, 0},
-                           {"shadows.other", cullTiles - directionalTiles, 0, 0}};
+              targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth);
+    frame.stats.atlases = {{kAtlasPassNames[0], directionalTiles, 0, 0}, {kAtlasPassNames[1], cullTiles - directionalTiles, 0, 0}};
 }
 
 MainPassInputs Renderer::State::recordLightingInputs(FrameRecording& recording) {
@@ -282,11 +283,13 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     };
 
     Stopwatch phase;
+    std::optional<VisibleSurfaces> visibleNow;
     try {
-        planShadows(frame, settings, view, oneShot);
+        visibleNow = tightFitSurfacesNow(settings, view, oneShot);
     } catch (const Error& error) {
-        throw Error("frame " + std::to_string(frameIndex) + ", " + error.what());
+        throw failed("the tight fit's visible surfaces", error);
     }
+    planShadows(frame, settings, view, visibleNow);
     const ShadowFrame& plan = frame.plan;
     const PackedLights lights = packFrameLights(scene, plan);
     stats.cpu.culling = plan.stats.cullingMilliseconds;
@@ -358,15 +361,14 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
         directionalCache.invalidate();
         otherCache.invalidate();
     }
-    const uint64_t visibleAt = finished.readback.visibleSurfaces;
-    if (visibleAt != FrameReadbackLayout::kAbsent &&
-        done.readback.size() >= visibleAt + VisibleSurfacePass::readbackBytes(finished.view)) {
-        latestVisible = VisibleSurfacePass::fromReadback(done.readback.data() + visibleAt, finished.view);
+    if (const uint8_t* depths = readbackPiece(done.readback, finished.readback.visibleSurfaces,
+                                              VisibleSurfacePass::readbackBytes(finished.view))) {
+        latestVisible = VisibleSurfacePass::fromReadback(depths, finished.view);
         latestVisibleSize = glm::uvec2(finished.view.width, finished.view.height);
     }
     for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
     if (finished.autoRaster)
-        rasterChoice.measured(finished.computeRaster, timedMilliseconds(stats, {"shadows.directional", "shadows.other"}));
+        rasterChoice.measured(finished.computeRaster, timedMilliseconds(stats, {kAtlasPassNames[0], kAtlasPassNames[1]}));
     if (finished.autoMainView) mainViewChoice.measured(finished.visibilityView, timedMilliseconds(stats, {"main"}));
     if (finished.mainViewSetting != MainView::Auto)
         stats.mainViewChoice = std::string("render.mainView = ") + mainViewName(finished.mainViewSetting);

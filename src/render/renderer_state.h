@@ -118,7 +118,10 @@ struct Renderer::State {
 private:
     // The steps of submit(), in order.
     bool chooseMainView(const Settings& settings, PendingFrame& frame) const;  // true: the visibility pass is wanted
-    void planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view, bool oneShot);
+    // The tight fit's visible surfaces of this very view, when the frame cannot plan with a finished one's.
+    std::optional<VisibleSurfaces> tightFitSurfacesNow(const Settings& settings, const CameraView& view, bool oneShot);
+    void planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view,
+                     const std::optional<VisibleSurfaces>& visibleNow);
     // The frame's lit pass variant; makes what the visibility-buffer main view needs when it may draw.
     MainPassVariant prepareMainView(const Settings& settings, const ShadowFrame& plan, const FrameTargetSizes& sizes,
                                     bool visibilityWanted);
