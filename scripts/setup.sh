@@ -2,14 +2,17 @@
 # Installs every build, run and test dependency of Penumbra from Debian 12 packages.
 # clang, its runtime (libFuzzer, ASan, UBSan) and llvm (llvm-symbolizer for readable sanitizer
 # reports) serve the asan preset of CMakePresets.json: sanitizer tests and fuzzing.
+# libjpeg62-turbo-dev: libturbojpeg0-dev's CMake package (libjpeg-turboTargets.cmake) names
+# libjpeg.so.62, which only that package brings; a minimal Debian 12 lacks it and configure fails.
+# ccache: rebuilds (and the three builds of scripts/test.sh) reuse compiled objects.
 # Idempotent: packages already present are left alone. This is the only way dependencies arrive.
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git ccache
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
-  libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev libmeshoptimizer-dev
+  libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev libjpeg62-turbo-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth xdotool
   clang libclang-rt-14-dev llvm
