@@ -1,37 +1,49 @@
 #!/usr/bin/env bash
-# Builds and runs every test (CI: .ci/run = setup + this, on 2 cores without a GPU). Run
-# scripts/setup.sh first. GPU tests run on lavapipe (Mesa's CPU Vulkan driver) with the Vulkan
-# validation layers on. Three builds (CMakePresets.json):
-#   1. build/        RelWithDebInfo, what scripts/build.sh makes: the whole suite, then the installed
-#                    library (scripts/test_embed.sh);
-#   2. build-debug/  the debug preset, every PENUMBRA_ASSERT and libstdc++ assertion active: the whole
-#                    suite again;
-#   3. build-asan/   the asan preset (clang, ASan + UBSan + LSan, a leak fails): the unit tests, the
-#                    render tests that exercise error and fallback paths, and a replay of the fuzz
-#                    corpus (fuzz/corpus/).
-# Set CMAKE_CXX_COMPILER_LAUNCHER=ccache in the environment to rebuild faster.
+# Builds and runs every test (CI: .ci/run = setup + this, on 2 cores without a GPU; budget 40 minutes,
+# measured times in README.md's testing section). Run scripts/setup.sh first. GPU tests run on
+# lavapipe (Mesa's CPU Vulkan driver) with the Vulkan validation layers on. Two builds
+# (CMakePresets.json), compiled through ccache when it is installed:
+#   1. build/       RelWithDebInfo, everything scripts/build.sh makes plus the tests, the viewer and
+#                   the benchmarks: the whole suite, then the installed library (scripts/test_embed.sh);
+#   2. build-asan/  the asan preset: clang, ASan + UBSan + LSan (a leak fails), PENUMBRA_ASSERT and
+#                   libstdc++'s assertions (what the debug preset checks) on: every unit test, the
+#                   fuzz corpus replay (fuzz/corpus/), and the render tests where those checks add
+#                   something (error and fallback paths, object lifetimes, a representative render of
+#                   each path: the "checked" set below).
+# The debug preset stays for local debugging (-O0); its checks run here through the asan preset.
+# PENUMBRA_TEST_STEPS=release or =asan runs one of the two.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
 export PENUMBRA_DEVICE=cpu
-step() { echo "== scripts/test.sh: $* ($(date +%T))"; }
+steps=${PENUMBRA_TEST_STEPS:-release asan}
+start=$(date +%s)
+step() { echo "== scripts/test.sh: $* (at $(($(date +%s) - start)) s)"; }
 
-step "release build, whole suite"
-bash scripts/build.sh
-ctest --test-dir build --output-on-failure -j "$jobs" --timeout 900
-# The library as others use it: installed, found with find_package, embedded in a program.
-bash scripts/test_embed.sh
+# Render tests the asan preset runs: every test of an error path, a fallback, a device fault, an
+# object's lifetime or the CLI's processes, and one representative render per main path (forward and
+# visibility buffer, compute and hardware shadow raster, spot and point shadows, cached tiles).
+checked_render_tests='^(DeviceFaults|CliErrors|CliRender|CliBench|CliReference|CliExport|FrameReadbackDeviceTest|SceneUpdateTest|PipelineReuseTest|CallerVulkan)\.|^PipelineVariantTest\.RendererDestroyed|^MeshletCullingTest\.ARendererOfTheComputeRasterizersLeavesNoObjectBehind|^PersistentFrameTest\.(TwoHundredChangingFrames|SteadyStateFrames)|^RenderTest\.(TextureOver|AtlasOver|OutputLarger|LightsBeyond|Degenerate|ZeroScale|SceneA|CameraView|SceneWith|LitPlane)|^VisibilityViewTest\.BlendedMaterialsAreDrawnForward|^ComputeRasterTest\.(AtlasDepthMatchesTheHardwarePath|OverflowingQueuesGrow)|^BothRasterizers/CachedTilesTest\.StillFrameDrawsNoTile|^ScreenSpaceShadowTest\.ResolvedShadowAovEqualsTheForwardPath'
 
-step "debug preset (assertions on), whole suite"
-cmake --preset debug >/dev/null
-cmake --build --preset debug -j "$jobs"
-ctest --preset debug -j "$jobs"
+if [[ " $steps " == *" release "* ]]; then
+  step "release build"
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build build -j "$jobs"
+  step "release: whole suite"
+  ctest --test-dir build --output-on-failure -j "$jobs" --timeout 600
+  # The library as others use it: installed, found with find_package, embedded in a program.
+  step "release: installed library"
+  bash scripts/test_embed.sh
+fi
 
-step "asan preset: unit tests, fuzz corpus replay, render tests of the error paths"
-cmake --preset asan >/dev/null
-cmake --build --preset asan -j "$jobs"
-asan_render_tests='^(DeviceFaults|CliErrors|CliRender|CliBench|CliReference)\.|^RenderTest\.(TextureOver|AtlasOver|OutputLarger|LightsBeyond|Degenerate|ZeroScale|SceneA|CameraView|SceneWith|LitPlane)'
-ctest --preset asan -j "$jobs" -L 'unit|fuzz'
-ctest --preset asan -j "$jobs" -R "$asan_render_tests"
+if [[ " $steps " == *" asan "* ]]; then
+  step "asan build"
+  cmake --preset asan >/dev/null
+  cmake --build --preset asan -j "$jobs"
+  step "asan: unit tests and fuzz corpus"
+  ctest --preset asan -j "$jobs" -L 'unit|fuzz'
+  step "asan: checked render tests"
+  ctest --preset asan -j "$jobs" -R "$checked_render_tests"
+fi
 step "done"

@@ -65,6 +65,10 @@ struct DeviceObjectCounts {
     uint64_t submits = 0;           // queue submissions so far
     uint64_t deviceWaits = 0;       // queue- or device-wide waits so far
     uint64_t debugNamesSet = 0;     // objects named for RenderDoc / Nsight (VK_EXT_debug_utils) so far
+    // Pipelines compiled so far, and those created from a compiled pipeline that an earlier (destroyed)
+    // pipeline of the same description left behind; the kept ones are not counted as live.
+    uint64_t pipelinesCompiled = 0, pipelinesReused = 0;
+    uint32_t pipelinesParked = 0;   // compiled pipelines kept for reuse now
     uint32_t total() const {
         return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys;
     }

@@ -360,6 +360,7 @@ void Device::release() {
         d.destroyFrames();
         d.destroyGarbage(d.pendingGarbage);
         d.pipelines.forEachLive([&](uint32_t, PipelineResource& p) { d.destroyNow(p); });
+        d.destroyParkedPipelines();
         d.tables.forEachLive([&](uint32_t, TextureTableResource& t) { d.destroyNow(t); });
         d.samplers.forEachLive([&](uint32_t, VkSampler& s) { vkDestroySampler(d.device, s, nullptr); });
         d.textures.forEachLive([&](uint32_t, TextureResource& t) { d.destroyNow(t); });
@@ -433,6 +434,9 @@ ObjectCounts Device::objectCounts() const {
     counts.submits = d.submits;
     counts.deviceWaits = d.deviceWaits;
     counts.debugNamesSet = d.debugNamesSet;
+    counts.pipelinesCompiled = d.pipelinesCompiled;
+    counts.pipelinesReused = d.pipelinesReused;
+    counts.pipelinesParked = uint32_t(d.parkedPipelines.size());
     return counts;
 }
 

@@ -336,7 +336,7 @@ std::vector<CompletedFrame> Device::takeCompletedFrames() {
 void Device::Impl::destroyGarbage(Garbage& garbage) {
     for (auto& b : garbage.buffers) destroyNow(b);
     for (auto& t : garbage.textures) destroyNow(t);
-    for (auto& p : garbage.pipelines) destroyNow(p);
+    for (auto& p : garbage.pipelines) parkOrDestroy(p);
     for (VkSampler s : garbage.samplers) vkDestroySampler(device, s, nullptr);
     for (auto& t : garbage.tables) destroyNow(t);
     garbage = Garbage{};

@@ -156,6 +156,7 @@ VkPipeline Device::Impl::buildGraphicsPipeline(const GraphicsPipelineDesc& desc,
     info.pDynamicState = &dynamic;
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
+    ++pipelinesCompiled;
     const VkResult result = vkCreateGraphicsPipelines(device, pipelineCache, 1, &info, nullptr, &pipeline);
     for (auto& stage : stages) vkDestroyShaderModule(device, stage.module, nullptr);
     if (result != VK_SUCCESS)
@@ -173,12 +174,19 @@ uint32_t tableSize(Device::Impl& d, TextureTableHandle table) { return table ? d
 PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) {
     Impl& d = *impl_;
     PipelineResource p;
-    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
-    try {
-        p.pipeline = d.buildGraphicsPipeline(desc, p.layout, tableSize(d, desc.textureTable));
-    } catch (...) {
-        d.destroyNow(p);
-        throw;
+    const uint32_t textureCount = tableSize(d, desc.textureTable);
+    const std::string key = Impl::reuseKey(desc, textureCount);
+    if (d.takeParkedPipeline(key, p)) {
+        p.bindings = desc.bindings;
+    } else {
+        createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+        p.reuseKey = key;
+        try {
+            p.pipeline = d.buildGraphicsPipeline(desc, p.layout, textureCount);
+        } catch (...) {
+            d.destroyNow(p);
+            throw;
+        }
     }
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     ++d.objectsCreated;
@@ -188,14 +196,21 @@ PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) 
 PipelineHandle Device::createGraphicsPipelineAsync(const GraphicsPipelineDesc& desc) {
     Impl& d = *impl_;
     PipelineResource p;
-    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+    const uint32_t textureCount = tableSize(d, desc.textureTable);
+    const std::string key = Impl::reuseKey(desc, textureCount);
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    const VkPipelineLayout layout = p.layout;
     ++d.objectsCreated;
+    if (d.takeParkedPipeline(key, p)) {  // compiled already: ready at once
+        p.bindings = desc.bindings;
+        return PipelineHandle{d.pipelines.insert(std::move(p))};
+    }
+    createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
+    p.reuseKey = key;
+    const VkPipelineLayout layout = p.layout;
     const uint32_t id = d.pipelines.insert(std::move(p));
     {
         std::lock_guard lock(d.jobsMutex);
-        d.jobs.push_back({id, desc, layout, tableSize(d, desc.textureTable)});
+        d.jobs.push_back({id, desc, layout, textureCount});
     }
     d.jobsChanged.notify_all();
     return PipelineHandle{id};
@@ -318,8 +333,18 @@ void Device::destroy(PipelineHandle handle) {
 PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     Impl& d = *impl_;
     PipelineResource p;
+    const uint32_t textureCount = tableSize(d, desc.textureTable);
+    const std::string key = Impl::reuseKey(desc, textureCount);
+    if (d.takeParkedPipeline(key, p)) {
+        p.bindings = desc.bindings;
+        p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
+        ++d.objectsCreated;
+        return PipelineHandle{d.pipelines.insert(std::move(p))};
+    }
     createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
-    Specialization specialization(desc.specialization, tableSize(d, desc.textureTable));
+    p.reuseKey = key;
+    ++d.pipelinesCompiled;
+    Specialization specialization(desc.specialization, textureCount);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;

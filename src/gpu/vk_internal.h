@@ -1,5 +1,6 @@
 #pragma once
 // Internal to src/gpu/: the Vulkan side of the Device. Nothing outside src/gpu/ includes this.
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -7,6 +8,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -51,6 +53,15 @@ struct PipelineResource {
     VkDescriptorSetLayout pushSetLayout = VK_NULL_HANDLE;
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     std::vector<BindingDesc> bindings;
+    std::string reuseKey;  // everything the compiled pipeline depends on (pipeline_reuse.cpp)
+};
+
+// A compiled pipeline whose handle was destroyed, kept with its layouts for the next pipeline created
+// from the same description (pipeline_reuse.cpp).
+struct ParkedPipeline {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkDescriptorSetLayout pushSetLayout = VK_NULL_HANDLE;
 };
 
 struct TextureTableResource {
@@ -153,6 +164,20 @@ struct Device::Impl {
     uint32_t buildsRunning = 0;
     bool stopWorker = false;
 
+    // Compiled pipelines kept after their handles died (oldest first out past kMaxParkedPipelines):
+    // drivers compile at creation (lavapipe spends most of a small frame's time there), and a second
+    // Renderer on this device, a reloaded scene or a settings round trip asks for the same pipelines.
+    static constexpr size_t kMaxParkedPipelines = 256;
+    std::unordered_map<std::string, ParkedPipeline> parkedPipelines;
+    std::deque<std::string> parkedOrder;
+    std::atomic<uint64_t> pipelinesCompiled = 0;  // vkCreate*Pipelines calls (the worker's too)
+    uint64_t pipelinesReused = 0;
+    // Moves a parked pipeline of `key` into `p` (true), or leaves `p` alone (false).
+    bool takeParkedPipeline(const std::string& key, PipelineResource& p);
+    // Parks a compiled pipeline no frame uses any more, or destroys it when one of its key is parked.
+    void parkOrDestroy(PipelineResource& p);
+    void destroyParkedPipelines();
+
     // Device loss (real, or injected by options.faults): once lost, no wait is made again and every
     // frame or one-off submission throws at once.
     bool lost = false;
@@ -190,6 +215,9 @@ struct Device::Impl {
     void startWorker();
     void stopWorkerThread();
     VkPipeline buildGraphicsPipeline(const GraphicsPipelineDesc& desc, VkPipelineLayout layout, uint32_t textureCount);
+    // Everything a compiled pipeline depends on, as a string (debug names excluded).
+    static std::string reuseKey(const GraphicsPipelineDesc& desc, uint32_t textureCount);
+    static std::string reuseKey(const ComputePipelineDesc& desc, uint32_t textureCount);
     void collectPipelineBuilds();
     void loadPipelineCache();
     void savePipelineCache();
