@@ -2,13 +2,14 @@
 # The measurements behind docs/performance.md, as one script (run on the GPU host, or here with
 # PENUMBRA_DEVICE=cpu and smaller sizes). Writes one JSON per `penumbra bench` run into OUTDIR.
 #   bench/performance_sweep.sh PENUMBRA OUTDIR [PRESET]
-# PENUMBRA: the program (e.g. ".portable/bin/penumbra" with LD_LIBRARY_PATH set). PRESET:
+# PENUMBRA: the program (e.g. ".portable/bin/penumbra" with LD_LIBRARY_PATH=.portable/lib on a GPU host
+# without packages: scripts/pack-portable.sh makes .portable/). PRESET:
 #   gpu      1920x1080, field 1..400 engines with 16 spots, boxes 1k..1M, the 3000-frame orbit run
 #   lavapipe 320x180, field 1..16, boxes 1k..100k (a 2-core CPU renders these in minutes)
-#   raster   1920x1080: issue 10's rows: hw vs compute rasterizer per atlas against triangles
+#   raster   1920x1080: the GPU-driven shadow atlases: hw vs compute rasterizer per atlas against triangles
 #            (field 1..400, 16 spots), cached vs uncached tiles with a still camera, objects 1k..1M
-#   meshlets 1920x1080: issue 11's meshlet culling on and off (visibility buffer, compute shadows)
-# Every run uses the issue-8 configuration: 4 cascades in a 4096² atlas, PCF5x5, soft cascade blend,
+#   meshlets 1920x1080: meshlet culling on and off (visibility buffer, compute shadows)
+# Every run uses one configuration: 4 cascades in a 4096² atlas, PCF5x5, soft cascade blend,
 # spot/point shadows in a 4096² atlas (PCF5x5).
 set -euo pipefail
 penumbra=${1:?usage: performance_sweep.sh PENUMBRA OUTDIR [gpu|lavapipe]}
@@ -42,7 +43,7 @@ run() {  # NAME SCENE FRAMES [extra options]
         "$@" --json "$out/$name.json" > "$out/$name.txt"
     tail -n 4 "$out/$name.txt" >&2
 }
-if [ "$preset" = meshlets ]; then  # issue 11: render.meshletCulling on and off, compute rasterizers
+if [ "$preset" = meshlets ]; then  # render.meshletCulling on and off, compute rasterizers
     size=(--width 1920 --height 1080); frames=30; warmup=5
     for m in true false; do
         for scene in gen:field:25:16 gen:field:100:16 gen:field:100:16:1008 gen:field:400:16; do

@@ -36,7 +36,7 @@ vec4 materialBaseColorLod(MaterialData material, vec2 uv, float level) {
 }
 
 // Interleaved gradient noise (Jimenez 2014), the dither pattern Unity's pipelines use for dithered
-// shadows and cascade blending (seed 000 §4.8, §5.3).
+// shadows and cascade blending (Catlike Coding "Directional Shadows": Dithered Transition, Dithered Shadows).
 float interleavedGradientNoise(vec2 pixel) {
     return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }

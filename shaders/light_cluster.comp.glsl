@@ -1,5 +1,5 @@
 #version 460
-// Clustered light culling (issue 11 item 1): one workgroup per cluster, one invocation per mask word
+// Clustered light culling: one workgroup per cluster, one invocation per mask word
 // (32 lights), writes the cluster's light mask (light_cluster_structs.h) and adds its light count
 // to the frame's stats.
 #include "scene_structs.h"

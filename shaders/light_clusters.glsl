@@ -1,4 +1,4 @@
-// Clustered light culling (issue 11 item 1; light_cluster_structs.h): the froxels' view-space
+// Clustered light culling (light_cluster_structs.h): the froxels' view-space
 // boxes and the conservative light test, operation for operation as render/light_clusters.cpp
 // (the reference the tests compare with), and the lit pass's lookup of a fragment's cluster.
 #ifndef PENUMBRA_LIGHT_CLUSTERS_GLSL

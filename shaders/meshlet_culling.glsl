@@ -1,4 +1,4 @@
-// Whether a compute rasterizer may skip a whole meshlet (issue 11, render.meshletCulling;
+// Whether a compute rasterizer may skip a whole meshlet (render.meshletCulling;
 // cull_structs.h Meshlet): its box lies outside the view or shadow tile, or every triangle of it faces
 // away from the camera. Both tests are conservative: a skipped meshlet would have drawn nothing.
 // Written in the common subset of GLSL and C++ (glm), like tone_mapping.glsl: the rasterizers include

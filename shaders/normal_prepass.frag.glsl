@@ -1,7 +1,7 @@
 #version 460
-// Depth prepass of the screen-space shadow path (seed 004): depth plus the shading and the geometric
-// normal (octahedral, xy and zw), which the resolve's biases need (shadow_bias.glsl). Alpha-tested like
-// the lit pass so both see the same surfaces.
+// Depth prepass of the screen-space shadow path (shadows.screenSpace): depth plus the shading and the
+// geometric normal (octahedral, xy and zw), which the resolve's biases need (shadow_bias.glsl). Alpha-tested
+// like the lit pass so both see the same surfaces.
 #include "bindings.glsl"
 #include "surface_normals.glsl"
 

@@ -1,6 +1,7 @@
 #version 460
-// URP-style screen-space shadow resolve (seed 004): the main directional light's shadow term per
-// pixel, from the depth prepass, with exactly the forward path's sampling (shadows.glsl).
+// Screen-space shadow resolve in the manner of Unity URP's screen-space shadows (its
+// _ScreenSpaceShadowmapTexture): the main directional light's shadow term per pixel, from the depth
+// prepass, with exactly the forward path's sampling (shadows.glsl).
 #include "bindings.glsl"
 #include "shadows.glsl"
 #include "surface_normals.glsl"

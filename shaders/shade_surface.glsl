@@ -9,7 +9,7 @@
 #include "light_clusters.glsl"
 #include "shadows.glsl"
 
-// The main directional light's shadow term from the screen-space resolve (seed 004), when enabled.
+// The main directional light's shadow term from the screen-space resolve (shadows.screenSpace), when enabled.
 layout(set = 0, binding = 9) uniform sampler2D screenSpaceShadows;
 layout(set = 0, binding = kBindingClusterMasks, std430) readonly buffer ClusterMaskBlock { uint clusterMasks[]; };
 

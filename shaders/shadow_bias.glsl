@@ -1,16 +1,18 @@
-// How a shadow lookup keeps a surface from shadowing itself (issue 13 item 6), for directional, spot
-// and point lights alike. Three modes (kShadowBias*, the setting shadows.bias):
-// - normal (seed 000 §4.3): the lookup moves along the shading normal by shadowNormalBias units of one
-//   texel diagonal x (1 + filter / 2): the pre-issue-13 rule;
+// How a shadow lookup keeps a surface from shadowing itself, for directional, spot and point lights
+// alike. Three modes (kShadowBias*, the setting shadows.bias):
+// - normal (Catlike Coding "Directional Shadows", Normal Bias): the lookup moves along the shading
+//   normal by shadowNormalBias units of one texel diagonal x (1 + filter / 2): the classic rule;
 // - scaledNormal: the same offset along the triangle's normal, times sin(N, L): a plane at angle θ to
 //   the light needs a depth margin of tan θ per texel of filter reach, and an offset b along N gives b /
 //   cos θ, so b ∝ sin θ is just enough, and no offset (no peter-panning) where the light hits head-on;
-// - receiverPlane: no offset; every texel a filter reads is compared with the depth the receiver's
-//   plane has at that texel's centre (shadow_tent.glsl penumbraCompareBilinear; the plane's depth
+// - receiverPlane (receiver plane depth bias, Isidoro, "Shadow Mapping: GPU-based Tips and Techniques",
+//   GDC 2006): no offset; every texel a filter reads is compared with the depth the receiver's plane
+//   has at that texel's centre (shadow_tent.glsl penumbraCompareBilinear; the plane's depth
 //   gradient in the tile comes from the triangle's normal), less a margin of kPlaneSlopeMargin of the
 //   plane's depth change over one texel x shadowNormalBias, plus a rounding epsilon.
 // In every mode the light's shadowBias adds shadowBias x the receiver's depth slope per texel (the
-// rasterizer's slope-scale bias, applied here so the caster pass writes exact depth; seed 000 §4.4).
+// rasterizer's slope-scale bias, applied here so the caster pass writes exact depth; Catlike Coding
+// "Directional Shadows", Configurable Biases).
 #ifndef PENUMBRA_SHADOW_BIAS_GLSL
 #define PENUMBRA_SHADOW_BIAS_GLSL
 #include "shadow_structs.h"
@@ -27,7 +29,7 @@ struct ShadowBiasParams {
     float slopeBias;      // the light's shadowBias
     float wsTexel;        // world size of one shadow texel at the receiver
     float footprint;      // normal-offset unit in texels: (1 + filter / 2) x sqrt(2)
-    float clipDepthBias;  // constant clip-space depth bias (spot.depthBias, seed 001 §4.2), else 0
+    float clipDepthBias;  // constant clip-space depth bias (spot.depthBias), else 0
 };
 
 struct ShadowLookup {
@@ -85,7 +87,7 @@ ShadowLookup shadowLookup(mat4 atlasFromWorld, ShadowReceiver r, vec3 wsLookup, 
                           float atlasSize) {
     ShadowLookup lookup;
     vec4 h = atlasFromWorld * vec4(wsLookup, 1.0);
-    h.z -= b.clipDepthBias;  // clip space, before the divide (seed 001 §4.2)
+    h.z -= b.clipDepthBias;  // clip space, before the divide
     lookup.w = h.w;
     lookup.uvDepth = h.w > 0.0 ? h.xyz / h.w : vec3(0.0, 0.0, 2.0);
     vec3 planeNormal = biasPlaneNormal(r.wsGeometricNormal, wsToLight);

@@ -1,6 +1,7 @@
 #version 460
-// Alpha-aware shadow casters (seed 000 §5.1-§5.3): `clip` materials drop texels below the alpha
-// cutoff, `dither` materials drop them with probability 1 - alpha using interleaved gradient noise.
+// Alpha-aware shadow casters (Catlike Coding "Directional Shadows": Shadow Modes, Clipped Shadows,
+// Dithered Shadows): `clip` materials drop texels below the alpha cutoff, `dither` materials drop them
+// with probability 1 - alpha using interleaved gradient noise.
 // Opaque (`on`) casters use a depth-only pipeline without this shader; `off` casters are not drawn.
 #include "bindings.glsl"
 

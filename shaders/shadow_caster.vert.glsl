@@ -1,7 +1,7 @@
 #version 460
-// Shadow caster pass (seed 000 §1.6): positions into one atlas tile's clip space. Pancaking (seed 000
-// §4.5) is done by the pipeline's depth clamp, which flattens casters in front of the near plane onto
-// it instead of clipping them.
+// Shadow caster pass (Catlike Coding "Directional Shadows", Shadow Caster Pass): positions into one atlas
+// tile's clip space. Shadow pancaking (same tutorial, Shadow Pancaking) is done by the pipeline's depth
+// clamp, which flattens casters in front of the near plane onto it instead of clipping them.
 #include "bindings.glsl"
 
 layout(push_constant) uniform CasterConstants {

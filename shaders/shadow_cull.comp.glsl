@@ -1,10 +1,10 @@
 #version 460
-// GPU shadow-caster culling (issue 10; cull_structs.h): one invocation per (instance, tile). The
-// tests are the CPU planner's, operation for operation: the cascade's caster box and cascade blend
-// culling (seed 000 §1.4, §4.9; shadows/caster_culling.cpp) for directional tiles, the frustum planes
-// and bounds (shadows/spot_culling.cpp) for spot and point faces. Survivors are appended to their
-// (tile, mesh) list. The main view's two phases (cull_structs.h) use the same lists after the tiles':
-// the camera frustum, then occlusion by the depth pyramid of what the early list drew.
+// GPU shadow-caster culling (cull_structs.h): one invocation per (instance, tile). The tests are the CPU
+// planner's, operation for operation: the cascade's caster box and cascade blend culling
+// (shadows/caster_culling.cpp, after Unity's per-split culling) for directional tiles, the frustum planes and
+// bounds (shadows/spot_culling.cpp) for spot and point faces. Survivors are appended to their (tile, mesh)
+// list. The main view's two phases (cull_structs.h) use the same lists after the tiles': the camera frustum,
+// then occlusion by the depth pyramid of what the early list drew.
 #include "cull_structs.h"
 #include "scene_structs.h"
 
@@ -21,7 +21,7 @@ layout(set = 0, binding = 10, std430) readonly buffer PyramidBlock { float pyram
 layout(set = 0, binding = 11, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
 layout(push_constant) uniform CullConstantsBlock { CullConstants constants; };
 
-// seed 000 §4.9 (caster_culling.cpp insideScaledSphere): the box wholly inside the scaled sphere.
+// Cascade blend culling (caster_culling.cpp insideScaledSphere): the box wholly inside the scaled sphere.
 bool insideScaledSphere(vec3 wsMin, vec3 wsMax, vec4 sphere, float factor) {
     vec3 farthest = max(abs(wsMin - sphere.xyz), abs(wsMax - sphere.xyz));
     float radius = sphere.w * factor;

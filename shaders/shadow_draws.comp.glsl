@@ -1,8 +1,8 @@
 #version 460
 // Compacts the (tile, mesh) lists of shadow_cull.comp into indirect draws (cull_structs.h): one
 // invocation per (mesh, tile); a non-empty list becomes one VkDrawIndexedIndirectCommand drawing
-// its instances, in the tile's opaque or alpha-tested list by the material's shadow mode (seed 000
-// §5), and counts into the tile's stats.
+// its instances, in the tile's opaque or alpha-tested list by the material's shadow mode
+// (on, clip, dither; off casters are never listed), and counts into the tile's stats.
 #include "cull_structs.h"
 #include "scene_structs.h"
 

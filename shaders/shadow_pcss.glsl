@@ -1,9 +1,9 @@
-// Contact-hardening soft shadows (PCSS, Fernando 2005; issue 13 item 9) for lights with shadows "pcss":
-// a blocker search averages the depth of the occluders around the receiver, similar triangles turn
+// Contact-hardening soft shadows ("Percentage-Closer Soft Shadows", Fernando 2005) for lights with shadows
+// "pcss": a blocker search averages the depth of the occluders around the receiver, similar triangles turn
 // receiver and blocker distances and the light's size into the penumbra's width, and a disk of bilinear
 // compares that wide gives the visibility. Every compare uses the receiver plane's depth at the tap
-// (shadow_bias.glsl) at each texel's centre (shadow_tent.glsl penumbraCompareBilinear), so wide kernels
-// bring no acne.
+// (shadow_bias.glsl) at each texel's centre (shadow_tent.glsl penumbraCompareBilinear), so wide kernels bring
+// no acne.
 #ifndef PENUMBRA_SHADOW_PCSS_GLSL
 #define PENUMBRA_SHADOW_PCSS_GLSL
 #include "shadow_bias.glsl"

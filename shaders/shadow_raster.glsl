@@ -1,4 +1,4 @@
-// The compute rasterizer of shadow depth (issue 10): what the hardware does for the shadow caster
+// The compute rasterizer of shadow depth: what the hardware does for the shadow caster
 // pass (shadow_caster.vert / .frag, depth clamp, no culling), done in compute so it runs on every SM.
 // The same rules as Vulkan's rasterization, so both paths write the same depth:
 // - triangles clipped to w > kNearW and to a guard band of kGuard viewports (as the hardware's own
@@ -7,9 +7,10 @@
 // - coverage at texel centres by exact integer edge functions (32 x 32 -> 64-bit products) with the
 //   top-left fill rule of a y-down framebuffer; both faces cast;
 // - depth: window z interpolated linearly in window space (z/w for perspective tiles), plus the
-//   tile's slope-scale bias times max(|dz/dx|, |dz/dy|), clamped to [0, 1] (pancaking, seed 000 §4.5);
-// - alpha-tested casters (seed 000 §5.1-§5.3) sample their texture at the perspective-correct uv with
-//   the uv change to the next texel in x and y as gradients: the LOD rule of shadow_caster.frag;
+//   tile's slope-scale bias times max(|dz/dx|, |dz/dy|), clamped to [0, 1] (shadow pancaking);
+// - alpha-tested casters (`clip` and `dither` shadow modes) sample their texture at the
+//   perspective-correct uv with the uv change to the next texel in x and y as gradients: the LOD rule
+//   of shadow_caster.frag;
 // - depth as float bits (all >= 0, so they order like the floats) into a buffer by atomicMin.
 #ifndef PENUMBRA_SHADOW_RASTER_GLSL
 #define PENUMBRA_SHADOW_RASTER_GLSL
@@ -24,7 +25,7 @@ layout(set = 0, binding = 8, std430) buffer DepthBlock { uint atlasDepth[]; };  
 // Culling tile drawn by entry `i` of the frame's raster tile list.
 uint rasterTile(uint i) { return cull.rasterTiles[i / 4u][i % 4u]; }
 
-// seed 000 §5.1-§5.3 as shadow_caster.frag: clip below the cutoff, dither by interleaved gradient noise.
+// The shadow modes as shadow_caster.frag: clip below the cutoff, dither by interleaved gradient noise.
 bool alphaKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
     MaterialData material = materials[t.materialIndex];
     float alpha = rasterBaseAlpha(t, weights, ivec2(x, y));

@@ -1,8 +1,9 @@
-// Tent-filtered shadow-map sampling (seed 000 §4.6, seed 004): the GPU twin of
-// src/shadows/tent_filter.cpp, whose unit tests check the math. A tent of radius 1.5 / 2.5 / 3.5 texels
+// Tent-filtered shadow-map sampling (Unity's ShadowSamplingTent.hlsl, SampleShadow_ComputeSamples_Tent_*, as
+// Catlike Coding "Directional Shadows", PCF Filtering and URP's SampleShadowmapFiltered use it): the GPU twin
+// of src/shadows/tent_filter.cpp, whose unit tests check the math. A tent of radius 1.5 / 2.5 / 3.5 texels
 // around the sample point is integrated over each texel, and each 2 x 2 block of texels becomes one
-// hardware-PCF fetch (bilinear compare) placed so that the bilinear weights reproduce the block's
-// texel weights: 4 / 9 / 16 fetches for PCF3x3 / PCF5x5 / PCF7x7.
+// hardware-PCF fetch (bilinear compare) placed so that the bilinear weights reproduce the block's texel
+// weights: 4 / 9 / 16 fetches for PCF3x3 / PCF5x5 / PCF7x7.
 //
 // Inputs: a sampler2DShadow with compare op LESS_OR_EQUAL and linear filtering, and a sampler2D of the
 // same atlas (raw depth, for the receiver-plane compare); uvDepth = (atlas u,
@@ -40,7 +41,7 @@ void penumbraTentFetches1D(float u, int pairs, out vec4 position, out vec4 weigh
 }
 
 // The depth test of one bilinear block of 2 x 2 texels at fetch position q (texel units), weighted
-// bilinearly, one of two ways (issue 13 item 6):
+// bilinearly, one of two ways (shadows.bias):
 // - hardware PCF: the 4 texels against one depth, uvDepth.z;
 // - receiver plane (planeGradient = the receiver's depth per texel along u, v): a textureGather of the
 //   4 raw depths, each compared with the depth the receiver's plane has at that texel's centre, so a
@@ -77,7 +78,7 @@ float penumbraSampleShadowTent(sampler2DShadow atlas, sampler2D depthAtlas, vec3
     return shadow;
 }
 
-// One bilinear block at the sample point: the hardware 2 x 2 PCF tap (seed 000 §4.7) or its per-texel
+// One bilinear block at the sample point: the hardware 2 x 2 PCF tap (PCF2x2) or its per-texel
 // receiver-plane twin.
 float sampleShadowPcf2x2(sampler2DShadow atlas, sampler2D depthAtlas, vec3 uvDepth, vec4 texelSize, vec2 planeGradient,
                          bool perTexelPlane) {

@@ -1,6 +1,8 @@
-// Shadow sampling for the lit pass and the screen-space resolve (seed 000 §2-§4, seed 004):
-// cascade selection by culling sphere, distance and cascade fades, normal bias, PCF / tent filters,
-// cascade blending. Every function says which seed section it implements.
+// Shadow sampling for the lit pass and the screen-space resolve, after Catlike Coding's Custom SRP
+// tutorials "Directional Shadows" (sections Sampling Shadows, Cascaded Shadow Maps, Shadow Quality) and
+// "Spotlight Shadows", and Unity URP's Shadows.hlsl: cascade selection by culling sphere, distance and
+// cascade fades, normal bias, PCF / tent filters, cascade blending. Every function names the tutorial
+// section or the Unity function it follows.
 #ifndef PENUMBRA_SHADOWS_GLSL
 #define PENUMBRA_SHADOWS_GLSL
 #include "other_shadow_structs.h"
@@ -22,13 +24,13 @@ struct ShadowSample {
     int cascade;        // cascade index sampled, -1 = none
 };
 
-// seed 000 §3.7 FadedShadowStrength: saturate((1 - distance * scale) * fade).
+// FadedShadowStrength ("Directional Shadows", Fading Shadows): saturate((1 - distance * scale) * fade).
 float fadedShadowStrength(float distance, float scale, float fade) {
     return clamp((1.0 - distance * scale) * fade, 0.0, 1.0);
 }
 
-// The uv rectangle of directional tile `tile` less one texel: where filter taps may read (seed 000 §1.5:
-// tiles in rows of `split`).
+// The uv rectangle of directional tile `tile` less one texel: where filter taps may read (tiles in rows
+// of `split`, as "Directional Shadows", Multiple Lights lays them out).
 vec4 directionalTileBounds(uint tile) {
     float tileSize = directionalShadows.atlasSize.z, atlasSize = directionalShadows.atlasSize.x;
     uint split = uint(atlasSize / tileSize + 0.5);
@@ -36,8 +38,9 @@ vec4 directionalTileBounds(uint tile) {
     return vec4(origin + 1.0, origin + tileSize - 1.0) / atlasSize;
 }
 
-// seed 000 §4.3 / §4.6 / §4.7: sample one cascade of a light, biased as shadows.bias says
-// (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent (shadow_tent.glsl).
+// "Directional Shadows", Normal Bias and PCF Filtering: sample one cascade of a light, biased as
+// shadows.bias says (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent
+// (shadow_tent.glsl).
 float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
     vec4 light = directionalShadows.lights[slot];
     vec4 lightBias = directionalShadows.lightBias[slot];
@@ -69,12 +72,12 @@ bool insideCullingSphere(int cascade, vec3 wsPosition) {
 
 struct CascadeChoice {
     int cascade;  // -1: beyond the last cascade
-    float fade;   // 1 inside the cascade, falling to 0 over its blend band (seed 000 §3.8)
+    float fade;   // 1 inside the cascade, falling to 0 over its blend band ("Fading Cascades")
 };
 
-// seed 000 §3.4 and §3.8: the first culling sphere that holds the point, faded over the sphere's outer
-// band (squared distances); or, for tight cascades (issue 13 item 8), the first slice whose split lies
-// beyond the point's view depth, faded over the slice's last cascadeFade of view depth.
+// "Directional Shadows", Sampling Cascades and Fading Cascades: the first culling sphere that holds the
+// point, faded over the sphere's outer band (squared distances); or, for tight cascades, the first slice
+// whose split lies beyond the point's view depth, faded over the slice's last cascadeFade of view depth.
 CascadeChoice selectDirectionalCascade(vec3 wsPosition, float viewDepth) {
     int cascadeCount = int(directionalShadows.config.x);
     bool tight = directionalShadows.modes.z == kCascadeFitTight;
@@ -94,9 +97,10 @@ CascadeChoice selectDirectionalCascade(vec3 wsPosition, float viewDepth) {
     return CascadeChoice(-1, 0.0);
 }
 
-// The distance fade of every shadow (fade = DirectionalShadowData.fade or OtherShadowData.fade): seed
-// 000 §3.7 by view depth (kShadowFadeLinear), or URP's (seed 004 _MainLightShadowParams.zw) by the
-// squared distance to the camera, saturate(d^2 * scale + bias) fading the shadow out (kShadowFadeSquared).
+// The distance fade of every shadow (fade = DirectionalShadowData.fade or OtherShadowData.fade): by view
+// depth ("Directional Shadows", Fading Shadows; kShadowFadeLinear), or URP's GetMainLightShadowFade
+// (_MainLightShadowParams.zw) by the squared distance to the camera, saturate(d^2 * scale + bias)
+// fading the shadow out (kShadowFadeSquared).
 float distanceFadeStrength(vec3 wsPosition, float viewDepth, vec4 fade, uint mode, vec2 squaredScaleBias) {
     if (mode == kShadowFadeSquared) {
         vec3 fromCamera = wsPosition - frame.wsCameraPosition.xyz;
@@ -105,9 +109,10 @@ float distanceFadeStrength(vec3 wsPosition, float viewDepth, vec4 fade, uint mod
     return fadedShadowStrength(viewDepth, fade.x, fade.y);
 }
 
-// seed 000 §3.5-§3.8 and §4.8 GetShadowData + GetDirectionalShadowAttenuation: choose the cascade by
-// culling sphere, fade by distance and in the last cascade, blend cascades (soft: lerp two samples;
-// dither: pick one by interleaved gradient noise), then lerp(1, shadow, strength).
+// GetShadowData + GetDirectionalShadowAttenuation ("Directional Shadows", Culling Shadow Sampling to
+// Fading Cascades, Blending Cascades, Dithered Transition): choose the cascade by culling sphere, fade by
+// distance and in the last cascade, blend cascades (soft: lerp two samples; dither: pick one by
+// interleaved gradient noise), then lerp(1, shadow, strength).
 ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
     if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.config.w) return ShadowSample(1.0, -1);
     vec3 wsPosition = receiver.wsPosition;
@@ -137,19 +142,20 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
     return ShadowSample(mix(1.0, shadow, strength), cascade);
 }
 
-// ---- Spot and point lights: the "other" atlas (seed 001) ----
+// ---- Spot and point lights: the "other" atlas (Catlike Coding "Spotlight Shadows") ----
 
-// Seed 001 §6.4: the renderer specializes the lit pass by the reserved lights' shadow kinds
-// (kOtherShadowsHard | kOtherShadowsSoft bits; 0 = no spot/point shadows, otherShadow returns 1 at once),
-// and the soft filter, so a frame pays only for the sampling code it uses. The generic variant (mode
-// hard | soft, filter kShadowFilterFromData) gives the same result for every frame; the renderer draws
-// with it while the specialized one is still being built.
+// Like the _SHADOWS_HARD / _SHADOWS_SOFT keywords of "Spotlight Shadows" (Shader Keywords), the renderer
+// specializes the lit pass by the reserved lights' shadow kinds (kOtherShadowsHard | kOtherShadowsSoft bits;
+// 0 = no spot/point shadows, otherShadow returns 1 at once), and the soft filter, so a frame pays only for
+// the sampling code it uses. The generic variant (mode hard | soft, filter kShadowFilterFromData) gives the
+// same result for every frame; the renderer draws with it while the specialized one is still being built.
 layout(constant_id = 2) const uint kOtherShadowMode = 0u;
 layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
 layout(set = 0, binding = 7, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
 layout(set = 0, binding = 8) uniform sampler2DShadow otherShadowAtlas;
 
-// Seed 001 §4.4 HardShadowAttenuation / SoftShadowAttenuation, the soft one with spot.filter's tent.
+// HardShadowAttenuation / SoftShadowAttenuation ("Spotlight Shadows", Soft Shadows), the soft one with
+// spot.filter's tent.
 float filterOtherShadow(ShadowLookup lookup, bool soft) {
     bool useSoft = kOtherShadowMode == kOtherShadowsSoft || (kOtherShadowMode != kOtherShadowsHard && soft);
     vec4 texelSize = otherShadows.atlasSize.yyxx;
@@ -168,10 +174,11 @@ uint pointLightFace(vec3 wsFromLight) {
     return 2u * axis + (wsFromLight[axis] < 0.0 ? 1u : 0u);
 }
 
-// Seed 001 §3.1-§3.3 and §5.4 ShadowAttenuation, extended to point lights: bias the lookup as
-// shadows.bias says (shadow_bias.glsl; the world texel grows with the distance along the tile's axis),
-// pick the tile (a point light's cube face by the major axis of light -> lookup point), project, divide
-// by w, keep the filter inside the tile's drawn interior (§5.5), compare, lerp by strength.
+// ShadowAttenuation of "Spotlight Shadows", extended to point lights: bias the lookup as shadows.bias
+// says (shadow_bias.glsl; the world texel grows with the distance along the tile's axis), pick the tile
+// (a point light's cube face by the major axis of light -> lookup point), project, divide by w, keep the
+// filter inside the tile's drawn interior (inside the scissored border, "Shadow Map Atlas"), compare,
+// lerp by strength.
 // Fragments behind a spot light or outside its tile's frustum are not shadowed.
 ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLight) {
     if (kOtherShadowMode == 0u) return ShadowSample(1.0, -1);

@@ -1,5 +1,5 @@
-// The display transform of the colour output and the background behind the scene (issue 12,
-// render.toneMapping and render.background). Written in the common subset of GLSL and C++ (glm),
+// The display transform of the colour output and the background behind the scene
+// (render.toneMapping and render.background). Written in the common subset of GLSL and C++ (glm),
 // like shaders/shared/: the lit pass and shaders/background.frag.glsl include it, and
 // tests/unit/tone_mapping_test.cpp compiles the very same functions on the CPU.
 #ifndef PENUMBRA_TONE_MAPPING_GLSL
@@ -44,7 +44,7 @@ PENUMBRA_INLINE vec3 toneMapAces(vec3 x) {
 
 // Linear display values (sRGB encoding follows in the colour target) of exposed linear radiance;
 // `mode` is a kToneMap* constant (FrameData.params.w). kToneMapNone leaves the values as they are
-// (the target clamps them), exactly the output before issue 12.
+// (the target clamps them): linear values, no display transform.
 PENUMBRA_INLINE vec3 toneMap(vec3 radiance, uint mode) {
     if (mode == kToneMapNeutral) return toneMapNeutral(max(radiance, vec3(0.0f)));
     if (mode == kToneMapAces) return toneMapAces(max(radiance, vec3(0.0f)));

@@ -1,4 +1,4 @@
-// The compute rasterizer of the main view's visibility buffer (issue 11; visibility_structs.h):
+// The compute rasterizer of the main view's visibility buffer (visibility_structs.h):
 // the forward pass's opaque and alpha-tested draws (mesh.vert + lit.frag's coverage and depth test)
 // done in compute with raster_core.glsl's rules, so the nearest surface of every pixel is the one the
 // hardware keeps.

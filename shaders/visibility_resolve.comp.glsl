@@ -1,5 +1,5 @@
 #version 460
-// Visibility-buffer resolve (issue 11; visibility_structs.h), compute: one thread per pixel reads the
+// Visibility-buffer resolve (visibility_structs.h), compute: one thread per pixel reads the
 // nearest triangle the compute rasterizer kept and shades it with shade_surface.glsl, the forward
 // pass's own functions (visibility_surface.glsl). Writes the colour (RGBA8, sRGB-encoded for sRGB
 // targets) and the depth, copied into the targets for the forward pass of blended materials.

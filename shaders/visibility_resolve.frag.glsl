@@ -1,5 +1,5 @@
 #version 460
-// Visibility-buffer resolve (issue 11), fragment twin of visibility_resolve.comp for CPU devices
+// Visibility-buffer resolve, fragment twin of visibility_resolve.comp for CPU devices
 // (render/visibility_pass.h): a full-screen triangle whose fragments shade their pixel's triangle with
 // the same functions (visibility_surface.glsl) and write colour and depth to the targets directly.
 #include "visibility_surface.glsl"

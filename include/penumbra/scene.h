@@ -56,7 +56,8 @@ struct Mesh {
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
-// How a material casts shadows (seed 000 §5): opaque, alpha-clipped, dithered, or not at all.
+// How a material casts shadows (Catlike Coding "Directional Shadows", Transparency): opaque, alpha-clipped,
+// dithered, or not at all.
 enum class MaterialShadowMode { On, Clip, Dither, Off };
 
 struct Texture {
@@ -90,7 +91,7 @@ struct Instance {
 
 enum class LightType { Directional, Spot, Point };
 // Soft: the settings' filter; Hard: one hardware 2x2 PCF tap; Pcss: contact-hardening soft shadows
-// sized by shadowLightSize (issue 13 item 9).
+// ("Percentage-Closer Soft Shadows", Fernando 2005) sized by shadowLightSize.
 enum class LightShadows { None, Hard, Soft, Pcss };
 
 struct Light {
@@ -131,7 +132,7 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Instance> instances;
     std::vector<Light> lights;  // in the order of the KHR_lights_punctual `lights` array
-    std::optional<Camera> camera;  // the one DESIGN.md picks (node "camera", else the first camera)
+    std::optional<Camera> camera;  // as docs/scene-format.md picks it (node "camera", else the first camera)
     std::vector<Camera> cameras;   // every usable perspective camera of the glTF, in node order (the viewer's list)
     Aabb wsBounds;
     std::vector<std::string> warnings;  // one line each: things skipped while loading (e.g. line primitives)

@@ -1,4 +1,4 @@
-// GPU shadow-caster culling (issue 10), shared by C++ (render/shadow_culling_pass) and GLSL
+// GPU shadow-caster culling, shared by C++ (render/shadow_culling_pass) and GLSL
 // (shadow_cull.comp, shadow_draws.comp, shadow_caster.vert). One compute pass tests every instance
 // against every shadow tile of the frame with the CPU planner's rules (shadows/caster_culling.h,
 // shadows/spot_culling.h, which stay the reference the tests compare with) and appends the survivors
@@ -9,13 +9,13 @@
 //   t * instanceCount + meshes[m].counts.x + i      (counts.x = the mesh's first slot, a prefix sum)
 // so a draw's firstInstance is where its list starts and gl_InstanceIndex indexes the list.
 //
-// The main view's visibility buffer (issue 11) is culled by the same pass, in two more lists after
-// the shadow tiles' (kCullListCameraEarly, kCullListCameraLate), by two-phase occlusion culling: the
-// early list holds the instances inside the camera frustum that were visible last frame; they are
-// rasterized, a depth pyramid is built from the visibility buffer (CullCamera), and the late pass
-// tests every instance in the frustum against it: those not hidden are this frame's visible set
-// (kept per instance for the next frame), and the ones of them the early list lacked are the late
-// list, rasterized on top. Nothing visible is missed, whatever last frame's set was.
+// The main view's visibility buffer (render.mainView = visibility) is culled by the same pass, in two more
+// lists after the shadow tiles' (kCullListCameraEarly, kCullListCameraLate), by two-phase occlusion culling:
+// the early list holds the instances inside the camera frustum that were visible last frame; they are
+// rasterized, a depth pyramid is built from the visibility buffer (CullCamera), and the late pass tests every
+// instance in the frustum against it: those not hidden are this frame's visible set (kept per instance for
+// the next frame), and the ones of them the early list lacked are the late list, rasterized on top. Nothing
+// visible is missed, whatever last frame's set was.
 #ifndef PENUMBRA_CULL_STRUCTS_H
 #define PENUMBRA_CULL_STRUCTS_H
 #include "gpu_shared.h"

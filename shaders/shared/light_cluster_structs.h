@@ -1,4 +1,4 @@
-// Clustered light culling (issue 11 item 1), shared by C++ (render/light_clusters, the CPU reference,
+// Clustered light culling (render.lightCulling), shared by C++ (render/light_clusters, the CPU reference,
 // and render/light_cluster_pass) and GLSL (light_cluster.comp, light_clusters.glsl, lit.frag).
 //
 // The view is cut into froxels: kClusterTilesX x kClusterTilesY screen tiles times kClusterSlices

@@ -13,8 +13,9 @@ PENUMBRA_GPU_NAMESPACE_BEGIN
 PENUMBRA_CONST(uint, kMaxOtherShadowTiles, 16u)
 PENUMBRA_CONST(uint, kMaxShadowedOtherLights, 16u)
 
-// Specialization constant "other shadow mode" of the lit pass (seed 001 §6.4 _SHADOWS_HARD /
-// _SHADOWS_SOFT): bit 0 = some reserved light is hard, bit 1 = some is soft; 0 = no spot/point shadows.
+// Specialization constant "other shadow mode" of the lit pass (the _SHADOWS_HARD / _SHADOWS_SOFT keywords of
+// Catlike Coding "Spotlight Shadows", Shader Keywords): bit 0 = some reserved light is hard, bit 1 = some is
+// soft; 0 = no spot/point shadows.
 PENUMBRA_CONST(uint, kOtherShadowsHard, 1u)
 PENUMBRA_CONST(uint, kOtherShadowsSoft, 2u)
 
@@ -23,16 +24,16 @@ struct OtherShadowData {
     // lights[slot].y + f, faces ordered +X, -X, +Y, -Y, +Z, -Z.
     mat4 atlasFromWorld[16];
     // Per tile: (min u, min v, max u, max v) where a filter may be centred without reading outside the
-    // tile's drawn interior (the 4-texel border of seed 001 §5.5 and the filter's reach excluded).
+    // tile's drawn interior (the 4-texel scissored border and the filter's reach excluded).
     vec4 tileBounds[16];
     // Per shadowed light slot: x = strength, y = first tile, z = 1 soft / 0 hard, w = 1 point / 0 spot.
     vec4 lights[16];
     // Per slot: xyz = light position, w unused.
     vec4 lightPositions[16];
     // Per slot: xyz = spot axis (unit, the direction the light travels; unused for points), w = constant
-    // clip-space depth bias subtracted from the receiver's clip z before the divide (seed 001 §4.2).
+    // clip-space depth bias subtracted from the receiver's clip z before the divide (spot.depthBias).
     vec4 lightDirections[16];
-    // x = 1 / shadow distance, y = 1 / distanceFade: the directional lights' distance fade (seed 000 §3.7);
+    // x = 1 / shadow distance, y = 1 / distanceFade: the directional lights' distance fade by view depth;
     // z, w = scale and bias of the squared-distance fade (modes.y = kShadowFadeSquared, shadow_fade.h).
     vec4 fade;
     // x = shadowed light count, y = soft filter (kShadowFilter*), z = tiles used, w = split.

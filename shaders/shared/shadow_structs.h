@@ -31,9 +31,9 @@ PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
 PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
 PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)
 
-// ShadowBias.x of DirectionalShadowData and OtherShadowData mirrors ShadowBiasMode (issue 13 item 6):
+// ShadowBias.x of DirectionalShadowData and OtherShadowData mirrors ShadowBiasMode (shadows.bias):
 // how the lit pass keeps a surface from shadowing itself (see shaders/shadows.glsl shadowLookup).
-PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (seed 000 §4.3, the old rule)
+PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (the classic rule)
 PENUMBRA_CONST(uint, kShadowBiasScaledNormal, 1u)    // normal offset x the texel's size x sin(N, L)
 PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the receiver plane's depth there
 
@@ -41,38 +41,41 @@ PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the 
 // keeps that many texels around the visible receivers of a pcss light.
 PENUMBRA_CONST(float, kPcssMaxRadiusTexels, 24.0f)
 
-// modes.z: how cascades were fitted and so how the lit pass selects one (issue 13 item 8).
-PENUMBRA_CONST(uint, kCascadeFitSphere, 0u)  // the first culling sphere that holds the point (seed 000 §3.4)
+// modes.z: how cascades were fitted and so how the lit pass selects one (shadows.directional.fit).
+PENUMBRA_CONST(uint, kCascadeFitSphere, 0u)  // the first culling sphere that holds the point
 PENUMBRA_CONST(uint, kCascadeFitTight, 1u)   // the first slice whose split lies beyond the point's view depth
 
-// modes.y: the distance fade (issue 13 item 10).
-PENUMBRA_CONST(uint, kShadowFadeLinear, 0u)   // seed 000 §3.7: by view depth, over the last distanceFade
-PENUMBRA_CONST(uint, kShadowFadeSquared, 1u)  // URP (seed 004): by squared camera distance, scale and bias
+// modes.y: the distance fade (shadows.fadeMode).
+PENUMBRA_CONST(uint, kShadowFadeLinear, 0u)   // by view depth, over the last distanceFade
+PENUMBRA_CONST(uint, kShadowFadeSquared, 1u)  // URP's: by squared camera distance, scale and bias
 
 // One unit of a light's shadowNormalBias, in texels of its shadow map: the texel diagonal x (1 + filter
-// / 2), for directional, spot and point lights alike (issue 13 defect 4; before, spots used 1 + filter).
+// / 2), for directional, spot and point lights alike (one rule; spot lights once used 1 + filter).
 // filterMode = kShadowFilter* of the light (PCF2x2 for "hard" lights). Measured in shadow_gpu_packing.cpp.
 PENUMBRA_INLINE float normalOffsetFootprint(uint filterMode) { return (1.0f + 0.5f * float(filterMode)) * 1.4142136f; }
 
 struct DirectionalShadowData {
     // Tile t = lights[slot].y + cascade: world -> (atlas uv, depth). Unused tiles are zero.
     mat4 atlasFromWorld[16];
-    // Per cascade (shared by all lights, seed 000 §3.3): xyz = world centre, w = (r - filterSize)^2,
-    // the radius shrunk by the filter footprint so filtering stays inside the tile (seed 000 §4.6).
+    // Per cascade (shared by all lights): xyz = world centre, w = (r - filterSize)^2, the radius shrunk
+    // by the filter footprint so filtering stays inside the tile (as SetCascadeData of Catlike Coding
+    // "Directional Shadows", PCF Filtering).
     vec4 cullingSpheres[4];
-    // Per cascade: x = 1 / cullingSpheres.w (seed 000 §4.2), y = the world-space normal-bias unit,
+    // Per cascade: x = 1 / cullingSpheres.w, y = the world-space normal-bias unit,
     // z = world texel size (2r / tileSize), w = the view depth where the cascade's slice ends (its split).
-    // One unit of shadowNormalBias ("shadow texels", DESIGN.md) = texel * (1 + filter / 2) * sqrt(2): the
-    // texel diagonal (seed 000 §4.3) times 1 / 1.5 / 2 / 2.5 for PCF2x2 / 3x3 / 5x5 / 7x7. Seed 000 §4.6
-    // scales by filter + 1 (1 / 2 / 3 / 4); measured, that over-biases wide filters (thin_wall PCF7x7:
-    // 2.25 % misclassified, 0.28 % interior) while half a texel per filter step already removes acne
-    // (1.47 % / 0.00 %); numbers in src/shadows/shadow_gpu_packing.cpp.
+    // One unit of shadowNormalBias ("shadow texels", docs/scene-format.md) = texel * (1 + filter / 2) *
+    // sqrt(2): the texel diagonal (as in "Directional Shadows", Normal Bias) times 1 / 1.5 / 2 / 2.5 for
+    // PCF2x2 / 3x3 / 5x5 / 7x7. The tutorial (PCF Filtering) scales by filter + 1 (1 / 2 / 3 / 4); measured,
+    // that over-biases wide filters (thin_wall PCF7x7: 2.25 % misclassified, 0.28 % interior) while half a
+    // texel per filter step already removes acne (1.47 % / 0.00 %); numbers in
+    // src/shadows/shadow_gpu_packing.cpp.
     vec4 cascadeData[4];
     // Per shadowed light slot: x = strength, y = first tile index, z = normal bias (light's
     // shadowNormalBias, multiplies cascadeData.y), w = scene light index.
     vec4 lights[4];
-    // x = 1 / shadow distance, y = 1 / distanceFade, z = 1 / (1 - (1 - cascadeFade)^2) (seed 000 §3.7,
-    // §3.8), w = shadow distance: maxDistance, or the camera's zFar when nearer (seed 000 §3.6). The
+    // x = 1 / shadow distance, y = 1 / distanceFade, z = 1 / (1 - (1 - cascadeFade)^2) ("Directional
+    // Shadows", Fading Shadows and Fading Cascades), w = shadow distance: maxDistance, or the camera's zFar
+    // when nearer (Max Distance). The
     // lit pass: strength = saturate((1 - viewDepth * x) * y) * light strength; in the last cascade also
     // * saturate((1 - distanceSqr * cascadeData.x) * z).
     vec4 fade;
@@ -80,7 +83,7 @@ struct DirectionalShadowData {
     // w = shadowed directional light count (0 = no directional shadows this frame).
     uvec4 config;
     // x = atlas size in texels, y = 1 / atlas size, z = tile size in texels, w = 1 / tile size.
-    // The tent filters take vec4(1/size, 1/size, size, size) = atlasSize.yyxx (seed 000 §4.6).
+    // The tent filters take vec4(1/size, 1/size, size, size) = atlasSize.yyxx.
     vec4 atlasSize;
     // Per shadowed light slot: x = normal-bias multiplier (shadowNormalBias), y = slope-scale bias
     // (shadowBias: depth per texel of receiver slope, applied in the lit pass, not the rasterizer),

@@ -1,4 +1,4 @@
-// The visibility-buffer main view (issue 11 item 2), shared by C++ (render/visibility_pass) and GLSL
+// The visibility-buffer main view, shared by C++ (render/visibility_pass) and GLSL
 // (visibility_raster*.comp, visibility_resolve.comp).
 //
 // Opaque and alpha-tested triangles are rasterized in compute into one 64-bit word per pixel:

@@ -1,5 +1,5 @@
 #pragma once
-// `penumbra bench --vary-settings`: the long-run mode of issue 9 (item 6). Every `period` timed
+// `penumbra bench --vary-settings`: the long-run mode (memory must stay flat). Every `period` timed
 // frames the bench moves to the next step of a fixed cycle that changes the directional and spot
 // atlas sizes, the cascade count and blend, both filters, and (through Renderer::setLight) how many
 // of the scene's lights cast shadows, so that every reallocation path runs again and again; host and

@@ -29,7 +29,7 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("--model", options.model, "the glTF that gen:field copies (default: assimp's 2CylinderEngine)");
     command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
-    command.add_option("--settings", options.settingsPath, "settings JSON file (DESIGN.md: the pipeline asset)");
+    command.add_option("--settings", options.settingsPath, "settings JSON file (docs/settings.md)");
     command.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
     command.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
     command.add_option("--raster", options.raster, "shadow-map rasterizer: hw | compute | auto (= shadows.raster)")

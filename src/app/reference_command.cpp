@@ -31,7 +31,7 @@ int runReferenceCommand(const RenderOptions& options) {
 
 namespace {
 
-// The shimmer step of issue 13: the camera moved 2 cm sideways between two frames.
+// The shimmer measurement's step: the camera moved 2 cm sideways between two frames.
 constexpr float kShimmerStepMetres = 0.02f;
 
 ShimmerMetrics measureShimmer(const Scene& scene, const CameraView& view, const RenderOptions& options,
@@ -71,7 +71,7 @@ int runCompareCommand(const RenderOptions& options) {
         const RenderResult colour = renderer.render(request, settings, view);
         writePng(makeDiffImage(colour.image, ours.image, reference.shadow, reference.validMask), options.diffPath);
     }
-    // An explicit empty result rather than a misleading "0 % error" (issue 3, bad input).
+    // An explicit empty result rather than a misleading "0 % error" (bad input).
     if (metrics.validPixels == 0)
         std::fprintf(stderr, "penumbra: warning: no pixel is valid for comparison (nothing in view, or no surface "
                              "faces light %u within the shadow distance); the metrics are empty\n", options.light);

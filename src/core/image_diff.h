@@ -1,6 +1,6 @@
 #pragma once
 // Per-pixel difference of two images of the same size and channel count: the check that the GPU
-// and lavapipe give the same picture (DESIGN.md "Images and their conventions").
+// and lavapipe give the same picture (docs/cli.md: the images and their conventions).
 #include <array>
 #include <cstdint>
 #include <string>

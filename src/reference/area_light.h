@@ -1,5 +1,5 @@
 #pragma once
-// The ray-traced reference's area lights (penumbra reference --soft, issue 13 item 9): the light as a
+// The ray-traced reference's area lights (penumbra reference --soft, for shadows "pcss"): the light as a
 // disk, the sun's of angular diameter shadowLightSize degrees, a spot or point light's of radius
 // shadowLightSize metres facing the shaded point; the shadow term is the fraction of shadow rays to
 // points of that disk that reach it.

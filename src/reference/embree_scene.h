@@ -9,7 +9,7 @@
 //   Single-sided materials are seen from the front only (counter-clockwise winding in world space,
 //   as the rasterizer's main pass culls back faces); double-sided ones from both sides.
 // - Shadow rays (occluded) are blocked by both faces of a triangle (the caster pass doesn't cull),
-//   following the material's shadow mode (seed 000 §5): On always blocks, Clip blocks where alpha
+//   following the material's shadow mode: On always blocks, Clip blocks where alpha
 //   >= alphaCutoff, Dither blocks when ditherValue(hit) < alpha, Off never blocks. An instance with
 //   castShadows == false never blocks. These rules hold whatever the material's alphaMode.
 #include <cstdint>

@@ -14,7 +14,7 @@ namespace penumbra {
 float baseColorAlpha(const Material& material, const Texture* texture, glm::vec2 uv);
 
 // A deterministic value in [0, 1) from a world-space position: the reference's replacement for the
-// rasterizer's screen-space dither (seed 000 §5.3). Occlude when ditherValue(p) < alpha, so a
+// rasterizer's screen-space dither (interleaved gradient noise). Occlude when ditherValue(p) < alpha, so a
 // surface of alpha a blocks a fraction a of the shadow rays that reach it.
 float ditherValue(const glm::vec3& wsPosition);
 

@@ -48,8 +48,9 @@ const Light& shadowedLight(const Scene& scene, uint32_t lightIndex) {
     return light;
 }
 
-// Seed 000 §3.7: strength fades linearly to 0 over the last `distanceFade` of maxShadowDistance, in
-// view depth; or (URP, seed 004) in the squared distance to the camera over the same band.
+// Strength fades linearly to 0 over the last `distanceFade` of maxShadowDistance, in view depth (as the
+// lit pass: Catlike Coding "Directional Shadows", Fading Shadows); or (Unity URP's
+// GetMainLightShadowFade) in the squared distance to the camera over the same band.
 float distanceFadeFactor(float viewDepth, float cameraDistance, const ReferenceOptions& options) {
     if (!std::isfinite(options.maxShadowDistance)) return 1.0f;
     const float fade = std::max(options.distanceFade, 1e-6f);

@@ -1,5 +1,5 @@
 #pragma once
-// Ray-traced ground truth for the `--aov shadow` image (DESIGN.md "Images and their conventions"):
+// Ray-traced ground truth for the `--aov shadow` image (docs/cli.md: the images and their conventions):
 // one camera ray per pixel centre with the rasterizer's camera convention, one shadow ray from the
 // visible surface to the light, and a mask of the pixels where a comparison is meaningful.
 #include <atomic>
@@ -24,13 +24,13 @@ struct ReferenceImages {
     uint64_t geometryPixels = 0;  // pixels whose camera ray hits a visible surface
 };
 
-// The shadow settings that shape the AOV beyond the light itself (seed 000 §3.6-3.7). Defaults
+// The shadow settings that shape the AOV beyond the light itself (maximum distance and fade). Defaults
 // mean "no maximum distance": no fade, every distance is compared.
 struct ReferenceOptions {
     float maxShadowDistance = std::numeric_limits<float>::infinity();  // view depth where shadows end
     float distanceFade = 0.1f;  // fraction of maxShadowDistance over which shadows fade out
-    // false: linear in view depth (seed 000 §3.7); true: linear in the squared camera distance (URP,
-    // seed 004; the setting shadows.fadeMode = squared), over the same band.
+    // false: linear in view depth; true: linear in the squared camera distance (Unity URP's fade; the
+    // setting shadows.fadeMode = squared), over the same band.
     bool squaredFade = false;
     // 0: one shadow ray to the light's centre (a point light). N > 0: the light is a disk of
     // shadowLightSize (area_light.h) and each pixel's shadow term is the fraction of N rays to it that
@@ -44,7 +44,7 @@ struct ReferenceOptions {
 };
 
 // The options that match the rasterizer's shadow term for `settings` and `view`: its shadow distance
-// (maxDistance, or the camera's far plane when nearer, seed 000 §3.6) and its distance fade.
+// (maxDistance, or the camera's far plane when nearer) and its distance fade.
 ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView& view, uint32_t softSamples);
 
 // Traces light `lightIndex`'s shadow as seen by `view`. A pixel is valid when all of these hold:

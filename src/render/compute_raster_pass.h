@@ -1,5 +1,5 @@
 #pragma once
-// The compute rasterizer of the shadow atlases (issue 10, shaders/shadow_raster.glsl): the tiles of
+// The compute rasterizer of the shadow atlases (shaders/shadow_raster.glsl): the tiles of
 // an atlas drawn by compute shaders from the GPU culling pass's visible lists into a buffer of depth
 // by atomic min, then copied into the atlas's depth image, which the lit pass samples as always.
 // Three passes: per visible instance (small triangles rasterized at once, large ones queued), per

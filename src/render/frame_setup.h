@@ -17,8 +17,9 @@ namespace penumbra {
 
 gpu::Format colorFormatOf(OutputMode output);
 
-// The lit pass variant for a colour format and the frame's spot/point shadow kinds and filter
-// (seed 001 §6.4). The filter only matters when some light is soft, so the others share one variant.
+// The lit pass variant for a colour format and the frame's spot/point shadow kinds and filter (the
+// specialization that stands for the _SHADOWS_HARD / _SHADOWS_SOFT keywords of Catlike Coding's "Spotlight
+// Shadows"). The filter only matters when some light is soft, so the others share one variant.
 MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter);
 // The specialization of the generic lit variant, which every frame can fall back on.
 const std::vector<gpu::SpecConstant>& genericLitSpecialization();

@@ -1,5 +1,5 @@
 #pragma once
-// Clustered light culling on the GPU (issue 11 item 1, light_cluster_structs.h): each frame one
+// Clustered light culling on the GPU (light_cluster_structs.h): each frame one
 // compute pass gives every froxel of the view the mask of the spot and point lights that can light
 // it; the lit pass loops over its cluster's lights only. render/light_clusters.h is the CPU reference.
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Clustered light culling on the CPU (issue 11 item 1): the cluster block of a frame, the froxels'
+// Clustered light culling on the CPU: the cluster block of a frame, the froxels'
 // view-space boxes and the conservative light test. The GPU pass (light_cluster_pass.h, shaders/
 // light_cluster.comp.glsl) does the same per frame; this is its reference, used by the tests.
 // Layout and conventions: shaders/shared/light_cluster_structs.h.

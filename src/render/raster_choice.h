@@ -1,5 +1,5 @@
 #pragma once
-// shadows.raster = auto (issue 10): which shadow-map rasterizer a device runs faster, by measurement.
+// shadows.raster = auto: which shadow-map rasterizer a device runs faster, by measurement.
 // The first frames alternate: kWarmup + kSamples frames with the hardware path, as many with the
 // compute path; the shadow passes' GPU time (timestamps) decides, and later frames use the faster.
 // Without timestamps a table decides: compute on

@@ -59,7 +59,7 @@ bool Renderer::State::chooseMainView(const Settings& settings, PendingFrame& fra
 
 std::optional<VisibleSurfaces> Renderer::State::tightFitSurfacesNow(const Settings& settings, const CameraView& view,
                                                                    bool oneShot) {
-    // The tight cascade fit's depth reduction (issue 13 item 8): this view's, waited for, when the
+    // The tight cascade fit's depth reduction (fit = tight): this view's, waited for, when the
     // caller waits anyway or nothing earlier matches; else the latest finished frame's (none here).
     if (settings.shadows.directional.fit != CascadeFit::Tight) return std::nullopt;
     if (!oneShot && latestVisible && latestVisibleSize == glm::uvec2(view.width, view.height)) return std::nullopt;

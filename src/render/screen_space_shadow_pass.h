@@ -1,7 +1,8 @@
 #pragma once
-// URP's screen-space shadow resolve (seed 004): a depth + normal prepass, then a full-screen pass that
-// writes the main directional light's shadow term into a screen-sized R32F texture for the lit pass.
-// Its three targets live across frames and are re-made only when the output size changes.
+// Screen-space shadow resolve (shadows.screenSpace, as Unity URP's screen-space shadows): a depth + normal
+// prepass, then a full-screen pass that writes the main directional light's shadow term into a screen-sized
+// R32F texture for the lit pass. Its three targets live across frames and are re-made only when the output
+// size changes.
 #include "gpu/device.h"
 #include "render/main_pass.h"
 

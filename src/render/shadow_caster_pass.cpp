@@ -57,7 +57,8 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
         for (uint32_t i : draw) {
             const ShadowTile& tile = tiles[i];
             const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
-            // Other-light tiles keep an empty border: casters are drawn through a smaller scissor (seed 001 §5.5).
+            // Other-light tiles keep an empty border: casters are drawn through a smaller scissor, so a
+            // filter near the tile's edge never reads a neighbour's depth.
             const uint32_t inset = tile.scissorInset;
             const gpu::Rect scissor{rect.x + int32_t(inset), rect.y + int32_t(inset), rect.width - 2 * inset,
                                     rect.height - 2 * inset};

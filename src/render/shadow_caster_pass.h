@@ -1,7 +1,8 @@
 #pragma once
 // Renders the shadow tiles of a plan into a depth atlas: one viewport + scissor per tile, the light's
-// slope-scale bias as dynamic depth-bias state, depth clamp for pancaking, and per tile two indirect
-// draw lists (opaque, alpha-tested) that the GPU culling pass wrote (seed 000 §1.6-§1.9, §4.4-§4.5, §5).
+// slope-scale bias as dynamic depth-bias state, depth clamp for pancaking, and per tile two indirect draw
+// lists (opaque, alpha-tested) that the GPU culling pass wrote (after Catlike Coding "Directional Shadows":
+// Rendering Shadows, Configurable Biases, Shadow Pancaking, Transparency).
 #include <string>
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// GPU culling of the shadow casters (issue 10, cull_structs.h): each frame one compute pass tests
+// GPU culling of the shadow casters (cull_structs.h): each frame one compute pass tests
 // every instance against every shadow tile of both atlases and a second turns the survivors into
 // compacted indirect draws per tile and caster kind. The CPU planner computes lights, matrices and
 // tiles only; its caster culling (PlanOptions::cullCasters) is the reference tests compare with.

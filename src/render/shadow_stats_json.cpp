@@ -86,7 +86,7 @@ std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<CullTileC
     directional["pancakedDepthMetres"] = pancakedDepth;
     json["directional"] = directional;
 
-    // Spot and point lights (seed 001): a spot light takes 1 tile, a point light 6, at most 16 tiles.
+    // Spot and point lights: a spot light takes 1 tile, a point light 6, at most 16 tiles.
     const OtherShadowPlan& otherPlan = plan.other;
     nlohmann::json other;
     other["lightsConsidered"] = otherPlan.lightsConsidered;

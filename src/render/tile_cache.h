@@ -1,5 +1,5 @@
 #pragma once
-// Cached shadow tiles (issue 10, item 4; Godot's shadow atlas and UE5's virtual shadow map pages do
+// Cached shadow tiles (shadows.cacheTiles; Godot's shadow atlas and UE5's virtual shadow map pages do
 // the same): a tile whose projection, viewport, caster set and rasterizer did not change since the
 // last frame keeps last frame's depth and is not drawn again. Cascades follow the camera, so they
 // stay cached while their texel-snapped projection and the cascade spheres (blend culling) stand

@@ -1,5 +1,5 @@
 #pragma once
-// The visibility-buffer main view (issue 11, shaders/shared/visibility_structs.h): opaque and
+// The visibility-buffer main view (shaders/shared/visibility_structs.h): opaque and
 // alpha-tested triangles rasterized in compute into a 64-bit word per pixel (depth | instance +
 // triangle), then one full-screen compute resolve that shades every pixel with the forward lit
 // pass's functions (shade_surface.glsl) and writes the colour and depth targets, on which the

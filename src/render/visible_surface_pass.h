@@ -1,6 +1,6 @@
 #pragma once
-// The depth reduction of the tight cascade fit (issue 13 item 8, SDSM): which surfaces a view shows,
-// from its depth, reduced on the CPU (shadows/visible_surfaces.h) for the shadow plan.
+// The depth reduction of the tight cascade fit (SDSM, "Sample Distribution Shadow Maps"): which surfaces a
+// view shows, from its depth, reduced on the CPU (shadows/visible_surfaces.h) for the shadow plan.
 // - now(): a depth prepass of the view, waited for and read back whole: exact, for one-shot frames
 //   (render()), and for the first frame of a real-time run;
 // - recordSubsample(): after a real-time frame's main pass, every kStride-th pixel of its depth goes

@@ -65,7 +65,7 @@ inline uint32_t addSphere(SceneBuilder& builder, float radius, uint32_t material
     return builder.addInstance(builder.addMesh(makeSphereMesh(radius, material, 32, 16)), at(wsCentre), true, name);
 }
 
-// The scenes added for issue 13 (canonical_scenes_more.cpp).
+// The scenes added for the shadow-fidelity measurements (canonical_scenes_more.cpp, docs/fidelity.md).
 Scene makeFarField();
 Scene makeThinSlabs();
 Scene makeGrazingSun();

@@ -1,5 +1,5 @@
 #pragma once
-// The canonical shadow test scenes (issue 3): small scenes, each stressing one way shadow maps fail,
+// The canonical shadow test scenes: small scenes, each stressing one way shadow maps fail,
 // with a camera and shadowed lights. tools/make_test_scenes writes them to tests/scenes/NAME.gltf, the
 // files that `penumbra compare` and the regression tests read; a unit test checks that the committed
 // files are what this code writes.
@@ -22,7 +22,7 @@ inline constexpr const char* kCadEngineSamplePath =
     "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
 // In a fixed order: the first eight scenes (directional-light scenes, then spot_lights and point_light),
-// then those of issue 13.
+// then those added for the shadow-fidelity measurements (docs/fidelity.md).
 const std::vector<CanonicalSceneInfo>& canonicalScenes();
 // The file name under tests/scenes/ of the scene named `name` (NAME.gltf or NAME.glb).
 std::string canonicalSceneFileName(const std::string& name);

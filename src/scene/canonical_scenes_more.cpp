@@ -1,6 +1,7 @@
-// The canonical scenes added for issue 13: one per scene type of the issue's measurement table that the
-// first eight did not cover (far field, thin slabs, grazing sun, NEAREST-sampled fence and cards, a
-// field of small objects, a single cube, a CAD model under a sun and a spot, three spots on a shelf).
+// The canonical scenes added for the shadow-fidelity measurements (docs/fidelity.md): one per scene type of
+// its measurement table that the first eight did not cover (far field, thin slabs, grazing sun,
+// NEAREST-sampled fence and cards, a field of small objects, a single cube, a CAD model under a sun and a
+// spot, three spots on a shelf).
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -257,7 +258,7 @@ Scene makeSpotShelf() {
 
 namespace penumbra::canonical {
 
-// Contact-hardening soft shadows (issue 13 item 9): a pole, a box and a plate raised 1 m, so penumbrae
+// Contact-hardening soft shadows (shadows "pcss"): a pole, a box and a plate raised 1 m, so penumbrae
 // grow from sharp at contacts to wide away from them; light 0 a sun 3° wide, light 1 a spot with a
 // 15 cm emitter, both shadows "pcss". Compare with penumbra compare --soft N.
 Scene makePcssContact() {

@@ -1,4 +1,4 @@
-// Typed, validated reads of the shadow properties in glTF `extras` (DESIGN.md's table).
+// Typed, validated reads of the shadow properties in glTF `extras` (the table of docs/scene-format.md).
 #include <cmath>
 #include <sstream>
 

@@ -54,7 +54,7 @@ Light convertLight(const LoadContext& ctx, size_t index) {
             light.innerConeAngle = 0.99f * light.outerConeAngle;
         }
     }
-    // DESIGN.md: the near plane defaults to 0 for directional lights, 0.1 for spot and point lights.
+    // docs/scene-format.md: the near plane defaults to 0 for directional lights, 0.1 for spot and point.
     light.shadowNearPlane = light.type == LightType::Directional ? 0.0f : 0.1f;
     readShadowExtras(ctx, source.extras, object, light);
     return light;

@@ -1,5 +1,5 @@
 #pragma once
-// glTF 2.0 (.gltf / .glb) to Scene, as DESIGN.md "Scene input" specifies.
+// glTF 2.0 (.gltf / .glb) to Scene, as docs/scene-format.md specifies.
 //
 // - Every TRIANGLES primitive becomes one Mesh; other modes are skipped with a line in
 //   Scene::warnings. A missing NORMAL gives flat normals (the primitive is unwelded).

@@ -52,7 +52,7 @@ Texture convertTexture(const LoadContext& ctx, size_t index) {
 
 void readShadowExtras(const LoadContext& ctx, const tinygltf::Value& extras, const std::string& object,
                       Material& material) {
-    // DESIGN.md defaults: OPAQUE casts solid shadows, MASK clips them, BLEND dithers them (seed 000 §5).
+    // The defaults of docs/scene-format.md: OPAQUE casts solid shadows, MASK clips them, BLEND dithers them.
     switch (material.alphaMode) {
         case AlphaMode::Opaque: material.shadows = MaterialShadowMode::On; break;
         case AlphaMode::Mask: material.shadows = MaterialShadowMode::Clip; break;

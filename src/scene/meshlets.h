@@ -1,6 +1,6 @@
 #pragma once
 // Meshlets: a mesh's triangles split into small groups of neighbours (meshoptimizer's meshlet
-// builder), each with the bounds that let a compute rasterizer skip it whole (issue 11): its
+// builder), each with the bounds that let a compute rasterizer skip it whole (render.meshletCulling): its
 // object-space box and its normal cone (apex, axis, cutoff: every triangle faces away from an eye
 // for which dot(normalize(apex - eye), axis) >= cutoff; meshopt_computeClusterBounds). CPU only.
 #include <cstdint>

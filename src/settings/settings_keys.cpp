@@ -62,7 +62,7 @@ SettingKey ranged(const char* key, SettingType type, double min, double max, con
     return setting;
 }
 
-// In DESIGN.md's order, then the keys later issues added; validation reports the first bad one.
+// The original pipeline-asset keys first, then those added since; validation reports the first bad one.
 std::vector<SettingKey> makeTable() {
     std::vector<SettingKey> t;
     t.push_back(choice("shadows.bias", {"normal", "scaledNormal", "receiverPlane"}, PENUMBRA_FIELD(shadows.bias)));
@@ -162,8 +162,8 @@ void validateSettingKeys(const Settings& settings, const std::string& prefix) {
             throw Error("settings: " + name + " = " + formatValue(key, value) + " is out of range (allowed " + allowed + ")");
         }
     }
-    // Decreasing ratios would make a cascade end before it starts (seed 000 §3.1 leaves them to the
-    // user); an error, not a silent sort, so the user sees which split they asked for.
+    // Decreasing ratios would make a cascade end before it starts (Catlike Coding "Directional Shadows"
+    // leaves them to the user); an error, not a silent sort, so the user sees which split they asked for.
     const auto& ratios = settings.shadows.directional.cascadeRatios;
     if (prefix == "shadows." && (ratios[1] < ratios[0] || ratios[2] < ratios[1])) {
         std::ostringstream text;

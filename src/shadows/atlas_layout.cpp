@@ -24,7 +24,7 @@ AtlasTileRect tileRect(const AtlasLayout& layout, uint32_t tileIndex) {
 glm::mat4 atlasFromClip(const AtlasLayout& layout, uint32_t tileIndex) {
     const AtlasTileRect rect = tileRect(layout, tileIndex);
     const float atlas = float(layout.atlasSize);
-    // tileSize / atlasSize rather than the seed's 1 / split: equal for the power-of-two splits of the
+    // tileSize / atlasSize rather than the tutorial's 1 / split: equal for the power-of-two splits of the
     // directional atlas, and exact on the texels drawn when split 3 leaves a few unused (spot atlas).
     const float scale = float(rect.size) / atlas;
     // Column-major m[column][row]. u = (x / w) * 0.5 * scale + offset, so the homogeneous u is

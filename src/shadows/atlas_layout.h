@@ -1,6 +1,7 @@
 #pragma once
-// Tiling of the directional shadow atlas (seed 000 §1.9, §3.2): tiles = lights x cascades in a
-// split x split grid, tile i at column i % split, row i / split (row 0 = top, pixel y = 0).
+// Tiling of the directional shadow atlas (Catlike Coding "Directional Shadows": Multiple Lights, Rendering
+// Cascades): tiles = lights x cascades in a split x split grid, tile i at column i % split, row i / split
+// (row 0 = top, pixel y = 0).
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -22,9 +23,10 @@ struct AtlasLayout {
 AtlasLayout makeAtlasLayout(uint32_t atlasSize, uint32_t tileCount);
 AtlasTileRect tileRect(const AtlasLayout& layout, uint32_t tileIndex);
 
-// Maps shadow clip space (Vulkan: y down, z in [0, 1]) to atlas (u, v, depth): uv = ndc * 0.5 + 0.5
-// inside the tile, then scaled by tileSize / atlasSize and offset to the tile (seed 000 §2.1 ConvertToAtlasMatrix,
-// as one matrix product instead of the seed's per-element edit). Depth and w pass through unchanged.
+// Maps shadow clip space (Vulkan: y down, z in [0, 1]) to atlas (u, v, depth): uv = ndc * 0.5 + 0.5 inside
+// the tile, then scaled by tileSize / atlasSize and offset to the tile (ConvertToAtlasMatrix of "Directional
+// Shadows", Shadow Matrices, as one matrix product instead of its per-element edit). Depth and w pass through
+// unchanged.
 glm::mat4 atlasFromClip(const AtlasLayout& layout, uint32_t tileIndex);
 
 }  // namespace penumbra

@@ -103,7 +103,7 @@ namespace {
 // The light view centred on rsCenter (light rotation space) rounded to whole texels in x and y: world
 // geometry keeps its sub-texel position while the centre moves, so static shadows don't shimmer.
 // Round (not floor): the fitted region sticks out of the box by at most half a texel, which the
-// margins (the sphere's filter-size shrink, seed 000 §4.6; the tight box's texels) more than cover.
+// margins (the sphere's filter-size shrink; the tight box's texels) more than cover.
 CascadeLightView snappedLightView(const glm::mat4& lightRotation, const glm::vec3& rsCenter, float halfExtent,
                                   uint32_t tileSize) {
     CascadeLightView view;

@@ -1,7 +1,8 @@
 #pragma once
-// Cascade geometry of the directional shadows (seed 000 §3): split distances along the view axis,
-// one culling sphere per cascade around the camera frustum slice (light-independent, seed 000 §3.3),
-// and the stabilized orthographic light view fitted to a sphere.
+// Cascade geometry of the directional shadows (Catlike Coding "Directional Shadows", Cascaded Shadow Maps):
+// split distances along the view axis, one culling sphere per cascade around the camera frustum slice
+// (light-independent, as Unity's ComputeDirectionalShadowMatricesAndCullingPrimitives gives them), and the
+// stabilized orthographic light view fitted to a sphere.
 //
 // Light view space: the light looks along -Z (its wsDirection), +Y up, like the camera. Shadow clip
 // space: Vulkan's (y down), standard depth 0 at the near plane (toward the light), 1 at the far plane.
@@ -24,11 +25,11 @@ struct CascadeSphere {
     float radius = 0.0f;
 };
 
-// The shadow distance actually used: min(maxDistance, camera zFar) (seed 000 §3.6).
+// The shadow distance actually used: min(maxDistance, camera zFar) ("Max Distance").
 float shadowDistance(const CameraView& camera, float maxDistance);
 
 // Far split of each cascade: ratios x shadow distance, the last cascade at the full distance
-// (seed 000 §3.1). Kept non-decreasing and within [zNear, distance] so every slice is valid.
+// (cascadeRatios). Kept non-decreasing and within [zNear, distance] so every slice is valid.
 std::vector<float> cascadeSplitDistances(const CameraView& camera, float distance, uint32_t cascadeCount,
                                          const std::array<float, 3>& ratios);
 
@@ -40,7 +41,7 @@ std::vector<float> cascadeSplitDistances(const CameraView& camera, float distanc
 // moves the centre but never resizes the sphere, which keeps texels stable.
 CascadeSphere frustumSliceSphere(const CameraView& camera, float vsNear, float vsFar);
 
-// Far split of each cascade by the settings' cascadeSplits (issue 13 item 8): manual = the ratios
+// Far split of each cascade by the settings' cascadeSplits: manual = the ratios
 // above; log = vsNear (f / n)^(i / N); practical = lambda log + (1 - lambda) uniform, over [vsNear,
 // vsFar] (the camera's near plane and the shadow distance, or the visible depth range of a tight fit).
 // The last split is vsFar.
@@ -72,7 +73,7 @@ struct CascadeLightView {
 CascadeLightView fitCascadeLightView(const glm::mat4& lightRotation, const CascadeSphere& sphere,
                                      uint32_t tileSize);
 
-// The light view of a tight cascade (issue 13 item 8): the visible receivers' box rsBounds (light
+// The light view of a tight cascade (fit = tight): the visible receivers' box rsBounds (light
 // rotation space) grown by marginTexels texels per side, its half-size rounded up to the next 1/8
 // octave (so it changes only when the view changes by more than that, not every frame) and its centre
 // snapped to whole texels of that size, as the sphere fit does.

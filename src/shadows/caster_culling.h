@@ -1,6 +1,6 @@
 #pragma once
-// Which instances cast into which shadow tile (the CPU side of Unity's per-split culling, seed 000
-// §1.4 GetShadowCasterBounds, §3.2 splitData, §4.9 shadowCascadeBlendCullingFactor).
+// Which instances cast into which shadow tile (the CPU side of Unity's per-split culling as Catlike Coding
+// "Directional Shadows" uses it: GetShadowCasterBounds, splitData, shadowCascadeBlendCullingFactor).
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -13,7 +13,7 @@
 namespace penumbra {
 
 // An instance casts shadows when the node allows it and its material's shadow mode is not Off
-// (seed 000 §5.4), and it has geometry (valid bounds).
+// ("Directional Shadows", No Shadows), and it has geometry (valid bounds).
 bool isShadowCaster(const Scene& scene, const Instance& instance);
 // Indices (into Scene::instances) of every shadow caster, in scene order.
 std::vector<uint32_t> shadowCasterInstances(const Scene& scene);
@@ -31,8 +31,8 @@ bool intersectsExtrudedSphere(const Aabb& rsBounds, const glm::vec3& rsCenter, f
 // [-h, h]^2 extended without limit toward the light, ending at z = -farDistance.
 bool intersectsCasterBox(const Aabb& lsBounds, float halfExtent, float farDistance);
 
-// Unity's shadowCascadeBlendCullingFactor as seed 000 §4.9 sets it: 0.8 minus the cascade fade so
-// casters in the blend region are never culled, at least 0.
+// Unity's shadowCascadeBlendCullingFactor as "Directional Shadows", Culling Bias sets it: 0.8 minus the
+// cascade fade so casters in the blend region are never culled, at least 0.
 float cascadeBlendCullingFactor(float cascadeFade);
 // Whether wsBounds lies wholly inside the sphere with its radius scaled by factor.
 bool insideScaledSphere(const Aabb& wsBounds, const CascadeSphere& sphere, float factor);
@@ -46,8 +46,8 @@ std::vector<Aabb> shadowReceiverBounds(const Scene& scene);
 Aabb shadowOnReceiver(const Aabb& wsCaster, const glm::vec3& wsLightDirection, const Aabb& wsReceiver);
 
 // Whether everything a caster's shadow can reach on the receivers lies inside the sphere scaled by
-// factor: only then may cascade blend culling drop the caster from bigger cascades (issue 13 defect 1:
-// the seed's test of the caster's own bounds drops posts whose long shadows leave the smaller cascade).
+// factor: only then may cascade blend culling drop the caster from bigger cascades (testing the
+// caster's own bounds, as Unity does, drops posts whose long shadows leave the smaller cascade).
 bool shadowInsideScaledSphere(const Aabb& wsCaster, const glm::vec3& wsLightDirection,
                               const std::vector<Aabb>& wsReceivers, const CascadeSphere& sphere, float factor);
 
@@ -57,7 +57,7 @@ struct TileCasters {
     float lsMaxZ = -INFINITY;  // highest light-view z (closest to the light) of the kept casters
 };
 
-// What cascade blend culling (seed 000 §4.9) needs: the factor and where shadows can land.
+// What cascade blend culling ("Culling Bias") needs: the factor and where shadows can land.
 struct BlendCulling {
     float factor = 0.0f;                       // cascadeBlendCullingFactor; 0 culls nothing
     const std::vector<Aabb>* wsReceivers = nullptr;  // shadowReceiverBounds(scene)
@@ -65,7 +65,7 @@ struct BlendCulling {
 
 // Casters of cascade `cascadeIndex` of one light: those meeting the cascade's caster box, minus those
 // that, with all of their shadow (shadowInsideScaledSphere), lie inside a smaller cascade's culling
-// sphere scaled by the blend-culling factor (seed 000 §4.9, made safe for long shadows).
+// sphere scaled by the blend-culling factor (Unity's culling bias, made safe for long shadows).
 // rsBounds[i] are the rotated bounds of casters[i] (rotatedCasterBounds with the light's rotation).
 TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& casters,
                             const std::vector<Aabb>& rsBounds, const CascadeLightView& view,

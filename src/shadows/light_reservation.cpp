@@ -44,7 +44,7 @@ std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& sce
         ReservedDirectionalLight entry;
         entry.sceneLightIndex = i;
         entry.strength = light.shadowStrength;
-        entry.firstTile = uint32_t(reserved.size()) * cascadeCount;  // seed 000 §3.2
+        entry.firstTile = uint32_t(reserved.size()) * cascadeCount;  // consecutive tiles per light
         entry.normalBias = light.shadowNormalBias;
         entry.slopeScaleBias = light.shadowBias;
         entry.soft = light.shadows != LightShadows::Hard;

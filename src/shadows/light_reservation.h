@@ -1,5 +1,6 @@
 #pragma once
-// Which directional lights get shadow maps this frame (seed 000 §1.4, §3.2, §4.4, §4.5).
+// Which directional lights get shadow maps this frame (Catlike Coding "Directional Shadows", Lights with
+// Shadows).
 #include <cstdint>
 #include <vector>
 
@@ -25,7 +26,7 @@ struct ReservedDirectionalLight {
 
 // Reserves up to 4 directional lights in scene light order. A light is skipped when its shadows are
 // None, its strength <= 0, or no caster (see shadowCasterInstances) meets any cascade sphere extruded
-// toward the light: the GetShadowCasterBounds test of seed 000 §1.4. No reserved light is not an error.
+// toward the light: Unity's GetShadowCasterBounds test. No reserved light is not an error.
 std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& scene,
                                                                 const std::vector<CascadeSphere>& spheres,
                                                                 const std::vector<uint32_t>& casters,

@@ -60,7 +60,7 @@ CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, cons
     }
     const uint32_t count = data.config.x;
     const auto [i, fade] = cascadeAndFade(data, wsPosition, viewDepth);
-    if (i == count) selection.strength = 0.0f;  // seed 000 §3.5: beyond the last cascade
+    if (i == count) selection.strength = 0.0f;  // beyond the last cascade: no shadow
     else if (i == count - 1) selection.strength *= fade;
     else selection.cascadeBlend = fade;
     // Blend only toward a next cascade whose sphere holds the point (spheres need not nest).

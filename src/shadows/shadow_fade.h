@@ -1,6 +1,7 @@
 #pragma once
-// CPU mirror of the lit pass's cascade selection and fades (seed 000 §3.4-§3.8, §4.7), evaluated on a
-// packed DirectionalShadowData: the reference the shaders must match, and what the tests check.
+// CPU mirror of the lit pass's cascade selection and fades (Catlike Coding "Directional Shadows", Sampling
+// Cascades to Fading Cascades, Blending Cascades), evaluated on a packed DirectionalShadowData: the reference
+// the shaders must match, and what the tests check.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -10,15 +11,15 @@
 
 namespace penumbra {
 
-// saturate((1 - distance * scale) * fade) (seed 000 §3.7 FadedShadowStrength).
+// saturate((1 - distance * scale) * fade) (FadedShadowStrength, "Directional Shadows", Fading Shadows).
 float fadedShadowStrength(float distance, float scale, float fade);
 
-// URP's squared-distance fade (seed 004 _MainLightShadowParams.zw, GetShadowFadeScaleAndBias): with
-// start = shadowDistance (1 - distanceFade), fade = saturate(d^2 scale + bias) rises from 0 at start to
+// URP's squared-distance fade (_MainLightShadowParams.zw, ShadowUtils.GetScaleAndBiasForLinearDistanceFade):
+// with start = shadowDistance (1 - distanceFade), fade = saturate(d^2 scale + bias) rises from 0 at start to
 // 1 at the shadow distance, and the shadow's strength is 1 - fade.
 glm::vec2 squaredFadeScaleBias(float shadowDistance, float distanceFade);
 
-// The distance fade's strength at wsPosition (1 = full shadow): by view depth (seed 000 §3.7) or by
+// The distance fade's strength at wsPosition (1 = full shadow): by view depth or by
 // the squared distance to the camera (URP), as the shaders' distanceFadeStrength.
 float distanceFadeStrength(ShadowFadeMode mode, float shadowDistance, float distanceFade, float viewDepth,
                            float cameraDistanceSquared);
@@ -29,7 +30,7 @@ struct CascadeSelection {
     float cascadeBlend = 1.0f;  // < 1 inside a non-last cascade's fade band (soft blend weight)
 };
 
-// GetShadowData of seed 000 §4.7 (before the hard/dither keyword handling): the first culling sphere
+// GetShadowData of "Directional Shadows" (before the hard/dither keyword handling): the first culling sphere
 // containing wsPosition (tight fit: the first slice whose split lies beyond viewDepth), the distance fade
 // (the packed fade mode; wsCamera for the squared one) and the cascade fade; no blend (1) where the next
 // cascade's sphere does not hold the point.

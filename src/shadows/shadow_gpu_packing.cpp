@@ -8,22 +8,22 @@
 
 namespace penumbra {
 
-// The seed scales the normal bias with the filter's whole footprint, filter + 1 texels. Measured on
-// lavapipe (tests/scenes/compare_table.sh; a 60° plane with no slope bias, any darkening counted as acne),
-// acne needs a unit of only about 1.0 / 1.1 / 1.6 / 2.1 texels for PCF2x2 / 3x3 / 5x5 / 7x7: the tent's
-// outer ring carries little weight, so each wider filter needs about half a texel more, not a whole
-// one. 1 + filterSize / 2 keeps a 0.4-texel margin there (no acne on planes at 45-85° either) and cuts
-// the over-bias of the wide filters: on the canonical scenes PCF7x7 misclassified 2.25 -> 1.47 % and
-// interior 0.28 -> 0.00 % on thin_wall, near_far_casters 2.05 -> 1.27 % / 0.49 -> 0.22 %.
-// sqrt(1 + filterSize) (2 for PCF7x7) left faint acne on the 60° plane; one texel for all filters, much.
-// The rule is gpu_data::normalOffsetFootprint (shadow_structs.h), shared with the shaders and, since
-// issue 13, with spot and point lights (which used 1 + filter before).
+// Catlike Coding "Directional Shadows" (PCF Filtering) scales the normal bias with the filter's whole
+// footprint, filter + 1 texels. Measured on lavapipe (tests/scenes/compare_table.sh; a 60° plane with no
+// slope bias, any darkening counted as acne), acne needs a unit of only about 1.0 / 1.1 / 1.6 / 2.1 texels
+// for PCF2x2 / 3x3 / 5x5 / 7x7: the tent's outer ring carries little weight, so each wider filter needs about
+// half a texel more, not a whole one. 1 + filterSize / 2 keeps a 0.4-texel margin there (no acne on planes at
+// 45-85° either) and cuts the over-bias of the wide filters: on the canonical scenes PCF7x7 misclassified
+// 2.25 -> 1.47 % and interior 0.28 -> 0.00 % on thin_wall, near_far_casters 2.05 -> 1.27 % / 0.49 -> 0.22 %.
+// sqrt(1 + filterSize) (2 for PCF7x7) left faint acne on the 60° plane; one texel for all filters, much. The
+// rule is gpu_data::normalOffsetFootprint (shadow_structs.h), shared with the shaders and with spot and point
+// lights (which used 1 + filter before).
 
 void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter, glm::vec4& cullingSphere,
                  glm::vec4& cascadeData) {
     const float texelSize = 2.0f * sphere.radius / float(tileSize);
     const float filterWorldSize = texelSize * (filterSize(filter) + 1.0f);
-    // The seed subtracts without a floor; a floor keeps 1 / r^2 finite for degenerate tiny cascades.
+    // The tutorial subtracts without a floor; a floor keeps 1 / r^2 finite for degenerate tiny cascades.
     const float radius = std::max(sphere.radius - filterWorldSize, 1e-6f);
     const float radiusSqr = radius * radius;
     cullingSphere = glm::vec4(sphere.wsCenter, radiusSqr);
@@ -44,7 +44,7 @@ gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShado
     for (size_t i = 0; i < plan.lights.size(); ++i) {
         const ReservedDirectionalLight& light = plan.lights[i];
         data.lights[i] = glm::vec4(light.strength, float(light.firstTile), light.normalBias, float(light.sceneLightIndex));
-        const ShadowFilter filter = light.soft ? directional.filter : ShadowFilter::PCF2x2;  // seed 004's soft flag
+        const ShadowFilter filter = light.soft ? directional.filter : ShadowFilter::PCF2x2;  // URP's soft flag
         data.lightBias[i] = glm::vec4(light.normalBias, light.slopeScaleBias, float(uint32_t(filter)), light.pcssTanRadius);
         data.lightDirections[i] = glm::vec4(-light.wsDirection, 0.0f);
     }

@@ -1,6 +1,6 @@
 #pragma once
-// Fills the std140/std430 block of the lit pass from a directional plan (seed 000 §2.2, §3.3, §3.7,
-// §3.8, §4.2, §4.3, §4.6).
+// Fills the std140/std430 block of the lit pass from a directional plan (the shadow data of
+// Catlike Coding "Directional Shadows": per light, per cascade, fades, biases, filter).
 #include "shadow_structs.h"
 #include "shadows/cascades.h"
 #include "penumbra/shadow_settings.h"
@@ -9,8 +9,8 @@ namespace penumbra {
 
 struct DirectionalShadowPlan;
 
-// Seed 000 §4.6 SetCascadeData: texel = 2r / tileSize; filterSize = texel * (filter + 1);
-// sphere w = (r - filterSize)^2; cascadeData = (1 / w, texel * normalOffsetFootprint(filter),
+// SetCascadeData of "Directional Shadows" (PCF Filtering): texel = 2r / tileSize; filterSize = texel *
+// (filter + 1); sphere w = (r - filterSize)^2; cascadeData = (1 / w, texel * normalOffsetFootprint(filter),
 // texel, 0): the sphere still shrinks by the full filter footprint, the normal-bias unit is smaller.
 void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter, glm::vec4& cullingSphere,
                  glm::vec4& cascadeData);

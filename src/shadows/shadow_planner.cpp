@@ -69,7 +69,7 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     tile.lightFromWorld = view.lightFromWorld;
     tile.lsHalfExtent = view.halfExtent;
     tile.wsTexelSize = view.wsTexelSize;
-    // The depth range fits the receivers (seed 000 §4.5, issue 13 defect 2): from the sphere's (or the
+    // The depth range fits the receivers, whatever the casters: from the sphere's (or the
     // tight box's) side toward the light, plus what the normal bias may add, to its far side; nothing
     // outside it is sampled. Casters in front of the near plane are pancaked onto it by depth clamp, per
     // fragment (no clipping, no distortion of triangles that cross the plane); shadowNearPlane pulls

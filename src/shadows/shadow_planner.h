@@ -1,18 +1,17 @@
 #pragma once
-// The shadow plan of one frame: Scene + CameraView + ShadowSettings -> ShadowFrame, pure CPU (DESIGN.md
-// "Architecture"). The renderer only executes it: one depth pass per tile, then the lit pass reads the
-// packed DirectionalShadowData.
+// The shadow plan of one frame: Scene + CameraView + ShadowSettings -> ShadowFrame, pure CPU. The renderer
+// only executes it: one depth pass per tile, then the lit pass reads the packed DirectionalShadowData.
 //
 // Depth convention of every shadow tile (see shaders/shared/shadow_structs.h):
 // - clip space is Vulkan's: x right, y down in NDC, z in [0, 1]; orthographic (w = 1);
 // - STANDARD depth: 0 at the near plane (toward the light), 1 at the far plane. Clear the atlas to 1,
 //   draw casters with depth test LESS, sample with compare op LESS_OR_EQUAL (fragment <= stored -> lit);
-// - pancaking (seed 000 §4.5): tiles with depthClamp set must be drawn with depthClampEnable so casters
-//   in front of the near plane flatten onto it instead of being clipped;
+// - shadow pancaking (Catlike Coding "Directional Shadows", Shadow Pancaking): tiles with depthClamp set
+//   must be drawn with depthClampEnable so casters in front of the near plane flatten onto it instead of
+//   being clipped;
 // - no rasterizer depth bias: the caster pass writes the casters' exact depth (clamped to [0, 1] by
-//   depth clamp). Every bias, the light's slope-scale shadowBias (seed 000 §4.4) included, is applied
-//   by the lit pass to the receiver (shaders/shadow_bias.glsl), so a compute rasterizer has only the
-//   depth to reproduce.
+//   depth clamp). Every bias, the light's slope-scale shadowBias included, is applied by the lit pass
+//   to the receiver (shaders/shadow_bias.glsl), so a compute rasterizer has only the depth to reproduce.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,7 +37,7 @@ struct ShadowTile {
     uint32_t lightSlot = 0;     // index into ShadowFrame::directionalLights
     uint32_t cascadeIndex = 0;  // index into ShadowFrame::cascades; a point light's cube face (other atlas)
     AtlasTileRect rect;         // viewport, in atlas pixels (top-left origin)
-    uint32_t scissorInset = 0;  // the scissor is rect shrunk by this many texels per side (seed 001 §5.5)
+    uint32_t scissorInset = 0;  // the scissor is rect shrunk by this many texels per side
     glm::mat4 lightFromWorld{1.0f};
     glm::mat4 clipFromLight{1.0f};
     glm::mat4 clipFromWorld{1.0f};   // what the caster pass's vertex shader uses
@@ -65,23 +64,23 @@ struct ShadowStats {
     uint32_t shadowCasters = 0;              // instances that may cast at all
     std::vector<uint32_t> castersPerTile;    // = tiles[i].casterInstances.size()
     uint32_t casterDraws = 0;                // sum over tiles
-    uint32_t skippedByBlendCulling = 0;      // caster/tile pairs removed by the culling factor (seed 000 §4.9)
+    uint32_t skippedByBlendCulling = 0;      // caster/tile pairs removed by the culling factor
     double cullingMilliseconds = 0.0;        // CPU time spent culling casters per tile (both atlases)
 };
 
 struct DirectionalShadowPlan {
     AtlasLayout atlas;  // tileCount 0 when no light is reserved (the renderer may bind a 1x1 dummy)
     std::vector<ReservedDirectionalLight> lights;  // slots, in scene light order
-    std::vector<CascadeSphere> cascades;           // shared by every light (seed 000 §3.3)
+    std::vector<CascadeSphere> cascades;           // shared by every light
     std::vector<ShadowTile> tiles;                 // tile i = light slot * cascadeCount + cascade
     std::vector<int32_t> slotOfSceneLight;         // per Scene::lights entry: slot, or -1
     bool tight = false;  // tight cascade fit (cascades selected by view depth), else culling spheres
     gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
     Aabb wsReceiverBounds;                         // every shadow receiver: how far shadows can reach
-    float blendCullingFactor = 0.0f;               // seed 000 §4.9, cascadeBlendCullingFactor
+    float blendCullingFactor = 0.0f;               // Unity's shadowCascadeBlendCullingFactor
 };
 
-// Spot and point light shadows (seed 001) in their own atlas, planned by shadows/spot_shadow_planner.
+// Spot and point light shadows in their own atlas, planned by shadows/spot_shadow_planner.
 struct OtherShadowPlan {
     SpotAtlasLayout atlas;                   // tileCount 0 when no light is reserved
     std::vector<ReservedOtherLight> lights;  // slots, in scene light order

@@ -9,9 +9,9 @@ SpotAtlasLayout makeSpotAtlasLayout(uint32_t atlasSize, uint32_t tileCount) {
     SpotAtlasLayout layout;
     layout.atlasSize = atlasSize;
     layout.tileCount = tileCount;
-    layout.split = tileCount <= 1 ? 1u : tileCount <= 4 ? 2u : tileCount <= 9 ? 3u : 4u;  // seed 001 §6.2
+    layout.split = tileCount <= 1 ? 1u : tileCount <= 4 ? 2u : tileCount <= 9 ? 3u : 4u;
     layout.tileSize = atlasSize / layout.split;
-    layout.border = layout.split > 1 ? kOtherTileBorder : 0u;  // seed 001 §6.3
+    layout.border = layout.split > 1 ? kOtherTileBorder : 0u;  // one tile: no border
     return layout;
 }
 
@@ -27,7 +27,7 @@ AtlasTileRect spotTileScissor(const SpotAtlasLayout& layout, uint32_t tileIndex)
 }
 
 glm::mat4 spotAtlasFromClip(const SpotAtlasLayout& layout, uint32_t tileIndex) {
-    return atlasFromClip(layout.asAtlasLayout(), tileIndex);  // seed 001 §3.1: divide by w afterwards
+    return atlasFromClip(layout.asAtlasLayout(), tileIndex);  // divide by w afterwards
 }
 
 glm::vec4 spotTileSampleBounds(const SpotAtlasLayout& layout, uint32_t tileIndex, float reachTexels) {

@@ -1,7 +1,7 @@
 #pragma once
 // Caster culling for perspective shadow tiles (spot lights, point-light faces): a caster is drawn
 // into a tile when its world bounds meet the tile's frustum, the near plane left open so casters
-// between the light and the near plane are pancaked onto it (seed 000 §4.5) rather than lost.
+// between the light and the near plane are pancaked onto it (depth clamp) rather than lost.
 #include <array>
 #include <cstdint>
 #include <vector>

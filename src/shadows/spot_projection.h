@@ -1,6 +1,7 @@
 #pragma once
-// Perspective shadow views of spot lights and of the six faces of point lights (seed 001 §1.4, which
-// asks Unity's ComputeSpotShadowMatricesAndCullingPrimitives; here the matrices are computed).
+// Perspective shadow views of spot lights and of the six faces of point lights (Catlike Coding "Spotlight
+// Shadows" asks Unity's ComputeSpotShadowMatricesAndCullingPrimitives for them; here the matrices are
+// computed).
 //
 // Same conventions as the directional tiles (shaders/shared/shadow_structs.h): light view space looks
 // along -Z with +Y up; shadow clip space is Vulkan's (x right, y DOWN, z in [0, 1]); STANDARD depth,
@@ -22,7 +23,7 @@ glm::mat4 perspectiveClipFromLight(float tanHalfFov, float nearDistance, float f
 // The frustum's half-angle tangent for a cone of half-angle coneTangent (tan of the outer cone angle;
 // 1 for a 90° point-light face) such that the cone lands `marginTexels` inside each edge of a tile of
 // tileSize texels: the border plus the filter's reach, so filtering near the cone's edge reads texels
-// that were rendered (seed 001 §5.5, Unity's later "fov bias" for point faces).
+// that were rendered (Unity's later "fov bias" for point faces does the same).
 float tanHalfFovWithMargin(float coneTangent, uint32_t tileSize, float marginTexels);
 
 // The six faces of a point light, in tile order +X, -X, +Y, -Y, +Z, -Z: the cube-map face directions.

@@ -1,12 +1,12 @@
 #pragma once
-// Which spot and point lights get shadow tiles this frame (seed 001 §5.2, §6.1), extended the way
-// Unity's later pipelines did it.
+// Which spot and point lights get shadow tiles this frame (as in Catlike Coding "Spotlight Shadows"),
+// extended the way Unity's later pipelines did it.
 //
 // Budget: the other-light atlas holds kMaxOtherShadowTiles = 16 tiles. A spot light costs 1 tile, a
 // point light 6 (one per cube face), so "up to 16 shadowed other lights" counts faces fairly: e.g. 16
 // spots, or 2 points + 4 spots. A light qualifies when its shadows are not None, its strength is > 0,
 // and a shadow caster meets its shadow frustum (spot: the cone's square frustum out to the range;
-// point: any of the six faces), the GetShadowCasterBounds test of seed 001 §5.2.
+// point: any of the six faces), Unity's GetShadowCasterBounds test.
 //
 // Priority when more tiles are wanted than fit: qualifying lights are taken by decreasing screen-space
 // influence (screenInfluence below), each one that still fits in the remaining tiles is kept (so a

@@ -1,5 +1,5 @@
 #pragma once
-// Plans the spot and point light shadows of one frame into the "other" atlas (seed 001): reservation
+// Plans the spot and point light shadows of one frame into the "other" atlas: reservation
 // (spot_reservation.h), dynamic tiling with scissored borders (spot_atlas_layout.h), one perspective
 // view per spot light and six 90° views per point light (spot_projection.h), per-tile caster lists
 // (spot_culling.h), and the packed OtherShadowData for the lit pass.
@@ -14,7 +14,7 @@ namespace penumbra {
 float otherShadowFilterReach(bool soft, ShadowFilter filter);
 
 // casters = shadowCasterInstances(scene). shadowDistance drives the distance fade, as for directional
-// lights (seed 000 §3.6-§3.7).
+// lights.
 OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                                  const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters = true);
 

@@ -1,8 +1,9 @@
 #pragma once
-// The tent filters behind PCF3x3 / PCF5x5 / PCF7x7 (seed 000 §4.6, seed 004): a tent (triangle) of
-// radius 1.5 / 2.5 / 3.5 texels around the sample point, integrated over each shadow-map texel, then
-// grouped into 2x2 blocks that one hardware-PCF (bilinear compare) fetch each evaluates: 4 / 9 / 16
-// fetches. shaders/shadow_tent.glsl holds the same math for the GPU; this is its tested reference.
+// The tent filters behind PCF3x3 / PCF5x5 / PCF7x7 (Unity's ShadowSamplingTent.hlsl,
+// SampleShadow_ComputeSamples_Tent_*): a tent (triangle) of radius 1.5 / 2.5 / 3.5 texels around the sample
+// point, integrated over each shadow-map texel, then grouped into 2x2 blocks that one hardware-PCF (bilinear
+// compare) fetch each evaluates: 4 / 9 / 16 fetches. shaders/shadow_tent.glsl holds the same math for the
+// GPU; this is its tested reference.
 #include <vector>
 
 #include <glm/glm.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // The surfaces a frame shows, from its depth buffer: the depth reduction of sample distribution shadow
-// maps (SDSM, Lauritzen et al. 2011) that the tight cascade fit needs (issue 13 item 8): the view-depth
+// maps (SDSM, Lauritzen et al. 2011) that the tight cascade fit needs (fit = tight): the view-depth
 // range of the visible surfaces, and their bounds in a light's space per cascade slice.
 #include <limits>
 #include <vector>

@@ -16,7 +16,7 @@
 
 namespace penumbra::viewer {
 
-// The camera a scene starts at: its own (DESIGN.md's choice), else an automatic framing.
+// The camera a scene starts at: its own (docs/scene-format.md's choice), else an automatic framing.
 Camera startCamera(const Scene& scene);
 
 // What an update() or open() did.

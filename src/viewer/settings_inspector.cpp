@@ -16,9 +16,9 @@ namespace penumbra::viewer {
 
 namespace {
 
-// The cascades as a bar split like Unity's (seed 004): one coloured span per cascade, where it ends
-// as a share of shadows.maxDistance: the ratios with manual splits, else the last frame's computed
-// splits (marked so: the ratios below apply to manual splits only).
+// The cascades as a bar split like the cascade bar of Unity URP's pipeline asset: one coloured span per
+// cascade, where it ends as a share of shadows.maxDistance: the ratios with manual splits, else the last
+// frame's computed splits (marked so: the ratios below apply to manual splits only).
 void drawSplitBar(const Settings& settings, const std::string& shadowStatsJson) {
     const SplitBar bar = splitBarOf(settings, shadowStatsJson);
     if (bar.computed)

@@ -15,7 +15,7 @@ Controls:
   W A S D      fly (fly camera); Q / E down / up; Shift faster; mouse wheel sets the speed
   right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
   O            orbit camera around the scene, F frames the scene (orbit)
-  C            next camera: the scene's (DESIGN.md's choice, else an automatic framing), then every glTF camera
+  C            next camera: the scene's (its own camera, else an automatic framing), then every glTF camera
                (the Penumbra panel's camera list picks one by name)
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the

@@ -1,4 +1,4 @@
-// Cached shadow tiles (issue 10, item 4): a still frame draws no tile and looks the same; a moving
+// Cached shadow tiles (shadows.cacheTiles): a still frame draws no tile and looks the same; a moving
 // camera keeps the spot tiles; a moved caster draws its tiles again.
 #include <glm/gtc/matrix_transform.hpp>
 

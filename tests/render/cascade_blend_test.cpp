@@ -1,7 +1,7 @@
-// Soft cascade blending (seed 000 §4.7) weighs the two cascades by the fade of the smaller one: at a
-// blend weight w of cascade i the result is w * cascade i + (1 - w) * cascade i + 1, so it never strays
-// from cascade i's value (the hard blend's) by more than (1 - w). A swapped lerp fails this where the
-// cascades disagree (issue 13, defect 5).
+// Soft cascade blending (Catlike Coding "Directional Shadows", Blending Cascades) weighs the two cascades by
+// the fade of the smaller one: at a blend weight w of cascade i the result is w * cascade i + (1 - w) *
+// cascade i + 1, so it never strays from cascade i's value (the hard blend's) by more than (1 - w). A swapped
+// lerp fails this where the cascades disagree.
 #include <cmath>
 #include <utility>
 
@@ -40,7 +40,7 @@ bool inFadeBandOfSphere(const gpu_data::DirectionalShadowData& data, int cascade
            fadedShadowStrength(distanceSquared, data.cascadeData[cascade].x, data.fade.z) < 1.0f;
 }
 
-// Soft blending with wide (30 %) fade bands, 4 cascades over 40 m; the seed's normal-offset bias, whose
+// Soft blending with wide (30 %) fade bands, 4 cascades over 40 m; the constant normal-offset bias, whose
 // offset grows with the cascade's texel (so cascades disagree along shadow edges).
 Settings softBlendSettings() {
     Settings settings = shadowSettings(40.0f, 4, 1024, ShadowFilter::PCF2x2, CascadeBlend::Soft);

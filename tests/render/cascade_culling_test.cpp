@@ -1,4 +1,4 @@
-// Cascade blend culling (seed 000 §4.9) never removes a shadow (issue 13, defect 1): a caster inside a
+// Cascade blend culling (Unity's shadowCascadeBlendCullingFactor) never removes a shadow: a caster inside a
 // smaller cascade whose long shadow reaches ground sampled by the next cascade is drawn there too.
 #include "directional_shadow_scenes.h"
 

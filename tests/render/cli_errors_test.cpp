@@ -1,5 +1,5 @@
-// Every user error on the CLI is one line on stderr and exit code 1 (issue 9, item 4), and a command
-// that fails writes no output file, not even an empty or half-written one (item 5): out of GPU
+// Every user error on the CLI is one line on stderr and exit code 1, and a command
+// that fails writes no output file, not even an empty or half-written one: out of GPU
 // memory and device loss are injected with PENUMBRA_FAULT_INJECTION.
 #include <filesystem>
 #include <fstream>

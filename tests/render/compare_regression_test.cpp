@@ -1,6 +1,6 @@
 // Regression thresholds: the rasterized shadow AOV of every directional canonical scene (tests/scenes/)
 // against the ray-traced reference, per directional filter. Each limit is the value measured on
-// lavapipe at 256x144 (in the comment) plus a modest margin; the shadow issues tighten them.
+// lavapipe at 256x144 (in the comment) plus a modest margin; shadow-quality work tightens them.
 // Reproduce one row: ./build/penumbra compare tests/scenes/SCENE.gltf --width 256 --height 144
 //                    --set shadows.directional.filter=PCF5x5 [--set shadows.maxDistance=150]
 #include <algorithm>
@@ -41,10 +41,10 @@ Settings settingsFor(const Limits& limits) {
 const Limits kLimits[] = {
     // limits = measured x 1.15 + 0.03 (misclassified %), x 1.5 + 0.01 (interior %), x 1.2 + 0.0005 (MAE),
     // tight enough that a 2 px shift breaks every row (ShadowShiftedTwoPixelsBreaksTheLimits); measured on
-    // lavapipe (Mesa llvmpipe), 256x144, default settings but the filter (and settingsFor): since issue 13
-    // the receiver-plane bias (shaders/shadow_bias.glsl), tight cascades with log splits, the reference's
-    // shadow rays starting a few ulps off the surface. The issue-4 limits (normal-bias unit, old reference) were e.g. thin_wall PCF7x7
-    // 1.89 % (measured 1.467), near_far_casters PCF7x7 1.64 % (1.266).
+    // lavapipe (Mesa llvmpipe), 256x144, default settings but the filter (and settingsFor): the
+    // receiver-plane bias (shaders/shadow_bias.glsl), tight cascades with log splits, the reference's shadow
+    // rays starting a few ulps off the surface. The earlier limits (normal-bias unit, old reference) were
+    // e.g. thin_wall PCF7x7 1.89 % (measured 1.467), near_far_casters PCF7x7 1.64 % (1.266).
     // scene                filter               mis %  int. %   MAE      measured: mis %, interior %, MAE
     {"near_far_casters", ShadowFilter::PCF2x2, 0.112, 0.010, 0.0022},  // measured 0.071 0.000 0.0014
     {"near_far_casters", ShadowFilter::PCF3x3, 0.099, 0.010, 0.0036},  // measured 0.060 0.000 0.0026
@@ -136,8 +136,8 @@ TEST_P(DirectionalCompare, ShadowStaysWithinTheMeasuredErrorOfTheReference) {
     EXPECT_LE(m.meanAbsoluteError, limits.meanAbsoluteError);
 }
 
-// The limits have teeth: the same AOV with its shadows displaced by 2 pixels breaks them (issue 13,
-// defect 5: the old PCF7x7 rows let a 2 px shift pass). Along each axis at least one of the two shifts
+// The limits have teeth: the same AOV with its shadows displaced by 2 pixels breaks them (the
+// earlier, looser PCF7x7 rows let a 2 px shift pass). Along each axis at least one of the two shifts
 // must break the limit (one of them can cancel a sub-texel offset the render already has: a caster edge
 // parallel to the texel grid snaps to texel centres, up to half a texel, 1.4 px on cad_engine), and so
 // must their mean.
@@ -202,7 +202,7 @@ std::ostream& operator<<(std::ostream& out, const OtherLimits& limits) { return 
 
 // clang-format off
 const OtherLimits kOtherLimits[] = {
-    // scene        light  mis %  int. %   MAE      measured: mis %, interior %, MAE (issue 5's limits: 0.48 / 0.25 / 0.58 %)
+    // scene        light  mis %  int. %   MAE      measured: mis %, interior %, MAE (old limits: 0.48 / 0.25 / 0.58 %)
     {"spot_lights", 0,     0.045, 0.010, 0.0061},  // measured 0.013 0.000 0.0047 (soft)
     {"spot_lights", 1,     0.180, 0.010, 0.0025},  // measured 0.130 0.000 0.0017 (hard)
     {"point_light", 0,     0.173, 0.010, 0.0054},  // measured 0.124 0.000 0.0041

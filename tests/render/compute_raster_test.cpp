@@ -1,5 +1,5 @@
-// The compute rasterizer of shadow depth (issue 10) against the hardware rasterizer: the shadow term
-// of every light of every canonical scene, and the atlases themselves, must agree.
+// The compute rasterizer of shadow depth (shadows.raster = compute) against the hardware rasterizer: the
+// shadow term of every light of every canonical scene, and the atlases themselves, must agree.
 #include <cmath>
 
 #include <array>

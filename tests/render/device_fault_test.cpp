@@ -1,4 +1,4 @@
-// Out-of-memory and device loss (issue 9, item 5), through DeviceOptions::faults on lavapipe with
+// Out-of-memory and device loss, through DeviceOptions::faults on lavapipe with
 // validation on: each failure is one penumbra::Error naming where it happened, leaves no GPU object
 // behind, and never hangs; after an allocation failure the renderer renders again.
 #include <cstdio>

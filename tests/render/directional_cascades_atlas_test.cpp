@@ -1,6 +1,7 @@
 // The debug views of the directional shadows: `--aov cascades` picks cascades by culling sphere, nearer
-// pixels using lower indices (seed 000 §3.4-§3.5), and the atlas dump shows the tile layout of
-// seed 000 §3.2 (split 1 / 2 / 4, tiles = lights x cascades, untouched texels at the clear depth).
+// pixels using lower indices (Catlike Coding "Directional Shadows", Sampling Cascades), and the atlas dump
+// shows the tile layout of its Rendering Cascades (split 1 / 2 / 4, tiles = lights x cascades, untouched
+// texels at the clear depth).
 #include <array>
 #include <cstdio>
 
@@ -110,8 +111,8 @@ TEST_F(DirectionalShadowTest, AtlasDumpHasOneTilePerCascadeInTheSplitLayout) {
 }
 
 TEST_F(DirectionalShadowTest, DitherBlendMixesNeighbouringCascadesInTheBlendBands) {
-    // seed 000 §4.8: in cascade i's fade band a pixel samples cascade i + 1 when the interleaved gradient
-    // noise exceeds the blend weight, so a fraction 1 - blend of the band's pixels shows i + 1.
+    // Dithered transition: in cascade i's fade band a pixel samples cascade i + 1 when the interleaved
+    // gradient noise exceeds the blend weight, so a fraction 1 - blend of the band's pixels shows i + 1.
     const Scene scene = longGround();
     Settings settings = shadowSettings(40.0f, 4, 512, ShadowFilter::PCF2x2, CascadeBlend::Dither);
     settings.shadows.directional.cascadeFade = 0.5f;

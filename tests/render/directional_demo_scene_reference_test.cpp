@@ -1,6 +1,6 @@
-// The sun's shadow in the built-in demo scene (the seeds' test scene: boxes, spheres, a thin wall, far
-// objects, an alpha-clipped quad, a dithered sphere, an unlit box) against the ray-traced reference, for
-// each filter and cascade blend mode with the default settings (atlas 1024, 4 cascades, 100 m).
+// The sun's shadow in the built-in demo scene (boxes, spheres, a thin wall, far objects, an alpha-clipped
+// quad, a dithered sphere, an unlit box) against the ray-traced reference, for each filter and cascade blend
+// mode with the default settings (atlas 1024, 4 cascades, 100 m).
 #include <cstdio>
 
 #include "directional_shadow_scenes.h"
@@ -17,7 +17,7 @@ constexpr uint32_t kWidth = 192, kHeight = 108;
 // Thresholds from measurement on lavapipe (printed by each test), with headroom. Measured misclassified
 // 0.51 / 0.62 / 0.66 / 0.72 % for PCF2x2 / 3x3 / 5x5 / 7x7 (soft and dither with PCF5x5: 0.66 %) and 0 %
 // in the interior: the errors sit on shadow edges, which the wider filters and the normal bias move.
-// (With the seed's (filter + 1) normal-bias unit: 0.51 / 0.63 / 0.76 / 0.88 %.)
+// (With Catlike Coding's (filter + 1) normal-bias unit: 0.51 / 0.63 / 0.76 / 0.88 %.)
 constexpr double kMaxMisclassifiedPercent = 1.0;
 constexpr double kMaxInteriorMisclassifiedPercent = 0.1;
 

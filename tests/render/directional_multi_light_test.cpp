@@ -1,5 +1,5 @@
-// Up to four shadowed directional lights share the atlas (seed 000 §3.2): each light's AOV shows its own
-// shadow; a fifth shadowed light gets no tiles and casts no shadow.
+// Up to four shadowed directional lights share the atlas (Catlike Coding "Directional Shadows", Multiple
+// Lights): each light's AOV shows its own shadow; a fifth shadowed light gets no tiles and casts no shadow.
 #include "directional_shadow_scenes.h"
 
 #include "shadows/shadow_planner.h"

@@ -1,5 +1,6 @@
-// Shadows fade out with view depth and end at the shadow distance (seed 000 §3.6-§3.7): the AOV is
-// 255 beyond maxDistance and round(255 (1 - saturate((1 - d/m) / f))) in the fade band.
+// Shadows fade out with view depth and end at the shadow distance (Catlike Coding "Directional Shadows", Max
+// Distance, Fading Shadows): the AOV is 255 beyond maxDistance and round(255 (1 - saturate((1 - d/m) / f)))
+// in the fade band.
 #include "directional_shadow_scenes.h"
 
 #include "shadows/shadow_fade.h"
@@ -81,7 +82,7 @@ TEST_F(DirectionalShadowTest, ShadowStrengthFollowsTheDistanceFadeInTheFadeBand)
     for (const GroundPixel& p : groundPixels(view)) {
         const float fade = std::clamp((1.0f - p.viewDepth / kMaxDistance) / kDistanceFade, 0.0f, 1.0f);
         if (fade <= 0.0f || fade >= 1.0f) continue;
-        // The last cascade's own fade (seed 000 §3.8) may also apply near its sphere's rim: keep to
+        // The last cascade's own fade ("Fading Cascades") may also apply near its sphere's rim: keep to
         // the pixels it leaves alone, so this checks the distance fade alone.
         const CascadeSelection selection = selectCascade(plan.directional.gpu, p.wsPosition, p.viewDepth);
         if (std::abs(selection.strength - fade) > 1e-4f) continue;
@@ -94,7 +95,7 @@ TEST_F(DirectionalShadowTest, ShadowStrengthFollowsTheDistanceFadeInTheFadeBand)
 }
 
 TEST_F(DirectionalShadowTest, LastCascadeFadesOutTowardItsSphereRim) {
-    // seed 000 §3.8: in the last cascade the strength also falls with the squared distance from the culling
+    // Fading Cascades: in the last cascade the strength also falls with the squared distance from the culling
     // sphere's centre; a wide cascadeFade makes that band cover much of the view.
     const Scene scene = groundUnderRoof();
     Settings settings = fadeSettings();
@@ -114,10 +115,10 @@ TEST_F(DirectionalShadowTest, LastCascadeFadesOutTowardItsSphereRim) {
     EXPECT_GT(cascadeFaded, 300u);
 }
 
-// URP's fade (seed 004, issue 13 item 10: shadows.fadeMode = squared): linear in the squared distance
+// URP's fade (GetMainLightShadowFade; shadows.fadeMode = squared): linear in the squared distance
 // to the camera, 1 - saturate(d^2 scale + bias) over the band from maxDistance (1 - distanceFade) to
 // maxDistance. Off the view axis the camera distance exceeds the view depth, so it fades earlier there
-// than the seed's view-depth fade.
+// than the view-depth fade.
 TEST_F(DirectionalShadowTest, SquaredFadeFollowsTheSquaredCameraDistance) {
     const Scene scene = groundUnderRoof();
     Settings settings = fadeSettings();
@@ -150,7 +151,7 @@ TEST_F(DirectionalShadowTest, SquaredFadeMatchesTheReference) {
     EXPECT_LT(m.meanAbsoluteError, 0.01) << toText(m);
 }
 
-// Seed 004's per-light soft flag for directional lights too (issue 13 item 10): a "hard" light takes
+// URP's per-light soft flag (_MainLightShadowParams.y) for directional lights too: a "hard" light takes
 // one hardware 2x2 PCF tap whatever directional.filter says.
 TEST_F(DirectionalShadowTest, HardDirectionalLightUsesOneTapWhateverTheFilter) {
     Scene scene = boxesInDepthScene();

@@ -1,5 +1,5 @@
 // Every cascade count, filter and cascade blend mode renders shadows that agree with the ray-traced
-// reference (seed 000 §3-§4), and softer filters widen the penumbra.
+// reference, and softer filters widen the penumbra.
 #include <cstdio>
 
 #include "directional_shadow_scenes.h"
@@ -23,7 +23,8 @@ void report(const char* what, const CompareMetrics& m) {
 // Thresholds set from measurement on lavapipe (see the report printed by each test), with headroom.
 // Measured misclassified / interior: 1-4 cascades 0.28 / 0.73 / 0.15 / 0.13 % and 0 / 0.07 / 0 / 0 %;
 // PCF2x2-7x7 0.13 / 0.18 / 0.28 / 0.34 % and 0 %; blends hard / soft / dither 0.18 / 0.19 / 0.21 % and 0 %
-// (with the seed's (filter + 1) normal-bias unit PCF7x7 was 0.57 / 0.03 %). The errors stay on the shadow edges, wider where a far cascade's texels are large.
+// (with the tutorial's (filter + 1) normal-bias unit PCF7x7 was 0.57 / 0.03 %). The errors stay on the
+// shadow edges, wider where a far cascade's texels are large.
 constexpr double kMaxMisclassifiedPercent = 1.5;
 constexpr double kMaxInteriorMisclassifiedPercent = 0.2;
 

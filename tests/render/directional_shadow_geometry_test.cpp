@@ -77,34 +77,35 @@ TEST_F(DirectionalShadowTest, PlaneAtSixtyDegreesToTheSunShowsNoAcneWithDefaultB
     }
 }
 
-// The seed's bias mode (shadows.bias = normal), for the measurements of shadow_bias.glsl.
-Settings seedBiasSettings(ShadowFilter filter = ShadowFilter::PCF2x2) {
+// The constant normal-offset bias mode (shadows.bias = normal), for the measurements of shadow_bias.glsl.
+Settings normalBiasSettings(ShadowFilter filter = ShadowFilter::PCF2x2) {
     Settings settings = shadowSettings(30.0f, 4, 1024, filter);
     settings.shadows.bias = ShadowBiasMode::Normal;
     return settings;
 }
 
-TEST_F(DirectionalShadowTest, PlaneWithoutAnyBiasShowsAcneInTheSeedsBiasMode) {
+TEST_F(DirectionalShadowTest, PlaneWithoutAnyBiasShowsAcneInTheNormalBiasMode) {
     // The measurements here can fail: with both biases at 0 the plane shadows itself (measured 58 %).
-    const Image aov = renderShadowAov(planeAtSixtyDegrees(0.0f, 0.0f), seedBiasSettings(), 128);
+    const Image aov = renderShadowAov(planeAtSixtyDegrees(0.0f, 0.0f), normalBiasSettings(), 128);
     EXPECT_GT(countShadowed(aov), std::ptrdiff_t(aov.pixels.size() / 5));
 }
 
 TEST_F(DirectionalShadowTest, SlopeScaleDepthBiasAloneRemovesAcne) {
-    // The light's shadowBias is a slope-scaled depth bias (seed 000 §4.4), applied by the lit pass to the
-    // receiver's slope per texel; measured: 0.5 halves the acne, 1 removes it with PCF2x2.
-    const Image aov = renderShadowAov(planeAtSixtyDegrees(0.0f, 1.5f), seedBiasSettings(), 128);
+    // The light's shadowBias is a slope-scaled depth bias ("Directional Shadows", Configurable Biases),
+    // applied by the lit pass to the receiver's slope per texel; measured: 0.5 halves the acne, 1 removes it
+    // with PCF2x2.
+    const Image aov = renderShadowAov(planeAtSixtyDegrees(0.0f, 1.5f), normalBiasSettings(), 128);
     EXPECT_EQ(countShadowed(aov), 0);
 }
 
-TEST_F(DirectionalShadowTest, SeedsNormalBiasRemovesAcneOnThePlaneForEveryFilter) {
+TEST_F(DirectionalShadowTest, ConstantNormalBiasRemovesAcneOnThePlaneForEveryFilter) {
     for (ShadowFilter filter : {ShadowFilter::PCF2x2, ShadowFilter::PCF3x3, ShadowFilter::PCF5x5, ShadowFilter::PCF7x7}) {
-        const Image aov = renderShadowAov(planeAtSixtyDegrees(), seedBiasSettings(filter), 128);
+        const Image aov = renderShadowAov(planeAtSixtyDegrees(), normalBiasSettings(filter), 128);
         EXPECT_EQ(countShadowed(aov), 0) << "filter " << shadowFilterName(filter);
     }
 }
 
-// Issue 13 item 6, the default receiver-plane bias needs no tuning: planes from 10° to 84° off the sun
+// The default receiver-plane bias needs no tuning: planes from 10° to 84° off the sun
 // never shadow themselves, with every filter, even with the light's shadowNormalBias at 0 (the plane
 // compare alone; with the per-texel compare broken this fails at once).
 TEST_F(DirectionalShadowTest, ReceiverPlaneBiasKeepsPlanesAtAnyAngleFreeOfAcneWithoutTuning) {
@@ -148,7 +149,7 @@ TEST_F(DirectionalShadowTest, HalfStrengthLightDarkensTheShadowToHalf) {
 
 TEST_F(DirectionalShadowTest, CasterFarTowardTheLightAndOutOfViewStillCastsItsShadow) {
     // A box hanging 25 m up along the light ray, far outside the camera's view and the cascades' spheres:
-    // the light's near plane moves back to hold it, or it is pancaked onto the near plane (seed 000 §4.5).
+    // the light's near plane moves back to hold it, or it is pancaked onto the near plane (depth clamp).
     const Box floating{{-1.0f, 25.0f, -1.0f}, {1.0f, 27.0f, 1.0f}};
     const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
     const glm::vec3 shift = -sun * (26.0f / -sun.y);  // from the shadow's centre on the ground to the box

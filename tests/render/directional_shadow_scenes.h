@@ -42,8 +42,8 @@ inline uint32_t addGround(SceneBuilder& builder, float size, uint32_t material) 
 }
 
 // Settings with a small atlas (the tests run on lavapipe) and a shadow distance that fits the scenes,
-// and the seed's cascades (culling spheres, manual ratios): these tests check seed 000's behaviour; the
-// tight fit and log splits (the defaults since issue 13) have their own tests.
+// and sphere-fitted cascades (culling spheres, manual ratios): these tests check the behaviour of
+// Catlike Coding "Directional Shadows"; the tight fit and log splits (the defaults) have their own tests.
 inline Settings shadowSettings(float maxDistance = 30.0f, uint32_t cascadeCount = 4, uint32_t atlasSize = 1024,
                                ShadowFilter filter = ShadowFilter::PCF2x2, CascadeBlend blend = CascadeBlend::Hard) {
     Settings settings;

@@ -1,6 +1,6 @@
-// Clustered light culling on the GPU (issue 11 item 1): the cluster pass's masks equal the CPU
-// reference's, and the clustered lit pass gives the unculled image on every canonical scene and on
-// a scene of 400 point lights, while each pixel loops over a small share of the lights.
+// Clustered light culling on the GPU (render.lightCulling = clustered): the cluster pass's masks equal the
+// CPU reference's, and the clustered lit pass gives the unculled image on every canonical scene and on a
+// scene of 400 point lights, while each pixel loops over a small share of the lights.
 #include <algorithm>
 #include <cstdlib>
 
@@ -30,7 +30,7 @@ protected:
 
 
     // Clustered and unculled colour of `scene`: at most 2 levels apart in 99.5 % of pixels (the
-    // figure of issue 11); returns the share of pixels that differ at all.
+    // same bar as visibility_view_test.cpp); returns the share of pixels that differ at all.
     double expectSameImage(const Scene& scene, const std::string& what) {
         Renderer renderer(device(), scene);
         const RenderResult clustered = renderColor(renderer, LightCulling::Clustered, 160, 90);

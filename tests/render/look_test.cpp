@@ -1,6 +1,6 @@
-// The look of the colour output (issue 12) as penumbra render gives it: render.background draws a sky
-// gradient only where no surface is, and the shadow and cascade AOVs stay exactly what they were (no
-// tone mapping, their own backgrounds). The GPU's curves: lit_plane_test.cpp.
+// The look of the colour output (tone mapping, background) as penumbra render gives it: render.background
+// draws a sky gradient only where no surface is, and the shadow and cascade AOVs stay exactly what they were
+// (no tone mapping, their own backgrounds). The GPU's curves: lit_plane_test.cpp.
 #include <cmath>
 #include <filesystem>
 #include <fstream>

@@ -1,5 +1,6 @@
-// Material and node shadow modes (seed 000 §5): `on`, `clip`, `dither`, `off`, unlit casters,
-// `receiveShadows: false` and node `castShadows: false`, seen in the directional shadow AOV.
+// Material and node shadow modes (Catlike Coding "Directional Shadows", Transparency): `on`, `clip`,
+// `dither`, `off`, unlit casters, `receiveShadows: false` and node `castShadows: false`, seen in the
+// directional shadow AOV.
 //
 // The scene: a ground plane, a small control box whose shadow must always be there, and a 3 x 3 m quad
 // held 2 m above the ground facing down (the camera above sees only its culled back), textured with

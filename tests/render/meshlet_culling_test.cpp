@@ -1,4 +1,4 @@
-// Meshlet culling of the compute rasterizers (issue 11, render.meshletCulling): the visibility buffer
+// Meshlet culling of the compute rasterizers (render.meshletCulling): the visibility buffer
 // skips meshlets outside the view and meshlets whose every triangle faces away from the camera, the
 // compute shadow rasterizer meshlets outside their tile. Skipping changes what is drawn, never the
 // image: frames with and without are compared pixel for pixel (both rasterizers keep the nearest

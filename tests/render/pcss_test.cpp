@@ -1,4 +1,4 @@
-// Contact-hardening soft shadows (issue 13 item 9): lights with shadows "pcss" against the ray-traced
+// Contact-hardening soft shadows (PCSS, Fernando 2005): lights with shadows "pcss" against the ray-traced
 // area-light reference (penumbra reference --soft): the penumbra is as wide as the truth's, within 20 %.
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-// The renderer as a real-time engine (issue 8): frames through the persistent path equal one-shot
+// The renderer as a real-time engine: frames through the persistent path equal one-shot
 // renders, steady-state frames allocate nothing and submit once, a renderer gives back everything it
 // made, and scene changes between frames show up in the next frame.
 #include <filesystem>

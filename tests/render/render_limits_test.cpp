@@ -1,4 +1,4 @@
-// The renderer at the limits (issue 9, item 3): textures and atlases over the device's image size
+// The renderer at the limits: textures and atlases over the device's image size
 // (a device limit made small with DeviceFaultInjection::maxImageSize), more lights than the shader
 // arrays hold, degenerate triangles and singular transforms, scenes 10^6 m across, bad camera views,
 // a damaged pipeline cache file.

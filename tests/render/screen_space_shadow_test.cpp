@@ -1,4 +1,4 @@
-// The URP-style screen-space shadow resolve (seed 004, shadows.screenSpace) gives the forward path's
+// The URP-style screen-space shadow resolve (shadows.screenSpace) gives the forward path's
 // image: same shadow AOV and same colour, up to the rounding of the reconstructed position and normal.
 #include <cstdio>
 #include <cstdlib>

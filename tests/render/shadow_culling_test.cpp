@@ -1,4 +1,4 @@
-// GPU shadow-caster culling (issue 10) against the CPU planner's culling, its reference: on every
+// GPU shadow-caster culling against the CPU planner's culling, its reference: on every
 // canonical scene, the demo and the built-in scale scenes, every tile keeps the same instances.
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-// Stable cascades under motion (issue 13 item 7): moving the camera sideways in 2 cm steps over the
+// Stable cascades under motion: moving the camera sideways in 2 cm steps over the
 // far-field scene must not flip shadow pixels where the truth does not change. Away from the truth's
 // shadow edges no pixel may flip at all (the shadow map's texels stay put in the world: snapped sphere
 // centres, a radius independent of the camera's orientation, exact per-texel compares); on the edges

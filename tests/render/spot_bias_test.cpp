@@ -1,7 +1,8 @@
-// Which bias removes spot-shadow acne with less peter-panning (issue 5, item 4): the normal bias scaled
-// by the world texel size at the fragment's distance (the default), or the constant clip-space depth
-// bias of seed 001 §4.2 (settings shadows.spot.depthBias). Measured against the ray-traced reference
-// on a grazing-light scene: acne = false shadow on lit ground, peter-panning = false light at contacts.
+// Which bias removes spot-shadow acne with less peter-panning: the normal bias scaled by the world texel size
+// at the fragment's distance (the default), or the constant clip-space depth bias of Catlike Coding
+// "Spotlight Shadows", Shadow Bias (settings shadows.spot.depthBias). Measured against the ray-traced
+// reference on a grazing-light scene: acne = false shadow on lit ground, peter-panning = false light at
+// contacts.
 #include "spot_render_scenes.h"
 
 using namespace penumbra;
@@ -59,13 +60,13 @@ BiasResult measure(float normalBias, float depthBias, LightShadows shadows,
 //   depth bias 0.0005       0.02 / 0.03    0.03 / 0.02
 //   depth bias 0.002        0.02 / 0.03    0.02 / 0.03
 //   depth bias 0.005        0.02 / 0.27    0.02 / 0.25
-// (all in the seed's bias mode, shadows.bias = normal; measure() defaults to it).
+// (all in the constant normal-offset bias mode, shadows.bias = normal; measure() defaults to it).
 // Both remove the acne; here the constant clip-space bias keeps contact shadows slightly better, but the
 // point light of tests/scenes/point_light.gltf keeps faint acne up to depth bias 0.003 (MAE 0.031 vs
 // 0.0067 with normal bias 1), and at 0.005 this scene peter-pans more than with the normal bias. So the
 // normal bias stays the default (numbers and reasons: SpotShadowSettings::depthBias).
 
-// Issue 13: the default receiver-plane bias (shadow_bias.glsl) removes the acne with no tuning, even at
+// The default receiver-plane bias (shadow_bias.glsl) removes the acne with no tuning, even at
 // shadowNormalBias 0, and peter-pans less than the normal bias.
 TEST_F(RenderTest, ReceiverPlaneBiasRemovesSpotAcneWithLessPeterPanningThanTheNormalBias) {
     const BiasResult normal = measure(1.0f, 0.0f, LightShadows::Hard);

@@ -1,4 +1,4 @@
-// Spot and point light shadows on lavapipe, measured against the ray-traced reference (seed 001).
+// Spot and point light shadows on lavapipe, measured against the ray-traced reference.
 #include <cstdlib>
 
 #include "spot_render_scenes.h"
@@ -65,8 +65,8 @@ TEST_F(RenderTest, PointLightShadowFallsWhereTheReferenceSaysHard) {
     EXPECT_LT(m.metrics.interiorMisclassifiedPercent, kMaxInteriorMisclassifiedPercent);
 }
 
-// Seed 001 §2.3: a spot light's shadowStrength scales its shadow: 0.5 leaves 255 x 0.5 in the shadow's
-// interior, where the reference (which applies strength too) is shadowed (issue 13, defect 5).
+// A spot light's shadowStrength scales its shadow (Catlike Coding "Spotlight Shadows", Shadow Strength): 0.5
+// leaves 255 x 0.5 in the shadow's interior, where the reference (which applies strength too) is shadowed.
 TEST_F(RenderTest, SpotShadowStrengthScalesTheShadowedValue) {
     for (LightType type : {LightType::Spot, LightType::Point}) {
         Light light = type == LightType::Spot ? testSpot(LightShadows::Hard) : testPoint(LightShadows::Hard);

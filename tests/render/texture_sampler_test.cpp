@@ -1,4 +1,4 @@
-// glTF samplers on the GPU (issue 13, defect 3): the main view and the shadow casters sample each
+// glTF samplers on the GPU: the main view and the shadow casters sample each
 // texture with its own filters and wrap modes, the rule of scene/texture_sampler.h.
 #include <glm/gtc/matrix_transform.hpp>
 

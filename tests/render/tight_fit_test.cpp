@@ -1,5 +1,6 @@
-// Tight cascades (issue 13 item 8): the depth reduction of the frame fits each cascade to what the view
-// shows, so a small model near the camera gets texels many times finer than its culling sphere gives.
+// Tight cascades (shadows.directional.fit = tight): the depth reduction of the frame fits each cascade to
+// what the view shows, so a small model near the camera gets texels many times finer than its culling sphere
+// gives.
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -21,7 +22,7 @@ double meanTexel(const RenderResult& result) {
 }  // namespace
 
 TEST_F(CompareTest, TightFitGivesFinerTexelsAndAFaithfulerShadowOnTheCadModel) {
-    Settings sphere;  // the seed's cascades: culling spheres, manual ratios
+    Settings sphere;  // sphere-fitted cascades: culling spheres, manual ratios
     sphere.shadows.directional.fit = CascadeFit::Sphere;
     sphere.shadows.directional.cascadeSplits = CascadeSplitMode::Manual;
     const SceneComparison sphereResult = compareCanonicalScene("cad_engine", 0, sphere);

@@ -1,4 +1,4 @@
-// GPU culling of the visibility-buffer main view (issue 11 item 2, render.viewCulling): the shadow
+// GPU culling of the visibility-buffer main view (render.viewCulling): the shadow
 // culling pass's camera lists cull by the frustum and, in two phases, by a depth pyramid of what the
 // early phase drew. Culling changes what is drawn, never the image: culled and unculled frames are
 // compared pixel for pixel (the visibility buffer keeps the nearest surface by an atomic maximum,

@@ -1,4 +1,4 @@
-// The visibility-buffer main view (issue 11 items 2-3): the compute rasterizer + resolve gives the
+// The visibility-buffer main view (render.mainView = visibility): the compute rasterizer + resolve gives the
 // forward pass's image on every canonical scene (colour within 2 levels in 99.5 % of pixels, the
 // shadow AOV's lit / shadowed class in all but 0.05 %), with clustered and unculled lights alike,
 // blended materials drawn forward on top, and says which path drew each frame.

@@ -5,7 +5,7 @@
 
 using namespace penumbra;
 
-TEST(AtlasLayout, SplitIsOneTwoOrFourBySeedRule) {
+TEST(AtlasLayout, SplitIsOneTwoOrFourByTileCount) {
     EXPECT_EQ(makeAtlasLayout(1024, 0).split, 1u);
     EXPECT_EQ(makeAtlasLayout(1024, 1).split, 1u);
     EXPECT_EQ(makeAtlasLayout(1024, 2).split, 2u);

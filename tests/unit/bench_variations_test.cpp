@@ -1,4 +1,4 @@
-// penumbra bench --vary-settings (issue 9 item 6): the cycle of settings and the memory summary.
+// penumbra bench --vary-settings: the cycle of settings and the memory summary.
 #include <set>
 
 #include <gtest/gtest.h>

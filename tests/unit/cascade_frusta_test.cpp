@@ -18,7 +18,7 @@ namespace {
 struct PlannedCascades {
     Scene scene = baseScene();
     CameraView camera = cameraLookingAt({0, 6, 15}, {0, 0, 0});
-    ShadowSettings settings = seedCascadeSettings();
+    ShadowSettings settings = sphereCascadeSettings();
     ShadowFrame plan;
 
     PlannedCascades() {

@@ -140,7 +140,7 @@ TEST(CullingSphere, RadiusIsInvariantUnderCameraRotation) {
 TEST(CullingSphere, IsIndependentOfTheLight) {
     Scene scene;  // no light enters computeCascadeSpheres at all: only camera and settings
     const CameraView camera = cameraLookingAt({0, 5, 10}, {0, 0, 0});
-    const std::vector<CascadeSphere> spheres = computeCascadeSpheres(camera, seedCascadeSettings());
+    const std::vector<CascadeSphere> spheres = computeCascadeSpheres(camera, sphereCascadeSettings());
     ASSERT_EQ(spheres.size(), 4u);
     EXPECT_FLOAT_EQ(spheres[1].vsNear, 10.0f);
     EXPECT_FLOAT_EQ(spheres[1].vsFar, 25.0f);

@@ -1,4 +1,4 @@
-// The built-in demo scene holds what the seeds' test scene needs to exercise every shadow path.
+// The built-in demo scene holds what it needs to exercise every shadow path.
 #include <algorithm>
 #include <cmath>
 

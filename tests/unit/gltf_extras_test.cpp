@@ -1,4 +1,5 @@
-// Shadow properties in glTF extras (DESIGN.md's table): parsing, defaults and validation errors.
+// Shadow properties in glTF extras (the table of docs/scene-format.md): parsing, defaults and validation
+// errors.
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -68,7 +69,7 @@ TEST(GltfExtras, ReadsLightShadowProperties) {
     EXPECT_FLOAT_EQ(light.shadowNearPlane, 0.3f);
 }
 
-// Issue 13 item 9: shadows "pcss" with the light's size: angular diameter in degrees for the sun (default
+// Shadows "pcss" with the light's size: angular diameter in degrees for the sun (default
 // 0.53), emitter radius in metres for spot and point lights (default 0.05).
 TEST(GltfExtras, PcssLightsReadTheirSizeWithTypeDefaults) {
     TestGltf gltf = withLightExtras({{"shadows", "pcss"}, {"shadowLightSize", 0.2}});

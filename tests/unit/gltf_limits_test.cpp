@@ -1,4 +1,4 @@
-// glTF input at and past the limits (issue 9 item 3): each case is a one-line Error naming the file
+// glTF input at and past the limits: each case is a one-line Error naming the file
 // and the object, or a documented fallback with a warning; never a crash, a NaN or a silent change.
 #include <cmath>
 #include <filesystem>

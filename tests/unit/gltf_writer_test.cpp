@@ -97,8 +97,8 @@ void expectSameGeometry(const Scene& expected, const Scene& actual) {
     }
 }
 
-// The inspector's edits (penumbra-viewer's File > Save scene writes them with writeGltfScene): every
-// shadow extra of DESIGN.md set away from its default through the scene-edit API the Renderer uses,
+// The inspector's edits (penumbra-viewer's File > Save scene writes them with writeGltfScene): every shadow
+// extra of docs/scene-format.md set away from its default through the scene-edit API the Renderer uses,
 // variant `v` picking one of the light and material shadow modes.
 Scene editedShadowExtras(int v) {
     Scene scene = makeDemoScene();

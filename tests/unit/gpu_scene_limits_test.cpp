@@ -1,5 +1,5 @@
 // checkGpuSceneLimits: a scene too large for the GPU layout is an Error naming what overflows, not a
-// wrapped 32-bit index or offset (issue 9, item 3: index counts over 2^32).
+// wrapped 32-bit index or offset (e.g. index counts over 2^32).
 #include <string>
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Clustered light culling on the CPU (issue 11 item 1): the froxels hold every pixel that maps to
+// Clustered light culling on the CPU: the froxels hold every pixel that maps to
 // them, and a light left out of a cluster adds exactly nothing anywhere inside it.
 #include <cmath>
 #include <random>

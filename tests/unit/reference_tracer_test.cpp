@@ -62,9 +62,9 @@ TEST(ReferenceTracer, BoxShadowMatchesTheAnalyticShadowToThePixel) {
     EXPECT_GT(countBelow(result.shadow, 128), 150);  // the shadow is there to be checked (179 pixels)
 }
 
-// The shadow ray's start just off the surface must not depend on the size of the scene: with a ground
-// 600 m wide (the canonical near_far_casters), an offset of 1e-4 of the scene (6 cm) lifted every
-// shadow test point and shrank the reference's shadows by several centimetres (issue 13 measurements).
+// The shadow ray's start just off the surface must not depend on the size of the scene: with a ground 600 m
+// wide (the canonical near_far_casters), an offset of 1e-4 of the scene (6 cm) lifted every shadow test point
+// and shrank the reference's shadows by several centimetres (found measuring docs/fidelity.md).
 TEST(ReferenceTracer, ShadowEdgesStayPutInAVeryLargeScene) {
     Scene scene = emptyScene();
     addObject(scene, horizontalQuad(0.0f, -300.0f, 300.0f, -300.0f, 300.0f));

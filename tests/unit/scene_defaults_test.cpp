@@ -1,5 +1,5 @@
-// applySceneDefaults: shadows.maxDistance from the scene's extent when the user set none (issue 9,
-// item 3: a model in millimetres, a scene 10^6 m across, a scene in kilometres).
+// applySceneDefaults: shadows.maxDistance from the scene's extent when the user set none (a
+// model in millimetres, a scene 10^6 m across, a scene in kilometres).
 #include <gtest/gtest.h>
 
 #include "penumbra/camera.h"

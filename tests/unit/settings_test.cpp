@@ -181,7 +181,7 @@ TEST(SettingsJson, ViewCullingIsFrustumUnlessChosen) {
 
 TEST(SettingsValidation, DefaultsAreValid) { EXPECT_NO_THROW(validateSettings(Settings{})); }
 
-TEST(SettingsJson, ParsesTheKeysOfIssue13) {
+TEST(SettingsJson, ParsesBiasFadeFitAndSplitKeys) {
     const Settings s = parseSettingsJson(R"({"shadows": {"bias": "scaledNormal", "fadeMode": "squared",
         "directional": {"fit": "tight", "cascadeSplits": "practical", "splitLambda": 0.4}}})", "test.json");
     EXPECT_EQ(s.shadows.bias, ShadowBiasMode::ScaledNormal);

@@ -15,7 +15,7 @@ namespace {
 struct PlannerFixture {
     Scene scene = baseScene();
     CameraView camera = cameraLookingAt({0, 6, 15}, {0, 0, 0});
-    ShadowSettings settings = seedCascadeSettings();
+    ShadowSettings settings = sphereCascadeSettings();
 
     PlannerFixture() {
         settings.maxDistance = 40.0f;
@@ -64,7 +64,7 @@ TEST(ShadowPlanner, CascadesReachingThePillarRenderItUntilBlendCullingDropsIt) {
     const ShadowFrame frame = f.plan();
     // The pillar is 16 units from the camera: inside sphere 1 (view depth 4..10, radius 8.2 around
     // depth 10) and sphere 2 (radius 16.3 around depth 20), and wholly inside 0.7 x sphere 2, so the
-    // culling factor of seed 000 §4.9 drops it from cascade 3.
+    // culling factor (Catlike Coding "Directional Shadows", Culling Bias) drops it from cascade 3.
     EXPECT_TRUE(rendersInstance(frame.directional.tiles[1], 1u));
     EXPECT_TRUE(rendersInstance(frame.directional.tiles[2], 1u));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[3], 1u));
@@ -88,7 +88,7 @@ TEST(ShadowPlanner, CasterIsCloserToTheLightThanTheGroundItShadows) {
     EXPECT_LE(ground.z, 1.0f);
 }
 
-// Issue 13 defect 2: the depth range fits the receivers, the sphere's depth span, whatever the casters;
+// The depth range fits the receivers, the sphere's depth span, whatever the casters;
 // casters toward the light are pancaked onto the near plane by depth clamp, and shadowNearPlane pulls
 // the near plane back by its length.
 TEST(ShadowPlanner, DirectionalDepthRangeFitsTheReceiversNotTheCasters) {
@@ -165,7 +165,7 @@ TEST(ShadowPlanner, TilesWriteExactDepthAndTheLitPassGetsTheLightsBiases) {
     EXPECT_EQ(frame.directional.gpu.lightDirections[0], glm::vec4(0, 1, 0, 0));
 }
 
-// Seed 004's per-light soft flag for directional lights too (issue 13 item 10): "hard" = one hardware
+// URP's per-light soft flag for directional lights too: "hard" = one hardware
 // 2x2 PCF tap, "soft" = directional.filter.
 TEST(ShadowPackedData, HardDirectionalLightsUseOneHardwarePcfTap) {
     PlannerFixture f;
@@ -186,12 +186,12 @@ TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
     for (uint32_t i = 0; i < 4; ++i) {
         const CascadeSphere& sphere = frame.directional.cascades[i];
         const float texel = 2.0f * sphere.radius / 512.0f;  // 1024 atlas, 4 tiles -> 512
-        const float filterWorld = texel * 3.0f;             // PCF5x5: filter + 1 = 3 (seed 000 §4.6)
+        const float filterWorld = texel * 3.0f;             // PCF5x5: filter + 1 = 3 (SetCascadeData)
         const float shrunk = sphere.radius - filterWorld;
         EXPECT_NEAR(gpu.cullingSpheres[i].w, shrunk * shrunk, 1e-3f);
         EXPECT_NEAR(gpu.cullingSpheres[i].x, sphere.wsCenter.x, 1e-5f);
         EXPECT_NEAR(gpu.cascadeData[i].x, 1.0f / (shrunk * shrunk), 1e-6f);
-        // The normal-bias unit: PCF5x5 -> 1 + 2 / 2 = 2 texel diagonals, not the seed's 3.
+        // The normal-bias unit: PCF5x5 -> 1 + 2 / 2 = 2 texel diagonals, not the tutorial's 3.
         EXPECT_NEAR(gpu.cascadeData[i].y, texel * 2.0f * std::sqrt(2.0f), 1e-5f);
         EXPECT_NEAR(gpu.cascadeData[i].z, frame.directional.tiles[i].wsTexelSize, 1e-6f);
     }
@@ -254,7 +254,7 @@ TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
     EXPECT_EQ(outside.cascadeIndex, 4u);
     EXPECT_EQ(outside.strength, 0.0f);
     // On the last sphere at distance^2 = (1 - f') r'^2 with f' = 1 - (1 - 0.2)^2 the cascade fade is 1,
-    // halfway into the band it is 0.5 (seed 000 §3.8).
+    // halfway into the band it is 0.5 ("Fading Cascades").
     const glm::vec4 last = gpu.cullingSpheres[3];
     const float band = 1.0f - 0.8f * 0.8f;
     const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
@@ -264,9 +264,9 @@ TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
     EXPECT_NEAR(faded.strength, 0.5f, 1e-3f);
 }
 
-// Issue 13 defect 1: a 1 m post 4 m in front of the camera under an 8° sun from the side lies inside
-// 0.7 x cascade 0's sphere, but its 7 m shadow reaches ground that samples cascade 1: cascade 1 must
-// draw it.
+// Cascade blend culling keeps long shadows: a 1 m post 4 m in front of the camera under an 8° sun from the
+// side lies inside 0.7 x cascade 0's sphere, but its 7 m shadow reaches ground that samples cascade 1:
+// cascade 1 must draw it.
 TEST(ShadowPlanner, CasterWhoseShadowLeavesTheSmallerCascadeIsDrawnInTheBiggerOne) {
     Scene scene = baseScene();
     addBox(scene, {-60, -0.1f, -100}, {60, 0, 10});  // ground
@@ -275,7 +275,7 @@ TEST(ShadowPlanner, CasterWhoseShadowLeavesTheSmallerCascadeIsDrawnInTheBiggerOn
     const glm::vec3 wsHorizontal(std::cos(azimuth), 0.0f, std::sin(azimuth));  // toward +X, a little toward the camera
     addDirectionalLight(scene, std::cos(elevation) * wsHorizontal - glm::vec3(0.0f, std::sin(elevation), 0.0f));
     const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
-    ShadowSettings settings = seedCascadeSettings();  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
+    ShadowSettings settings = sphereCascadeSettings();  // 4 cascades at 0.1 / 0.25 / 0.5 of 100 m
     const ShadowFrame frame = ShadowPlanner::plan(scene, camera, settings);
     const CascadeSphere& sphere0 = frame.directional.cascades[0];
     ASSERT_LT(glm::length(glm::vec3(0, 0.5f, -4.0f) - sphere0.wsCenter) + 0.5f, 0.7f * sphere0.radius)
@@ -294,7 +294,7 @@ TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBigge
     const uint32_t box = addBox(scene, {-0.2f, 0, -4.2f}, {0.2f, 0.4f, -3.8f});
     addDirectionalLight(scene, {0.2f, -1.0f, 0.1f});
     const CameraView camera = cameraLookingAt({0, 1.6f, 0}, {0, 1.0f, -10});
-    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, seedCascadeSettings());
+    const ShadowFrame frame = ShadowPlanner::plan(scene, camera, sphereCascadeSettings());
     EXPECT_TRUE(rendersInstance(frame.directional.tiles[0], box));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[1], box));
     EXPECT_FALSE(rendersInstance(frame.directional.tiles[2], box));

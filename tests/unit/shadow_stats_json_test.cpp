@@ -61,7 +61,7 @@ TEST(ShadowStatsJson, ReservedSunsAreNamedByTheirSceneLightIndex) {
     addDirectionalLight(scene, {0.3f, -1, 0.2f}, 1.0f, LightShadows::None);  // not reserved
     addDirectionalLight(scene, {0.3f, -1, 0.2f});
     addDirectionalLight(scene, {-0.2f, -1, 0.1f});
-    const ShadowFrame plan = ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), seedCascadeSettings());
+    const ShadowFrame plan = ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), sphereCascadeSettings());
     const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson(plan))["directional"];
     EXPECT_EQ(stats["lightsReserved"], 2);
     EXPECT_EQ(stats["reservedLights"], nlohmann::json::array({1, 2}));

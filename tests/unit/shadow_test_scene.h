@@ -43,9 +43,10 @@ inline uint32_t addDirectionalLight(Scene& scene, glm::vec3 wsDirection, float s
     return uint32_t(scene.lights.size() - 1);
 }
 
-// Shadow settings with the seed's cascades (culling spheres, manual ratios), which most planner tests
-// check; the tight fit and log splits (the defaults) have their own tests.
-inline ShadowSettings seedCascadeSettings() {
+// Shadow settings with sphere-fitted cascades (culling spheres, manual ratios, as Catlike Coding "Directional
+// Shadows"), which most planner tests check; the tight fit and log splits (the defaults) have their own
+// tests.
+inline ShadowSettings sphereCascadeSettings() {
     ShadowSettings settings;
     settings.directional.fit = CascadeFit::Sphere;
     settings.directional.cascadeSplits = CascadeSplitMode::Manual;
@@ -64,14 +65,14 @@ inline CameraView cameraLookingAt(glm::vec3 eye, glm::vec3 target, float zFar = 
     return makeCameraView(camera, width, height);
 }
 
-// The plan of a 40 m ground with a box on it under one sun, with `cascades` cascades (seed settings,
+// The plan of a 40 m ground with a box on it under one sun, with `cascades` cascades (sphere-fitted,
 // 40 m shadow distance), seen from (0, 6, 15).
 inline ShadowFrame groundAndBoxPlan(uint32_t cascades) {
     Scene scene = baseScene();
     addBox(scene, {-20, -1, -20}, {20, 0, 20});
     addBox(scene, {-1, 0, -1}, {1, 2, 1});
     addDirectionalLight(scene, {0.3f, -1, 0.2f});
-    ShadowSettings settings = seedCascadeSettings();
+    ShadowSettings settings = sphereCascadeSettings();
     settings.maxDistance = 40.0f;
     settings.directional.cascadeCount = cascades;
     return ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), settings);

@@ -1,12 +1,12 @@
-// The spot/point atlas tiling (seed 001 §5.5, §6.2, §6.3).
+// The spot/point atlas tiling (Catlike Coding "Spotlight Shadows": Shadow Map Atlas, Dynamic Tiling).
 #include <gtest/gtest.h>
 
 #include "shadows/spot_atlas_layout.h"
 
 using namespace penumbra;
 
-TEST(SpotAtlasLayout, SplitFollowsTheSeedsTileCountTable) {
-    // seed 001 §6.2 (its code): 1 tile -> 1, <= 4 -> 2, <= 9 -> 3, else 4.
+TEST(SpotAtlasLayout, SplitFollowsTheTileCountTable) {
+    // The tutorial's code: 1 tile -> 1, <= 4 -> 2, <= 9 -> 3, else 4.
     const uint32_t expected[17] = {1, 1, 2, 2, 2, 3, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4};
     for (uint32_t count = 0; count <= 16; ++count) {
         const SpotAtlasLayout layout = makeSpotAtlasLayout(1024, count);

@@ -85,7 +85,7 @@ TEST(SpotShadowPlan, PackedLightDataCarriesStrengthKindAndBias) {
     EXPECT_EQ(plan.slotOfSceneLight, (std::vector<int32_t>{0, 1}));
 }
 
-// Issue 13 defect 4: one normal-bias rule. The lit pass's unit is normalOffsetFootprint(filter) x the
+// One normal-bias rule. The lit pass's unit is normalOffsetFootprint(filter) x the
 // world texel at the fragment for every light type; a soft spot with the directional filter gets the
 // directional unit, not the old 1 + filter.
 TEST(SpotShadowPlan, SpotNormalBiasUnitIsTheDirectionalRule) {

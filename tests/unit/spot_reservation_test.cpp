@@ -1,4 +1,4 @@
-// Which spot and point lights get shadow tiles (seed 001 §5.2): rules, priorities, tile budget.
+// Which spot and point lights get shadow tiles: rules, priorities, tile budget.
 #include <gtest/gtest.h>
 
 #include <algorithm>

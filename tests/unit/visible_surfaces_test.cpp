@@ -47,7 +47,7 @@ TEST(VisibleSurfaces, EmptyDepthGivesNoPoints) {
     EXPECT_TRUE(visibleSurfacesFromDepth(Image(16, 16, 4, 0), view).empty());
 }
 
-// The tight fit (issue 13 item 8): every visible point of a cascade's slice lands inside its tile, the
+// The tight fit (SDSM depth reduction): every visible point of a cascade's slice lands inside its tile, the
 // cascades are chosen by view depth, and the texels are smaller than the culling sphere's.
 TEST(TightFit, EveryVisiblePointMapsInsideItsCascadesTileWithSmallerTexels) {
     Scene scene = baseScene();
