@@ -8,6 +8,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "penumbra/version.h"
 
 namespace penumbra {
 
@@ -46,6 +47,7 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
 int runCli(int argc, char** argv) {
     CLI::App app{"penumbra: real-time shadow rendering (cascaded and spot-light shadow maps) on Vulkan"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION_STRING, "print the version and exit");
 
     RenderOptions renderOptions;
     CLI::App* render = app.add_subcommand("render", "render a scene to a PNG (colour or a debug AOV)");
@@ -107,6 +109,8 @@ int runCli(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // A user error like any other: one line, exit code 1 (CLI11's own exit codes are not ours).
