@@ -29,7 +29,7 @@ struct CameraView {
 // Reversed-Z perspective for Vulkan clip space; zFar may be +infinity.
 glm::mat4 reversedZPerspective(float yfov, float aspect, float zNear, float zFar);
 
-// The scene's camera (see DESIGN.md: node named "camera", else the first camera, else an automatic
+// The scene's camera (docs/scene-format.md: node named "camera", else the first camera, else an automatic
 // framing of the scene bounds) for an output of width x height pixels.
 CameraView resolveCameraView(const Scene& scene, uint32_t width, uint32_t height);
 CameraView makeCameraView(const Camera& camera, uint32_t width, uint32_t height);

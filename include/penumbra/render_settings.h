@@ -1,17 +1,17 @@
 #pragma once
-// Non-shadow render settings (the "render" block of the settings JSON, an extension of DESIGN.md).
+// Non-shadow render settings (the "render" block of the settings JSON, docs/settings.md).
 #include <optional>
 #include <string>
 
 namespace penumbra {
 
-// How the lit pass finds the spot and point lights of a pixel (issue 11): Clustered loops over the
+// How the lit pass finds the spot and point lights of a pixel: Clustered loops over the
 // lights of the pixel's view-space cluster only (the same image); None loops over every light.
 enum class LightCulling { Clustered, None };
 const char* lightCullingName(LightCulling culling);
 std::optional<LightCulling> parseLightCulling(const std::string& name);
 
-// How the main view is drawn (issue 11): Forward rasterizes and shades every draw in the graphics
+// How the main view is drawn: Forward rasterizes and shades every draw in the graphics
 // pipeline; Visibility rasterizes opaque and alpha-tested triangles in compute into a visibility
 // buffer and shades each pixel once in a compute resolve (the same shading functions, the same image
 // within 2 levels), with blended materials drawn forward afterwards; Auto picks Visibility where the
@@ -19,7 +19,7 @@ std::optional<LightCulling> parseLightCulling(const std::string& name);
 enum class MainView { Forward, Visibility, Auto };
 const char* mainViewName(MainView view);
 std::optional<MainView> parseMainView(const std::string& name);
-// How the visibility-buffer main view culls its instances on the GPU (issue 11): Occlusion tests
+// How the visibility-buffer main view culls its instances on the GPU: Occlusion tests
 // the camera frustum and, in two phases, a depth pyramid of what was drawn first (last frame's
 // visible set); Frustum the frustum only; None draws every opaque and alpha-tested instance. The
 // image is the same (every instance a pixel shows is drawn); the forward pass ignores it. Default
@@ -29,7 +29,7 @@ enum class ViewCulling { Occlusion, Frustum, None };
 const char* viewCullingName(ViewCulling culling);
 std::optional<ViewCulling> parseViewCulling(const std::string& name);
 
-// The display transform applied to linear radiance (x exposure) before sRGB encoding (issue 12):
+// The display transform applied to linear radiance (x exposure) before sRGB encoding:
 // Neutral = Khronos PBR Neutral (base colours stay close to their sRGB values, highlights roll off
 // to white), Aces = Narkowicz's fit of the ACES filmic curve, None = clamp only (the linear values).
 // The shadow and cascade AOVs are never tone mapped.
@@ -38,8 +38,8 @@ const char* toneMappingName(ToneMapping toneMapping);
 std::optional<ToneMapping> parseToneMapping(const std::string& name);
 
 // What the colour image shows where no geometry is: Gradient = a sky gradient by view direction
-// (zenith, horizon, ground; exposed and tone mapped like the scene), Black = black (as before
-// issue 12). The AOVs keep their backgrounds (shadow: 1, cascades: black).
+// (zenith, horizon, ground; exposed and tone mapped like the scene), Black = black. The AOVs keep
+// their backgrounds (shadow: 1, cascades: black).
 enum class Background { Gradient, Black };
 const char* backgroundName(Background background);
 std::optional<Background> parseBackground(const std::string& name);

@@ -56,7 +56,7 @@ struct Mesh {
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
-// How a material casts shadows (seed 000 §5): opaque, alpha-clipped, dithered, or not at all.
+// How a material casts shadows (docs/scene-format.md's shadow modes): opaque, alpha-clipped, dithered, or none.
 enum class MaterialShadowMode { On, Clip, Dither, Off };
 
 struct Texture {
@@ -90,7 +90,7 @@ struct Instance {
 
 enum class LightType { Directional, Spot, Point };
 // Soft: the settings' filter; Hard: one hardware 2x2 PCF tap; Pcss: contact-hardening soft shadows
-// sized by shadowLightSize (issue 13 item 9).
+// sized by shadowLightSize ("Percentage-Closer Soft Shadows", Fernando).
 enum class LightShadows { None, Hard, Soft, Pcss };
 
 struct Light {
@@ -131,7 +131,7 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Instance> instances;
     std::vector<Light> lights;  // in the order of the KHR_lights_punctual `lights` array
-    std::optional<Camera> camera;  // the one DESIGN.md picks (node "camera", else the first camera)
+    std::optional<Camera> camera;  // node "camera", else the first camera (docs/scene-format.md)
     std::vector<Camera> cameras;   // every usable perspective camera of the glTF, in node order (the viewer's list)
     Aabb wsBounds;
     std::vector<std::string> warnings;  // one line each: things skipped while loading (e.g. line primitives)

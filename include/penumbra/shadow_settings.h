@@ -1,5 +1,5 @@
 #pragma once
-// The shadow part of the pipeline settings (DESIGN.md "Settings"; seed 000 §1.1, §3.1, §4).
+// The shadow part of the settings (the "shadows" block of the settings JSON, docs/settings.md).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -9,21 +9,21 @@ namespace penumbra {
 
 enum class ShadowFilter { PCF2x2, PCF3x3, PCF5x5, PCF7x7 };
 enum class CascadeBlend { Hard, Soft, Dither };
-// How shadow depth is rasterized (issue 10): the hardware pipeline, compute shaders (fast where few
+// How shadow depth is rasterized: the hardware pipeline, compute shaders (fast where few
 // SMs run graphics, e.g. NVIDIA H100/H200), or whichever the first frames measure faster.
 enum class ShadowRaster { Hw, Compute, Auto };
-// How the lit pass keeps surfaces from shadowing themselves (issue 13 item 6; shaders/shadow_bias.glsl):
-// the seed's constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
+// How the lit pass keeps surfaces from shadowing themselves (shaders/shadow_bias.glsl):
+// a constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
 // Every light's shadowNormalBias multiplies the automatic amount, its shadowBias adds a slope-scale bias.
 enum class ShadowBiasMode { Normal, ScaledNormal, ReceiverPlane };
-// How cascades are fitted (issue 13 item 8): the seed's culling sphere around the frustum slice, or
+// How cascades are fitted: a culling sphere around the frustum slice, or
 // tight to what the frame shows (a depth reduction: the visible surfaces' light-space bounds per slice).
 enum class CascadeFit { Sphere, Tight };
-// Where cascades split: the seed's ratios of the shadow distance, logarithmic, or the "practical" blend
+// Where cascades split: given ratios of the shadow distance, logarithmic, or the "practical" blend
 // lambda * log + (1 - lambda) * uniform over the depth range (the visible one with the tight fit).
 enum class CascadeSplitMode { Manual, Log, Practical };
-// The distance fade (issue 13 item 10): seed 000's, linear in view depth over the last distanceFade of
-// the shadow distance, or URP's (seed 004), linear in the squared camera distance over the same band.
+// The distance fade: linear in view depth over the last distanceFade of the shadow distance, or
+// Unity URP's, linear in the squared camera distance over the same band.
 enum class ShadowFadeMode { Linear, Squared };
 
 struct DirectionalShadowSettings {
@@ -41,9 +41,9 @@ struct DirectionalShadowSettings {
 struct SpotShadowSettings {
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF5x5;
-    // Constant clip-space depth bias of spot/point receivers (seed 001 §4.2), 0..1, subtracted from the
-    // receiver's clip z before the divide. 0 by default: the lights' shadowNormalBias (DESIGN default 1 =
-    // one filter-texel diagonal at the fragment's distance) is the default bias (issue 5 item 4). Measured
+    // Constant clip-space depth bias of spot/point receivers, 0..1, subtracted from the
+    // receiver's clip z before the divide. 0 by default: the lights' shadowNormalBias (default 1 =
+    // one filter-texel diagonal at the fragment's distance) is the default bias. Measured
     // (lavapipe; canonical scenes at 256x144 via `penumbra compare`, misclassified % / MAE):
     //   normal bias 1, depthBias 0:      spot soft 0.344 / 0.0064, spot hard 0.156 / 0.0025, point 0.425 / 0.0067
     //   normal bias 0, depthBias 0.002:  0.025 / 0.0051, 0.078 / 0.0015, point 0.177 / 0.0820 (faint acne)
@@ -70,7 +70,7 @@ struct ShadowSettings {
     SpotShadowSettings spot;
 };
 
-// Filter footprint in texels beyond the centre tap: PCF2x2 -> 0 ... PCF7x7 -> 3 (seed 000 §4.7).
+// Filter footprint in texels beyond the centre tap: PCF2x2 -> 0 ... PCF7x7 -> 3.
 inline float filterSize(ShadowFilter filter) { return float(int(filter)); }
 
 // Names as written in the settings JSON ("PCF5x5", "soft") and back; nullopt for an unknown name.
@@ -89,7 +89,7 @@ std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
 const char* shadowRasterName(ShadowRaster raster);
 std::optional<ShadowRaster> parseShadowRaster(const std::string& name);
 
-// Checks the ranges of DESIGN.md; throws Error naming the first bad key with its allowed range, e.g.
+// Checks the ranges of settings_keys.h; throws Error naming the first bad key with its allowed range, e.g.
 // "settings: shadows.directional.cascadeCount = 7 is out of range (allowed 1..4)".
 void validateShadowSettings(const ShadowSettings& settings);
 
