@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Installs the built library into a temporary prefix, builds examples/embed against that copy (as a
-# program outside the tree would, through find_package(penumbra)), runs it, and checks that its
-# image equals `penumbra render` of the same scene and size. Run after scripts/build.sh.
+# Installs the built library into a temporary prefix, checks that the generated version header came
+# with it, builds examples/embed against that copy (as a program outside the tree would, through
+# find_package(penumbra)), runs it, and checks that its image equals `penumbra render` of the same
+# scene and size. Run after scripts/build.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 prefix=$(mktemp -d)
@@ -9,6 +10,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$prefix" "$work"' EXIT
 cmake --install build --prefix "$prefix" >/dev/null
 test -f "$prefix/lib/pkgconfig/penumbra.pc"
+# The generated version header is installed with the others, and holds the program's version.
+version=$(./build/penumbra --version | cut -d' ' -f2)
+grep -q "#define PENUMBRA_VERSION_STRING \"$version\"" "$prefix/include/penumbra/version.h"
 cmake -S examples/embed -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" -j "$(nproc)" >/dev/null
 device=${PENUMBRA_DEVICE:-cpu}

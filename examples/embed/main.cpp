@@ -3,6 +3,7 @@
 // Uses only <penumbra/penumbra.h>: no Vulkan header is needed to render and read back.
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include <penumbra/penumbra.h>
@@ -20,6 +21,12 @@ int main(int argc, char** argv) {
         request.width = uint32_t(std::strtoul(argv[3], nullptr, 10));
         request.height = uint32_t(std::strtoul(argv[4], nullptr, 10));
     }
+    // The headers compiled against and the library linked must be one version.
+    if (std::strcmp(penumbra::version(), PENUMBRA_VERSION_STRING) != 0) {
+        std::fprintf(stderr, "penumbra_embed: headers of penumbra %s, library %s\n", PENUMBRA_VERSION_STRING,
+                     penumbra::version());
+        return 1;
+    }
     try {
         penumbra::Settings settings;
         for (int i = 5; i < argc; ++i) penumbra::applySettingOverride(settings, argv[i]);
@@ -27,8 +34,8 @@ int main(int argc, char** argv) {
         penumbra::Renderer renderer(device, penumbra::loadScene(""));
         const penumbra::RenderResult result = renderer.render(request, settings);
         penumbra::writePng(result.image, output);
-        std::printf("penumbra_embed: %ux%u on %s -> %s\n", result.image.width, result.image.height,
-                    device.info().name.c_str(), output.c_str());
+        std::printf("penumbra_embed: penumbra %s, %ux%u on %s -> %s\n", penumbra::version(), result.image.width,
+                    result.image.height, device.info().name.c_str(), output.c_str());
     } catch (const penumbra::Error& error) {
         std::fprintf(stderr, "penumbra_embed: %s\n", error.what());
         return 1;

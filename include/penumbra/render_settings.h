@@ -38,8 +38,8 @@ const char* toneMappingName(ToneMapping toneMapping);
 std::optional<ToneMapping> parseToneMapping(const std::string& name);
 
 // What the colour image shows where no geometry is: Gradient = a sky gradient by view direction
-// (zenith, horizon, ground; exposed and tone mapped like the scene), Black = black (what the
-// output was before the gradient existed). The AOVs keep their backgrounds (shadow: 1, cascades: black).
+// (zenith, horizon, ground; exposed and tone mapped like the scene), Black = black. The AOVs keep
+// their backgrounds (shadow: 1, cascades: black).
 enum class Background { Gradient, Black };
 const char* backgroundName(Background background);
 std::optional<Background> parseBackground(const std::string& name);

@@ -56,8 +56,7 @@ struct Mesh {
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
-// How a material casts shadows (Catlike Coding "Directional Shadows", Transparency): opaque, alpha-clipped,
-// dithered, or not at all.
+// How a material casts shadows (docs/scene-format.md's shadow modes): opaque, alpha-clipped, dithered, or none.
 enum class MaterialShadowMode { On, Clip, Dither, Off };
 
 struct Texture {
@@ -91,7 +90,7 @@ struct Instance {
 
 enum class LightType { Directional, Spot, Point };
 // Soft: the settings' filter; Hard: one hardware 2x2 PCF tap; Pcss: contact-hardening soft shadows
-// ("Percentage-Closer Soft Shadows", Fernando 2005) sized by shadowLightSize.
+// sized by shadowLightSize ("Percentage-Closer Soft Shadows", Fernando).
 enum class LightShadows { None, Hard, Soft, Pcss };
 
 struct Light {
@@ -132,7 +131,7 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<Instance> instances;
     std::vector<Light> lights;  // in the order of the KHR_lights_punctual `lights` array
-    std::optional<Camera> camera;  // as docs/scene-format.md picks it (node "camera", else the first camera)
+    std::optional<Camera> camera;  // node "camera", else the first camera (docs/scene-format.md)
     std::vector<Camera> cameras;   // every usable perspective camera of the glTF, in node order (the viewer's list)
     Aabb wsBounds;
     std::vector<std::string> warnings;  // one line each: things skipped while loading (e.g. line primitives)

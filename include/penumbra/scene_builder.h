@@ -31,8 +31,8 @@ Mesh makePlaneMesh(glm::vec2 size, uint32_t materialIndex, float uvScale = 1.0f)
 Mesh makeQuadMesh(glm::vec2 size, uint32_t materialIndex);  // XY quad at z=0 facing +Z, uv (0,0) top-left
 Mesh makeCylinderMesh(float radius, float height, uint32_t materialIndex, int segments = 32);  // y in [0, height]
 
-// Lights: directions are where the light travels; they are normalized here. Shadow settings take the glTF
-// extras' defaults of docs/scene-format.md (soft, strength 1, near plane 0 directional / 0.1 spot and point).
+// Lights: directions are where the light travels; they are normalized here. Shadow settings take
+// the glTF extras' defaults (soft, strength 1, near plane 0 directional / 0.1 spot and point).
 Light makeDirectionalLight(glm::vec3 wsDirection, float intensityLux, glm::vec3 color = glm::vec3(1));
 Light makeSpotLight(glm::vec3 wsPosition, glm::vec3 wsDirection, float intensityCandela, float range,
                     float outerConeRadians, float innerConeRadians);

@@ -1,5 +1,5 @@
 #pragma once
-// All settings of one render: the pipeline asset ("shadows") plus "render" (docs/settings.md).
+// All settings of one render: the "shadows" and "render" blocks of the settings JSON (docs/settings.md).
 #include <string>
 #include <vector>
 
@@ -26,7 +26,7 @@ Settings parseSettingsJson(const std::string& jsonText, const std::string& origi
 Settings loadSettingsFile(const std::string& path);
 // Applies one "dotted.key=value" override (the CLI's --set) with the same validation.
 void applySettingOverride(Settings& settings, const std::string& assignment);
-// Validates ranges (docs/settings.md); throws Error naming the first bad key.
+// Validates ranges (settings_keys.h); throws Error naming the first bad key.
 void validateSettings(const Settings& settings);
 
 // Defaults that depend on the scene, for keys not in settings.userKeys. Today one:

@@ -1,7 +1,8 @@
 #pragma once
-// Every key of the settings JSON in one table: its type, its allowed range and the field of Settings it
-// sets. The JSON and --set parser, validation, settingsToJson and penumbra-viewer's inspector all read
-// this table, so the ranges an inspector offers are the ranges validation accepts.
+// Every key of the settings JSON in one table: its type, its allowed range, what it does and the field
+// of Settings it sets. The JSON and --set parser, validation, settingsToJson, penumbra-viewer's
+// inspector and the settings reference (`penumbra settings --markdown`, docs/settings.md) all read this
+// table, so the ranges an inspector offers are the ranges validation accepts and the ones documented.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct SettingKey {
     bool minExclusive = false;
     std::vector<std::string> choices;  // Choice: names in enumerator order
     std::string allowed;               // the range as messages give it: "1..4", "hard, soft, dither"
+    std::string description;           // what the key does, one paragraph (docs/settings.md is made from it)
     // The value of element `i` (0, or 0..2 for Ratios) as a number: floats and integers as they are,
     // Bool 0 / 1, Choice the enumerator's index.
     double (*get)(const Settings&, size_t i) = nullptr;

@@ -1,6 +1,5 @@
 #pragma once
-// The shadow part of the pipeline settings (the "shadows" block, docs/settings.md), after the settings of
-// Catlike Coding "Directional Shadows" (Shadow Settings, Cascaded Shadow Maps > Settings, Shadow Quality).
+// The shadow part of the settings (the "shadows" block of the settings JSON, docs/settings.md).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -13,21 +12,18 @@ enum class CascadeBlend { Hard, Soft, Dither };
 // How shadow depth is rasterized: the hardware pipeline, compute shaders (fast where few
 // SMs run graphics, e.g. NVIDIA H100/H200), or whichever the first frames measure faster.
 enum class ShadowRaster { Hw, Compute, Auto };
-// How the lit pass keeps surfaces from shadowing themselves (shaders/shadow_bias.glsl): a constant normal
-// offset (Catlike Coding "Directional Shadows", Normal Bias), a normal offset scaled by sin(N, L), or
-// receiver plane depth bias (Isidoro, "Shadow Mapping: GPU-based Tips and Techniques", GDC 2006).
+// How the lit pass keeps surfaces from shadowing themselves (shaders/shadow_bias.glsl):
+// a constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
 // Every light's shadowNormalBias multiplies the automatic amount, its shadowBias adds a slope-scale bias.
 enum class ShadowBiasMode { Normal, ScaledNormal, ReceiverPlane };
-// How cascades are fitted: a culling sphere around the frustum slice ("Directional Shadows", Culling
-// Spheres), or tight to what the frame shows (a depth reduction: the visible surfaces' light-space bounds
-// per slice, as "Sample Distribution Shadow Maps", Lauritzen et al. 2011).
+// How cascades are fitted: a culling sphere around the frustum slice, or
+// tight to what the frame shows (a depth reduction: the visible surfaces' light-space bounds per slice).
 enum class CascadeFit { Sphere, Tight };
-// Where cascades split: fixed ratios of the shadow distance (cascadeRatios), logarithmic, or the "practical"
-// blend lambda * log + (1 - lambda) * uniform over the depth range (the visible one with the tight fit).
+// Where cascades split: given ratios of the shadow distance, logarithmic, or the "practical" blend
+// lambda * log + (1 - lambda) * uniform over the depth range (the visible one with the tight fit).
 enum class CascadeSplitMode { Manual, Log, Practical };
-// The distance fade: linear in view depth over the last distanceFade of the shadow distance ("Directional
-// Shadows", Fading Shadows), or Unity URP's (GetMainLightShadowFade), linear in the squared camera
-// distance over the same band.
+// The distance fade: linear in view depth over the last distanceFade of the shadow distance, or
+// Unity URP's, linear in the squared camera distance over the same band.
 enum class ShadowFadeMode { Linear, Squared };
 
 struct DirectionalShadowSettings {
@@ -45,10 +41,9 @@ struct DirectionalShadowSettings {
 struct SpotShadowSettings {
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF5x5;
-    // Constant clip-space depth bias of spot/point receivers (Catlike Coding "Spotlight Shadows", Shadow
-    // Bias), 0..1, subtracted from the receiver's clip z before the divide. 0 by default: the lights'
-    // shadowNormalBias (default 1 = one filter-texel diagonal at the fragment's distance) is the default
-    // bias, the better one on spot and point lights as measured here. Measured
+    // Constant clip-space depth bias of spot/point receivers, 0..1, subtracted from the
+    // receiver's clip z before the divide. 0 by default: the lights' shadowNormalBias (default 1 =
+    // one filter-texel diagonal at the fragment's distance) is the default bias. Measured
     // (lavapipe; canonical scenes at 256x144 via `penumbra compare`, misclassified % / MAE):
     //   normal bias 1, depthBias 0:      spot soft 0.344 / 0.0064, spot hard 0.156 / 0.0025, point 0.425 / 0.0067
     //   normal bias 0, depthBias 0.002:  0.025 / 0.0051, 0.078 / 0.0015, point 0.177 / 0.0820 (faint acne)
@@ -94,7 +89,7 @@ std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
 const char* shadowRasterName(ShadowRaster raster);
 std::optional<ShadowRaster> parseShadowRaster(const std::string& name);
 
-// Checks the ranges of docs/settings.md; throws Error naming the first bad key with its allowed range, e.g.
+// Checks the ranges of settings_keys.h; throws Error naming the first bad key with its allowed range, e.g.
 // "settings: shadows.directional.cascadeCount = 7 is out of range (allowed 1..4)".
 void validateShadowSettings(const ShadowSettings& settings);
 

@@ -72,14 +72,35 @@ SceneTotals sceneTotals(const Scene& scene) {
     return totals;
 }
 
-void printProgress(uint32_t done, uint32_t total) {
-    const int width = 40;
-    const int filled = int(double(done) / double(std::max(total, 1u)) * width);
-    std::printf("\r[%s%s] %u/%u frames", std::string(size_t(filled), '#').c_str(),
-                std::string(size_t(width - filled), ' ').c_str(), done, total);
-    if (done == total) std::printf("\r%*s\r", width + 32, "");
-    std::fflush(stdout);
-}
+// "[####    ] 17/100 frames" on stdout, redrawn in place, only for an interactive terminal. The line
+// is erased when the bar goes away, also when a frame throws, so the report or the error message
+// that follows starts on a line of its own.
+class ProgressBar {
+public:
+    explicit ProgressBar(uint32_t total) : show_(isatty(STDOUT_FILENO) == 1), total_(std::max(total, 1u)) {}
+    ~ProgressBar() {
+        if (!drawn_) return;
+        std::printf("\r%*s\r", kWidth + 32, "");
+        std::fflush(stdout);
+    }
+    ProgressBar(const ProgressBar&) = delete;
+    ProgressBar& operator=(const ProgressBar&) = delete;
+
+    void update(uint32_t done) {
+        if (!show_) return;
+        const int filled = int(double(done) / double(total_) * kWidth);
+        std::printf("\r[%s%s] %u/%u frames", std::string(size_t(filled), '#').c_str(),
+                    std::string(size_t(kWidth - filled), ' ').c_str(), done, total_);
+        std::fflush(stdout);
+        drawn_ = true;
+    }
+
+private:
+    static constexpr int kWidth = 40;
+    bool show_;
+    uint32_t total_;
+    bool drawn_ = false;
+};
 
 struct Measurements {
     std::map<std::string, Series> passes;
@@ -147,13 +168,13 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
                         const Settings& settings, const CameraView& start, uint64_t& frame) {
     const Scene& scene = renderer.scene();
     const std::vector<Light> originalLights = scene.lights;
-    const bool progress = isatty(STDOUT_FILENO);
     TimedRun run;
     run.before = device.liveObjects();
     run.rssFirst = hostRssMegabytes();
     run.deviceFirst = deviceMegabytes(device);
     Settings current = settings;
     uint32_t step = 0, shadowedLights = 0;
+    ProgressBar progress(bench.frames);
     for (uint32_t i = 0; i < bench.frames; ++i) {
         if (bench.varyPeriod > 0 && i % bench.varyPeriod == 0) {
             step = (i / bench.varyPeriod) % uint32_t(benchVariations().size());
@@ -167,7 +188,7 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
         }
         if (bench.varyPeriod > 0 && (i + 1) % bench.varyPeriod == 0)
             run.samples.push_back({i + 1, step, hostRssMegabytes(), deviceMegabytes(device), shadowedLights});
-        if (progress && (i % 8 == 0 || i + 1 == bench.frames)) printProgress(i + 1, bench.frames);
+        if (i % 8 == 0 || i + 1 == bench.frames) progress.update(i + 1);
     }
     renderer.waitIdle();
     for (const FrameStats& stats : renderer.takeCompletedFrames()) run.measured.add(stats);

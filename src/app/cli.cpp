@@ -8,6 +8,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "penumbra/version.h"
 
 namespace penumbra {
 
@@ -29,7 +30,7 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("--model", options.model, "the glTF that gen:field copies (default: assimp's 2CylinderEngine)");
     command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
-    command.add_option("--settings", options.settingsPath, "settings JSON file (docs/settings.md)");
+    command.add_option("--settings", options.settingsPath, "settings JSON file (docs/settings.md lists the keys)");
     command.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
     command.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
     command.add_option("--raster", options.raster, "shadow-map rasterizer: hw | compute | auto (= shadows.raster)")
@@ -46,6 +47,7 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
 int runCli(int argc, char** argv) {
     CLI::App app{"penumbra: real-time shadow rendering (cascaded and spot-light shadow maps) on Vulkan"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION_STRING, "print the version and exit");
 
     RenderOptions renderOptions;
     CLI::App* render = app.add_subcommand("render", "render a scene to a PNG (colour or a debug AOV)");
@@ -102,11 +104,20 @@ int runCli(int argc, char** argv) {
     diff->add_option("a", diffA, "first PNG")->required();
     diff->add_option("b", diffB, "second PNG")->required();
 
+    bool settingsMarkdown = false, settingsJson = false;
+    CLI::App* settingsCommand =
+        app.add_subcommand("settings", "print the settings reference (docs/settings.md) or the default settings");
+    CLI::Option* markdownFlag =
+        settingsCommand->add_flag("--markdown", settingsMarkdown, "every key, its range, default and meaning, as Markdown (the default)");
+    settingsCommand->add_flag("--json", settingsJson, "every key's default, as a settings JSON file")->excludes(markdownFlag);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         // A user error like any other: one line, exit code 1 (CLI11's own exit codes are not ours).
@@ -124,6 +135,7 @@ int runCli(int argc, char** argv) {
         if (*devices) return runDevicesCommand();
         if (*exporter) return runExportCommand(exportOptions);
         if (*diff) return runDiffCommand(diffA, diffB);
+        if (*settingsCommand) return runSettingsCommand(settingsJson);
     } catch (const Error& e) {
         printError("", e.what());
         return 1;

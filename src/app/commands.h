@@ -65,5 +65,8 @@ int runDevicesCommand();
 // Writes the scene the options name (a file, the demo or a gen: scene) as .gltf or .glb.
 int runExportCommand(const RenderOptions& options);
 int runDiffCommand(const std::string& pathA, const std::string& pathB);
+// The settings reference (docs/settings.md) as Markdown, or with `json` every key's default as a
+// settings file; both made from the key table.
+int runSettingsCommand(bool json);
 
 }  // namespace penumbra

@@ -78,7 +78,7 @@ int runCompareCommand(const RenderOptions& options) {
     if (options.json)
         std::printf("%s\n", (options.shimmer ? toJson(metrics, shimmer) : toJson(metrics)).c_str());
     else
-        std::printf("%s%s\n", toText(metrics).c_str(), options.shimmer ? toText(shimmer).c_str() : "");
+        std::printf("%s%s", toText(metrics).c_str(), options.shimmer ? toText(shimmer).c_str() : "");  // lines end in \n
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
     return 0;

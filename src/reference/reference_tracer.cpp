@@ -169,12 +169,14 @@ private:
     float epsilon_ = 0.0f;
 };
 
-// Prints "reference: NN%" on stderr as rows complete, only for an interactive terminal.
+// Prints "reference: NN%" on stderr as rows complete, only for an interactive terminal, and ends the
+// line when the trace ends: finished (at 100 %), cancelled or failed, so the next message starts on a
+// line of its own.
 class Progress {
 public:
     Progress(bool show, uint32_t total) : show_(show && isatty(STDERR_FILENO) == 1), total_(total) {}
     ~Progress() {
-        if (show_) std::fprintf(stderr, "\rreference: 100%%\n");
+        if (show_ && lastPercent_ >= 0) std::fputc('\n', stderr);
     }
     void rowsDone(uint32_t rows) {
         if (!show_) return;

@@ -44,66 +44,139 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 SettingKey choice(const char* key, std::vector<std::string> names, double (*get)(const Settings&, size_t),
-                  void (*set)(Settings&, size_t, double)) {
+                  void (*set)(Settings&, size_t, double), std::string description) {
     SettingKey setting{key, SettingType::Choice, 0.0, double(names.size() - 1)};
     setting.allowed = joined(names);
     setting.choices = std::move(names);
+    setting.description = std::move(description);
     setting.get = get;
     setting.set = set;
     return setting;
 }
 
 SettingKey ranged(const char* key, SettingType type, double min, double max, const char* allowed,
-                  double (*get)(const Settings&, size_t), void (*set)(Settings&, size_t, double)) {
+                  double (*get)(const Settings&, size_t), void (*set)(Settings&, size_t, double), std::string description) {
     SettingKey setting{key, type, min, max};
     setting.allowed = allowed;
+    setting.description = std::move(description);
     setting.get = get;
     setting.set = set;
     return setting;
 }
 
-// The original pipeline-asset keys first, then those added since; validation reports the first bad one.
+SettingKey flag(const char* key, double (*get)(const Settings&, size_t), void (*set)(Settings&, size_t, double),
+                std::string description) {
+    return ranged(key, SettingType::Bool, 0, 1, "true, false", get, set, std::move(description));
+}
+
+// The two atlases' keys: their size and the filter of their lights' soft shadows.
+SettingKey atlasSizeKey(const char* key, double (*get)(const Settings&, size_t), void (*set)(Settings&, size_t, double),
+                        const char* holds) {
+    return ranged(key, SettingType::PowerOfTwo, 256, 8192, "a power of two in 256..8192", get, set,
+                  std::string("Side in texels of the ") + holds);
+}
+
+SettingKey filterKey(const char* key, double (*get)(const Settings&, size_t), void (*set)(Settings&, size_t, double),
+                     const char* lights) {
+    return choice(key, kFilters, get, set,
+                  std::string("The filter of ") + lights +
+                      " with `shadows: \"soft\"`: one hardware 2x2 PCF tap, or a 3x3, 5x5 or 7x7 tent filter.");
+}
+
+// The shadow keys first, then "render"; validation reports the first bad one in this order, and
+// docs/settings.md lists them in it.
 std::vector<SettingKey> makeTable() {
     std::vector<SettingKey> t;
-    t.push_back(choice("shadows.bias", {"normal", "scaledNormal", "receiverPlane"}, PENUMBRA_FIELD(shadows.bias)));
-    t.push_back(choice("shadows.fadeMode", {"linear", "squared"}, PENUMBRA_FIELD(shadows.fadeMode)));
-    t.push_back(ranged("shadows.maxDistance", SettingType::Number, 0.001, kHuge, ">= 0.001", PENUMBRA_FIELD(shadows.maxDistance)));
-    t.push_back(ranged("shadows.distanceFade", SettingType::Number, 0.001, 1.0, "0.001..1", PENUMBRA_FIELD(shadows.distanceFade)));
-    t.push_back(ranged("shadows.screenSpace", SettingType::Bool, 0, 1, "true, false", PENUMBRA_FIELD(shadows.screenSpace)));
-    t.push_back(choice("shadows.raster", {"hw", "compute", "auto"}, PENUMBRA_FIELD(shadows.raster)));
-    t.push_back(ranged("shadows.cacheTiles", SettingType::Bool, 0, 1, "true, false", PENUMBRA_FIELD(shadows.cacheTiles)));
-    t.push_back(ranged("shadows.directional.atlasSize", SettingType::PowerOfTwo, 256, 8192, "a power of two in 256..8192",
-                       PENUMBRA_FIELD(shadows.directional.atlasSize)));
-    t.push_back(choice("shadows.directional.filter", kFilters, PENUMBRA_FIELD(shadows.directional.filter)));
+    t.push_back(choice("shadows.bias", {"normal", "scaledNormal", "receiverPlane"}, PENUMBRA_FIELD(shadows.bias),
+                       "How the lit pass keeps a surface from shadowing itself: `normal` offsets the receiver along its "
+                       "normal by a constant number of texels, `scaledNormal` scales that offset by the sine of the "
+                       "angle between normal and light, `receiverPlane` compares every texel a filter reads with the "
+                       "depth of the receiver's plane at that texel's centre. A light's `shadowNormalBias` multiplies the "
+                       "automatic amount and its `shadowBias` adds a slope-scale term."));
+    t.push_back(choice("shadows.fadeMode", {"linear", "squared"}, PENUMBRA_FIELD(shadows.fadeMode),
+                       "How shadows fade out over the last `distanceFade` of the shadow distance: `linear` in view "
+                       "depth, or `squared` (Unity URP's) linear in the squared distance to the camera."));
+    t.push_back(ranged("shadows.maxDistance", SettingType::Number, 0.001, kHuge, ">= 0.001", PENUMBRA_FIELD(shadows.maxDistance),
+                       "The shadow distance in scene units: nothing farther from the camera (or beyond its far plane, "
+                       "when nearer) receives a directional shadow, and the cascades split this range. When it is not "
+                       "set and the scene lies wholly beyond 100 units of the camera or within 1 unit, the programs "
+                       "use the distance to the scene's farthest corner instead, with a warning."));
+    t.push_back(ranged("shadows.distanceFade", SettingType::Number, 0.001, 1.0, "0.001..1", PENUMBRA_FIELD(shadows.distanceFade),
+                       "The share of the shadow distance, at its far end, over which shadows fade out."));
+    t.push_back(flag("shadows.screenSpace", PENUMBRA_FIELD(shadows.screenSpace),
+                       "Screen-space shadows for the main directional light, as in Unity URP: a depth and normal "
+                       "prepass, then a full-screen pass writes the light's shadow term, which the lit pass reads."));
+    t.push_back(choice("shadows.raster", {"hw", "compute", "auto"}, PENUMBRA_FIELD(shadows.raster),
+                       "How shadow depth is rasterized: `hw` by the graphics pipeline, `compute` by compute shaders "
+                       "(fast where few SMs run graphics, e.g. NVIDIA H100 / H200), `auto` by whichever the first "
+                       "frames measure faster. Both give the same shadow term."));
+    t.push_back(flag("shadows.cacheTiles", PENUMBRA_FIELD(shadows.cacheTiles),
+                       "A shadow tile whose projection, cascade spheres, casters and rasterizer did not change since the "
+                       "last frame keeps its depth and is not drawn again."));
+    t.push_back(atlasSizeKey("shadows.directional.atlasSize", PENUMBRA_FIELD(shadows.directional.atlasSize),
+                             "directional shadow atlas, shared by up to 4 shadowed directional lights times "
+                             "`cascadeCount` cascades."));
+    t.push_back(filterKey("shadows.directional.filter", PENUMBRA_FIELD(shadows.directional.filter), "directional lights"));
     t.push_back(ranged("shadows.directional.cascadeCount", SettingType::Integer, 1, 4, "1..4",
-                       PENUMBRA_FIELD(shadows.directional.cascadeCount)));
+                       PENUMBRA_FIELD(shadows.directional.cascadeCount), "Cascades per directional light."));
     t.push_back(ranged(
         "shadows.directional.cascadeRatios", SettingType::Ratios, 0.0, 1.0, "0..1",
         [](const Settings& s, size_t i) { return double(s.shadows.directional.cascadeRatios.at(i)); },
-        [](Settings& s, size_t i, double v) { s.shadows.directional.cascadeRatios.at(i) = float(v); }));
+        [](Settings& s, size_t i, double v) { s.shadows.directional.cascadeRatios.at(i) = float(v); },
+        "With `cascadeSplits: \"manual\"`: where the first three cascades end, as shares of the shadow "
+        "distance; they must not decrease."));
     t.push_back(ranged("shadows.directional.cascadeFade", SettingType::Number, 0.001, 1.0, "0.001..1",
-                       PENUMBRA_FIELD(shadows.directional.cascadeFade)));
+                       PENUMBRA_FIELD(shadows.directional.cascadeFade),
+                       "The share at the end of each cascade over which it blends into the next (`cascadeBlend`) and "
+                       "the last cascade fades out."));
     t.push_back(choice("shadows.directional.cascadeBlend", {"hard", "soft", "dither"},
-                       PENUMBRA_FIELD(shadows.directional.cascadeBlend)));
-    t.push_back(choice("shadows.directional.fit", {"sphere", "tight"}, PENUMBRA_FIELD(shadows.directional.fit)));
+                       PENUMBRA_FIELD(shadows.directional.cascadeBlend),
+                       "How one cascade gives way to the next: `hard` switches, `soft` mixes the two cascades' samples, "
+                       "`dither` picks one of the two per pixel by interleaved gradient noise."));
+    t.push_back(choice("shadows.directional.fit", {"sphere", "tight"}, PENUMBRA_FIELD(shadows.directional.fit),
+                       "How cascades are fitted: `sphere` around each slice's culling sphere (stable under camera "
+                       "rotation), `tight` to the surfaces the frame shows (a reduction of the view's depth: the visible "
+                       "depth range and each slice's light-space bounds, snapped to whole texels)."));
     t.push_back(choice("shadows.directional.cascadeSplits", {"manual", "log", "practical"},
-                       PENUMBRA_FIELD(shadows.directional.cascadeSplits)));
+                       PENUMBRA_FIELD(shadows.directional.cascadeSplits),
+                       "Where cascades split: `manual` at `cascadeRatios`, `log` logarithmically over the depth range, "
+                       "`practical` at `splitLambda` x log + (1 - `splitLambda`) x uniform."));
     t.push_back(ranged("shadows.directional.splitLambda", SettingType::Number, 0.0, 1.0, "0..1",
-                       PENUMBRA_FIELD(shadows.directional.splitLambda)));
-    t.push_back(ranged("shadows.spot.atlasSize", SettingType::PowerOfTwo, 256, 8192, "a power of two in 256..8192",
-                       PENUMBRA_FIELD(shadows.spot.atlasSize)));
-    t.push_back(choice("shadows.spot.filter", kFilters, PENUMBRA_FIELD(shadows.spot.filter)));
-    t.push_back(ranged("shadows.spot.depthBias", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(shadows.spot.depthBias)));
-    SettingKey exposure = ranged("render.exposure", SettingType::Number, 0.0, kHuge, "> 0", PENUMBRA_FIELD(render.exposure));
+                       PENUMBRA_FIELD(shadows.directional.splitLambda),
+                       "With `cascadeSplits: \"practical\"`: the weight of the logarithmic split."));
+    t.push_back(atlasSizeKey("shadows.spot.atlasSize", PENUMBRA_FIELD(shadows.spot.atlasSize),
+                             "atlas of spot and point light shadows: up to 16 tiles, one per spot light and six per "
+                             "point light."));
+    t.push_back(filterKey("shadows.spot.filter", PENUMBRA_FIELD(shadows.spot.filter), "spot and point lights"));
+    t.push_back(ranged("shadows.spot.depthBias", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(shadows.spot.depthBias),
+                       "An extra constant clip-space depth bias of spot and point shadow maps, on top of `shadows.bias`."));
+    SettingKey exposure = ranged("render.exposure", SettingType::Number, 0.0, kHuge, "> 0", PENUMBRA_FIELD(render.exposure),
+                                 "Scales linear radiance before tone mapping and sRGB encoding.");
     exposure.minExclusive = true;
     t.push_back(exposure);
-    t.push_back(ranged("render.ambient", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(render.ambient)));
-    t.push_back(choice("render.lightCulling", {"clustered", "none"}, PENUMBRA_FIELD(render.lightCulling)));
-    t.push_back(choice("render.viewCulling", {"occlusion", "frustum", "none"}, PENUMBRA_FIELD(render.viewCulling)));
-    t.push_back(ranged("render.meshletCulling", SettingType::Bool, 0, 1, "true, false", PENUMBRA_FIELD(render.meshletCulling)));
-    t.push_back(choice("render.mainView", {"forward", "visibility", "auto"}, PENUMBRA_FIELD(render.mainView)));
-    t.push_back(choice("render.toneMapping", {"none", "neutral", "aces"}, PENUMBRA_FIELD(render.toneMapping)));
-    t.push_back(choice("render.background", {"gradient", "black"}, PENUMBRA_FIELD(render.background)));
+    t.push_back(ranged("render.ambient", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(render.ambient),
+                       "A constant ambient term, as a fraction of the base colour."));
+    t.push_back(choice("render.lightCulling", {"clustered", "none"}, PENUMBRA_FIELD(render.lightCulling),
+                       "How the lit pass finds a pixel's spot and point lights: `clustered` loops over the lights of the "
+                       "pixel's view-space cluster only, `none` over every light. The image is the same."));
+    t.push_back(choice("render.viewCulling", {"occlusion", "frustum", "none"}, PENUMBRA_FIELD(render.viewCulling),
+                       "How the visibility-buffer main view culls its instances on the GPU: `frustum` against the camera "
+                       "frustum, `occlusion` also against a depth pyramid in two phases, `none` not at all. The image is "
+                       "the same; the forward pass draws every instance."));
+    t.push_back(flag("render.meshletCulling", PENUMBRA_FIELD(render.meshletCulling),
+                       "The compute rasterizers skip meshlets outside the view or the shadow tile, and main-view "
+                       "meshlets that face away from the camera. The image is the same."));
+    t.push_back(choice("render.mainView", {"forward", "visibility", "auto"}, PENUMBRA_FIELD(render.mainView),
+                       "How the main view is drawn: `forward` by the graphics pipeline, `visibility` through a compute "
+                       "visibility buffer (needs 64-bit buffer atomics), `auto` by whichever the first frames measure "
+                       "faster on a GPU; on a CPU device `auto` draws forward."));
+    t.push_back(choice("render.toneMapping", {"none", "neutral", "aces"}, PENUMBRA_FIELD(render.toneMapping),
+                       "How exposed radiance becomes display values: `neutral` is Khronos PBR Neutral, `aces` "
+                       "Narkowicz's fit of the ACES filmic curve, `none` the linear values clamped to 1. The shadow and "
+                       "cascade AOVs are never tone mapped."));
+    t.push_back(choice("render.background", {"gradient", "black"}, PENUMBRA_FIELD(render.background),
+                       "What the colour image shows where no surface is: a sky gradient by view direction (exposed and "
+                       "tone mapped like the scene), or black."));
     return t;
 }
 

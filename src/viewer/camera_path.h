@@ -1,6 +1,6 @@
 #pragma once
 // A recorded camera path of penumbra-viewer (--camera-path plays one, P / --record-camera-path records
-// one): keyframes of time, position, rotation and vertical field of view, as JSON (README "Viewer").
+// one): keyframes of time, position, rotation and vertical field of view, as JSON (docs/viewer.md "Camera paths").
 // Pure CPU, no window, unit-tested.
 #include <string>
 #include <vector>

@@ -93,7 +93,14 @@ void drawSettingsInspector(PanelContext& c) {
             const double value = key.get(c.settings, i);
             const std::string elementLabel = key.type == SettingType::Ratios ? label + "[" + std::to_string(i) + "]" : label;
             const double chosen = keyWidget(key, i, value, elementLabel);
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s: %s", key.key, key.allowed.c_str());
+            if (ImGui::IsItemHovered()) {  // the key, its range and what it does (docs/settings.md's text)
+                ImGui::BeginTooltip();
+                ImGui::PushTextWrapPos(ImGui::GetFontSize() * 32.0f);
+                ImGui::Text("%s: %s", key.key, key.allowed.c_str());
+                ImGui::TextUnformatted(key.description.c_str());
+                ImGui::PopTextWrapPos();
+                ImGui::EndTooltip();
+            }
             if (chosen != value) {
                 const std::string error = applyInspectorEdit(c.settings, key, i, chosen);
                 if (!error.empty()) c.state.status = error;

@@ -15,7 +15,8 @@ Controls:
   W A S D      fly (fly camera); Q / E down / up; Shift faster; mouse wheel sets the speed
   right mouse  look around (fly) or orbit (orbit camera); middle mouse pans (orbit)
   O            orbit camera around the scene, F frames the scene (orbit)
-  C            next camera: the scene's (its own camera, else an automatic framing), then every glTF camera
+  C            next camera: the scene's (its node named camera, else its first camera, else an automatic
+               framing), then every glTF camera
                (the Penumbra panel's camera list picks one by name)
   P            start / stop recording the camera path (into --record-camera-path, else penumbra-camera-path.json)
   1 2 3 4 5 6  view: final, shadow term, cascades, atlas overlay, cascade frusta and culling spheres of the
@@ -48,7 +49,7 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     ViewerOptions options;
     std::string view = "final";
     app.add_option("scene", options.scenePath,
-                   "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S] or gen:boxes:N; the built-in demo scene if omitted");
+                   "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S[:P]] or gen:boxes:N[:P]; the built-in demo scene if omitted");
     app.add_option("--settings", options.settingsPath, "settings JSON file (the same as penumbra render --settings)");
     app.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
     app.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");

@@ -55,6 +55,25 @@ TEST(CliRender, RealGltfSampleRendersAndShowsGeometry) {
     EXPECT_GT(lit, image.pixels.size() / 10) << "the engine should cover a good part of the frame";
 }
 
+// A scene seen from 900 m: the maxDistance rule warns, in one line that ends with its newline (so the
+// next message starts a line of its own), and warns of nothing else.
+TEST(CliRender, MaxDistanceWarningIsOneWholeLine) {
+    std::ifstream cubeFile(std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/cube.gltf");
+    nlohmann::json cube = nlohmann::json::parse(cubeFile);
+    for (nlohmann::json& node : cube["nodes"])
+        if (node.value("name", "") == "camera")
+            for (int axis = 12; axis < 15; ++axis) node["matrix"][axis] = node["matrix"][axis].get<double>() * 100.0;
+    const fs::path scene = tempPath("far_camera.gltf");
+    std::ofstream(scene) << cube.dump();
+    const CliRun result = runPenumbra("render " + scene.string() + " -o " + tempPath("far.png").string() +
+                                      " --width 32 --height 24 --device cpu");
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_EQ(result.err.rfind("penumbra: warning: shadows.maxDistance is not set", 0), 0u) << result.err;
+    ASSERT_FALSE(result.err.empty());
+    EXPECT_EQ(result.err.back(), '\n') << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+}
+
 TEST(CliRender, StatsReportDeviceTimingsAndShadowTiles) {
     const CliRun result = runPenumbra("render -o " + tempPath("s.png").string() +
                                     " --width 96 --height 64 --device cpu --stats -");
