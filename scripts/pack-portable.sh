@@ -5,7 +5,7 @@
 # that lack one.
 #   scripts/pack-portable.sh [BUILD_DIR [DEST]]    (defaults: build/ and .portable/ of this checkout)
 # Run scripts/build.sh first. DEST is emptied, then holds:
-#   bin/      the programs
+#   bin/      the programs, without debug information
 #   lib/      their libraries, except glibc, libstdc++, libgcc_s and the Vulkan loader: the host's own
 #             are used, so they must be at least as new as this machine's (Debian 12: glibc 2.36, GCC 12)
 #   loaders/  libvulkan1 (.deb) of this machine's architecture
@@ -28,6 +28,8 @@ rm -rf "$dest"
 mkdir -p "$dest/bin" "$dest/lib" "$dest/loaders"
 find "$build" -maxdepth 3 -type f -perm -u+x -name 'penumbra*' ! -name '*.so*' -exec cp {} "$dest/bin/" \;
 [ -n "$(ls -A "$dest/bin")" ] || { echo "pack-portable.sh: no penumbra programs in $build" >&2; exit 1; }
+# Without their debug information the programs are a tenth of the size (what a device copy carries).
+strip --strip-debug "$dest"/bin/*
 
 for program in "$dest"/bin/*; do
     missing=$(ldd "$program" | grep 'not found' || true)
