@@ -9,7 +9,7 @@
 #                   libstdc++'s assertions (what the debug preset checks) on: every unit test, the
 #                   fuzz corpus replay (fuzz/corpus/), and the render tests where those checks add
 #                   something (error and fallback paths, object lifetimes, a representative render of
-#                   each path: the "checked" set below).
+#                   each path: the label "checked", chosen in tests/CMakeLists.txt).
 # The debug preset stays for local debugging (-O0); its checks run here through the asan preset.
 # PENUMBRA_TEST_STEPS=release or =asan runs one of the two.
 set -euo pipefail
@@ -20,11 +20,6 @@ export PENUMBRA_DEVICE=cpu
 steps=${PENUMBRA_TEST_STEPS:-release asan}
 start=$(date +%s)
 step() { echo "== scripts/test.sh: $* (at $(($(date +%s) - start)) s)"; }
-
-# Render tests the asan preset runs: every test of an error path, a fallback, a device fault, an
-# object's lifetime or the CLI's processes, and one representative render per main path (forward and
-# visibility buffer, compute and hardware shadow raster, spot and point shadows, cached tiles).
-checked_render_tests='^(DeviceFaults|CliErrors|CliRender|CliBench|CliReference|CliExport|FrameReadbackDeviceTest|SceneUpdateTest|PipelineReuseTest|CallerVulkan)\.|^PipelineVariantTest\.RendererDestroyed|^MeshletCullingTest\.ARendererOfTheComputeRasterizersLeavesNoObjectBehind|^PersistentFrameTest\.(TwoHundredChangingFrames|SteadyStateFrames)|^RenderTest\.(TextureOver|AtlasOver|OutputLarger|LightsBeyond|Degenerate|ZeroScale|SceneA|CameraView|SceneWith|LitPlane)|^VisibilityViewTest\.BlendedMaterialsAreDrawnForward|^ComputeRasterTest\.(AtlasDepthMatchesTheHardwarePath|OverflowingQueuesGrow)|^BothRasterizers/CachedTilesTest\.StillFrameDrawsNoTile|^ScreenSpaceShadowTest\.ResolvedShadowAovEqualsTheForwardPath'
 
 if [[ " $steps " == *" release "* ]]; then
   step "release build"
@@ -44,6 +39,6 @@ if [[ " $steps " == *" asan "* ]]; then
   step "asan: unit tests and fuzz corpus"
   ctest --preset asan -j "$jobs" -L 'unit|fuzz'
   step "asan: checked render tests"
-  ctest --preset asan -j "$jobs" -R "$checked_render_tests"
+  ctest --preset asan -j "$jobs" -L checked
 fi
 step "done"

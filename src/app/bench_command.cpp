@@ -310,8 +310,11 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     checkWritable(bench.jsonPath);
     const Settings userSettings = loadSettings(options);
     Device device(deviceOptionsFor(options));
+    // The warm-up frames build the pipelines that fixed settings need (on demand); --vary-settings
+    // reaches every lit-pass variant, so those are all built first, on the worker thread.
+    const bool varies = bench.varyPeriod > 0;
     RendererOptions rendererOptions;
-    rendererOptions.warmup = PipelineWarmup::Background;
+    rendererOptions.warmup = varies ? PipelineWarmup::Background : PipelineWarmup::OnDemand;
     Renderer renderer(device, loadSceneFor(options), rendererOptions);
     const Scene& scene = renderer.scene();
     RenderRequest request = makeRenderRequest(options);
@@ -322,7 +325,7 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     uint64_t frame = 0;
     for (uint32_t i = 0; i < bench.warmup; ++i)
         renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
-    renderer.buildAllPipelines();  // the timed frames use the specialized variants
+    if (varies) renderer.buildAllPipelines();  // the timed frames use the specialized variants
     renderer.waitIdle();
     renderer.takeCompletedFrames();
     const TimedRun run = runTimedFrames(device, renderer, bench, request, settings, start, frame);
