@@ -8,6 +8,7 @@
 #include "lighting.glsl"
 #include "light_clusters.glsl"
 #include "shadows.glsl"
+#include "sky_light.glsl"
 
 // The main directional light's shadow term from the screen-space resolve (shadows.screenSpace), when enabled.
 layout(set = 0, binding = 9) uniform sampler2D screenSpaceShadows;
@@ -78,7 +79,8 @@ vec4 shadeSurface(SurfaceInput s) {
                                         (material.flags.y & kMaterialReceiveShadows) != 0u, s.blendPass, frame.counts.z);
     uint outputMode = pixel.outputMode;
 
-    vec3 radiance = frame.params.y * s.baseColor.rgb;
+    // The ambient sky light (render.ambient, sky_light.glsl), unshadowed; then every light.
+    vec3 radiance = ambientRadiance(s.wsNormal, s.baseColor.rgb, frame.params.y);
     float aovShadow = 1.0;
     int aovCascade = -1;
     for (uint i = 0u; i < frame.counts.x; ++i) radiance += shadeLight(i, pixel, aovShadow, aovCascade);

@@ -46,7 +46,10 @@ std::optional<Background> parseBackground(const std::string& name);
 
 struct RenderSettings {
     float exposure = 1.0f;  // linear scale applied before sRGB encoding
-    float ambient = 0.03f;  // constant ambient light, as a fraction of base colour
+    // The ambient sky light: a hemisphere light with the background gradient's sky and ground
+    // (shaders/sky_light.glsl), unshadowed, times base colour. 0 = no ambient light at all; 1 = the
+    // sky as bright as the gradient the camera sees.
+    float ambient = 0.5f;
     LightCulling lightCulling = LightCulling::Clustered;
     MainView mainView = MainView::Auto;
     ViewCulling viewCulling = ViewCulling::Frustum;  // occlusion measured slower where little is hidden (docs/performance.md)

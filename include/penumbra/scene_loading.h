@@ -1,5 +1,6 @@
 #pragma once
-// Where scenes come from: a glTF 2.0 file, the built-in demo scene, or a built-in scale scene.
+// Where scenes come from: a glTF 2.0 file, the built-in demo scene, or a built-in scale scene, with
+// what the loading may add to them (a default sun, a ground plane).
 #include <cstdint>
 #include <string>
 
@@ -15,6 +16,7 @@ inline constexpr const char* kDefaultFieldModel =
 struct SceneSourceOptions {
     std::string model = kDefaultFieldModel;  // the glTF that gen:field copies
     bool addDefaultSun = true;               // a scene without lights gets a sun (and a warning)
+    bool addGround = false;                  // addGroundPlane (the CLI's and the viewer's --ground)
 };
 
 // `source`: "" = the built-in demo scene; "gen:field:N[:S]" = N copies of the model on a square grid
@@ -23,6 +25,16 @@ struct SceneSourceOptions {
 // path. Warnings (skipped primitives, the default sun) go to Scene::warnings. Bad input throws
 // penumbra::Error with one line.
 Scene loadScene(const std::string& source, const SceneSourceOptions& options = {});
+
+// Puts a ground under the scene, for a lone model that would otherwise float in the sky: a square
+// of 4x the scene's larger horizontal extent, centred under its bounds, facing up a hair (1e-4 of
+// that extent) below their lowest point, so that a floor of the scene's own at that height stays in
+// front of it instead of fighting it in the depth test. Opaque, single-sided, matte neutral grey
+// (base colour 0.5, metallic 0, roughness 1); it receives shadows but casts none (it is below
+// everything). The renderer and the ray-traced reference both see it, as any other instance.
+// A scene without a camera is given the automatic framing of its bounds before the plane grows
+// them, so it is seen as it was. Throws penumbra::Error for a scene without geometry.
+void addGroundPlane(Scene& scene);
 
 Scene loadGltfScene(const std::string& path);
 Scene makeDemoScene();

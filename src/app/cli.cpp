@@ -23,11 +23,14 @@ void printError(const std::string& prefix, const char* message) {
     std::fprintf(stderr, "penumbra: %s%s\n", prefix.c_str(), line.c_str());
 }
 
+constexpr const char* kGroundHelp = "add a grey ground plane under the scene (4x its width, at its lowest point)";
+
 // Options every command that renders shares.
 void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("scene", options.scenePath,
                        "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S[:P]] or gen:boxes:N[:P]; the built-in demo scene if omitted");
     command.add_option("--model", options.model, "the glTF that gen:field copies (default: assimp's 2CylinderEngine)");
+    command.add_flag("--ground", options.ground, kGroundHelp);
     command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--settings", options.settingsPath, "settings JSON file (docs/settings.md lists the keys)");
@@ -95,6 +98,7 @@ int runCli(int argc, char** argv) {
     CLI::App* exporter = app.add_subcommand("export", "write a scene (file, demo or gen:) as glTF 2.0 (.gltf or .glb)");
     exporter->add_option("scene", exportOptions.scenePath, "scene to write; the built-in demo scene if omitted");
     exporter->add_option("--model", exportOptions.model, "the glTF that gen:field copies");
+    exporter->add_flag("--ground", exportOptions.ground, kGroundHelp);
     exporter->add_option("-o,--output", exportOptions.outputPath, "output .gltf or .glb")->required();
 
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");

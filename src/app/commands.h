@@ -16,6 +16,7 @@ namespace penumbra {
 struct RenderOptions {
     std::string scenePath;  // empty: built-in demo scene; gen:field:N[:S[:P]], gen:boxes:N[:P]: built-in scale scenes
     std::string model;      // the glTF gen:field copies (empty: the default engine model)
+    bool ground = false;    // --ground: addGroundPlane under the scene
     uint32_t width = 1280;
     uint32_t height = 720;
     std::string settingsPath;

@@ -18,6 +18,7 @@ namespace penumbra {
 Scene loadSceneFor(const RenderOptions& options) {
     SceneSourceOptions source;
     if (!options.model.empty()) source.model = options.model;
+    source.addGround = options.ground;
     Scene scene = loadScene(options.scenePath, source);
     for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     return scene;

@@ -25,6 +25,7 @@ Scene loadScene(const std::string& source, const SceneSourceOptions& options) {
     if (options.addDefaultSun && addDefaultSunIfUnlit(scene))
         scene.warnings.push_back((source.empty() ? std::string("the scene") : source) +
                                  " has no lights; added a default sun as light 0");
+    if (options.addGround) addGroundPlane(scene);
     validateScene(scene);
     return scene;
 }

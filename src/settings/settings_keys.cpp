@@ -155,7 +155,9 @@ std::vector<SettingKey> makeTable() {
     exposure.minExclusive = true;
     t.push_back(exposure);
     t.push_back(ranged("render.ambient", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(render.ambient),
-                       "A constant ambient term, as a fraction of the base colour."));
+                       "An unshadowed sky light: the background gradient's irradiance (a hemisphere light fitted to it, "
+                       "`shaders/sky_light.glsl`) times the base colour, scaled by this; 0 turns it off. "
+                       "The shadow and cascades AOVs never include it."));
     t.push_back(choice("render.lightCulling", {"clustered", "none"}, PENUMBRA_FIELD(render.lightCulling),
                        "How the lit pass finds a pixel's spot and point lights: `clustered` loops over the lights of the "
                        "pixel's view-space cluster only, `none` over every light. The image is the same."));

@@ -23,8 +23,8 @@ FileWatcher watcherFor(const std::string& source, uint32_t pollMs) {
     return FileWatcher(isFile(source) ? source : std::string(), std::chrono::milliseconds(pollMs));
 }
 
-Scene loadSceneWithWarnings(const std::string& source) {
-    Scene scene = loadScene(source);
+Scene loadSceneWithWarnings(const std::string& source, const SceneSourceOptions& loading) {
+    Scene scene = loadScene(source, loading);
     for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra-viewer: warning: %s\n", warning.c_str());
     return scene;
 }
@@ -35,10 +35,11 @@ std::string labelOf(const std::string& source) { return source.empty() ? "the de
 
 Camera startCamera(const Scene& scene) { return scene.camera ? *scene.camera : autoFramingCamera(scene.wsBounds); }
 
-SceneDocument::SceneDocument(std::string source, uint32_t watchPollMs)
-    : source_(std::move(source)), watchPollMs_(watchPollMs), watcher_(watcherFor(source_, watchPollMs)) {}
+SceneDocument::SceneDocument(std::string source, uint32_t watchPollMs, SceneSourceOptions loading)
+    : source_(std::move(source)), watchPollMs_(watchPollMs), loading_(std::move(loading)),
+      watcher_(watcherFor(source_, watchPollMs)) {}
 
-Scene SceneDocument::loadFirst() const { return loadSceneWithWarnings(source_); }
+Scene SceneDocument::loadFirst() const { return loadSceneWithWarnings(source_, loading_); }
 
 std::string SceneDocument::label() const { return labelOf(source_); }
 
@@ -64,7 +65,7 @@ SceneEvent SceneDocument::open(const std::string& source, const InstallScene& in
     SceneEvent event;
     std::optional<Camera> camera;
     try {
-        Scene scene = loadSceneWithWarnings(source);
+        Scene scene = loadSceneWithWarnings(source, loading_);
         if (!sameScene) camera = startCamera(scene);
         install(std::move(scene));
     } catch (const Error& error) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "penumbra/scene.h"
+#include "penumbra/scene_loading.h"
 #include "viewer/file_watcher.h"
 
 namespace penumbra::viewer {
@@ -31,8 +32,8 @@ public:
     using InstallScene = std::function<void(Scene&&)>;
 
     // `source`: a file, gen:..., or "" for the demo scene. The watcher takes the file's stamp now, before
-    // the first read, so a write during it is seen.
-    SceneDocument(std::string source, uint32_t watchPollMs);
+    // the first read, so a write during it is seen. `loading` applies to every scene opened (--ground).
+    SceneDocument(std::string source, uint32_t watchPollMs, SceneSourceOptions loading = {});
 
     // The first scene; throws penumbra::Error (the viewer ends with its one line).
     Scene loadFirst() const;
@@ -61,6 +62,7 @@ public:
 private:
     std::string source_;
     uint32_t watchPollMs_;
+    SceneSourceOptions loading_;
     FileWatcher watcher_;
     std::string error_;
     std::string openRequest_, saveRequest_;

@@ -89,7 +89,7 @@ OutputMode outputOf(ViewMode view) {
 }  // namespace
 
 ViewerApp::ViewerApp(const ViewerOptions& options)
-    : options_(options), document_(options.scenePath, options.watchPollMs) {
+    : options_(options), document_(options.scenePath, options.watchPollMs, SceneSourceOptions{.addGround = options.ground}) {
     // Bad input first, so it is one line before any window opens.
     userSettings_ = loadUserSettings(options);
     compareSettings_ = loadCompareSettings(options);

@@ -50,6 +50,8 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
     std::string view = "final";
     app.add_option("scene", options.scenePath,
                    "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S[:P]] or gen:boxes:N[:P]; the built-in demo scene if omitted");
+    app.add_flag("--ground", options.ground,
+                 "add a grey ground plane under every scene opened (4x its width, at its lowest point)");
     app.add_option("--settings", options.settingsPath, "settings JSON file (the same as penumbra render --settings)");
     app.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
     app.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");

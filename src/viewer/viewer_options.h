@@ -18,6 +18,7 @@ std::optional<ViewMode> parseViewMode(const std::string& name);
 
 struct ViewerOptions {
     std::string scenePath;  // file, gen:..., or "" for the built-in demo scene
+    bool ground = false;    // --ground: every scene opened gets addGroundPlane
     std::string settingsPath;
     std::vector<std::string> overrides;  // --set key=value
     std::string device = "auto";

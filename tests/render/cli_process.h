@@ -43,6 +43,14 @@ inline CliRun runProgram(const std::string& program, const std::string& argument
     return run;
 }
 
+// `name` in a folder of its own for this test process (PREFIX_PID, made if missing): ctest runs tests
+// in parallel processes, and two of them writing one file fail each other.
+inline std::filesystem::path processTempPath(const std::string& prefix, const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    return dir / name;
+}
+
 inline CliRun runPenumbra(const std::string& arguments, const std::string& environment = "") {
     return runProgram(PENUMBRA_CLI_PATH, arguments, environment);
 }

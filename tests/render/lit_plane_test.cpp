@@ -1,11 +1,14 @@
-// The lit pass against analytic expectations: Lambert N.L, culling, background, tone mapping.
+// The lit pass against analytic expectations: Lambert N.L, the ambient sky light, culling, background,
+// tone mapping.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "penumbra/scene_loading.h"
 #include "render_test_support.h"
-#include "tone_mapping.glsl"
+#include "sky_light.glsl"
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -80,6 +83,68 @@ TEST_F(RenderTest, LitPlaneBrightnessFollowsLambertCosine) {
 TEST_F(RenderTest, SurfaceFacingAwayFromTheSunIsBlack) {
     const RenderResult result = renderScene(planeUnderSun({0, 1, 0}, float(M_PI)), {32, 32}, noAmbient());
     EXPECT_EQ(result.image.at(16, 16, 0), 0);
+}
+
+namespace {
+
+// The linear output of noAmbient() with render.ambient at its default.
+Settings defaultAmbient() {
+    Settings settings = noAmbient();
+    settings.render.ambient = Settings{}.render.ambient;
+    return settings;
+}
+
+// The centre pixel's three sRGB bytes against `linear` (white albedo), within one level each: the
+// 8-bit rounding of the output plus lavapipe's float arithmetic.
+void expectCentreColour(const Image& image, glm::vec3 linear, const std::string& what) {
+    for (uint32_t c = 0; c < 3; ++c)
+        EXPECT_NEAR(int(image.at(image.width / 2, image.height / 2, c)), int(srgbByte(linear[c])), 1)
+            << what << ", channel " << c;
+}
+
+}  // namespace
+
+TEST_F(RenderTest, SurfaceFacingAwayFromTheSunShowsTheSkyLight) {
+    // An upward plane lit from below, and a double-sided plane seen from below while the sun is
+    // above (its shading normal turns to the viewer: straight down): the sun adds nothing to either,
+    // the ambient term is render.ambient x the gradient's irradiance (sky_light.glsl) x albedo 1, in
+    // both main views, which share shade_surface.glsl.
+    const float ambient = Settings{}.render.ambient;
+    ASSERT_GT(ambient, 0.0f);
+    Scene below = planeUnderSun({0, -1, 0}, float(M_PI));
+    below.materials[0].doubleSided = true;
+    below.camera->worldFromView = glm::inverse(glm::lookAt(glm::vec3(0, -10, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1)));
+    for (MainView mainView : {MainView::Forward, MainView::Visibility}) {
+        Settings settings = defaultAmbient();
+        settings.render.mainView = mainView;
+        const std::string view = mainViewName(mainView);
+        const RenderResult up = renderScene(planeUnderSun({0, 1, 0}, float(M_PI)), {32, 32}, settings);
+        expectCentreColour(up.image, ambient * gpu_data::look::skyIrradiance({0, 1, 0}), view + ", facing up");
+        const RenderResult down = renderScene(below, {32, 32}, settings);
+        expectCentreColour(down.image, ambient * gpu_data::look::skyIrradiance({0, -1, 0}), view + ", facing down");
+    }
+}
+
+TEST_F(RenderTest, AmbientChangesTheColourOnlyNeverTheShadowOrCascadesAov) {
+    // The demo scene with the ambient off and at its default: the colour differs, the AOVs are the
+    // same to the bit, in both main views.
+    Renderer renderer(device(), makeDemoScene());
+    Settings off;
+    off.render.ambient = 0.0f;
+    for (MainView mainView : {MainView::Forward, MainView::Visibility}) {
+        Settings on;
+        on.render.mainView = off.render.mainView = mainView;
+        for (OutputMode output : {OutputMode::Color, OutputMode::ShadowAov, OutputMode::CascadesAov}) {
+            const RenderRequest request{96, 64, output, 0, false};
+            const Image withAmbient = renderer.render(request, on).image;
+            const Image without = renderer.render(request, off).image;
+            ASSERT_EQ(withAmbient.pixels.size(), without.pixels.size());
+            if (output == OutputMode::Color)
+                EXPECT_GT(shareOfPixelsOver(withAmbient, without, 8), 0.3) << mainViewName(mainView);
+            else
+                EXPECT_TRUE(withAmbient.pixels == without.pixels) << mainViewName(mainView) << ", AOV " << int(output);
+        }
+    }
 }
 
 TEST_F(RenderTest, UnlitMaterialShowsItsBaseColourWhateverTheLight) {

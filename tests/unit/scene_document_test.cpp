@@ -201,3 +201,22 @@ TEST(SceneDocument, DemoAndGeneratedScenesHaveNoFile) {
     SceneDocument generated("gen:boxes:3", 0);
     EXPECT_EQ(generated.defaultSavePath(), "penumbra-scene.gltf");
 }
+
+TEST(SceneDocument, LoadingOptionsApplyToEverySceneOpened) {
+    // The viewer's --ground: the first scene, another opened and a reload all get the plane.
+    TempDir dir;
+    const std::string cube = OpenDocument::copyScene(dir, "cube.gltf");
+    const std::string spots = OpenDocument::copyScene(dir, "spot_lights.gltf");
+    SceneDocument document(cube, 0, SceneSourceOptions{.addGround = true});
+    FakeRenderer renderer;
+    renderer.scene = document.loadFirst();
+    EXPECT_EQ(renderer.scene.instances.size(), loadScene(cube).instances.size() + 1);
+    EXPECT_EQ(renderer.scene.instances.back().nodeName, "ground");
+    for (const std::string& source : {spots, spots}) {  // open, then reload
+        document.requestOpen(source);
+        ASSERT_TRUE(document.update(FileWatcher::Clock::now(), renderer.scene, renderer.install()).has_value());
+        EXPECT_EQ(renderer.scene.instances.size(), loadScene(spots).instances.size() + 1) << source;
+        EXPECT_EQ(renderer.scene.instances.back().nodeName, "ground");
+    }
+    EXPECT_EQ(renderer.installs, 2);
+}
