@@ -4,7 +4,7 @@
 # reports) serve the asan preset of CMakePresets.json: sanitizer tests and fuzzing.
 # libjpeg62-turbo-dev: libturbojpeg0-dev's CMake package (libjpeg-turboTargets.cmake) names
 # libjpeg.so.62, which only that package brings; a minimal Debian 12 lacks it and configure fails.
-# ccache: rebuilds (and the three builds of scripts/test.sh) reuse compiled objects.
+# ccache: rebuilds (and clones of the repository on one machine) reuse compiled objects.
 # Idempotent: packages already present are left alone. This is the only way dependencies arrive.
 set -euo pipefail
 
