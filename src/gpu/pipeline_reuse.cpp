@@ -20,6 +20,13 @@ void appendLayout(std::ostringstream& key, const std::vector<BindingDesc>& bindi
     for (const SpecConstant& c : specialization) key << ' ' << c.id << '=' << c.value;
 }
 
+// A parked pipeline is used by no frame and no background build: its objects go at once.
+void destroyParked(VkDevice device, const ParkedPipeline& parked) {
+    vkDestroyPipeline(device, parked.pipeline, nullptr);
+    vkDestroyPipelineLayout(device, parked.layout, nullptr);
+    vkDestroyDescriptorSetLayout(device, parked.pushSetLayout, nullptr);
+}
+
 }  // namespace
 
 std::string Device::Impl::reuseKey(const GraphicsPipelineDesc& desc, uint32_t textureCount) {
@@ -59,14 +66,9 @@ void Device::Impl::parkOrDestroy(PipelineResource& p) {
         return;
     }
     if (parkedOrder.size() >= kMaxParkedPipelines) {
-        PipelineResource oldest;
-        const ParkedPipeline parked = parkedPipelines.at(parkedOrder.front());
-        oldest.pipeline = parked.pipeline;
-        oldest.layout = parked.layout;
-        oldest.pushSetLayout = parked.pushSetLayout;
+        destroyParked(device, parkedPipelines.at(parkedOrder.front()));
         parkedPipelines.erase(parkedOrder.front());
         parkedOrder.pop_front();
-        destroyNow(oldest);
     }
     parkedPipelines.emplace(p.reuseKey, ParkedPipeline{p.pipeline, p.layout, p.pushSetLayout});
     parkedOrder.push_back(p.reuseKey);
@@ -74,11 +76,7 @@ void Device::Impl::parkOrDestroy(PipelineResource& p) {
 }
 
 void Device::Impl::destroyParkedPipelines() {
-    for (auto& [key, parked] : parkedPipelines) {
-        vkDestroyPipeline(device, parked.pipeline, nullptr);
-        vkDestroyPipelineLayout(device, parked.layout, nullptr);
-        vkDestroyDescriptorSetLayout(device, parked.pushSetLayout, nullptr);
-    }
+    for (const auto& [key, parked] : parkedPipelines) destroyParked(device, parked);
     parkedPipelines.clear();
     parkedOrder.clear();
 }
