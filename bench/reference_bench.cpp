@@ -4,8 +4,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 # Compiles each shaders/<name>.<stage>.glsl with glslc (tracking #include dependencies through a
-# depfile) into SPIR-V words, and embeds them into a static library with a lookup table
-# (src/gpu/shader_registry.h declares it). SPIR-V is never committed.
+# depfile) into SPIR-V words, and embeds them with a lookup table (src/gpu/shader_registry.h declares
+# it) into `target`, the gpu layer. SPIR-V is never committed.
 function(penumbra_embed_shaders target sources)
   set(out_dir ${CMAKE_BINARY_DIR}/shaders)
   file(MAKE_DIRECTORY ${out_dir})
@@ -45,6 +45,6 @@ extern const size_t kEmbeddedShaderCount = sizeof(kEmbeddedShaders) / sizeof(kEm
 }
 " @ONLY)
   configure_file(${registry}.in ${registry} COPYONLY)
-  add_library(${target} OBJECT ${registry} ${generated})
+  target_sources(${target} PRIVATE ${registry} ${generated})
   target_include_directories(${target} PRIVATE ${out_dir})
 endfunction()

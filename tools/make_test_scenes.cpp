@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "scene/canonical_scenes.h"
-#include "scene/gltf_writer.h"
+#include "penumbra/gltf_writer.h"
 
 int main(int argc, char** argv) {
     if (argc != 2) {

@@ -13,18 +13,6 @@ namespace gpu {
 class Device;
 }
 
-// Test-only fault injection (docs/robustness.md): the device fails as a driver can, so tests can check
-// that each failure ends in one penumbra::Error naming where it happened, with nothing left half-done.
-// Counts are 1-based from the device's creation; 0 = never. The CLI reads PENUMBRA_FAULT_INJECTION
-// (e.g. "allocation=3", "submit=2,max-image-size=512").
-struct DeviceFaultInjection {
-    uint64_t failAllocation = 0;      // the Nth memory allocation (of a buffer or texture) fails as if its
-                                      // vkAllocateMemory returned VK_ERROR_OUT_OF_DEVICE_MEMORY
-    uint64_t loseDeviceAtSubmit = 0;  // the Nth queue submission returns VK_ERROR_DEVICE_LOST (not submitted)
-    uint64_t loseDeviceAtWait = 0;    // the Nth wait for a submission returns VK_ERROR_DEVICE_LOST
-    uint32_t maxImageSize = 0;        // the device's maxImageDimension2D seems to be this (if smaller)
-};
-
 struct DeviceOptions {
     std::string device = "auto";  // auto | gpu | cpu | N (index in `penumbra devices` order)
     bool validation = false;      // Khronos validation layer + debug messenger; messages are counted
@@ -33,7 +21,6 @@ struct DeviceOptions {
     // Folder of the persistent VkPipelineCache: "auto" = $XDG_CACHE_HOME/penumbra (else
     // ~/.cache/penumbra), "off" = none, else the folder to use.
     std::string pipelineCache = "auto";
-    DeviceFaultInjection faults;  // test-only
 };
 
 struct DeviceInfo {
@@ -96,9 +83,9 @@ public:
     bool lost() const;
     void waitIdle();
 
-    gpu::Device& backend() { return *device_; }  // Penumbra's internal GPU layer
-
 private:
+    friend struct DeviceAccess;  // the library's own layers (src/gpu/device_access.h)
+    explicit Device(std::unique_ptr<gpu::Device> device);
     std::unique_ptr<gpu::Device> device_;
 };
 

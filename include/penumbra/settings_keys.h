@@ -42,5 +42,9 @@ const SettingKey* findSettingKey(const std::string& key);
 bool settingValueAllowed(const SettingKey& key, double value);
 // Every key's value as settings JSON; parseSettingsJson of it gives the same values back.
 std::string settingsToJson(const Settings& settings);
+// The settings reference made from this table (docs/settings.md is its output: `penumbra settings
+// --markdown`): every key with its type, allowed values, default and description, and the defaults as
+// settings JSON, so that the documented keys, ranges and defaults are the ones validation uses.
+std::string settingsReferenceMarkdown();
 
 }  // namespace penumbra

@@ -16,8 +16,8 @@
 
 #include "app/bench_variations.h"
 #include "app/commands.h"
-#include "core/files.h"
-#include "core/error.h"
+#include "penumbra/files.h"
+#include "penumbra/error.h"
 #include "penumbra/device.h"
 #include "penumbra/renderer.h"
 
@@ -309,7 +309,7 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     checkWritable(bench.jsonPath);
     const Settings userSettings = loadSettings(options);
-    Device device(deviceOptionsFor(options));
+    Device device = openDevice(options);
     // The warm-up frames build the pipelines that fixed settings need (on demand); --vary-settings
     // reaches every lit-pass variant, so those are all built first, on the worker thread.
     const bool varies = bench.varyPeriod > 0;

@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
-#include "core/error.h"
+#include "penumbra/error.h"
 #include "penumbra/version.h"
 
 namespace penumbra {

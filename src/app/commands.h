@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "penumbra/camera.h"
+#include "penumbra/device.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
@@ -50,7 +51,10 @@ struct BenchOptions {
 
 // The scene the options name (file, demo or gen:), its warnings printed on stderr.
 Scene loadSceneFor(const RenderOptions& options);
-DeviceOptions deviceOptionsFor(const RenderOptions& options);
+// The device the options choose; a failure to make it names the --device choice (unless auto).
+Device openDevice(const RenderOptions& options);
+// Throws Error "--light N does not exist (the scene has M lights)" when the scene has no light N.
+void checkLightOption(const RenderOptions& options, const Scene& scene);
 // The render request the options describe: size, AOV (--aov, --light) and atlas capture.
 RenderRequest makeRenderRequest(const RenderOptions& options);
 Settings loadSettings(const RenderOptions& options);

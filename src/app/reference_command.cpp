@@ -4,12 +4,12 @@
 #include <unistd.h>
 
 #include "app/commands.h"
-#include "core/error.h"
-#include "core/files.h"
 #include "penumbra/device.h"
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/error.h"
+#include "penumbra/files.h"
+#include "penumbra/reference.h"
 #include "penumbra/renderer.h"
+#include "penumbra/shadow_compare.h"
 
 namespace penumbra {
 
@@ -18,6 +18,7 @@ int runReferenceCommand(const RenderOptions& options) {
     checkWritable(options.maskPath);
     const Settings userSettings = loadSettings(options);
     const Scene scene = loadSceneFor(options);
+    checkLightOption(options, scene);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
     const Settings settings = withSceneDefaults(userSettings, scene, view);
     const ReferenceImages reference =
@@ -51,13 +52,14 @@ int runCompareCommand(const RenderOptions& options) {
     checkWritable(options.diffPath);
     const Settings userSettings = loadSettings(options);
     Scene scene = loadSceneFor(options);
+    checkLightOption(options, scene);
     const CameraView view = resolveCameraView(scene, options.width, options.height);
     const Settings settings = withSceneDefaults(userSettings, scene, view);
     // Trace first: it validates the light (exists, casts shadows) before the GPU is touched.
     const ReferenceImages reference =
         traceReferenceShadow(scene, view, options.light, isatty(STDERR_FILENO) && !options.json,
                              referenceOptionsFor(settings, view, options.softSamples));
-    Device device(deviceOptionsFor(options));
+    Device device = openDevice(options);
     Renderer renderer(device, std::move(scene));
     RenderRequest request = makeRenderRequest(options);
     request.output = OutputMode::ShadowAov;

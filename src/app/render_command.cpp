@@ -1,17 +1,15 @@
 #include <cstdio>
-#include <cstdlib>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "core/error.h"
-#include "core/files.h"
-#include "core/image_diff.h"
 #include "penumbra/device.h"
+#include "penumbra/error.h"
+#include "penumbra/files.h"
+#include "penumbra/gltf_writer.h"
+#include "penumbra/image_diff.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene_loading.h"
-#include "scene/gltf_writer.h"
 
 namespace penumbra {
 
@@ -24,34 +22,22 @@ Scene loadSceneFor(const RenderOptions& options) {
     return scene;
 }
 
-DeviceFaultInjection faultInjectionFromEnvironment() {
-    DeviceFaultInjection faults;
-    const char* text = std::getenv("PENUMBRA_FAULT_INJECTION");
-    if (!text || !*text) return faults;
-    std::stringstream list(text);
-    for (std::string item; std::getline(list, item, ',');) {
-        const size_t equals = item.find('=');
-        const std::string key = item.substr(0, equals);
-        char* end = nullptr;
-        const unsigned long long value = equals == std::string::npos ? 0 : std::strtoull(item.c_str() + equals + 1, &end, 10);
-        const bool number = equals != std::string::npos && end && *end == '\0' && end != item.c_str() + equals + 1;
-        if (number && key == "allocation") faults.failAllocation = value;
-        else if (number && key == "submit") faults.loseDeviceAtSubmit = value;
-        else if (number && key == "wait") faults.loseDeviceAtWait = value;
-        else if (number && key == "max-image-size" && value <= UINT32_MAX) faults.maxImageSize = uint32_t(value);
-        else
-            throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
-                        "' is not allocation=N, submit=N, wait=N or max-image-size=N");
-    }
-    return faults;
-}
-
-DeviceOptions deviceOptionsFor(const RenderOptions& options) {
+Device openDevice(const RenderOptions& options) {
     DeviceOptions device;
     device.device = options.device;
     device.validation = options.validation;
-    device.faults = faultInjectionFromEnvironment();
-    return device;
+    try {
+        return Device(device);
+    } catch (const Error& e) {
+        if (options.device == "auto") throw;
+        throw Error("--device " + options.device + ": " + e.what());
+    }
+}
+
+void checkLightOption(const RenderOptions& options, const Scene& scene) {
+    if (options.light >= scene.lights.size())
+        throw Error("--light " + std::to_string(options.light) + " does not exist (the scene has " +
+                    std::to_string(scene.lights.size()) + " lights)");
 }
 
 RenderRequest makeRenderRequest(const RenderOptions& options) {
@@ -67,7 +53,11 @@ RenderRequest makeRenderRequest(const RenderOptions& options) {
 
 Settings loadSettings(const RenderOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
-    for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
+    for (const std::string& assignment : options.overrides) {
+        if (assignment.find('=') == std::string::npos)
+            throw Error("settings: --set expects key=value, got '" + assignment + "'");
+        applySettingOverride(settings, assignment);
+    }
     if (!options.raster.empty()) applySettingOverride(settings, "shadows.raster=" + options.raster);
     if (!options.mainView.empty()) applySettingOverride(settings, "render.mainView=" + options.mainView);
     validateSettings(settings);
@@ -118,8 +108,10 @@ int runRenderCommand(const RenderOptions& options) {
     checkWritable(options.dumpAtlasPath);
     checkWritable(options.statsPath);
     const Settings userSettings = loadSettings(options);
-    Device device(deviceOptionsFor(options));
-    Renderer renderer(device, loadSceneFor(options));
+    Device device = openDevice(options);
+    Scene scene = loadSceneFor(options);
+    if (!options.aov.empty() && !scene.lights.empty()) checkLightOption(options, scene);
+    Renderer renderer(device, std::move(scene));
     const RenderRequest request = makeRenderRequest(options);
     const CameraView view = resolveCameraView(renderer.scene(), request.width, request.height);
     const Settings settings = withSceneDefaults(userSettings, renderer.scene(), view);

@@ -4,7 +4,6 @@
 #include "app/commands.h"
 #include "penumbra/settings.h"
 #include "penumbra/settings_keys.h"
-#include "settings/settings_reference.h"
 
 namespace penumbra {
 

@@ -1,4 +1,4 @@
-#include "core/files.h"
+#include "penumbra/files.h"
 
 #include <cerrno>
 #include <cstdio>

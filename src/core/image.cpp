@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
-#include "core/files.h"
+#include "penumbra/files.h"
 #include "core/image_decode.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION

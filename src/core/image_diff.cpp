@@ -1,4 +1,4 @@
-#include "core/image_diff.h"
+#include "penumbra/image_diff.h"
 
 #include <cstdlib>
 

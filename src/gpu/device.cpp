@@ -145,7 +145,7 @@ uint32_t choosePhysicalDevice(const std::vector<VkPhysicalDevice>& devices, cons
     };
     if (choice == "cpu") {
         const int i = firstOf(VK_PHYSICAL_DEVICE_TYPE_CPU);
-        if (i < 0) throw Error("no Vulkan device: --device cpu asked for a CPU device (lavapipe) and none is present");
+        if (i < 0) throw Error("no Vulkan device: device kind cpu asks for a CPU device (lavapipe) and none is present");
         return uint32_t(i);
     }
     const int discrete = firstOf(VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU);
@@ -153,16 +153,16 @@ uint32_t choosePhysicalDevice(const std::vector<VkPhysicalDevice>& devices, cons
     const int virtualGpu = firstOf(VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU);
     const int gpu = discrete >= 0 ? discrete : integrated >= 0 ? integrated : virtualGpu;
     if (choice == "gpu") {
-        if (gpu < 0) throw Error("no Vulkan device: --device gpu asked for a GPU and only a CPU device is present");
+        if (gpu < 0) throw Error("no Vulkan device: device kind gpu asks for a GPU and only a CPU device is present");
         return uint32_t(gpu);
     }
     if (choice == "auto") return gpu >= 0 ? uint32_t(gpu) : 0u;
     char* end = nullptr;
     const long index = std::strtol(choice.c_str(), &end, 10);
     if (choice.empty() || *end != '\0' || index < 0)
-        throw Error("--device must be auto, gpu, cpu or a device index, not '" + choice + "'");
+        throw Error("device kind must be auto, gpu, cpu or a device index, not '" + choice + "'");
     if (size_t(index) >= devices.size())
-        throw Error("no Vulkan device: --device " + choice + " is out of range (" + std::to_string(devices.size()) +
+        throw Error("no Vulkan device: device index " + choice + " is out of range (" + std::to_string(devices.size()) +
                     " usable devices)");
     return uint32_t(index);
 }

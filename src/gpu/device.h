@@ -9,13 +9,20 @@
 #include <vector>
 
 #include "gpu/command_list.h"
+#include "gpu/device_faults.h"
 #include "gpu/types.h"
 #include "penumbra/device.h"
 #include "penumbra/image.h"
 
 namespace penumbra::gpu {
 
-using DeviceOptions = penumbra::DeviceOptions;
+// The public options and, for tests, the faults to inject.
+struct DeviceOptions : penumbra::DeviceOptions {
+    DeviceOptions() = default;
+    DeviceOptions(const penumbra::DeviceOptions& options, const DeviceFaultInjection& faults = {})
+        : penumbra::DeviceOptions(options), faults(faults) {}
+    DeviceFaultInjection faults;
+};
 using DeviceInfo = penumbra::DeviceInfo;
 
 class Device {

@@ -1,11 +1,15 @@
 // penumbra::Device, the public face of gpu::Device.
-#include "gpu/device.h"
+#include "gpu/device_access.h"
 
 namespace penumbra {
 
-Device::Device(const DeviceOptions& options) : device_(std::make_unique<gpu::Device>(options)) {}
+// Both read PENUMBRA_FAULT_INJECTION (gpu/device_faults.h), so that the CLI's process tests can make
+// the device fail.
+Device::Device(const DeviceOptions& options)
+    : device_(std::make_unique<gpu::Device>(gpu::DeviceOptions(options, gpu::faultInjectionFromEnvironment()))) {}
 Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& options)
-    : device_(std::make_unique<gpu::Device>(external, options)) {}
+    : device_(std::make_unique<gpu::Device>(external, gpu::DeviceOptions(options, gpu::faultInjectionFromEnvironment()))) {}
+Device::Device(std::unique_ptr<gpu::Device> device) : device_(std::move(device)) {}
 Device::~Device() = default;
 Device::Device(Device&&) noexcept = default;
 Device& Device::operator=(Device&&) noexcept = default;
@@ -20,5 +24,9 @@ uint32_t Device::maxImageSize() const { return device_->maxImageSize(); }
 bool Device::lost() const { return device_->lost(); }
 
 DeviceObjectCounts Device::liveObjects() const { return device_->objectCounts(); }
+
+Device DeviceAccess::makeDevice(const gpu::DeviceOptions& options) {
+    return Device(std::make_unique<gpu::Device>(options));
+}
 
 }  // namespace penumbra

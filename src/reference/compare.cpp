@@ -1,4 +1,4 @@
-#include "reference/compare.h"
+#include "penumbra/shadow_compare.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "reference/reference_tracer.h"
+#include "penumbra/reference.h"
 
 #include <algorithm>
 #include <atomic>

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "gpu/device_access.h"
 #include "render/frame_setup.h"
 #include "render/readback_images.h"
 #include "render/renderer_state.h"
@@ -93,7 +94,7 @@ Scene checkedScene(Scene scene) {
 Renderer::Renderer(Device& device, Scene scene, const RendererOptions& options) {
     Scene checked = checkedScene(std::move(scene));
     try {
-        state_ = std::make_unique<State>(device.backend(), std::move(checked), options);
+        state_ = std::make_unique<State>(gpu::backend(device), std::move(checked), options);
     } catch (const Error& error) {
         throw Error(std::string("putting the scene on the GPU: ") + error.what());
     }

@@ -26,7 +26,7 @@ constexpr const char* kAtlasPassNames[2] = {"shadows.directional", "shadows.othe
 
 void Renderer::State::checkRequest(const RenderRequest& request, const CameraView& view) const {
     if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
-        throw Error("--light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
+        throw Error("light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
                     std::to_string(scene.lights.size()) + " lights)");
     const uint32_t limit = device.maxImageSize();
     if (request.width == 0 || request.height == 0 || request.width > limit || request.height > limit)

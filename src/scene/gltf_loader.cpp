@@ -10,7 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
-#include "core/files.h"
+#include "penumbra/files.h"
 #include "core/image_decode.h"
 #include "penumbra/image.h"
 #include "scene/gltf_internal.h"

@@ -1,5 +1,5 @@
 #include "scene/texture_sampler.h"
-#include "scene/gltf_writer.h"
+#include "penumbra/gltf_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <stb_image_write.h>
 
 #include "core/error.h"
-#include "core/files.h"
+#include "penumbra/files.h"
 
 namespace penumbra {
 namespace {

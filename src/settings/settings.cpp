@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/files.h"
+#include "penumbra/files.h"
 
 namespace penumbra {
 
@@ -162,7 +162,7 @@ Settings loadSettingsFile(const std::string& path) {
 
 void applySettingOverride(Settings& settings, const std::string& assignment) {
     const size_t equals = assignment.find('=');
-    if (equals == std::string::npos) fail("--set expects key=value, got '" + showText(assignment) + "'");
+    if (equals == std::string::npos) fail("a setting override expects key=value, got '" + showText(assignment) + "'");
     const std::string key = trim(assignment.substr(0, equals));
     const std::string valueText = trim(assignment.substr(equals + 1));
     // JSON when it parses (numbers, true, [0.1,0.2,0.3], "quoted"), else the raw text as a string (PCF5x5).

@@ -1,4 +1,4 @@
-#include "settings/settings_reference.h"
+#include "penumbra/settings_keys.h"
 
 #include <cctype>
 #include <sstream>
@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "penumbra/settings.h"
-#include "penumbra/settings_keys.h"
 
 namespace penumbra {
 

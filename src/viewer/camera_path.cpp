@@ -6,7 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/files.h"
+#include "penumbra/files.h"
 #include "penumbra/error.h"
 
 namespace penumbra::viewer {

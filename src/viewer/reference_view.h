@@ -16,8 +16,8 @@
 #include "penumbra/image.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 
 namespace penumbra::viewer {
 

@@ -7,7 +7,7 @@
 #include "penumbra/camera.h"
 #include "penumbra/error.h"
 #include "penumbra/scene_loading.h"
-#include "scene/gltf_writer.h"
+#include "penumbra/gltf_writer.h"
 
 namespace penumbra::viewer {
 

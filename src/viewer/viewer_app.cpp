@@ -6,7 +6,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "core/files.h"
+#include "penumbra/files.h"
 #include "penumbra/error.h"
 #include "penumbra/scene_loading.h"
 #include "penumbra/vulkan.h"
@@ -62,7 +62,11 @@ bool splitsView(ViewMode view) { return view == ViewMode::Final || view == ViewM
 
 Settings loadUserSettings(const ViewerOptions& options) {
     Settings settings = options.settingsPath.empty() ? Settings{} : loadSettingsFile(options.settingsPath);
-    for (const std::string& assignment : options.overrides) applySettingOverride(settings, assignment);
+    for (const std::string& assignment : options.overrides) {
+        if (assignment.find('=') == std::string::npos)
+            throw Error("settings: --set expects key=value, got '" + assignment + "'");
+        applySettingOverride(settings, assignment);
+    }
     validateSettings(settings);
     return settings;
 }

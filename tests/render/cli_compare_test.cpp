@@ -7,8 +7,8 @@
 
 #include "cli_process.h"
 #include "penumbra/settings.h"
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 #include "penumbra/camera.h"
 #include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"

@@ -38,6 +38,14 @@ const std::string kSmall = " --width 64 --height 48 --device cpu";
 
 TEST(CliErrors, ZeroWidthIsOneLine) { expectOneLineError(runPenumbra("render --width 0"), "--width"); }
 
+TEST(CliErrors, SetWithoutAnEqualsSignNamesTheFlag) {
+    expectOneLineError(runPenumbra("render --set shadows.maxDistance" + kSmall), "--set expects key=value");
+}
+
+TEST(CliErrors, UnknownDeviceKindNamesTheFlag) {
+    expectOneLineError(runPenumbra("render --device fastest"), "--device fastest: device kind must be");
+}
+
 TEST(CliErrors, UnknownAovIsOneLine) { expectOneLineError(runPenumbra("render --aov foo"), "--aov"); }
 
 TEST(CliErrors, UnknownOptionIsOneLine) { expectOneLineError(runPenumbra("render --bogus"), "--bogus"); }

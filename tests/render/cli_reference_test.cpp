@@ -10,7 +10,7 @@
 #include "cli_process.h"
 #include "scene/canonical_scenes.h"
 #include "scene/gltf_loader.h"
-#include "scene/gltf_writer.h"
+#include "penumbra/gltf_writer.h"
 #include "penumbra/scene_builder.h"
 
 using namespace penumbra;

@@ -7,7 +7,6 @@
 #include "cli_process.h"
 #include "penumbra/settings.h"
 #include "penumbra/settings_keys.h"
-#include "settings/settings_reference.h"
 
 using namespace penumbra;
 using namespace penumbra::test;

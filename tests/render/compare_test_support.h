@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 #include "render_test_support.h"
 #include "penumbra/camera.h"
 #include "scene/canonical_scenes.h"

@@ -1,4 +1,4 @@
-// Out-of-memory and device loss, through DeviceOptions::faults on lavapipe with
+// Out-of-memory and device loss, through gpu::DeviceFaultInjection on lavapipe with
 // validation on: each failure is one penumbra::Error naming where it happened, leaves no GPU object
 // behind, and never hangs; after an allocation failure the renderer renders again.
 #include <cstdio>
@@ -45,11 +45,10 @@ Settings bigAtlasSettings() {
     return settings;
 }
 
-DeviceOptions faultyDevice(const DeviceFaultInjection& faults) {
+Device faultyDevice(const gpu::DeviceFaultInjection& faults) {
     DeviceOptions options = test::testDeviceOptions();
     options.pipelineCache = "off";
-    options.faults = faults;
-    return options;
+    return DeviceAccess::makeDevice({options, faults});
 }
 
 struct Outcome {
@@ -58,11 +57,11 @@ struct Outcome {
     bool leftObjects = false;  // GPU objects alive after everything but the device was destroyed
 };
 
-Outcome renderOn(const DeviceFaultInjection& faults, const Settings& settings);
+Outcome renderOn(const gpu::DeviceFaultInjection& faults, const Settings& settings);
 
 // Makes a device with `faults`, a renderer of faultScene and renders two frames. vkDestroyDevice
 // reports objects that were never destroyed: the validation layer's message is caught on stderr.
-Outcome renderWith(const DeviceFaultInjection& faults, const Settings& settings = {}) {
+Outcome renderWith(const gpu::DeviceFaultInjection& faults, const Settings& settings = {}) {
     ::testing::internal::CaptureStderr();
     Outcome outcome = renderOn(faults, settings);
     const std::string err = ::testing::internal::GetCapturedStderr();
@@ -73,7 +72,7 @@ Outcome renderWith(const DeviceFaultInjection& faults, const Settings& settings 
     return outcome;
 }
 
-Outcome renderOn(const DeviceFaultInjection& faults, const Settings& settings) {
+Outcome renderOn(const gpu::DeviceFaultInjection& faults, const Settings& settings) {
     Outcome outcome;
     std::unique_ptr<Device> device;
     try {
@@ -110,7 +109,7 @@ TEST(DeviceFaults, EveryFailedAllocationIsAnOutOfMemoryErrorThatLeavesNothingBeh
     uint32_t failures = 0;
     for (uint64_t n = 1; n <= 64; ++n) {
         SCOPED_TRACE("allocation " + std::to_string(n));
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.failAllocation = n;
         const Outcome outcome = renderWith(faults, bigAtlasSettings());
         EXPECT_EQ(outcome.validationMessages, 0u);
@@ -126,7 +125,7 @@ TEST(DeviceFaults, EveryFailedAllocationIsAnOutOfMemoryErrorThatLeavesNothingBeh
 TEST(DeviceFaults, AllocationFailingInAFrameNamesTheFrameAndWhatItMade) {
     bool named = false;
     for (uint64_t n = 1; n <= 64 && !named; ++n) {
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.failAllocation = n;
         const Outcome outcome = renderWith(faults, bigAtlasSettings());
         if (outcome.error.empty()) break;
@@ -139,7 +138,7 @@ TEST(DeviceFaults, AllocationFailingInAFrameNamesTheFrameAndWhatItMade) {
 TEST(DeviceFaults, SceneUploadFailureSaysTheSceneWasGoingOnTheGpu) {
     bool named = false;
     for (uint64_t n = 1; n <= 64 && !named; ++n) {
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.failAllocation = n;
         const Outcome outcome = renderWith(faults);
         if (outcome.error.empty()) break;
@@ -151,7 +150,7 @@ TEST(DeviceFaults, SceneUploadFailureSaysTheSceneWasGoingOnTheGpu) {
 TEST(DeviceFaults, RendererRendersAgainAfterAFrameRanOutOfMemory) {
     // Find the allocation that the first frame's atlas makes, then fail exactly that one.
     for (uint64_t n = 1; n <= 64; ++n) {
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.failAllocation = n;
         std::unique_ptr<Device> made;
         std::unique_ptr<Renderer> renderer;
@@ -184,7 +183,7 @@ TEST(DeviceFaults, FrameThatFailsWhileRecordingIsDroppedAndTheNextOneRenders) {
     Settings screenSpace;
     screenSpace.shadows.screenSpace = true;
     for (uint64_t n = 1; n <= 64; ++n) {
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.failAllocation = n;
         std::unique_ptr<Device> device;
         std::unique_ptr<Renderer> renderer;
@@ -211,7 +210,7 @@ TEST(DeviceFaults, DeviceLostAtSubmitNamesTheFrameAndItsPasses) {
     bool named = false;
     for (uint64_t n = 1; n <= 16 && !named; ++n) {
         SCOPED_TRACE("submission " + std::to_string(n));
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.loseDeviceAtSubmit = n;
         const Outcome outcome = renderWith(faults);
         EXPECT_EQ(outcome.validationMessages, 0u);
@@ -228,7 +227,7 @@ TEST(DeviceFaults, DeviceLostAtSubmitNamesTheFrameAndItsPasses) {
 TEST(DeviceFaults, DeviceLostWhileTheGpuRanAFrameNamesItsPasses) {
     bool named = false;
     for (uint64_t n = 1; n <= 16 && !named; ++n) {
-        DeviceFaultInjection faults;
+        gpu::DeviceFaultInjection faults;
         faults.loseDeviceAtWait = n;
         const Outcome outcome = renderWith(faults);
         EXPECT_EQ(outcome.validationMessages, 0u);
@@ -239,7 +238,7 @@ TEST(DeviceFaults, DeviceLostWhileTheGpuRanAFrameNamesItsPasses) {
 }
 
 TEST(DeviceFaults, EveryFrameAfterADeviceLossFailsAtOnce) {
-    DeviceFaultInjection faults;
+    gpu::DeviceFaultInjection faults;
     faults.loseDeviceAtWait = 3;  // a frame's wait, after the scene upload's
     Device device(faultyDevice(faults));
     Renderer renderer(device, faultScene());
@@ -258,7 +257,7 @@ TEST(DeviceFaults, EveryFrameAfterADeviceLossFailsAtOnce) {
 }
 
 TEST(DeviceFaults, ALostDeviceWithFramesInFlightIsDestroyedCleanly) {
-    DeviceFaultInjection faults;
+    gpu::DeviceFaultInjection faults;
     // The scene upload, the placeholder texture, then per frame the tight fit's one-off depth reduction
     // (no earlier frame has finished) and the frame itself: submission 6 is frame 1's.
     faults.loseDeviceAtSubmit = 6;

@@ -10,8 +10,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 #include "render_test_support.h"
 #include "penumbra/camera.h"
 #include "penumbra/scene_builder.h"

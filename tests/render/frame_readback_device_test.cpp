@@ -11,7 +11,7 @@ namespace {
 class FrameReadbackDeviceTest : public RenderTest {};
 
 TEST_F(FrameReadbackDeviceTest, EachPieceArrivesAtTheOffsetItsCallReturned) {
-    gpu::Device& gpu = device().backend();
+    gpu::Device& gpu = gpu::backend(device());
     std::vector<uint32_t> first(4), second(12), third(8);
     for (size_t i = 0; i < first.size(); ++i) first[i] = 1000 + uint32_t(i);
     for (size_t i = 0; i < second.size(); ++i) second[i] = 2000 + uint32_t(i);

@@ -61,7 +61,7 @@ TEST_F(LightClustersTest, GpuMasksEqualTheCpuReference) {
     const gpu_data::LightClusterData clusters =
         makeLightClusterData(view, scene.wsBounds, packed.directionalCount, packed.otherCount, true);
     ASSERT_EQ(packed.otherCount, 440u);
-    gpu::Device& gpu = device().backend();
+    gpu::Device& gpu = gpu::backend(device());
     LightClusterPass pass(gpu);
     const gpu::BufferHandle clusterBuffer = gpu.createBuffer(sizeof(clusters), gpu::kBufferUniform,
                                                              gpu::MemoryKind::HostVisible, &clusters, "test clusters");

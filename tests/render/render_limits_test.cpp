@@ -1,5 +1,5 @@
 // The renderer at the limits: textures and atlases over the device's image size
-// (a device limit made small with DeviceFaultInjection::maxImageSize), more lights than the shader
+// (a device limit made small with gpu::DeviceFaultInjection::maxImageSize), more lights than the shader
 // arrays hold, degenerate triangles and singular transforms, scenes 10^6 m across, bad camera views,
 // a damaged pipeline cache file.
 // Each is a warning with a fallback or a one-line Error, with no validation message and no NaN.
@@ -43,10 +43,10 @@ RenderRequest request(OutputMode output = OutputMode::Color, uint32_t width = 96
     return r;
 }
 
-DeviceOptions smallDevice(uint32_t maxImageSize) {
-    DeviceOptions options = testDeviceOptions();
-    options.faults.maxImageSize = maxImageSize;
-    return options;
+Device smallDevice(uint32_t maxImageSize) {
+    gpu::DeviceFaultInjection faults;
+    faults.maxImageSize = maxImageSize;
+    return DeviceAccess::makeDevice({testDeviceOptions(), faults});
 }
 
 bool hasWarning(const FrameStats& stats, const std::string& text) {

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "gpu/device_access.h"
 #include "penumbra/device.h"
 #include "penumbra/renderer.h"
 

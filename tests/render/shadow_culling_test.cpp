@@ -22,7 +22,7 @@ protected:
         std::vector<std::vector<uint32_t>> gpu, cpu;
     };
     Lists cull(const Scene& scene, const Settings& settings, uint32_t width = 160, uint32_t height = 90) {
-        gpu::Device& gpu = device().backend();
+        gpu::Device& gpu = gpu::backend(device());
         const CameraView view = resolveCameraView(scene, width, height);
         const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);  // CPU lists kept
         GpuScene gpuScene(gpu, scene);

@@ -3,8 +3,8 @@
 // ray-traced reference (src/reference) where geometry decides what is shadowed.
 #include <nlohmann/json.hpp>
 
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 #include "render_test_support.h"
 #include "penumbra/scene_builder.h"
 #include "../unit/spot_test_scenes.h"

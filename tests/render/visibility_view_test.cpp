@@ -60,7 +60,7 @@ protected:
 
 TEST_F(VisibilityViewTest, LavapipeHasWhatTheVisibilityBufferNeeds) {
     // Without it every test below would silently compare forward with forward.
-    EXPECT_TRUE(device().backend().hasBufferInt64Atomics());
+    EXPECT_TRUE(gpu::backend(device()).hasBufferInt64Atomics());
 }
 
 TEST_F(VisibilityViewTest, ColourEqualsTheForwardPassOnEveryCanonicalScene) {
@@ -159,7 +159,7 @@ TEST_F(VisibilityViewTest, BackFacesShowOnlyForDoubleSidedMaterials) {
 TEST_F(VisibilityViewTest, InstanceAndTriangleIdsOfTheCanonicalScenesFit32Bits) {
     for (const CanonicalSceneInfo& info : canonicalScenes()) {
         const Scene scene = makeCanonicalScene(info.name);
-        GpuScene gpuScene(device().backend(), scene);
+        GpuScene gpuScene(gpu::backend(device()), scene);
         EXPECT_TRUE(gpuScene.visibilityIdsFit()) << info.name;
         uint32_t mostTriangles = 0;
         for (const Mesh& mesh : scene.meshes) mostTriangles = std::max(mostTriangles, uint32_t(mesh.indices.size() / 3));

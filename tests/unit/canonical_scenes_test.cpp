@@ -9,7 +9,7 @@
 #include "scene/canonical_scenes.h"
 #include "penumbra/camera.h"
 #include "scene/gltf_loader.h"
-#include "scene/gltf_writer.h"
+#include "penumbra/gltf_writer.h"
 
 using namespace penumbra;
 using penumbra::testing::TempDir;

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "reference/compare.h"
+#include "penumbra/shadow_compare.h"
 
 namespace penumbra {
 namespace {

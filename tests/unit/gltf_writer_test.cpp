@@ -8,7 +8,7 @@
 #include "gltf_test_files.h"
 #include "scene/demo_scene.h"
 #include "scene/gltf_loader.h"
-#include "scene/gltf_writer.h"
+#include "penumbra/gltf_writer.h"
 #include "scene/scene_edits.h"
 #include "penumbra/scene_builder.h"
 

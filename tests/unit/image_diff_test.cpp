@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "core/image_diff.h"
+#include "penumbra/image_diff.h"
 
 using namespace penumbra;
 

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "core/files.h"
+#include "penumbra/files.h"
 #include "core/image_decode.h"
 #include "error_message.h"
 #include "gltf_test_files.h"

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/reference.h"
 #include "reference_test_scenes.h"
 
 namespace penumbra {

@@ -8,8 +8,8 @@
 
 #include "penumbra/camera.h"
 #include "penumbra/scene_loading.h"
-#include "reference/compare.h"
-#include "reference/reference_tracer.h"
+#include "penumbra/shadow_compare.h"
+#include "penumbra/reference.h"
 #include "viewer/reference_view.h"
 
 using namespace penumbra;

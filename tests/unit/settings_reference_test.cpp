@@ -8,7 +8,6 @@
 
 #include "penumbra/settings.h"
 #include "penumbra/settings_keys.h"
-#include "settings/settings_reference.h"
 
 using namespace penumbra;
 

@@ -1,11 +1,11 @@
 #pragma once
-// Comparison of a rendered `--aov shadow` image with the ray-traced reference (reference_tracer.h).
+// Comparison of a rendered `--aov shadow` image with the ray-traced reference (<penumbra/reference.h>).
 // Both images are classified per pixel as lit or shadowed by one threshold on value / 255; the
 // metrics count the pixels where the classes disagree, over the reference's valid pixels only.
 #include <cstdint>
 #include <string>
 
-#include "penumbra/image.h"
+#include <penumbra/image.h>
 
 namespace penumbra {
 

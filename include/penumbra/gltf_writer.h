@@ -7,7 +7,7 @@
 // instance transforms and camera (meshes without instances are written but not instanced).
 #include <string>
 
-#include "penumbra/scene.h"
+#include <penumbra/scene.h>
 
 namespace penumbra {
 

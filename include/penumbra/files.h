@@ -1,6 +1,7 @@
 #pragma once
 // Output files are written whole or not at all: into a temporary name beside the target, then
 // renamed over it, so an interrupted or failed write never leaves a half-written file.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>

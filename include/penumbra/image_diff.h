@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "penumbra/image.h"
+#include <penumbra/image.h>
 
 namespace penumbra {
 

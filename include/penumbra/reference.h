@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <limits>
 
-#include "penumbra/image.h"
-#include "penumbra/camera.h"
-#include "penumbra/scene.h"
-#include "penumbra/settings.h"
+#include <penumbra/image.h>
+#include <penumbra/camera.h>
+#include <penumbra/scene.h>
+#include <penumbra/settings.h>
 
 namespace penumbra {
 
@@ -33,7 +33,7 @@ struct ReferenceOptions {
     // setting shadows.fadeMode = squared), over the same band.
     bool squaredFade = false;
     // 0: one shadow ray to the light's centre (a point light). N > 0: the light is a disk of
-    // shadowLightSize (area_light.h) and each pixel's shadow term is the fraction of N rays to it that
+    // shadowLightSize (src/reference/area_light.h) and each pixel's shadow term is the fraction of N rays to it that
     // reach it: the truth for pcss shadows (penumbra reference --soft N).
     uint32_t softSamples = 0;
     // For a caller on another thread (the viewer's reference view): the rows traced so far are added

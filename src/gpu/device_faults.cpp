@@ -1,0 +1,33 @@
+#include "gpu/device_faults.h"
+
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+
+namespace penumbra::gpu {
+
+DeviceFaultInjection faultInjectionFromEnvironment() {
+    DeviceFaultInjection faults;
+    const char* text = std::getenv("PENUMBRA_FAULT_INJECTION");
+    if (!text || !*text) return faults;
+    std::stringstream list(text);
+    for (std::string item; std::getline(list, item, ',');) {
+        const size_t equals = item.find('=');
+        const std::string key = item.substr(0, equals);
+        char* end = nullptr;
+        const unsigned long long value = equals == std::string::npos ? 0 : std::strtoull(item.c_str() + equals + 1, &end, 10);
+        const bool number = equals != std::string::npos && end && *end == '\0' && end != item.c_str() + equals + 1;
+        if (number && key == "allocation") faults.failAllocation = value;
+        else if (number && key == "submit") faults.loseDeviceAtSubmit = value;
+        else if (number && key == "wait") faults.loseDeviceAtWait = value;
+        else if (number && key == "max-image-size" && value <= UINT32_MAX) faults.maxImageSize = uint32_t(value);
+        else
+            throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
+                        "' is not allocation=N, submit=N, wait=N or max-image-size=N");
+    }
+    return faults;
+}
+
+}  // namespace penumbra::gpu

@@ -1,0 +1,24 @@
+#pragma once
+// Fault injection for tests (docs/robustness.md): the device fails as a driver can, so tests can check
+// that each failure ends in one penumbra::Error naming where it happened, with nothing left half-done.
+// Not part of the public API: tests pass it to gpu/device_access.h's makeDeviceWithFaults; programs
+// (the CLI's process tests) set the PENUMBRA_FAULT_INJECTION environment variable, which every
+// penumbra::Device reads when it is made.
+#include <cstdint>
+
+namespace penumbra::gpu {
+
+// Counts are 1-based from the device's creation; 0 = never.
+struct DeviceFaultInjection {
+    uint64_t failAllocation = 0;      // the Nth memory allocation (of a buffer or texture) fails as if its
+                                      // vkAllocateMemory returned VK_ERROR_OUT_OF_DEVICE_MEMORY
+    uint64_t loseDeviceAtSubmit = 0;  // the Nth queue submission returns VK_ERROR_DEVICE_LOST (not submitted)
+    uint64_t loseDeviceAtWait = 0;    // the Nth wait for a submission returns VK_ERROR_DEVICE_LOST
+    uint32_t maxImageSize = 0;        // the device's maxImageDimension2D seems to be this (if smaller)
+};
+
+// PENUMBRA_FAULT_INJECTION, e.g. "allocation=3" or "submit=2,max-image-size=512" (unset or empty:
+// none). Throws penumbra::Error naming the variable when an item is not key=N of a known key.
+DeviceFaultInjection faultInjectionFromEnvironment();
+
+}  // namespace penumbra::gpu
