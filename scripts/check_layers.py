@@ -3,6 +3,7 @@
 
     scripts/check_layers.py BUILD/layers/layers.json            # the sources' #includes
     scripts/check_layers.py BUILD/layers/layers.json --compile  # the include paths themselves
+    scripts/check_layers.py BUILD/layers/layers.json --mermaid  # the graph, for the docs
 
 The graph (<build>/layers/layers.json) is written by cmake/layers.cmake: each layer's USES and its
 include path as compiled, and each program's (src/app, src/viewer). Each layer's public headers are
@@ -149,6 +150,19 @@ def check_compile(graph, build_layers):
     return problems
 
 
+def mermaid(graph):
+    """The layer targets and what each USES, as a Mermaid flowchart (docs/architecture-layers.md)."""
+    lines = ["```mermaid", "flowchart BT"]
+    for name, layer in graph["layers"].items():
+        lines.append("    %s[penumbra_%s]" % (name, name))
+        lines.extend("    %s --> %s" % (name, used) for used in layer["uses"])
+    lines.append("    lib[[libpenumbra: include/penumbra/]]")
+    lines.extend("    %s([src/%s]) --> lib" % (folder, folder) for folder in graph["programs"])
+    lines.append("    lib -. archives .-> %s" % " & ".join(graph["layers"]))
+    lines.append("```")
+    return "\n".join(lines)
+
+
 def main():
     if len(sys.argv) < 2:
         print(__doc__)
@@ -156,6 +170,9 @@ def main():
     with open(sys.argv[1], encoding="utf-8") as text:
         graph = json.load(text)
     build_layers = os.path.dirname(os.path.abspath(sys.argv[1]))
+    if "--mermaid" in sys.argv[2:]:
+        print(mermaid(graph))
+        return 0
     compile_mode = "--compile" in sys.argv[2:]
     problems = check_compile(graph, build_layers) if compile_mode else check_sources(graph, build_layers)
     for problem in problems:
