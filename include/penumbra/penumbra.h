@@ -14,4 +14,5 @@
 #include <penumbra/scene_loading.h>
 #include <penumbra/settings.h>
 #include <penumbra/settings_keys.h>
+#include <penumbra/shadow_stats.h>
 #include <penumbra/version.h>
