@@ -21,4 +21,5 @@
 #include <penumbra/settings.h>
 #include <penumbra/settings_keys.h>
 #include <penumbra/shadow_compare.h>
+#include <penumbra/shadow_stats.h>
 #include <penumbra/version.h>

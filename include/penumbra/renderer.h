@@ -4,7 +4,7 @@
 // caster lists), then records the shadow atlas passes, the optional depth prepass and screen-space
 // shadow resolve, the opaque + unlit pass, the transparent pass, and reads back the colour image or
 // a debug AOV only when asked. Frames in flight run in a ring (DeviceOptions::framesInFlight): a
-// steady-state frame allocates nothing, builds no pipeline, waits for no more than the frame that
+// steady-state frame makes no GPU object, builds no pipeline, waits for no more than the frame that
 // used its ring slot before, and makes one queue submission.
 #include <cstdint>
 #include <memory>
@@ -18,6 +18,7 @@
 #include <penumbra/image.h>
 #include <penumbra/scene.h>
 #include <penumbra/settings.h>
+#include <penumbra/shadow_stats.h>
 
 namespace penumbra {
 
@@ -87,7 +88,9 @@ struct FrameStats {
     uint32_t lightsPerClusterMax = 0;
     std::vector<AtlasDrawStats> atlases;
     std::vector<std::string> warnings;
-    std::string shadowStatsJson = "{}";  // the shadow planner's stats (lights reserved, tiles, casters per tile)
+    // The shadow plan (lights reserved, tiles, casters and triangles per tile) as plain data; toJson()
+    // writes it as --stats prints it.
+    ShadowPlanStats shadows;
 };
 
 struct RenderResult {

@@ -84,7 +84,7 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
     stats["cpuMs"] = {{"plan", result.stats.cpu.plan}, {"culling", result.stats.cpu.culling},
                       {"upload", result.stats.cpu.upload}, {"record", result.stats.cpu.record},
                       {"submit", result.stats.cpu.submit}};
-    stats["shadows"] = nlohmann::json::parse(result.stats.shadowStatsJson);
+    stats["shadows"] = nlohmann::json::parse(toJson(result.stats.shadows));
     stats["warnings"] = result.stats.warnings;
     stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
     stats["mainView"] = {{"used", result.stats.mainView},

@@ -1,7 +1,8 @@
 #pragma once
 // The vocabulary of the thin GPU layer: handles, formats and descriptions. No Vulkan types here:
 // render/ talks only in these terms, and src/gpu/*.cpp translates them (Godot RD / Filament backend
-// style). Handles are indices into the Device's pools; 0 is never a valid handle.
+// style). A handle's id is a slot of the Device's pools plus that slot's generation (gpu/handle_pool.h),
+// so a handle kept past its object's destruction is caught when used; 0 is never a valid handle.
 #include <cstdint>
 #include <optional>
 #include <span>

@@ -1,5 +1,7 @@
 #include "render/frame_readback.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <string>
 
@@ -30,18 +32,21 @@ bool readPiece(const std::vector<uint8_t>& readback, uint64_t offset, T* values,
 void applyCullTiles(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
                     const std::vector<uint8_t>& readback) {
     const size_t directionalTiles = plan.directional.tiles.size();
-    std::vector<gpu_data::CullTileStats> tiles(directionalTiles + plan.other.tiles.size());
-    if (!tiles.empty()) readPiece(readback, layout.cullTiles, tiles.data(), tiles.size());  // else zero counts
-    std::vector<CullTileCount> counts;
-    for (size_t i = 0; i < tiles.size(); ++i) {
+    constexpr size_t kMaxCullTiles = DirectionalShadowStats::kMaxTiles + OtherShadowStats::kMaxTiles;
+    const size_t tileCount = std::min(directionalTiles + plan.other.tiles.size(), kMaxCullTiles);
+    std::array<gpu_data::CullTileStats, kMaxCullTiles> tiles{};
+    if (tileCount > 0) readPiece(readback, layout.cullTiles, tiles.data(), tileCount);  // else zero counts
+    std::array<CullTileCount, kMaxCullTiles> counts{};
+    for (size_t i = 0; i < tileCount; ++i) {
         const size_t atlasIndex = i < directionalTiles ? 0 : 1;
         if (atlasIndex < stats.atlases.size()) {
             stats.atlases[atlasIndex].draws += tiles[i].counts.x;
             stats.atlases[atlasIndex].triangles += tiles[i].counts.z;
         }
-        counts.push_back({tiles[i].counts.y, tiles[i].counts.z});
+        counts[i] = {tiles[i].counts.y, tiles[i].counts.z};
     }
-    stats.shadowStatsJson = shadowStatsJson(plan, &counts);
+    fillShadowPlanStats(plan, stats.shadows);
+    setGpuTileCounts(stats.shadows, std::span<const CullTileCount>(counts.data(), tileCount));
 }
 
 void applyRasterCounters(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback,

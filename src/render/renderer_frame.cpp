@@ -107,20 +107,21 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     recording.casterWrites = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
 }
 
-TilesToDraw Renderer::State::chooseTilesToDraw(FrameRecording& recording) {
+const TilesToDraw& Renderer::State::chooseTilesToDraw(FrameRecording& recording) {
     const ShadowFrame& plan = recording.frame.plan;
     const ShadowSettings& shadows = recording.settings.shadows;
     const bool compute = recording.frame.computeRaster;
-    std::vector<TileSignature> directionalSignatures, otherSignatures;
+    directionalSignatures.clear();
+    otherSignatures.clear();
     for (const ShadowTile& tile : plan.directional.tiles)
         directionalSignatures.push_back(directionalTileSignature(tile, plan.directional));
     for (const ShadowTile& tile : plan.other.tiles) otherSignatures.push_back(otherTileSignature(tile));
-    TilesToDraw draw;
+    TilesToDraw& draw = drawnTiles;
     draw.freshDirectional = targets.directionalGeneration != directionalGenerationDrawn;
     draw.freshOther = targets.otherGeneration != otherGenerationDrawn;
-    draw.directional = directionalCache.tilesToDraw(directionalSignatures, targets.directionalGeneration, compute,
-                                                    sceneVersion, shadows.cacheTiles);
-    draw.other = otherCache.tilesToDraw(otherSignatures, targets.otherGeneration, compute, sceneVersion, shadows.cacheTiles);
+    directionalCache.tilesToDraw(directionalSignatures, targets.directionalGeneration, compute, sceneVersion,
+                                 shadows.cacheTiles, draw.directional);
+    otherCache.tilesToDraw(otherSignatures, targets.otherGeneration, compute, sceneVersion, shadows.cacheTiles, draw.other);
     directionalGenerationDrawn = targets.directionalGeneration;
     otherGenerationDrawn = targets.otherGeneration;
     FrameStats& stats = recording.frame.stats;
@@ -131,7 +132,7 @@ TilesToDraw Renderer::State::chooseTilesToDraw(FrameRecording& recording) {
     const CameraView& view = recording.view;
     gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
     cullFrame.camera = packCullCamera(view.clipFromWorld, view.width, view.height, recording.settings.render.viewCulling);
-    std::vector<uint32_t> rasterTiles = draw.directional;
+    rasterTiles.assign(draw.directional.begin(), draw.directional.end());
     for (uint32_t i : draw.other) rasterTiles.push_back(uint32_t(plan.directional.tiles.size()) + i);
     packRasterTiles(cullFrame, rasterTiles);
     recording.cullSlice = uploadFrameData(device, &cullFrame, sizeof(cullFrame));
@@ -323,7 +324,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         phase.restart();  // the wait for the slot's previous frame is not CPU work
         stats.sceneBytesUploaded = gpuScene.recordUpdates(commands, scene);
         uploadFrameInputs(recording, request, lights);
-        const TilesToDraw draw = chooseTilesToDraw(recording);
+        const TilesToDraw& draw = chooseTilesToDraw(recording);
         stats.cpu.upload = phase.milliseconds();
 
         phase.restart();

@@ -99,6 +99,10 @@ struct Renderer::State {
     std::deque<PendingFrame> pending;
     std::vector<FrameStats> completed;
     double lastGpuFrameEnd = 0.0;  // the latest finished frame's CompletedFrame::gpuEndMilliseconds
+    // Lists every frame refills, kept so a steady-state frame reuses their storage.
+    std::vector<TileSignature> directionalSignatures, otherSignatures;
+    TilesToDraw drawnTiles;
+    std::vector<uint32_t> rasterTiles;
 
     State(gpu::Device& d, Scene s, const RendererOptions& o);
     ~State();
@@ -126,7 +130,7 @@ private:
     MainPassVariant prepareMainView(const Settings& settings, const ShadowFrame& plan, const FrameTargetSizes& sizes,
                                     bool visibilityWanted);
     void uploadFrameInputs(FrameRecording& recording, const RenderRequest& request, const PackedLights& lights);
-    TilesToDraw chooseTilesToDraw(FrameRecording& recording);
+    const TilesToDraw& chooseTilesToDraw(FrameRecording& recording);
     void recordShadowAtlases(FrameRecording& recording, const TilesToDraw& draw);
     MainPassInputs recordLightingInputs(FrameRecording& recording);
     void recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,

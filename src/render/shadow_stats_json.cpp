@@ -2,31 +2,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "other_shadow_structs.h"
+#include "shadow_structs.h"
+
 namespace penumbra {
 
+static_assert(DirectionalShadowStats::kMaxLights == gpu_data::kMaxShadowedDirectionalLights);
+static_assert(DirectionalShadowStats::kMaxCascades == gpu_data::kMaxCascades);
+static_assert(OtherShadowStats::kMaxLights == gpu_data::kMaxShadowedOtherLights);
+static_assert(OtherShadowStats::kMaxTiles == kMaxOtherShadowTiles);
+
 namespace {
-
-// Casters per tile of `tiles`, the culling tiles from `first` on (GPU counts) or the CPU lists.
-std::vector<uint32_t> castersPerTile(const std::vector<ShadowTile>& tiles, const std::vector<CullTileCount>* gpu, size_t first) {
-    std::vector<uint32_t> counts;
-    for (size_t i = 0; i < tiles.size(); ++i)
-        counts.push_back(gpu && first + i < gpu->size() ? (*gpu)[first + i].casters : uint32_t(tiles[i].casterInstances.size()));
-    return counts;
-}
-
-// Triangles drawn per tile of `tiles` as the GPU counted them (culling tiles from `first` on).
-std::vector<uint64_t> trianglesPerTile(size_t tileCount, const std::vector<CullTileCount>& gpu, size_t first) {
-    std::vector<uint64_t> counts;
-    for (size_t i = 0; i < tileCount; ++i) counts.push_back(first + i < gpu.size() ? gpu[first + i].triangles : 0);
-    return counts;
-}
-
-template <typename T>
-T sum(const std::vector<T>& values) {
-    T total = 0;
-    for (T v : values) total += v;
-    return total;
-}
 
 // The share of an atlas's area its tiles cover (0 for an atlas with no tile).
 double occupancy(const AtlasLayout& atlas) {
@@ -35,80 +21,179 @@ double occupancy(const AtlasLayout& atlas) {
     return double(atlas.tileCount) * double(atlas.tileSize) * double(atlas.tileSize) / (side * side);
 }
 
+void fillDirectional(const ShadowFrame& plan, DirectionalShadowStats& stats) {
+    const DirectionalShadowPlan& directional = plan.directional;
+    stats.lightsConsidered = plan.stats.directionalLightsConsidered;
+    stats.reservedLights.clear();
+    for (const ReservedDirectionalLight& light : directional.lights) stats.reservedLights.push_back(light.sceneLightIndex);
+    stats.atlasSize = directional.atlas.atlasSize;
+    stats.tiles = directional.atlas.tileCount;
+    stats.split = directional.atlas.split;
+    stats.tileSize = directional.atlas.tileSize;
+    stats.occupancy = occupancy(directional.atlas);
+    stats.skippedByCascadeBlendCulling = plan.stats.skippedByBlendCulling;
+    stats.tightFit = directional.tight;
+    stats.cullingSpheres.clear();
+    stats.cascadeSplits.clear();
+    for (const CascadeSphere& cascade : directional.cascades) {
+        stats.cullingSpheres.push_back(glm::vec4(cascade.wsCenter, cascade.radius));
+        stats.cascadeSplits.push_back(cascade.vsFar);
+    }
+    stats.tileStats.clear();
+    for (const ShadowTile& tile : directional.tiles) {
+        DirectionalTileStats t;
+        t.light = tile.lightSlot;
+        t.cascade = tile.cascadeIndex;
+        t.drawn.casters = uint32_t(tile.casterInstances.size());
+        t.depthRangeMetres = tile.nearDistance + tile.farDistance;
+        t.pancakedDepthMetres = tile.pancakedDepth;
+        t.texelSizeMetres = tile.wsTexelSize;
+        t.worldFromClip = glm::inverse(tile.clipFromWorld);
+        stats.tileStats.push_back(t);
+    }
+    stats.trianglesCounted = false;
+}
+
+void fillOther(const OtherShadowPlan& plan, OtherShadowStats& stats) {
+    stats.lightsConsidered = plan.lightsConsidered;
+    stats.reservedLights.clear();
+    for (const ReservedOtherLight& light : plan.lights) stats.reservedLights.push_back(light.sceneLightIndex);
+    stats.lightsDropped = uint32_t(plan.droppedLights.size());
+    stats.droppedLights.clear();
+    for (uint32_t light : plan.droppedLights) stats.droppedLights.push_back(light);
+    stats.atlasSize = plan.atlas.atlasSize;
+    stats.tiles = plan.atlas.tileCount;
+    stats.split = plan.atlas.split;
+    stats.tileSize = plan.atlas.tileSize;
+    stats.tileBorder = plan.atlas.border;
+    stats.occupancy = occupancy(plan.atlas.asAtlasLayout());
+    stats.tileStats.clear();
+    for (const ShadowTile& tile : plan.tiles) stats.tileStats.push_back({uint32_t(tile.casterInstances.size()), 0});
+    stats.trianglesCounted = false;
+}
+
+const ShadowTileDraws& drawnOf(const DirectionalTileStats& tile) { return tile.drawn; }
+const ShadowTileDraws& drawnOf(const ShadowTileDraws& tile) { return tile; }
+
+template <typename Tiles>
+nlohmann::json castersPerTile(const Tiles& tiles) {
+    nlohmann::json counts = nlohmann::json::array();
+    for (const auto& tile : tiles) counts.push_back(drawnOf(tile).casters);
+    return counts;
+}
+
+template <typename Tiles>
+nlohmann::json trianglesPerTile(const Tiles& tiles) {
+    nlohmann::json counts = nlohmann::json::array();
+    for (const auto& tile : tiles) counts.push_back(drawnOf(tile).triangles);
+    return counts;
+}
+
+template <typename T, uint32_t N>
+nlohmann::json array(const InlineList<T, N>& list) {
+    return nlohmann::json(std::vector<T>(list.begin(), list.end()));
+}
+
+// The keys both atlases have: lights, layout, casters and triangles per tile.
+template <typename AtlasStats>
+nlohmann::json atlasJson(const AtlasStats& stats) {
+    nlohmann::json json;
+    json["lightsConsidered"] = stats.lightsConsidered;
+    json["lightsReserved"] = stats.reservedLights.size();
+    json["reservedLights"] = array(stats.reservedLights);  // the scene light of each slot (tile i: slot i / cascades)
+    json["atlasSize"] = stats.atlasSize;
+    json["tiles"] = stats.tiles;
+    json["split"] = stats.split;
+    json["tileSize"] = stats.tileSize;
+    json["occupancy"] = stats.occupancy;
+    json["castersPerTile"] = castersPerTile(stats.tileStats);
+    json["casterDraws"] = casterDraws(stats);
+    if (stats.trianglesCounted) json["trianglesPerTile"] = trianglesPerTile(stats.tileStats);
+    return json;
+}
+
+nlohmann::json directionalJson(const DirectionalShadowStats& stats) {
+    nlohmann::json json = atlasJson(stats);
+    json["skippedByCascadeBlendCulling"] = stats.skippedByCascadeBlendCulling;
+    nlohmann::json spheres = nlohmann::json::array(), boxes = nlohmann::json::array();
+    for (const glm::vec4& sphere : stats.cullingSpheres) spheres.push_back({sphere.x, sphere.y, sphere.z, sphere.w});
+    std::vector<float> depthRange, pancakedDepth, texelSize;
+    for (const DirectionalTileStats& tile : stats.tileStats) {
+        const std::vector<float> matrix(&tile.worldFromClip[0][0], &tile.worldFromClip[0][0] + 16);  // column-major
+        boxes.push_back({{"light", tile.light}, {"cascade", tile.cascade}, {"worldFromClip", matrix}});
+        depthRange.push_back(tile.depthRangeMetres);
+        pancakedDepth.push_back(tile.pancakedDepthMetres);
+        texelSize.push_back(tile.texelSizeMetres);
+    }
+    json["cullingSpheres"] = spheres;
+    json["tileBoxes"] = boxes;
+    json["texelSizeMetres"] = texelSize;
+    json["cascadeSplits"] = array(stats.cascadeSplits);
+    json["fit"] = stats.tightFit ? "tight" : "sphere";
+    json["depthRangeMetres"] = depthRange;
+    json["pancakedDepthMetres"] = pancakedDepth;
+    return json;
+}
+
+nlohmann::json otherJson(const OtherShadowStats& stats) {
+    nlohmann::json json = atlasJson(stats);
+    json["lightsDropped"] = stats.lightsDropped;
+    json["droppedLights"] = array(stats.droppedLights);
+    json["maxTiles"] = OtherShadowStats::kMaxTiles;
+    json["tileBorder"] = stats.tileBorder;
+    return json;
+}
+
 }  // namespace
 
-std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<CullTileCount>* gpuCounts) {
-    const ShadowStats& stats = plan.stats;
-    const size_t directionalTiles = plan.directional.tiles.size();
-    const std::vector<uint32_t> directionalCasters = castersPerTile(plan.directional.tiles, gpuCounts, 0);
-    const std::vector<uint32_t> otherCasters = castersPerTile(plan.other.tiles, gpuCounts, directionalTiles);
-    nlohmann::json json;
-    nlohmann::json directional;
-    directional["lightsConsidered"] = stats.directionalLightsConsidered;
-    directional["lightsReserved"] = stats.directionalLightsReserved;
-    std::vector<uint32_t> reservedSuns;  // the scene light of each slot (tile i: slot i / cascades)
-    for (const ReservedDirectionalLight& light : plan.directional.lights) reservedSuns.push_back(light.sceneLightIndex);
-    directional["reservedLights"] = reservedSuns;
-    directional["atlasSize"] = plan.directional.atlas.atlasSize;
-    directional["tiles"] = plan.directional.atlas.tileCount;
-    directional["split"] = plan.directional.atlas.split;
-    directional["tileSize"] = plan.directional.atlas.tileSize;
-    directional["occupancy"] = occupancy(plan.directional.atlas);
-    directional["castersPerTile"] = directionalCasters;
-    directional["casterDraws"] = sum(directionalCasters);
-    if (gpuCounts) directional["trianglesPerTile"] = trianglesPerTile(directionalTiles, *gpuCounts, 0);
-    directional["skippedByCascadeBlendCulling"] = stats.skippedByBlendCulling;
-    // Depth range per tile in metres (near + far distance) and how far casters reach in front of it.
-    // World texel size per tile (the tight fit's gain shows here) and each cascade's split.
-    std::vector<float> depthRange, pancakedDepth, texelSize, splits;
-    for (const ShadowTile& tile : plan.directional.tiles) {
-        depthRange.push_back(tile.nearDistance + tile.farDistance);
-        pancakedDepth.push_back(tile.pancakedDepth);
-        texelSize.push_back(tile.wsTexelSize);
-    }
-    // The culling spheres (x, y, z, radius) and each tile's worldFromClip box, for debug views that draw them.
-    nlohmann::json spheres = nlohmann::json::array(), boxes = nlohmann::json::array();
-    for (const CascadeSphere& cascade : plan.directional.cascades) {
-        splits.push_back(cascade.vsFar);
-        spheres.push_back({cascade.wsCenter.x, cascade.wsCenter.y, cascade.wsCenter.z, cascade.radius});
-    }
-    for (const ShadowTile& tile : plan.directional.tiles) {
-        const glm::mat4 worldFromClip = glm::inverse(tile.clipFromWorld);
-        std::vector<float> matrix(&worldFromClip[0][0], &worldFromClip[0][0] + 16);  // column-major
-        boxes.push_back({{"light", tile.lightSlot}, {"cascade", tile.cascadeIndex}, {"worldFromClip", matrix}});
-    }
-    directional["cullingSpheres"] = spheres;
-    directional["tileBoxes"] = boxes;
-    directional["texelSizeMetres"] = texelSize;
-    directional["cascadeSplits"] = splits;
-    directional["fit"] = plan.directional.tight ? "tight" : "sphere";
-    directional["depthRangeMetres"] = depthRange;
-    directional["pancakedDepthMetres"] = pancakedDepth;
-    json["directional"] = directional;
+uint32_t casterDraws(const DirectionalShadowStats& stats) {
+    uint32_t total = 0;
+    for (const DirectionalTileStats& tile : stats.tileStats) total += tile.drawn.casters;
+    return total;
+}
 
-    // Spot and point lights: a spot light takes 1 tile, a point light 6, at most 16 tiles.
-    const OtherShadowPlan& otherPlan = plan.other;
-    nlohmann::json other;
-    other["lightsConsidered"] = otherPlan.lightsConsidered;
-    other["lightsReserved"] = otherPlan.lights.size();
-    std::vector<uint32_t> reservedLights;
-    for (const ReservedOtherLight& light : otherPlan.lights) reservedLights.push_back(light.sceneLightIndex);
-    other["reservedLights"] = reservedLights;
-    other["lightsDropped"] = otherPlan.droppedLights.size();
-    other["droppedLights"] = otherPlan.droppedLights;
-    other["atlasSize"] = otherPlan.atlas.atlasSize;
-    other["tiles"] = otherPlan.atlas.tileCount;
-    other["maxTiles"] = kMaxOtherShadowTiles;
-    other["split"] = otherPlan.atlas.split;
-    other["tileSize"] = otherPlan.atlas.tileSize;
-    other["tileBorder"] = otherPlan.atlas.border;
-    other["occupancy"] = occupancy(otherPlan.atlas.asAtlasLayout());
-    other["castersPerTile"] = otherCasters;
-    other["casterDraws"] = sum(otherCasters);
-    if (gpuCounts) other["trianglesPerTile"] = trianglesPerTile(plan.other.tiles.size(), *gpuCounts, directionalTiles);
-    json["other"] = other;
+uint32_t casterDraws(const OtherShadowStats& stats) {
+    uint32_t total = 0;
+    for (const ShadowTileDraws& tile : stats.tileStats) total += tile.casters;
+    return total;
+}
+
+void fillShadowPlanStats(const ShadowFrame& plan, ShadowPlanStats& stats) {
+    fillDirectional(plan, stats.directional);
+    fillOther(plan.other, stats.other);
+    stats.shadowCasters = plan.stats.shadowCasters;
+}
+
+ShadowPlanStats shadowPlanStats(const ShadowFrame& plan) {
+    ShadowPlanStats stats;
+    fillShadowPlanStats(plan, stats);
+    return stats;
+}
+
+void setGpuTileCounts(ShadowPlanStats& stats, std::span<const CullTileCount> counts) {
+    DirectionalShadowStats& directional = stats.directional;
+    OtherShadowStats& other = stats.other;
+    directional.trianglesCounted = other.trianglesCounted = true;
+    for (uint32_t tile = 0; tile < directional.tileStats.size() + other.tileStats.size(); ++tile) {
+        const CullTileCount count = tile < counts.size() ? counts[tile] : CullTileCount{};
+        ShadowTileDraws& drawn = tile < directional.tileStats.size() ? directional.tileStats[tile].drawn
+                                                                     : other.tileStats[tile - directional.tileStats.size()];
+        drawn = {count.casters, count.triangles};
+    }
+}
+
+std::string toJson(const ShadowPlanStats& stats) {
+    nlohmann::json json;
+    json["directional"] = directionalJson(stats.directional);
+    json["other"] = otherJson(stats.other);
     json["shadowCasters"] = stats.shadowCasters;
     return json.dump();
+}
+
+std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<CullTileCount>* gpuCounts) {
+    ShadowPlanStats stats = shadowPlanStats(plan);
+    if (gpuCounts) setGpuTileCounts(stats, *gpuCounts);
+    return toJson(stats);
 }
 
 }  // namespace penumbra

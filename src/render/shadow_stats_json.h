@@ -1,10 +1,12 @@
 #pragma once
-// The shadow plan's stats as JSON for `--stats` and the viewer's stats panel (lights reserved, tiles,
-// atlas occupancy, casters and triangles drawn per tile).
+// The shadow plan's stats (penumbra/shadow_stats.h) from a ShadowFrame, without touching the heap, and
+// as JSON for `--stats` (toJson, declared in the public header).
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "penumbra/shadow_stats.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -15,7 +17,15 @@ struct CullTileCount {
     uint64_t triangles = 0;
 };
 
-// gpuCounts: per culling tile, as the GPU drew it; null = the plan's own CPU caster lists (and no
-// triangle counts: "trianglesPerTile" is left out).
+// The plan's stats into `stats` (overwritten), casters per tile from the plan's CPU lists.
+void fillShadowPlanStats(const ShadowFrame& plan, ShadowPlanStats& stats);
+ShadowPlanStats shadowPlanStats(const ShadowFrame& plan);
+// The culling tiles (directional tiles first, then spot/point) as the GPU drew them; a tile past the
+// end of `counts` drew nothing. Both atlases then count triangles.
+void setGpuTileCounts(ShadowPlanStats& stats, std::span<const CullTileCount> counts);
+
+// toJson(shadowPlanStats(plan)) with the GPU's counts per culling tile when given (null: the plan's own
+// CPU caster lists and no "trianglesPerTile").
 std::string shadowStatsJson(const ShadowFrame& plan, const std::vector<CullTileCount>* gpuCounts = nullptr);
-}
+
+}  // namespace penumbra

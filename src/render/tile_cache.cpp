@@ -10,7 +10,7 @@ void append(TileSignature& signature, const glm::mat4& m) {
 }
 
 TileSignature baseSignature(const ShadowTile& tile) {
-    TileSignature signature;
+    TileSignature signature;  // the largest fills it: kCapacity counts what is pushed here and below
     append(signature, tile.clipFromWorld);
     signature.push_back(float(tile.rect.offset.x));
     signature.push_back(float(tile.rect.offset.y));
@@ -40,11 +40,11 @@ TileSignature directionalTileSignature(const ShadowTile& tile, const Directional
 
 TileSignature otherTileSignature(const ShadowTile& tile) { return baseSignature(tile); }
 
-std::vector<uint32_t> TileCache::tilesToDraw(const std::vector<TileSignature>& tiles, uint64_t atlasGeneration,
-                                             bool compute, uint64_t sceneVersion, bool enabled) {
+void TileCache::tilesToDraw(const std::vector<TileSignature>& tiles, uint64_t atlasGeneration, bool compute,
+                            uint64_t sceneVersion, bool enabled, std::vector<uint32_t>& draw) {
     const bool keepNothing = !enabled || atlasGeneration != atlasGeneration_ || compute != compute_ ||
                              sceneVersion != sceneVersion_;
-    std::vector<uint32_t> draw;
+    draw.clear();
     for (uint32_t i = 0; i < tiles.size(); ++i)
         if (keepNothing || i >= last_.size() || tiles[i] != last_[i]) draw.push_back(i);
     reused_ = uint32_t(tiles.size() - draw.size());
@@ -52,7 +52,6 @@ std::vector<uint32_t> TileCache::tilesToDraw(const std::vector<TileSignature>& t
     atlasGeneration_ = atlasGeneration;
     sceneVersion_ = sceneVersion;
     compute_ = compute;
-    return draw;
 }
 
 }  // namespace penumbra

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "penumbra/scene.h"
+#include "penumbra/shadow_stats.h"
 
 namespace penumbra::viewer {
 
@@ -19,7 +20,7 @@ struct AtlasTileLabel {
     std::string text;
 };
 
-// The tiles of both atlases from a frame's shadow stats JSON (FrameStats::shadowStatsJson).
-std::vector<AtlasTileLabel> atlasTileLabels(const std::string& shadowStatsJson, const Scene& scene);
+// The tiles of both atlases from a frame's shadow stats (FrameStats::shadows).
+std::vector<AtlasTileLabel> atlasTileLabels(const ShadowPlanStats& shadows, const Scene& scene);
 
 }  // namespace penumbra::viewer

@@ -4,30 +4,17 @@
 #include <array>
 #include <cmath>
 
-#include <glm/gtc/type_ptr.hpp>
-#include <nlohmann/json.hpp>
 
 #include "penumbra/scene_builder.h"
 
 namespace penumbra::viewer {
 
-CascadeGeometry cascadeGeometry(const std::string& shadowStatsJson) {
+CascadeGeometry cascadeGeometry(const ShadowPlanStats& shadows) {
     CascadeGeometry geometry;
-    const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson, nullptr, false);
-    if (stats.is_discarded() || !stats.contains("directional")) return geometry;
-    const nlohmann::json& directional = stats["directional"];
-    for (const nlohmann::json& sphere : directional.value("cullingSpheres", nlohmann::json::array()))
-        geometry.wsCullingSpheres.emplace_back(sphere[0].get<float>(), sphere[1].get<float>(), sphere[2].get<float>(),
-                                               sphere[3].get<float>());
-    for (const nlohmann::json& tile : directional.value("tileBoxes", nlohmann::json::array())) {
-        CascadeGeometry::Box box;
-        box.cascade = tile.value("cascade", 0u);
-        const std::vector<float> matrix = tile["worldFromClip"].get<std::vector<float>>();
-        if (matrix.size() == 16) box.worldFromClip = glm::make_mat4(matrix.data());
-        geometry.boxes.push_back(box);
-    }
-    const nlohmann::json splits = directional.value("cascadeSplits", nlohmann::json::array());
-    if (!splits.empty()) geometry.shadowDistance = splits.back().get<float>();
+    const DirectionalShadowStats& directional = shadows.directional;
+    geometry.wsCullingSpheres.assign(directional.cullingSpheres.begin(), directional.cullingSpheres.end());
+    for (const DirectionalTileStats& tile : directional.tileStats) geometry.boxes.push_back({tile.cascade, tile.worldFromClip});
+    if (!directional.cascadeSplits.empty()) geometry.shadowDistance = directional.cascadeSplits.back();
     return geometry;
 }
 

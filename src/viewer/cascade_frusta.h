@@ -13,10 +13,11 @@
 #include <glm/glm.hpp>
 
 #include "penumbra/camera.h"
+#include "penumbra/shadow_stats.h"
 
 namespace penumbra::viewer {
 
-// What the shadow stats JSON (RenderResult::stats.shadowStatsJson, "directional") says of the cascades.
+// What a frame's shadow stats (RenderResult::stats.shadows.directional) say of the cascades.
 struct CascadeGeometry {
     std::vector<glm::vec4> wsCullingSpheres;  // centre, radius; one per cascade
     struct Box {
@@ -26,7 +27,7 @@ struct CascadeGeometry {
     std::vector<Box> boxes;  // one per tile: every shadowed directional light's cascades
     float shadowDistance = 0.0f;  // view depth where the last cascade ends
 };
-CascadeGeometry cascadeGeometry(const std::string& shadowStatsJson);
+CascadeGeometry cascadeGeometry(const ShadowPlanStats& shadows);
 
 enum class LineKind { Box, Sphere, ObservedFrustum };
 struct WorldLine {

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 
-#include <nlohmann/json.hpp>
-
 namespace penumbra::viewer {
 
-SplitBar splitBarOf(const Settings& settings, const std::string& shadowStatsJson) {
+SplitBar splitBarOf(const Settings& settings, const ShadowPlanStats& shadows) {
     const DirectionalShadowSettings& directional = settings.shadows.directional;
     SplitBar bar;
     if (directional.cascadeSplits == CascadeSplitMode::Manual) {
@@ -15,27 +13,27 @@ SplitBar splitBarOf(const Settings& settings, const std::string& shadowStatsJson
         return bar;
     }
     bar.computed = true;
-    const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson, nullptr, false);
-    if (stats.is_discarded() || !stats.contains("directional")) return bar;
-    const auto splits = stats["directional"].value("cascadeSplits", std::vector<float>{});
     const float distance = settings.shadows.maxDistance;
     float last = 0.0f;
-    for (float metres : splits) {
+    for (float metres : shadows.directional.cascadeSplits) {
         last = std::clamp(distance > 0.0f ? metres / distance : 1.0f, last, 1.0f);
         bar.ends.push_back(last);
     }
     return bar;
 }
 
-std::string shadowLightCounts(const std::string& shadowStatsJson) {
-    const nlohmann::json stats = nlohmann::json::parse(shadowStatsJson, nullptr, false);
-    if (stats.is_discarded() || !stats.contains("directional") || !stats.contains("other")) return "";
-    const nlohmann::json &directional = stats["directional"], &other = stats["other"];
-    const int sunsReserved = directional.value("lightsReserved", 0);
-    const int sunsDropped = std::max(directional.value("lightsConsidered", 0) - sunsReserved, 0);
+std::string shadowLightCounts(const ShadowPlanStats& shadows) {
+    const int sunsReserved = int(shadows.directional.reservedLights.size());
+    const int sunsDropped = std::max(int(shadows.directional.lightsConsidered) - sunsReserved, 0);
     return "directional lights reserved " + std::to_string(sunsReserved) + ", dropped " + std::to_string(sunsDropped) +
-           "; spot/point reserved " + std::to_string(other.value("lightsReserved", 0)) + ", dropped " +
-           std::to_string(other.value("lightsDropped", 0));
+           "; spot/point reserved " + std::to_string(shadows.other.reservedLights.size()) + ", dropped " +
+           std::to_string(shadows.other.lightsDropped);
+}
+
+std::string countList(const std::vector<uint64_t>& counts) {
+    std::string text = "[";
+    for (size_t i = 0; i < counts.size(); ++i) text += (i ? ", " : "") + std::to_string(counts[i]);
+    return text + "]";
 }
 
 std::vector<std::string> cameraChoices(const Scene& scene) {

@@ -6,6 +6,7 @@
 
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
+#include "penumbra/shadow_stats.h"
 
 namespace penumbra::viewer {
 
@@ -16,13 +17,16 @@ struct SplitBar {
 };
 
 // Manual splits: the cascade ratios (the last cascade ends at 1). Log and practical splits: the
-// frame's own, from its shadow stats JSON (directional.cascadeSplits, metres) over maxDistance; no
-// ends before a frame has finished.
-SplitBar splitBarOf(const Settings& settings, const std::string& shadowStatsJson);
+// frame's own, from its shadow stats (directional.cascadeSplits, metres) over maxDistance; no ends
+// before a frame has finished (no splits).
+SplitBar splitBarOf(const Settings& settings, const ShadowPlanStats& shadows);
 
 // "directional lights reserved R, dropped D; spot/point reserved R, dropped D" from a frame's shadow
-// stats JSON (directional dropped: lightsConsidered - lightsReserved); "" when it has no such counts.
-std::string shadowLightCounts(const std::string& shadowStatsJson);
+// stats (directional dropped: lightsConsidered - reserved).
+std::string shadowLightCounts(const ShadowPlanStats& shadows);
+
+// "[3, 5, 0]": per-tile counts as the stats panel prints them.
+std::string countList(const std::vector<uint64_t>& counts);
 
 // The camera combo's entries: the scene's camera (index -1), then each glTF camera by its name (index
 // 0, 1, ...; "camera N" when it has none).

@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include <imgui.h>
-#include <nlohmann/json.hpp>
 
 #include "viewer/panel_data.h"
 #include "viewer/scene_document.h"
@@ -172,17 +171,19 @@ void drawStatsPanel(PanelContext& c) {
     for (const AtlasDrawStats& atlas : last.atlases)
         ImGui::Text("%s: %u tiles, %u draws, %llu triangles", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     static_cast<unsigned long long>(atlas.triangles));
-    const nlohmann::json shadows = nlohmann::json::parse(last.shadowStatsJson, nullptr, false);
-    if (!shadows.is_discarded() && shadows.contains("other")) {
-        ImGui::TextWrapped("%s", shadowLightCounts(last.shadowStatsJson).c_str());
-        for (const char* atlas : {"directional", "other"}) {
-            const nlohmann::json& a = shadows[atlas];
-            ImGui::Text("%s %d^2: %d tiles of %d^2, %.0f %% used", atlas, a.value("atlasSize", 0), a.value("tiles", 0),
-                        a.value("tileSize", 0), 100.0 * a.value("occupancy", 0.0));
-            ImGui::TextWrapped("  casters per tile: %s", a["castersPerTile"].dump().c_str());
-            if (a.contains("trianglesPerTile")) ImGui::TextWrapped("  triangles per tile: %s", a["trianglesPerTile"].dump().c_str());
+    ImGui::TextWrapped("%s", shadowLightCounts(last.shadows).c_str());
+    const auto atlasLines = [](const char* atlas, const auto& a, auto drawnOf) {
+        ImGui::Text("%s %u^2: %u tiles of %u^2, %.0f %% used", atlas, a.atlasSize, a.tiles, a.tileSize, 100.0 * a.occupancy);
+        std::vector<uint64_t> casters, triangles;
+        for (const auto& tile : a.tileStats) {
+            casters.push_back(drawnOf(tile).casters);
+            triangles.push_back(drawnOf(tile).triangles);
         }
-    }
+        ImGui::TextWrapped("  casters per tile: %s", countList(casters).c_str());
+        if (a.trianglesCounted) ImGui::TextWrapped("  triangles per tile: %s", countList(triangles).c_str());
+    };
+    atlasLines("directional", last.shadows.directional, [](const DirectionalTileStats& t) { return t.drawn; });
+    atlasLines("other", last.shadows.other, [](const ShadowTileDraws& t) { return t; });
     for (const std::string& warning : last.warnings) ImGui::TextWrapped("warning: %s", warning.c_str());
     ImGui::End();
 }

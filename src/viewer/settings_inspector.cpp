@@ -19,8 +19,8 @@ namespace {
 // The cascades as a bar split like the cascade bar of Unity URP's pipeline asset: one coloured span per
 // cascade, where it ends as a share of shadows.maxDistance: the ratios with manual splits, else the last
 // frame's computed splits (marked so: the ratios below apply to manual splits only).
-void drawSplitBar(const Settings& settings, const std::string& shadowStatsJson) {
-    const SplitBar bar = splitBarOf(settings, shadowStatsJson);
+void drawSplitBar(const Settings& settings, const ShadowPlanStats& shadows) {
+    const SplitBar bar = splitBarOf(settings, shadows);
     if (bar.computed)
         ImGui::TextDisabled("computed %s splits of the last frame (ratios: manual only)",
                             cascadeSplitModeName(settings.shadows.directional.cascadeSplits));
@@ -87,7 +87,7 @@ void drawSettingsInspector(PanelContext& c) {
         ImGui::PushID(key.key);
         const std::string label = std::string(key.key).substr(std::string(key.key).find('.') + 1);
         if (key.type == SettingType::Ratios)
-            drawSplitBar(c.settings, c.state.history.empty() ? std::string() : c.state.history.back().shadowStatsJson);
+            drawSplitBar(c.settings, c.state.history.empty() ? ShadowPlanStats{} : c.state.history.back().shadows);
         for (size_t i = 0; i < key.elements(); ++i) {
             ImGui::PushID(int(i));
             const double value = key.get(c.settings, i);

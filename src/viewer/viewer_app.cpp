@@ -333,7 +333,7 @@ bool ViewerApp::renderFrame(float seconds, Image* screenshot) {
         atlasRequest.readback = false;
         const RenderResult atlas = renderer_->render(atlasRequest, settings_, view);
         atlas_->update(atlas.atlas, swapchain_->format());
-        labels = atlasTileLabels(atlas.stats.shadowStatsJson, renderer_->scene());
+        labels = atlasTileLabels(atlas.stats.shadows, renderer_->scene());
     }
     const std::vector<WorldLine> lines = state_.view == ViewMode::Frusta ? observedCascades(request) : std::vector<WorldLine>();
     const bool reference = state_.view == ViewMode::Reference && updateReference(view, screenshot != nullptr);
@@ -435,7 +435,7 @@ std::vector<WorldLine> ViewerApp::observedCascades(const RenderRequest& request)
     planned.readback = false;
     const CameraView observed = makeCameraView(observed_, request.width, request.height);
     const RenderResult result = renderer_->render(planned, settings_, observed);
-    return cascadeLines(cascadeGeometry(result.stats.shadowStatsJson), observed);
+    return cascadeLines(cascadeGeometry(result.stats.shadows), observed);
 }
 
 void ViewerApp::recreateSwapchain() {

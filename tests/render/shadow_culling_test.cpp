@@ -111,7 +111,7 @@ TEST_F(ShadowCullingTest, StatsCountTheTrianglesEachTileDrew) {
     request.width = 96;
     request.height = 54;
     const RenderResult result = renderScene(scene, request, settings);
-    const nlohmann::json stats = nlohmann::json::parse(result.stats.shadowStatsJson)["directional"];
+    const nlohmann::json stats = nlohmann::json::parse(toJson(result.stats.shadows))["directional"];
     ASSERT_TRUE(stats.contains("trianglesPerTile"));
     ASSERT_EQ(stats["trianglesPerTile"].size(), 3u);
     uint64_t total = 0, casters = 0;

@@ -52,7 +52,7 @@ TEST_F(RenderTest, SixteenSpotLightsEachCastTheirBoxShadowAtOnce) {
         std::printf("[ metrics  ] 16 spots, light %u: valid %llu, misclassified %.2f %%, interior %.2f %%\n", light,
                     (unsigned long long)m.validPixels, m.misclassifiedPercent, m.interiorMisclassifiedPercent);
     }
-    const nlohmann::json stats = nlohmann::json::parse(renderer.render(shadowAov(0, 32), gridSettings()).stats.shadowStatsJson);
+    const nlohmann::json stats = nlohmann::json::parse(toJson(renderer.render(shadowAov(0, 32), gridSettings()).stats.shadows));
     EXPECT_EQ(stats["other"]["tiles"], 16);
     EXPECT_EQ(stats["other"]["split"], 4);
     EXPECT_EQ(stats["other"]["lightsDropped"], 0);
@@ -63,7 +63,7 @@ TEST_F(RenderTest, SeventeenthSpotLightIsDroppedWithAStatsEntryAndAWarning) {
     scene.lights[9].range = 3.5f;  // the smallest influence: the one to drop
     Renderer renderer(sharedDevice(), scene);
     const RenderResult result = renderer.render(shadowAov(9, 64), gridSettings());
-    const nlohmann::json stats = nlohmann::json::parse(result.stats.shadowStatsJson);
+    const nlohmann::json stats = nlohmann::json::parse(toJson(result.stats.shadows));
     EXPECT_EQ(stats["other"]["lightsReserved"], 16);
     EXPECT_EQ(stats["other"]["lightsDropped"], 1);
     EXPECT_EQ(stats["other"]["droppedLights"], nlohmann::json::array({9}));
@@ -119,7 +119,7 @@ TEST_F(RenderTest, CasterAtATilesEdgeLeavesTheNeighbouringTileUnchanged) {
     };
     const Settings settings = smallSpotAtlas(512);
     const Scene without = makeScene(false), with = makeScene(true);
-    const nlohmann::json stats = nlohmann::json::parse(renderScene(with, shadowAov(1, 32), settings).stats.shadowStatsJson);
+    const nlohmann::json stats = nlohmann::json::parse(toJson(renderScene(with, shadowAov(1, 32), settings).stats.shadows));
     ASSERT_EQ(stats["other"]["split"], 2);
     EXPECT_EQ(countDifferent(renderScene(without, shadowAov(1, 96), settings).image,
                              renderScene(with, shadowAov(1, 96), settings).image, 0),

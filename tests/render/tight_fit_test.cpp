@@ -13,7 +13,7 @@ using namespace penumbra::test;
 namespace {
 
 double meanTexel(const RenderResult& result) {
-    const nlohmann::json stats = nlohmann::json::parse(result.stats.shadowStatsJson)["directional"];
+    const nlohmann::json stats = nlohmann::json::parse(toJson(result.stats.shadows))["directional"];
     double sum = 0.0;
     for (double texel : stats["texelSizeMetres"]) sum += texel;
     return sum / double(stats["texelSizeMetres"].size());
@@ -29,7 +29,7 @@ TEST_F(CompareTest, TightFitGivesFinerTexelsAndAFaithfulerShadowOnTheCadModel) {
     Settings tight = sphere;
     tight.shadows.directional.fit = CascadeFit::Tight;
     const SceneComparison tightResult = compareCanonicalScene("cad_engine", 0, tight);
-    const nlohmann::json stats = nlohmann::json::parse(tightResult.ours.stats.shadowStatsJson)["directional"];
+    const nlohmann::json stats = nlohmann::json::parse(toJson(tightResult.ours.stats.shadows))["directional"];
     std::printf("[tight fit] cad_engine: mean texel %.4f -> %.4f m, misclassified %.3f -> %.3f %%\n",
                 meanTexel(sphereResult.ours), meanTexel(tightResult.ours), sphereResult.metrics.misclassifiedPercent,
                 tightResult.metrics.misclassifiedPercent);

@@ -33,7 +33,7 @@ struct PlannedCascades {
 
 TEST(CascadeFrusta, StatsJsonGivesThePlansSpheresAndTileBoxes) {
     PlannedCascades p;
-    const CascadeGeometry geometry = cascadeGeometry(shadowStatsJson(p.plan));
+    const CascadeGeometry geometry = cascadeGeometry(shadowPlanStats(p.plan));
     ASSERT_EQ(geometry.wsCullingSpheres.size(), p.plan.directional.cascades.size());
     ASSERT_EQ(geometry.boxes.size(), p.plan.directional.tiles.size());
     ASSERT_EQ(geometry.boxes.size(), 4u);
@@ -53,12 +53,12 @@ TEST(CascadeFrusta, StatsJsonGivesThePlansSpheresAndTileBoxes) {
         EXPECT_NEAR(clip.z / clip.w, 1.0f, 1e-3f);
     }
     EXPECT_FLOAT_EQ(geometry.shadowDistance, p.plan.directional.cascades.back().vsFar);
-    EXPECT_TRUE(cascadeGeometry("not json").boxes.empty());
+    EXPECT_TRUE(cascadeGeometry(ShadowPlanStats{}).boxes.empty());
 }
 
 TEST(CascadeFrusta, LinesAreTheBoxesEdgesTheSpheresCirclesAndTheObservedFrustum) {
     PlannedCascades p;
-    const CascadeGeometry geometry = cascadeGeometry(shadowStatsJson(p.plan));
+    const CascadeGeometry geometry = cascadeGeometry(shadowPlanStats(p.plan));
     const std::vector<WorldLine> lines = cascadeLines(geometry, p.camera);
     size_t boxes = 0, spheres = 0, frustum = 0;
     for (const WorldLine& line : lines) {

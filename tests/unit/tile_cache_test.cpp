@@ -8,7 +8,11 @@ namespace {
 
 std::vector<TileSignature> tiles(std::initializer_list<float> firstValues) {
     std::vector<TileSignature> result;
-    for (float v : firstValues) result.push_back({v, 1.0f, 2.0f});
+    for (float v : firstValues) {
+        TileSignature signature;
+        for (float value : {v, 1.0f, 2.0f}) signature.push_back(value);
+        result.push_back(signature);
+    }
     return result;
 }
 
