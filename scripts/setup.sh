@@ -11,7 +11,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git ccache
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools
-  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
+  libspirv-cross-c-shared-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev
   libembree-dev libtbb-dev libglfw3-dev libimgui-dev libpng-dev libturbojpeg0-dev libjpeg62-turbo-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb xauth xdotool

@@ -3,10 +3,11 @@
 // full-screen triangle at reversed-Z depth 0 after the opaque draws, with the depth test
 // GreaterOrEqual against the cleared depth 0, so it fills only the pixels no surface covers.
 // Exposed and tone mapped like the lit pass (tone_mapping.glsl).
+#include "pass_bindings.h"
 #include "scene_structs.h"
 #include "tone_mapping.glsl"
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = kSceneBindingFrame, std140) uniform FrameBlock { FrameData frame; };
 
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outColor;

@@ -1,16 +1,17 @@
 // Descriptor bindings shared by the scene shaders (set 0 is pushed per pass, set 1 is the texture table).
 #ifndef PENUMBRA_BINDINGS_GLSL
 #define PENUMBRA_BINDINGS_GLSL
+#include "pass_bindings.h"
 #include "scene_structs.h"
 
 layout(constant_id = 0) const uint kTextureCount = 1;
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = 1, std430) readonly buffer VertexBlock { VertexData vertices[]; };
-layout(set = 0, binding = 2, std430) readonly buffer InstanceBlock { InstanceData instances[]; };
-layout(set = 0, binding = 3, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
-layout(set = 0, binding = 4, std430) readonly buffer LightBlock { LightData lights[]; };
-layout(set = 1, binding = 0) uniform sampler2D baseColorTextures[kTextureCount];
+layout(set = 0, binding = kSceneBindingFrame, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = kSceneBindingVertices, std430) readonly buffer VertexBlock { VertexData vertices[]; };
+layout(set = 0, binding = kSceneBindingInstances, std430) readonly buffer InstanceBlock { InstanceData instances[]; };
+layout(set = 0, binding = kSceneBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = 0, binding = kSceneBindingLights, std430) readonly buffer LightBlock { LightData lights[]; };
+layout(set = 1, binding = kTextureTableBinding) uniform sampler2D baseColorTextures[kTextureCount];
 
 // Base colour (factor x texture) of a material at uv; alpha included.
 vec4 materialBaseColor(MaterialData material, vec2 uv) {

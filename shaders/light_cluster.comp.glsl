@@ -2,15 +2,16 @@
 // Clustered light culling: one workgroup per cluster, one invocation per mask word
 // (32 lights), writes the cluster's light mask (light_cluster_structs.h) and adds its light count
 // to the frame's stats.
+#include "pass_bindings.h"
 #include "scene_structs.h"
 #include "lighting.glsl"
 #include "light_clusters.glsl"
 
 layout(local_size_x = kMaxClusterLightWords) in;
 
-layout(set = 0, binding = 4, std430) readonly buffer LightBlock { LightData lights[]; };
-layout(set = 0, binding = kBindingClusterMasks, std430) writeonly buffer ClusterMaskBlock { uint clusterMasks[]; };
-layout(set = 0, binding = kBindingClusterStats, std430) buffer ClusterStatsBlock { LightClusterStats clusterStats; };
+layout(set = 0, binding = kSceneBindingLights, std430) readonly buffer LightBlock { LightData lights[]; };
+layout(set = 0, binding = kLitBindingClusterMasks, std430) writeonly buffer ClusterMaskBlock { uint clusterMasks[]; };
+layout(set = 0, binding = kClusterBindingStats, std430) buffer ClusterStatsBlock { LightClusterStats clusterStats; };
 
 shared uint clusterLightCount;
 

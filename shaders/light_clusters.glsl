@@ -3,9 +3,10 @@
 // (the reference the tests compare with), and the lit pass's lookup of a fragment's cluster.
 #ifndef PENUMBRA_LIGHT_CLUSTERS_GLSL
 #define PENUMBRA_LIGHT_CLUSTERS_GLSL
+#include "pass_bindings.h"
 #include "light_cluster_structs.h"
 
-layout(set = 0, binding = kBindingLightClusters, std140) uniform LightClusterBlock { LightClusterData clusters; };
+layout(set = 0, binding = kLitBindingLightClusters, std140) uniform LightClusterBlock { LightClusterData clusters; };
 
 // light_clusters.cpp viewPointAtDepth
 vec3 clusterViewPointAtDepth(float ndcX, float ndcY, float vsDepth) {

@@ -3,25 +3,25 @@
 // CullMesh.counts), the meshlets, the queue of large pieces (pass 2) and of their chunks (pass 3).
 #ifndef PENUMBRA_RASTER_MESH_GLSL
 #define PENUMBRA_RASTER_MESH_GLSL
+#include "pass_bindings.h"
 #include "cull_structs.h"
 #include "meshlet_culling.glsl"
 #include "raster_core.glsl"
 
-layout(set = 0, binding = 6, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = 7, std430) readonly buffer IndexBlock { uint indices[]; };
-layout(set = 0, binding = 9, std430) buffer CounterBlock { RasterCounters counters; };
-layout(set = 0, binding = 10, std430) buffer LargeBlock { RasterPiece largePieces[]; };
-layout(set = 0, binding = 11, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
-layout(set = 0, binding = kBindingRasterMeshlets, std430) readonly buffer MeshletBlock { Meshlet meshlets[]; };
+layout(set = 0, binding = kRasterBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = 0, binding = kRasterBindingIndices, std430) readonly buffer IndexBlock { uint indices[]; };
+layout(set = 0, binding = kRasterBindingCounters, std430) buffer CounterBlock { RasterCounters counters; };
+layout(set = 0, binding = kRasterBindingLargePieces, std430) buffer LargeBlock { RasterPiece largePieces[]; };
+layout(set = 0, binding = kRasterBindingChunks, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
+layout(set = 0, binding = kRasterBindingMeshlets, std430) readonly buffer MeshletBlock { Meshlet meshlets[]; };
 
-layout(push_constant) uniform RasterConstants {
-    uvec4 pass;      // shadows: x = first entry of CullFrame::rasterTiles for this atlas, y = their count,
-                     // z = atlas size; main view: visibility_raster.glsl
-    uvec4 capacity;  // x = large pieces, y = chunks the queues hold
+// Both rasterizers' constants have largeCapacity and chunkCapacity (the queues' sizes).
 #ifdef PENUMBRA_VIEW_RASTER
-    uvec4 list;      // VisibilityConstants.list
+#include "visibility_structs.h"
+layout(push_constant) uniform RasterBlock { VisibilityConstants raster; };
+#else
+layout(push_constant) uniform RasterBlock { ShadowRasterConstants raster; };
 #endif
-} raster;
 
 // The mesh slot whose work items (instances x meshlets) hold work item `item`, in mesh order.
 uint meshOfWorkItem(uint item, uint meshCount) {

@@ -2,13 +2,14 @@
 // Screen-space shadow resolve in the manner of Unity URP's screen-space shadows (its
 // _ScreenSpaceShadowmapTexture): the main directional light's shadow term per pixel, from the depth
 // prepass, with exactly the forward path's sampling (shadows.glsl).
+#include "pass_bindings.h"
 #include "bindings.glsl"
 #include "shadows.glsl"
 #include "surface_normals.glsl"
 
-layout(set = 0, binding = 10) uniform sampler2D sceneDepth;
-layout(set = 0, binding = 11) uniform sampler2D sceneNormals;
-layout(push_constant) uniform ResolveConstants { uvec4 slot; } resolve;
+layout(set = 0, binding = kScreenShadowBindingSceneDepth) uniform sampler2D sceneDepth;
+layout(set = 0, binding = kScreenShadowBindingSceneNormals) uniform sampler2D sceneNormals;
+layout(push_constant) uniform ScreenShadowBlock { ScreenShadowConstants resolve; };
 
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out float outAttenuation;
@@ -21,5 +22,5 @@ void main() {
     vec4 wsPosition = frame.worldFromClip * vec4(ndc, depth, 1.0);
     vec4 normals = texelFetch(sceneNormals, pixel, 0);
     ShadowReceiver receiver = ShadowReceiver(wsPosition.xyz / wsPosition.w, octDecode(normals.xy), octDecode(normals.zw));
-    outAttenuation = directionalShadow(resolve.slot.x, receiver, gl_FragCoord.xy).attenuation;
+    outAttenuation = directionalShadow(resolve.lightSlot, receiver, gl_FragCoord.xy).attenuation;
 }

@@ -4,6 +4,7 @@
 // rasterizer knows: the interpolated position and normal, the triangle's plane and the base colour.
 #ifndef PENUMBRA_SHADE_SURFACE_GLSL
 #define PENUMBRA_SHADE_SURFACE_GLSL
+#include "pass_bindings.h"
 #include "bindings.glsl"
 #include "lighting.glsl"
 #include "light_clusters.glsl"
@@ -11,8 +12,8 @@
 #include "sky_light.glsl"
 
 // The main directional light's shadow term from the screen-space resolve (shadows.screenSpace), when enabled.
-layout(set = 0, binding = 9) uniform sampler2D screenSpaceShadows;
-layout(set = 0, binding = kBindingClusterMasks, std430) readonly buffer ClusterMaskBlock { uint clusterMasks[]; };
+layout(set = 0, binding = kLitBindingScreenSpaceShadows) uniform sampler2D screenSpaceShadows;
+layout(set = 0, binding = kLitBindingClusterMasks, std430) readonly buffer ClusterMaskBlock { uint clusterMasks[]; };
 
 // What the rasterizer knows of the visible surface at a pixel.
 struct SurfaceInput {

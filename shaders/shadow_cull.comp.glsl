@@ -5,20 +5,21 @@
 // bounds (shadows/spot_culling.cpp) for spot and point faces. Survivors are appended to their (tile, mesh)
 // list. The main view's two phases (cull_structs.h) use the same lists after the tiles': the camera frustum,
 // then occlusion by the depth pyramid of what the early list drew.
+#include "pass_bindings.h"
 #include "cull_structs.h"
 #include "scene_structs.h"
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = 0, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = 0, binding = 1, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
-layout(set = 0, binding = 2, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = 3, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
-layout(set = 0, binding = 4, std430) buffer ListCountBlock { uint listCounts[]; };  // [tile * meshes + mesh]
-layout(set = 0, binding = 5, std430) writeonly buffer VisibleBlock { uint visibleInstances[]; };
-layout(set = 0, binding = 9, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
-layout(set = 0, binding = 10, std430) readonly buffer PyramidBlock { float pyramid[]; };
-layout(set = 0, binding = 11, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
+layout(set = 0, binding = kCullBindingFrame, std140) uniform CullFrameBlock { CullFrame cull; };
+layout(set = 0, binding = kCullBindingInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
+layout(set = 0, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = 0, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = 0, binding = kCullBindingListCounts, std430) buffer ListCountBlock { uint listCounts[]; };  // [tile * meshes + mesh]
+layout(set = 0, binding = kCullBindingVisibleInstances, std430) writeonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = 0, binding = kCullBindingViewHistory, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
+layout(set = 0, binding = kCullBindingPyramid, std430) readonly buffer PyramidBlock { float pyramid[]; };
+layout(set = 0, binding = kCullBindingTileStats, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
 layout(push_constant) uniform CullConstantsBlock { CullConstants constants; };
 
 // Cascade blend culling (caster_culling.cpp insideScaledSphere): the box wholly inside the scaled sphere.
@@ -185,7 +186,7 @@ void cullCamera(uint instance) {
     cameraClipCorners(candidate.wsMin.xyz, candidate.wsMax.xyz, corners);
     bool inFrustum = culling == kViewCullingNone || !bounded || boxInCameraFrustum(corners);
     uint history = viewHistory[instance];
-    if (constants.mode.x == kCullPassCameraEarly) {
+    if (constants.pass == kCullPassCameraEarly) {
         bool early = inFrustum && (culling != kViewCullingOcclusion || !bounded || (history & kViewVisible) != 0u);
         viewHistory[instance] = (history & kViewVisible) | (early ? kViewDrawnEarly : 0u);
         if (early) appendToView(kCullListCameraEarly, instance, mesh, meshSlot);
@@ -197,7 +198,7 @@ void cullCamera(uint instance) {
 }
 
 void main() {
-    if (constants.mode.x != kCullPassShadows) {
+    if (constants.pass != kCullPassShadows) {
         if (gl_GlobalInvocationID.x < cull.counts.y) cullCamera(gl_GlobalInvocationID.x);
         return;
     }

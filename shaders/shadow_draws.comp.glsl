@@ -3,20 +3,21 @@
 // invocation per (mesh, tile); a non-empty list becomes one VkDrawIndexedIndirectCommand drawing
 // its instances, in the tile's opaque or alpha-tested list by the material's shadow mode
 // (on, clip, dither; off casters are never listed), and counts into the tile's stats.
+#include "pass_bindings.h"
 #include "cull_structs.h"
 #include "scene_structs.h"
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = 0, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = 0, binding = 2, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = 3, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
-layout(set = 0, binding = 4, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = 0, binding = kCullBindingFrame, std140) uniform CullFrameBlock { CullFrame cull; };
+layout(set = 0, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = 0, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = 0, binding = kCullBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
 // [(tile * kCasterKinds + kind) * meshes + i] x 5 uints: indexCount, instanceCount, firstIndex,
 // vertexOffset, firstInstance.
-layout(set = 0, binding = 6, std430) writeonly buffer DrawBlock { uint drawCommands[]; };
-layout(set = 0, binding = 7, std430) buffer DrawCountBlock { uint drawCounts[]; };  // [tile * kCasterKinds + kind]
-layout(set = 0, binding = 8, std430) buffer StatsBlock { CullTileStats tileStats[]; };
+layout(set = 0, binding = kDrawsBindingDrawCommands, std430) writeonly buffer DrawBlock { uint drawCommands[]; };
+layout(set = 0, binding = kDrawsBindingDrawCounts, std430) buffer DrawCountBlock { uint drawCounts[]; };  // [tile * kCasterKinds + kind]
+layout(set = 0, binding = kDrawsBindingTileStats, std430) buffer StatsBlock { CullTileStats tileStats[]; };
 
 void main() {
     uint meshIndex = gl_GlobalInvocationID.x;

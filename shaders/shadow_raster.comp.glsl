@@ -3,12 +3,13 @@
 // triangles) of a slot of a tile's visible list (the GPU culling pass's output), its threads over the
 // triangles; a meshlet whose box lies outside the tile is skipped whole (render.meshletCulling). Small
 // pieces are rasterized by their thread; large ones are queued, set up, for the chunked passes.
+#include "pass_bindings.h"
 #include "shadow_raster.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = 12, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = 0, binding = 13, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = 0, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = 0, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 shared mat4 clipFromObject;
 shared bool meshletSkipped;
@@ -19,7 +20,7 @@ void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
     t.alphaTested = isAlphaTested(mesh);
     if (boundsArea(t.bounds) > kRasterSmallArea) {
         uint queued = atomicAdd(counters.counts.x, 1u);
-        if (queued < raster.capacity.x) largePieces[queued] = packPiece(t, slopeBias);
+        if (queued < raster.largeCapacity) largePieces[queued] = packPiece(t, slopeBias);
         else atomicAdd(counters.counts.z, 1u);
         return;
     }
@@ -29,7 +30,7 @@ void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
 
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    uint tileIndex = rasterTile(raster.pass.x + gl_WorkGroupID.z);
+    uint tileIndex = rasterTile(raster.firstRasterTile + gl_WorkGroupID.z);
     uint instanceCount = cull.counts.y, meshCount = cull.counts.z;
     uint meshSlot = meshOfWorkItem(item, meshCount);
     CullMesh mesh = cullMeshes[meshSlot];
@@ -44,7 +45,7 @@ void main() {
     if (gl_LocalInvocationID.x == 0u) {
         clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;
         // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.
-        meshletSkipped = raster.pass.w != 0u && meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
+        meshletSkipped = raster.meshletCulling != 0u && meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
                                                                   kMeshletSidesXY | kMeshletSideNearW);
         if (meshletSkipped) atomicAdd(counters.meshlets.x, 1u);
     }

@@ -15,11 +15,12 @@
 #ifndef PENUMBRA_SHADOW_RASTER_GLSL
 #define PENUMBRA_SHADOW_RASTER_GLSL
 #extension GL_KHR_shader_subgroup_ballot : require
+#include "pass_bindings.h"
 #include "cull_structs.h"
 #include "raster_mesh.glsl"
 
-layout(set = 0, binding = 5, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = 0, binding = 8, std430) buffer DepthBlock { uint atlasDepth[]; };  // atlasSize^2 float bits
+layout(set = 0, binding = kShadowRasterBindingCullFrame, std140) uniform CullFrameBlock { CullFrame cull; };
+layout(set = 0, binding = kShadowRasterBindingAtlasDepth, std430) buffer DepthBlock { uint atlasDepth[]; };  // atlasSize^2 float bits
 
 
 // Culling tile drawn by entry `i` of the frame's raster tile list.
@@ -43,7 +44,7 @@ void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
     z = clamp(z, 0.0, 1.0);
     // A plain read first: far-away casters put thousands of triangles on one texel, and most of them
     // lie behind what is there already (the early depth test of the hardware path).
-    uint texel = uint(y) * raster.pass.z + uint(x), bits = floatBitsToUint(z);
+    uint texel = uint(y) * raster.atlasSize + uint(x), bits = floatBitsToUint(z);
     if (bits < atlasDepth[texel]) atomicMin(atlasDepth[texel], bits);
 }
 

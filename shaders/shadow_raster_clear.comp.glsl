@@ -6,8 +6,8 @@
 layout(local_size_x = 16, local_size_y = 16) in;
 
 void main() {
-    CullTile tile = cull.tiles[rasterTile(raster.pass.x + gl_WorkGroupID.z)];
+    CullTile tile = cull.tiles[rasterTile(raster.firstRasterTile + gl_WorkGroupID.z)];
     uvec2 texel = uvec2(tile.viewport.xy) + gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(gl_GlobalInvocationID.xy, uvec2(tile.viewport.zw)))) return;
-    atlasDepth[texel.y * raster.pass.z + texel.x] = floatBitsToUint(1.0);
+    atlasDepth[texel.y * raster.atlasSize + texel.x] = floatBitsToUint(1.0);
 }

@@ -5,17 +5,18 @@
 // section or the Unity function it follows.
 #ifndef PENUMBRA_SHADOWS_GLSL
 #define PENUMBRA_SHADOWS_GLSL
+#include "pass_bindings.h"
 #include "other_shadow_structs.h"
 #include "shadow_structs.h"
 #include "shadow_bias.glsl"
 #include "shadow_pcss.glsl"
 #include "shadow_tent.glsl"
 
-layout(set = 0, binding = 5, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
-layout(set = 0, binding = 6) uniform sampler2DShadow directionalShadowAtlas;
+layout(set = 0, binding = kLitBindingDirectionalShadows, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
+layout(set = 0, binding = kLitBindingDirectionalAtlas) uniform sampler2DShadow directionalShadowAtlas;
 // The same atlases read as raw depth (nearest): the receiver-plane compare and blocker searches.
-layout(set = 0, binding = 12) uniform sampler2D directionalShadowDepth;
-layout(set = 0, binding = 13) uniform sampler2D otherShadowDepth;
+layout(set = 0, binding = kLitBindingDirectionalDepth) uniform sampler2D directionalShadowDepth;
+layout(set = 0, binding = kLitBindingOtherDepth) uniform sampler2D otherShadowDepth;
 
 const uint kNoShadowSlot = 0xffffffffu;
 
@@ -151,8 +152,8 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
 // same result for every frame; the renderer draws with it while the specialized one is still being built.
 layout(constant_id = 2) const uint kOtherShadowMode = 0u;
 layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
-layout(set = 0, binding = 7, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
-layout(set = 0, binding = 8) uniform sampler2DShadow otherShadowAtlas;
+layout(set = 0, binding = kLitBindingOtherShadows, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
+layout(set = 0, binding = kLitBindingOtherAtlas) uniform sampler2DShadow otherShadowAtlas;
 
 // HardShadowAttenuation / SoftShadowAttenuation ("Spotlight Shadows", Soft Shadows), the soft one with
 // spot.filter's tent.

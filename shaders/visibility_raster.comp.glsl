@@ -5,12 +5,13 @@
 // list. With render.meshletCulling a meshlet outside the view, or one whose every triangle faces away
 // from the camera (single-sided materials), is skipped whole. Small pieces are rasterized by their
 // thread; large ones are queued, set up, for passes 2 and 3 (or rasterized here when the queue is full).
+#include "pass_bindings.h"
 #include "visibility_raster.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = kBindingViewListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = 0, binding = kBindingViewLists, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = 0, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = 0, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 shared mat4 clipFromObject;
 shared bool meshletSkipped;
@@ -20,7 +21,7 @@ void rasterizeOrQueue(RasterTriangleSetup t, uint materialIndex, uint payload) {
     t.alphaTested = materials[materialIndex].flags.z == kAlphaMask;
     if (boundsArea(t.bounds) > kRasterSmallArea) {
         uint queued = atomicAdd(counters.counts.x, 1u);
-        if (queued < raster.capacity.x) {
+        if (queued < raster.largeCapacity) {
             largePieces[queued] = packViewPiece(t, payload);
             return;
         }
@@ -46,19 +47,19 @@ bool skipMeshlet(Meshlet meshlet, uint instance, bool doubleSided) {
 
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    uint meshSlot = meshOfWorkItem(item, raster.capacity.w);
+    uint meshSlot = meshOfWorkItem(item, raster.meshSlots);
     CullMesh mesh = cullMeshes[meshSlot];
     uint local = item - mesh.counts.z;
     if (mesh.counts.w == 0u || local >= mesh.counts.y * mesh.counts.w) return;  // past the last item
-    uint list = raster.list.x, instanceInMesh = local / mesh.counts.w;
-    if (instanceInMesh >= listCounts[list * raster.capacity.w + meshSlot]) return;  // culled slot
-    uint instance = visibleInstances[list * raster.list.y + mesh.counts.x + instanceInMesh];
+    uint list = raster.list, instanceInMesh = local / mesh.counts.w;
+    if (instanceInMesh >= listCounts[list * raster.meshSlots + meshSlot]) return;  // culled slot
+    uint instance = visibleInstances[list * raster.instanceCount + mesh.counts.x + instanceInMesh];
     Meshlet meshlet = meshlets[mesh.meshlets.x + local % mesh.counts.w];
     MaterialData material = materials[mesh.draw.w];
     bool doubleSided = (material.flags.y & kMaterialDoubleSided) != 0u;
     if (gl_LocalInvocationID.x == 0u) {
         clipFromObject = frame.clipFromWorld * instances[instance].worldFromObject;
-        meshletSkipped = raster.list.z != 0u && skipMeshlet(meshlet, instance, doubleSided);
+        meshletSkipped = raster.meshletCulling != 0u && skipMeshlet(meshlet, instance, doubleSided);
     }
     barrier();
     if (meshletSkipped) return;
@@ -69,7 +70,7 @@ void main() {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         if (!facesShown(v, doubleSided)) continue;
-        uint payload = ((instance << raster.pass.z) | triangle) + 1u;
+        uint payload = ((instance << raster.triangleBits) | triangle) + 1u;
         RasterTriangleSetup t;
         if (!needsClipping(v, kViewClipPlanes)) {
             if (setupTriangle(viewport, scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh.draw.w, payload);

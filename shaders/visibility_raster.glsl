@@ -17,15 +17,16 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #define RASTER_MAX_CLIPPED 10
 #define PENUMBRA_VIEW_RASTER
+#include "pass_bindings.h"
 #include "raster_mesh.glsl"
 #include "visibility_structs.h"
 
-layout(set = 0, binding = kBindingVisibility, std430) buffer VisibilityBlock { uint64_t visibility[]; };
+layout(set = 0, binding = kVisibilityRasterBindingVisibility, std430) buffer VisibilityBlock { uint64_t visibility[]; };
 
 const uint kViewClipPlanes = kClipGuard | kClipDepthNear | kClipDepthFar;
 
-uint viewWidth() { return raster.pass.x; }
-uint viewHeight() { return raster.pass.y; }
+uint viewWidth() { return raster.width; }
+uint viewHeight() { return raster.height; }
 
 // Whether a triangle of the material shows at all: front faces, and back faces of double-sided ones.
 bool facesShown(RasterVertex v[3], bool doubleSided) {

@@ -10,7 +10,7 @@ shared uint chunkCount, chunksWide;
 
 void main() {
     uint large = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    if (large >= min(counters.counts.x, raster.capacity.x)) return;
+    if (large >= min(counters.counts.x, raster.largeCapacity)) return;
     uint payload;
     RasterTriangleSetup t = unpackViewPiece(largePieces[large], payload);
     if (gl_LocalInvocationID.x == 0u) {
@@ -22,7 +22,7 @@ void main() {
         ivec2 origin = t.bounds.xy + ivec2(i % chunksWide, i / chunksWide) * int(kRasterChunk);
         if (!overlapsChunk(t, origin, int(kRasterChunk))) continue;
         uint slot = atomicAdd(counters.counts.y, 1u);
-        if (slot < raster.capacity.y) {
+        if (slot < raster.chunkCapacity) {
             chunks[slot] = uvec2(large, uint(origin.x) | (uint(origin.y) << 16));
             continue;
         }

@@ -3,12 +3,13 @@
 // nearest triangle the compute rasterizer kept and shades it with shade_surface.glsl, the forward
 // pass's own functions (visibility_surface.glsl). Writes the colour (RGBA8, sRGB-encoded for sRGB
 // targets) and the depth, copied into the targets for the forward pass of blended materials.
+#include "pass_bindings.h"
 #include "visibility_surface.glsl"
 
 layout(local_size_x = kResolveGroupSize, local_size_y = kResolveGroupSize) in;
 
-layout(set = 0, binding = kBindingResolvedColor, std430) writeonly buffer ColorBlock { uint resolvedColor[]; };
-layout(set = 0, binding = kBindingResolvedDepth, std430) writeonly buffer DepthBlock { float resolvedDepth[]; };
+layout(set = 0, binding = kResolveBindingColor, std430) writeonly buffer ColorBlock { uint resolvedColor[]; };
+layout(set = 0, binding = kResolveBindingDepth, std430) writeonly buffer DepthBlock { float resolvedDepth[]; };
 
 vec3 srgbEncode(vec3 linear) {
     vec3 c = clamp(linear, 0.0, 1.0);
@@ -17,15 +18,15 @@ vec3 srgbEncode(vec3 linear) {
 
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
-    if (pixel.x >= constants.view.x || pixel.y >= constants.view.y) return;
-    uint index = pixel.y * constants.view.x + pixel.x;
+    if (pixel.x >= constants.width || pixel.y >= constants.height) return;
+    uint index = pixel.y * constants.width + pixel.x;
     uvec2 word = visibility[index];
     resolvedDepth[index] = uintBitsToFloat(word.y);
     if (word.x == 0u) {  // nothing drawn: the clear colour
-        resolvedColor[index] = constants.capacity.z;
+        resolvedColor[index] = constants.background;
         return;
     }
     vec4 color = shadeVisiblePixel(word.x, pixel);
-    if (constants.view.w != 0u) color.rgb = srgbEncode(color.rgb);
+    if (constants.encodeSrgb != 0u) color.rgb = srgbEncode(color.rgb);
     resolvedColor[index] = packUnorm4x8(color);
 }

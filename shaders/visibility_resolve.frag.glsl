@@ -9,7 +9,7 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     uvec2 pixel = uvec2(gl_FragCoord.xy);
-    uvec2 word = visibility[pixel.y * constants.view.x + pixel.x];
+    uvec2 word = visibility[pixel.y * constants.width + pixel.x];
     gl_FragDepth = uintBitsToFloat(word.y);
-    outColor = word.x == 0u ? unpackUnorm4x8(constants.capacity.z) : shadeVisiblePixel(word.x, pixel);
+    outColor = word.x == 0u ? unpackUnorm4x8(constants.background) : shadeVisiblePixel(word.x, pixel);
 }

@@ -6,14 +6,15 @@
 #ifndef PENUMBRA_VISIBILITY_SURFACE_GLSL
 #define PENUMBRA_VISIBILITY_SURFACE_GLSL
 #extension GL_KHR_shader_subgroup_ballot : require
+#include "pass_bindings.h"
 #include "cull_structs.h"
 #include "shade_surface.glsl"
 #include "visibility_structs.h"
 
-layout(set = 0, binding = kBindingResolveVisibility, std430) readonly buffer VisibilityBlock { uvec2 visibility[]; };  // (payload, depth bits): the 64-bit words
-layout(set = 0, binding = kBindingResolveIndices, std430) readonly buffer IndexBlock { uint indices[]; };
-layout(set = 0, binding = kBindingResolveMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = kBindingResolveInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
+layout(set = 0, binding = kResolveBindingVisibility, std430) readonly buffer VisibilityBlock { uvec2 visibility[]; };  // (payload, depth bits): the 64-bit words
+layout(set = 0, binding = kResolveBindingIndices, std430) readonly buffer IndexBlock { uint indices[]; };
+layout(set = 0, binding = kResolveBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = 0, binding = kResolveBindingInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
 layout(push_constant) uniform Constants { VisibilityConstants constants; };
 
 // Perspective-correct barycentrics at NDC point `ndc` of the triangle with clip-space (x, y, w) rows:
@@ -93,7 +94,7 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
 // The shaded colour of pixel `pixel` (its payload != 0), or magenta for an id no instance has (a
 // visible error, never a read out of bounds).
 vec4 shadeVisiblePixel(uint payload, uvec2 pixel) {
-    uint id = payload - 1u, triangleBits = constants.view.z;
+    uint id = payload - 1u, triangleBits = constants.triangleBits;
     uint instance = id >> triangleBits, triangle = triangleBits == 0u ? 0u : id & ((1u << triangleBits) - 1u);
     if (instance >= uint(cullInstances.length())) return vec4(1.0, 0.0, 1.0, 1.0);
     return shadeSurface(surfaceAt(instance, triangle, vec2(pixel) + 0.5));

@@ -31,7 +31,7 @@ PENUMBRA_CONST(uint, kCasterKinds, 2u)  // 0: opaque (depth-only pipeline), 1: a
 PENUMBRA_CONST(uint, kCullInstanceCasts, 1u)  // CullInstance.info.y bit: node casts and has bounds
 PENUMBRA_CONST(uint, kCullInstanceBounded, 2u)  // CullInstance.info.y bit: wsMin / wsMax hold its bounds
 PENUMBRA_CONST(uint, kCullInstanceHasMesh, 4u)  // CullInstance.info.y bit: the instance has geometry (a mesh slot)
-// What a culling dispatch does (CullConstants.mode.x): the shadow tiles, or a main-view phase.
+// What a culling dispatch does (CullConstants.pass): the shadow tiles, or a main-view phase.
 PENUMBRA_CONST(uint, kCullPassShadows, 0u)
 PENUMBRA_CONST(uint, kCullPassCameraEarly, 1u)
 PENUMBRA_CONST(uint, kCullPassCameraLate, 2u)
@@ -78,7 +78,6 @@ struct Meshlet {
 };
 PENUMBRA_CHECK_SIZE(Meshlet, 80)
 PENUMBRA_CHECK_LAYOUT(Meshlet, triangles, 64)
-PENUMBRA_CONST(uint, kBindingRasterMeshlets, 14u)  // both compute rasterizers' pass 1
 
 // Per shadow tile of the frame (both atlases, directional first).
 struct CullTile {
@@ -130,9 +129,9 @@ PENUMBRA_CHECK_LAYOUT(CullFrame, camera, 9968)
 
 // Push constants of the culling pass.
 struct CullConstants {
-    uvec4 mode;  // x = kCullPass*
+    uint pass;  // kCullPass*
 };
-PENUMBRA_CHECK_SIZE(CullConstants, 16)
+PENUMBRA_CHECK_SIZE(CullConstants, 4)
 
 // What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done; the
 // main view's two lists count instances (y) and triangles (z) in the culling pass itself.
@@ -179,6 +178,27 @@ struct RasterCounters {
 };
 PENUMBRA_CHECK_SIZE(RasterCounters, 64)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, meshlets, 48)
+
+// Push constants of the shadow rasterizer's passes (shadow_raster*.comp).
+struct ShadowRasterConstants {
+    uint firstRasterTile;  // first entry of CullFrame::rasterTiles for this atlas
+    uint tileCount;        // its tiles drawn this pass
+    uint atlasSize;        // in texels
+    uint meshletCulling;   // 1: skip meshlets outside the tile (render.meshletCulling)
+    uint largeCapacity;    // large pieces the queue holds
+    uint chunkCapacity;    // chunks the queue holds
+};
+PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 24)
+
+// Push constants of shadow_raster_args.comp, which sizes both rasterizers' indirect dispatches.
+PENUMBRA_CONST(uint, kRasterArgsLarge, 0u)   // the large-piece pass (2)
+PENUMBRA_CONST(uint, kRasterArgsChunks, 1u)  // the chunk pass (3)
+struct RasterArgsConstants {
+    uint queue;  // kRasterArgs*
+    uint largeCapacity;
+    uint chunkCapacity;
+};
+PENUMBRA_CHECK_SIZE(RasterArgsConstants, 12)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

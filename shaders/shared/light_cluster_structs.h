@@ -27,10 +27,6 @@ PENUMBRA_CONST(uint, kMaxClusterLightWords, 32u)  // 32 x 32 = 1024 spot / point
 // Relative growth of every light's range and of its cone's sine before the tests, so that the
 // shader's float rounding in world space can never light a pixel the view-space test left out.
 PENUMBRA_CONST(float, kClusterBoundsMargin, 1.0e-3f)
-// Set 0 bindings of the lit pass (and of the cluster pass, with the lights at 4 as in bindings.glsl).
-PENUMBRA_CONST(uint, kBindingLightClusters, 14u)  // uniform LightClusterData
-PENUMBRA_CONST(uint, kBindingClusterMasks, 15u)   // storage, the mask words
-PENUMBRA_CONST(uint, kBindingClusterStats, 16u)   // storage, LightClusterStats (cluster pass only)
 
 struct LightClusterData {
     mat4 viewFromClip;   // inverse projection: froxel corners from NDC

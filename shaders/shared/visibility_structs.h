@@ -12,40 +12,43 @@
 
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
-// Set 0 bindings of the visibility rasterizer beyond raster_mesh.glsl's 6, 7, 9-11.
-PENUMBRA_CONST(uint, kBindingVisibility, 8u)          // uint64 per pixel
-PENUMBRA_CONST(uint, kBindingViewListCounts, 12u)     // the culling pass's list counts (cull_structs.h)
-PENUMBRA_CONST(uint, kBindingViewLists, 13u)          // and lists: the main view's are kCullListCamera*
-// Set 0 bindings of the resolve beyond the shaded scene's 0-15.
-PENUMBRA_CONST(uint, kBindingResolveVisibility, 16u)
-PENUMBRA_CONST(uint, kBindingResolveIndices, 17u)
-PENUMBRA_CONST(uint, kBindingResolveMeshes, 18u)      // CullMesh
-PENUMBRA_CONST(uint, kBindingResolveInstances, 19u)   // CullInstance (its mesh slot)
-PENUMBRA_CONST(uint, kBindingResolvedColor, 20u)      // RGBA8 per pixel, copied into the colour target
-PENUMBRA_CONST(uint, kBindingResolvedDepth, 21u)      // float per pixel, copied into the depth target
 PENUMBRA_CONST(uint, kResolveGroupSize, 8u)           // the resolve's 8 x 8 workgroups
 
-// Push constants of every visibility pass (the rasterizer's RasterConstants block has this shape).
+// Push constants of every visibility pass (the rasterizer's and the resolve's).
 struct VisibilityConstants {
-    uvec4 view;      // x = width, y = height, z = triangle bits of the payload, w = 1: encode sRGB
-    uvec4 capacity;  // x = large pieces, y = chunks the queues hold; z = background colour (RGBA8); w = mesh slots
-    uvec4 list;      // the rasterizer: x = the culling list it draws (kCullListCamera*), y = instances,
-                     // z = 1: skip meshlets outside the view or facing away (render.meshletCulling)
+    uint width;           // of the view
+    uint height;
+    uint triangleBits;    // of the payload
+    uint encodeSrgb;      // 1: the colour target wants sRGB-encoded values
+    uint largeCapacity;   // large pieces the queue holds
+    uint chunkCapacity;   // chunks the queue holds
+    uint background;      // colour (RGBA8) where nothing was drawn
+    uint meshSlots;
+    // The rasterizer's: the culling list it draws (kCullListCamera*), the instances of a list,
+    // 1: skip meshlets outside the view or facing away (render.meshletCulling).
+    uint list;
+    uint instanceCount;
+    uint meshletCulling;
+    uint unused;
 };
 PENUMBRA_CHECK_SIZE(VisibilityConstants, 48)
-PENUMBRA_CHECK_LAYOUT(VisibilityConstants, capacity, 16)
+PENUMBRA_CHECK_LAYOUT(VisibilityConstants, largeCapacity, 16)
+PENUMBRA_CHECK_LAYOUT(VisibilityConstants, list, 32)
 
 // The depth pyramid of the main view's occlusion culling (cull_structs.h CullCamera), built by
 // depth_pyramid.comp one level a dispatch: level 0 from the visibility buffer, the others from the
 // level below.
-PENUMBRA_CONST(uint, kBindingPyramidVisibility, 0u)
-PENUMBRA_CONST(uint, kBindingPyramid, 1u)
 PENUMBRA_CONST(uint, kPyramidGroupSize, 8u)
 struct PyramidConstants {
-    uvec4 source;  // x = first texel of the level read, y = width, z = height, w = 1: the visibility buffer
-    uvec4 target;  // x = first texel of the level written, y = width, z = height
+    uint sourceOffset;  // first texel of the level read
+    uint sourceWidth;
+    uint sourceHeight;
+    uint fromVisibility;  // 1: the level read is the visibility buffer
+    uint targetOffset;  // first texel of the level written
+    uint targetWidth;
+    uint targetHeight;
 };
-PENUMBRA_CHECK_SIZE(PyramidConstants, 32)
+PENUMBRA_CHECK_SIZE(PyramidConstants, 28)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

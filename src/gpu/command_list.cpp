@@ -1,6 +1,8 @@
 // Command recording: barriers, dynamic rendering, binding, drawing, timers.
 #include "gpu/command_list.h"
 
+#include <algorithm>
+
 #include "gpu/vk_internal.h"
 
 namespace penumbra::gpu {
@@ -111,9 +113,10 @@ void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
     std::vector<VkDescriptorImageInfo> imageInfos(writes.size());
     for (size_t i = 0; i < writes.size(); ++i) {
         const DescriptorWrite& w = writes[i];
-        DescriptorType type = DescriptorType::StorageBuffer;
-        for (const BindingDesc& b : p.bindings)
-            if (b.binding == w.binding) type = b.type;
+        const auto declared = std::find_if(p.bindings.begin(), p.bindings.end(),
+                                           [&](const BindingDesc& b) { return b.binding == w.binding; });
+        if (declared == p.bindings.end()) continue;  // a pass's writes serve pipelines that read fewer bindings
+        const DescriptorType type = declared->type;
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstBinding = w.binding;
         write.descriptorCount = 1;

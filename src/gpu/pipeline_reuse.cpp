@@ -15,7 +15,7 @@ namespace {
 void appendLayout(std::ostringstream& key, const std::vector<BindingDesc>& bindings, uint32_t pushConstantSize,
                   uint32_t textureCount, const std::vector<SpecConstant>& specialization) {
     key << "|bindings";
-    for (const BindingDesc& b : bindings) key << ' ' << b.binding << ':' << int(b.type);
+    for (const BindingDesc& b : bindings) key << ' ' << b.binding << ':' << int(b.type) << ':' << b.stages;
     key << "|push " << pushConstantSize << "|textures " << textureCount << "|spec";
     for (const SpecConstant& c : specialization) key << ' ' << c.id << '=' << c.value;
 }

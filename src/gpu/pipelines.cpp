@@ -1,5 +1,6 @@
 // Graphics and compute pipelines: shader modules from the embedded SPIR-V, a push-descriptor set 0,
 // an optional texture-table set 1, push constants, specialization constants, dynamic rendering.
+#include "gpu/shader_interface.h"
 #include "gpu/shader_registry.h"
 #include "gpu/vk_internal.h"
 
@@ -15,6 +16,27 @@ VkDescriptorType toVkDescriptorType(DescriptorType type) {
         case DescriptorType::StorageTexture: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
     return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+VkShaderStageFlags toVkShaderStages(uint32_t stages) {
+    VkShaderStageFlags flags = 0;
+    if (stages & kStageVertex) flags |= VK_SHADER_STAGE_VERTEX_BIT;
+    if (stages & kStageFragment) flags |= VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (stages & kStageCompute) flags |= VK_SHADER_STAGE_COMPUTE_BIT;
+    return flags;
+}
+
+// The pass's declaration against the shaders' SPIR-V (shader_interface.h); throws Error.
+void checkInterface(const GraphicsPipelineDesc& desc) {
+    std::vector<PipelineStage> stages = {{kStageVertex, desc.vertexShader}};
+    if (!desc.fragmentShader.empty()) stages.push_back({kStageFragment, desc.fragmentShader});
+    checkPipelineInterface(desc.debugName, stages, desc.bindings, desc.pushConstantSize, bool(desc.textureTable));
+}
+
+void checkInterface(const ComputePipelineDesc& desc) {
+    const PipelineStage stage{kStageCompute, desc.shader};
+    checkPipelineInterface(desc.debugName, std::span(&stage, 1), desc.bindings, desc.pushConstantSize,
+                           bool(desc.textureTable));
 }
 
 // Specialization data outlives the create call through this holder.
@@ -41,7 +63,7 @@ void createLayout(Device::Impl& d, PipelineResource& p, const std::vector<Bindin
                   uint32_t pushConstantSize, TextureTableHandle table) {
     std::vector<VkDescriptorSetLayoutBinding> vkBindings;
     for (const BindingDesc& b : bindings)
-        vkBindings.push_back({b.binding, toVkDescriptorType(b.type), 1, VK_SHADER_STAGE_ALL, nullptr});
+        vkBindings.push_back({b.binding, toVkDescriptorType(b.type), 1, toVkShaderStages(b.stages), nullptr});
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     setInfo.bindingCount = uint32_t(vkBindings.size());
@@ -173,6 +195,7 @@ uint32_t tableSize(Device::Impl& d, TextureTableHandle table) { return table ? d
 
 PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) {
     Impl& d = *impl_;
+    checkInterface(desc);
     PipelineResource p;
     const uint32_t textureCount = tableSize(d, desc.textureTable);
     const std::string key = Impl::reuseKey(desc, textureCount);
@@ -195,6 +218,7 @@ PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) 
 
 PipelineHandle Device::createGraphicsPipelineAsync(const GraphicsPipelineDesc& desc) {
     Impl& d = *impl_;
+    checkInterface(desc);
     PipelineResource p;
     const uint32_t textureCount = tableSize(d, desc.textureTable);
     const std::string key = Impl::reuseKey(desc, textureCount);
@@ -332,6 +356,7 @@ void Device::destroy(PipelineHandle handle) {
 
 PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     Impl& d = *impl_;
+    checkInterface(desc);
     PipelineResource p;
     const uint32_t textureCount = tableSize(d, desc.textureTable);
     const std::string key = Impl::reuseKey(desc, textureCount);

@@ -62,11 +62,18 @@ struct SamplerDesc {
     std::optional<AddressMode> addressModeV;
 };
 
+// Shader stages, as a mask: which stages of a pipeline read a binding.
+enum ShaderStage : uint32_t { kStageVertex = 1, kStageFragment = 2, kStageCompute = 4 };
+
 // Set 0 of every pipeline is pushed per draw (VK_KHR_push_descriptor); set 1 optionally holds a
-// texture table (an array of sampled textures sized by specialization constant 0).
+// texture table (an array of sampled textures sized by specialization constant 0). Each pass declares
+// its set 0 once (render/pass_layouts.h, numbers from shaders/shared/pass_bindings.h); pipeline
+// creation checks the declaration against the shaders' SPIR-V (gpu/shader_interface.h).
 struct BindingDesc {
+    std::string name;  // the GLSL block or sampler it stands for, for error messages
     uint32_t binding = 0;
     DescriptorType type = DescriptorType::StorageBuffer;
+    uint32_t stages = 0;  // ShaderStage bits: exactly the stages that read it
 };
 
 struct SpecConstant {

@@ -3,7 +3,9 @@
 #include <algorithm>
 
 #include "cull_structs.h"
+#include "pass_bindings.h"
 #include "render/main_pass.h"
+#include "render/pass_layouts.h"
 
 namespace penumbra {
 
@@ -16,21 +18,34 @@ constexpr uint32_t kFarDepthBits = 0x3f800000u;  // floatBitsToUint(1.0): nothin
 gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName) {
     gpu::ComputePipelineDesc args;
     args.shader = "shadow_raster_args.comp";
-    args.bindings = {{9, gpu::DescriptorType::StorageBuffer}};
-    args.pushConstantSize = 2 * sizeof(glm::uvec4);
+    args.bindings = rasterArgsBindings();
+    args.pushConstantSize = sizeof(gpu_data::RasterArgsConstants);
     args.debugName = debugName;
     return device.createComputePipeline(args);
 }
 
 void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
-                              uint32_t which, uint32_t largeCapacity, uint32_t chunkCapacity) {
+                              uint32_t queue, uint32_t largeCapacity, uint32_t chunkCapacity) {
     commands.memoryBarrier();
     commands.bindPipeline(args);
-    commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{9, counters, {}, {}}});
-    const glm::uvec4 selector[2] = {{which, 0, 0, 0}, {largeCapacity, chunkCapacity, 0, 0}};
-    commands.pushConstants(selector, sizeof(selector));
+    commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{gpu_data::kRasterBindingCounters, counters, {}, {}}});
+    const gpu_data::RasterArgsConstants constants{queue, largeCapacity, chunkCapacity};
+    commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(1, 1);
     commands.memoryBarrier();
+}
+
+void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const GpuScene& gpuScene,
+                            const ShadowCullingPass& culling, const RasterQueues& queues) {
+    using namespace gpu_data;
+    writes.push_back({kRasterBindingMeshes, gpuScene.cullMeshBuffer(), {}, {}});
+    writes.push_back({kRasterBindingIndices, gpuScene.indexBuffer(), {}, {}});
+    writes.push_back({kRasterBindingCounters, queues.counters, {}, {}});
+    writes.push_back({kRasterBindingLargePieces, queues.large, {}, {}});
+    writes.push_back({kRasterBindingChunks, queues.chunks, {}, {}});
+    writes.push_back({kRasterBindingListCounts, culling.listCounts(), {}, {}});
+    writes.push_back({kRasterBindingVisibleInstances, culling.visibleInstances(), {}, {}});
+    writes.push_back({kRasterBindingMeshlets, gpuScene.meshletBuffer(), {}, {}});
 }
 
 ComputeRasterPass::ComputeRasterPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t largeQueue,
@@ -47,13 +62,9 @@ ComputeRasterPass::ComputeRasterPass(gpu::Device& device, const GpuScene& gpuSce
 void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue) {
     gpu::Device& device = device_;
     const GpuScene& gpuScene = scene_;
-    using gpu::DescriptorType;
     gpu::ComputePipelineDesc desc;
-    desc.bindings = sceneBindings();
-    desc.bindings.push_back({5, DescriptorType::UniformBuffer});
-    for (uint32_t binding = 6; binding <= 13; ++binding) desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
-    desc.bindings.push_back({gpu_data::kBindingRasterMeshlets, DescriptorType::StorageBuffer});
-    desc.pushConstantSize = 2 * sizeof(glm::uvec4);
+    desc.bindings = shadowRasterBindings();
+    desc.pushConstantSize = sizeof(gpu_data::ShadowRasterConstants);
     desc.textureTable = gpuScene.textureTable();
     for (auto [pipeline, shader] : {std::pair{&clear_, "shadow_raster_clear.comp"}, std::pair{&small_, "shadow_raster.comp"},
                                     std::pair{&bin_, "shadow_raster_bin.comp"}, std::pair{&chunks_, "shadow_raster_chunks.comp"}}) {
@@ -102,23 +113,17 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
     }
     const uint32_t tileCount = uint32_t(tiles.rects.size());
     std::vector<gpu::DescriptorWrite> rasterWrites = writes;
-    rasterWrites.push_back({5, cullFrame});
-    rasterWrites.push_back({6, scene_.cullMeshBuffer(), {}, {}});
-    rasterWrites.push_back({7, scene_.indexBuffer(), {}, {}});
-    rasterWrites.push_back({8, gpu::BufferSlice{depth, 0, uint64_t(atlasSize) * atlasSize * 4}});
-    rasterWrites.push_back({9, counters_, {}, {}});
-    rasterWrites.push_back({10, large_, {}, {}});
-    rasterWrites.push_back({11, chunkList_, {}, {}});
-    rasterWrites.push_back({12, culling.listCounts(), {}, {}});
-    rasterWrites.push_back({13, culling.visibleInstances(), {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingRasterMeshlets, scene_.meshletBuffer(), {}, {}});
-    const glm::uvec4 constants[2] = {{tiles.listOffset, tileCount, atlasSize, meshletCulling ? 1u : 0u},
-                                     {largeCapacity_, chunkCapacity_, 0, 0}};
+    using namespace gpu_data;
+    rasterWrites.push_back({kShadowRasterBindingCullFrame, cullFrame});
+    rasterWrites.push_back({kShadowRasterBindingAtlasDepth, gpu::BufferSlice{depth, 0, uint64_t(atlasSize) * atlasSize * 4}});
+    appendRasterMeshWrites(rasterWrites, scene_, culling, {counters_, large_, chunkList_});
+    const ShadowRasterConstants constants{tiles.listOffset, tileCount, atlasSize, meshletCulling ? 1u : 0u,
+                                          largeCapacity_, chunkCapacity_};
     auto bind = [&](gpu::PipelineHandle pipeline) {
         commands.bindPipeline(pipeline);
         commands.pushDescriptors(rasterWrites);
         commands.bindTextureTable(scene_.textureTable());
-        commands.pushConstants(constants, sizeof(constants));
+        commands.pushConstants(&constants, sizeof(constants));
     };
 
     // The previous atlas pass (or frame) may still read these buffers.
@@ -136,8 +141,8 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
     commands.memoryBarrier();
     commands.endTimer();
     if (tileCount > 0) {
-        auto sizeDispatch = [&](uint32_t which) {
-            recordRasterDispatchSize(commands, args_, counters_, which, largeCapacity_, chunkCapacity_);
+        auto sizeDispatch = [&](uint32_t queue) {
+            recordRasterDispatchSize(commands, args_, counters_, queue, largeCapacity_, chunkCapacity_);
         };
         const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
         commands.beginTimer(timerPrefix + "/instances");
@@ -146,10 +151,10 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
                           (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth, tileCount);
         commands.endTimer();
         commands.beginTimer(timerPrefix + "/chunks");
-        sizeDispatch(0);
+        sizeDispatch(kRasterArgsLarge);
         bind(bin_);
         commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-        sizeDispatch(1);
+        sizeDispatch(kRasterArgsChunks);
         bind(chunks_);
         commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
         commands.endTimer();

@@ -15,10 +15,16 @@ namespace penumbra {
 
 // What both compute rasterizers (this one and VisibilityPass) share: the pipeline that sizes the
 // indirect dispatches of passes 2 and 3 from a RasterCounters buffer (shadow_raster_args.comp), and
-// its recording (which = 0: the large-piece pass, 1: the chunk pass), between full barriers.
+// its recording (queue = kRasterArgsLarge or kRasterArgsChunks), between full barriers; and the
+// descriptors of raster_mesh.glsl that both bind (the queues, the meshes and the culling lists).
 gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName);
 void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
-                              uint32_t which, uint32_t largeCapacity, uint32_t chunkCapacity);
+                              uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity);
+struct RasterQueues {
+    gpu::BufferHandle counters, large, chunks;
+};
+void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const GpuScene& gpuScene,
+                            const ShadowCullingPass& culling, const RasterQueues& queues);
 
 class ComputeRasterPass {
 public:

@@ -14,6 +14,14 @@ namespace penumbra {
 
 namespace {
 
+// MaterialData.flags carries these enums as integers (scene_structs.h kAlpha*, kShadowMode*).
+static_assert(uint32_t(AlphaMode::Opaque) == gpu_data::kAlphaOpaque && uint32_t(AlphaMode::Mask) == gpu_data::kAlphaMask &&
+              uint32_t(AlphaMode::Blend) == gpu_data::kAlphaBlend);
+static_assert(uint32_t(MaterialShadowMode::On) == gpu_data::kShadowModeOn &&
+              uint32_t(MaterialShadowMode::Clip) == gpu_data::kShadowModeClip &&
+              uint32_t(MaterialShadowMode::Dither) == gpu_data::kShadowModeDither &&
+              uint32_t(MaterialShadowMode::Off) == gpu_data::kShadowModeOff);
+
 gpu_data::MaterialData packMaterial(const Material& m) {
     gpu_data::MaterialData data{};
     data.baseColorFactor = m.baseColorFactor;

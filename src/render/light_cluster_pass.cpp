@@ -3,6 +3,8 @@
 #include <cstring>
 
 #include "light_cluster_structs.h"
+#include "pass_bindings.h"
+#include "render/pass_layouts.h"
 
 namespace penumbra {
 
@@ -16,13 +18,9 @@ LightClusterPass::LightClusterPass(gpu::Device& device) : device_(device) {
 }
 
 void LightClusterPass::create() {
-    using gpu::DescriptorType;
     gpu::ComputePipelineDesc desc;
     desc.shader = "light_cluster.comp";
-    desc.bindings = {{4, DescriptorType::StorageBuffer},
-                     {gpu_data::kBindingLightClusters, DescriptorType::UniformBuffer},
-                     {gpu_data::kBindingClusterMasks, DescriptorType::StorageBuffer},
-                     {gpu_data::kBindingClusterStats, DescriptorType::StorageBuffer}};
+    desc.bindings = lightClusterBindings();
     desc.debugName = "light clusters";
     pipeline_ = device_.createComputePipeline(desc);
     const uint64_t maskBytes = uint64_t(gpu_data::kClusterCount) * gpu_data::kMaxClusterLightWords * 4;
@@ -48,10 +46,10 @@ void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice
     commands.memoryBarrier();
     if (!clustered) return;
     commands.bindPipeline(pipeline_);
-    const std::vector<gpu::DescriptorWrite> writes = {{4, lights},
-                                                      {gpu_data::kBindingLightClusters, clusters},
-                                                      {gpu_data::kBindingClusterMasks, masks_, {}, {}},
-                                                      {gpu_data::kBindingClusterStats, stats_, {}, {}}};
+    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kSceneBindingLights, lights},
+                                                      {gpu_data::kLitBindingLightClusters, clusters},
+                                                      {gpu_data::kLitBindingClusterMasks, masks_, {}, {}},
+                                                      {gpu_data::kClusterBindingStats, stats_, {}, {}}};
     commands.pushDescriptors(writes);
     commands.dispatch(gpu_data::kClusterCount, 1);  // a workgroup per cluster, an invocation per mask word
     commands.memoryBarrier();

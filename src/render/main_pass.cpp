@@ -1,38 +1,20 @@
 #include "render/main_pass.h"
 
 #include "core/error.h"
-#include "light_cluster_structs.h"
+#include "pass_bindings.h"
+#include "render/pass_layouts.h"
 
 #include <algorithm>
 #include <span>
 
 namespace penumbra {
 
-std::vector<gpu::BindingDesc> sceneBindings() {
-    using gpu::DescriptorType;
-    return {{0, DescriptorType::UniformBuffer}, {1, DescriptorType::StorageBuffer}, {2, DescriptorType::StorageBuffer},
-            {3, DescriptorType::StorageBuffer}, {4, DescriptorType::StorageBuffer}};
-}
-
-std::vector<gpu::BindingDesc> shadedSceneBindings() {
-    using gpu::DescriptorType;
-    std::vector<gpu::BindingDesc> bindings = sceneBindings();
-    bindings.push_back({5, DescriptorType::UniformBuffer});
-    bindings.push_back({6, DescriptorType::SampledTexture});
-    bindings.push_back({7, DescriptorType::UniformBuffer});
-    bindings.push_back({8, DescriptorType::SampledTexture});
-    bindings.push_back({9, DescriptorType::SampledTexture});
-    bindings.push_back({12, DescriptorType::SampledTexture});  // the atlases as raw depth
-    bindings.push_back({13, DescriptorType::SampledTexture});
-    bindings.push_back({gpu_data::kBindingLightClusters, DescriptorType::UniformBuffer});  // light_clusters.glsl
-    bindings.push_back({gpu_data::kBindingClusterMasks, DescriptorType::StorageBuffer});
-    return bindings;
-}
-
 std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
                                                         const gpu::BufferSlice& lights) {
-    return {{0, frame}, {1, gpuScene.vertexBuffer(), {}, {}}, {2, gpuScene.instanceBuffer(), {}, {}},
-            {3, gpuScene.materialBuffer(), {}, {}}, {4, lights}};
+    using namespace gpu_data;
+    return {{kSceneBindingFrame, frame}, {kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
+            {kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
+            {kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}, {kSceneBindingLights, lights}};
 }
 
 MainPass::~MainPass() {
@@ -54,7 +36,7 @@ MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool asy
             gpu::GraphicsPipelineDesc desc;
             desc.vertexShader = "mesh.vert";
             desc.fragmentShader = variant.fragmentShader;
-            desc.bindings = shadedSceneBindings();
+            desc.bindings = mainPassBindings(variant.fragmentShader);
             desc.textureTable = scene_.textureTable();
             desc.colorFormats = {variant.colorFormat};
             desc.depthFormat = gpu::Format::D32Float;
@@ -81,7 +63,7 @@ gpu::PipelineHandle MainPass::backgroundPipeline(gpu::Format colorFormat, bool a
     gpu::GraphicsPipelineDesc desc;
     desc.vertexShader = "fullscreen.vert";  // at depth 0: reversed Z's far end, the depth buffer's clear value
     desc.fragmentShader = "background.frag";
-    desc.bindings = {{0, gpu::DescriptorType::UniformBuffer}};
+    desc.bindings = backgroundBindings();
     desc.colorFormats = {colorFormat};
     desc.depthFormat = gpu::Format::D32Float;
     desc.depthCompare = gpu::CompareOp::GreaterOrEqual;  // passes only where the depth is still cleared
@@ -97,7 +79,7 @@ void MainPass::drawBackground(gpu::CommandList& commands, const Target& target,
                               const std::vector<gpu::DescriptorWrite>& writes) {
     const gpu::PipelineHandle pipeline = backgroundPipeline(target.variant.colorFormat, false);
     device_.waitForPipeline(pipeline);  // only before its first build has finished
-    const auto frame = std::find_if(writes.begin(), writes.end(), [](const auto& w) { return w.binding == 0; });
+    const auto frame = std::find_if(writes.begin(), writes.end(), [](const auto& w) { return w.binding == gpu_data::kSceneBindingFrame; });
     PENUMBRA_ASSERT(frame != writes.end());
     commands.bindPipeline(pipeline);
     commands.pushDescriptors(std::span(&*frame, 1));

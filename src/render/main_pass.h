@@ -21,15 +21,12 @@
 
 namespace penumbra {
 
-// Everything set 0 of the scene passes binds: the scene buffers (0-4), the shadow data and atlases
-// (5-8), the screen-space shadow texture (9) and the atlases as raw depth (12, 13);
-// shadedSceneBindings() lists them.
+// Everything set 0 of the scene passes binds (pass_bindings.h: the kSceneBinding* and kLitBinding*
+// descriptors); each pipeline takes those it declares (render/pass_layouts.h).
 struct MainPassInputs {
     std::vector<gpu::DescriptorWrite> writes;
 };
 
-std::vector<gpu::BindingDesc> shadedSceneBindings();
-std::vector<gpu::BindingDesc> sceneBindings();  // 0-4 only (shadow casters)
 std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
                                                         const gpu::BufferSlice& lights);
 

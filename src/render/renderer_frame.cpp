@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "cull_structs.h"
+#include "pass_bindings.h"
 #include "render/frame_setup.h"
 #include "render/light_clusters.h"
 #include "render/renderer_state.h"
@@ -191,16 +192,17 @@ MainPassInputs Renderer::State::recordLightingInputs(FrameRecording& recording) 
 
     MainPassInputs inputs;
     inputs.writes = recording.casterWrites;
-    inputs.writes.push_back({gpu_data::kBindingLightClusters, recording.clusterSlice});
-    inputs.writes.push_back({gpu_data::kBindingClusterMasks, lightClusters.masks(), {}, {}});
-    inputs.writes.push_back({5, recording.directionalSlice});
-    inputs.writes.push_back({6, {}, targets.directionalAtlas, shadowSampler});
-    inputs.writes.push_back({7, recording.otherSlice});
-    inputs.writes.push_back({8, {}, targets.otherAtlas, shadowSampler});
-    // 12, 13: the same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
-    inputs.writes.push_back({12, {}, targets.directionalAtlas, pointSampler});
-    inputs.writes.push_back({13, {}, targets.otherAtlas, pointSampler});
-    inputs.writes.push_back({9, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
+    using namespace gpu_data;
+    inputs.writes.push_back({kLitBindingLightClusters, recording.clusterSlice});
+    inputs.writes.push_back({kLitBindingClusterMasks, lightClusters.masks(), {}, {}});
+    inputs.writes.push_back({kLitBindingDirectionalShadows, recording.directionalSlice});
+    inputs.writes.push_back({kLitBindingDirectionalAtlas, {}, targets.directionalAtlas, shadowSampler});
+    inputs.writes.push_back({kLitBindingOtherShadows, recording.otherSlice});
+    inputs.writes.push_back({kLitBindingOtherAtlas, {}, targets.otherAtlas, shadowSampler});
+    // The same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
+    inputs.writes.push_back({kLitBindingDirectionalDepth, {}, targets.directionalAtlas, pointSampler});
+    inputs.writes.push_back({kLitBindingOtherDepth, {}, targets.otherAtlas, pointSampler});
+    inputs.writes.push_back({kLitBindingScreenSpaceShadows, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
     recording.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
     if (recording.screenSpace)
         inputs.writes.back().texture = screenSpacePass.record(commands, scene, recording.view, inputs, 0);

@@ -1,5 +1,8 @@
 #include "render/screen_space_shadow_pass.h"
 
+#include "pass_bindings.h"
+#include "render/pass_layouts.h"
+
 namespace penumbra {
 
 ScreenSpaceShadowPass::ScreenSpaceShadowPass(gpu::Device& device, MainPass& mainPass)
@@ -7,10 +10,8 @@ ScreenSpaceShadowPass::ScreenSpaceShadowPass(gpu::Device& device, MainPass& main
     gpu::GraphicsPipelineDesc desc;
     desc.vertexShader = "fullscreen.vert";
     desc.fragmentShader = "screen_space_shadows.frag";
-    desc.bindings = shadedSceneBindings();
-    desc.bindings.push_back({10, gpu::DescriptorType::SampledTexture});
-    desc.bindings.push_back({11, gpu::DescriptorType::SampledTexture});
-    desc.pushConstantSize = sizeof(glm::uvec4);
+    desc.bindings = screenSpaceShadowBindings();
+    desc.pushConstantSize = sizeof(gpu_data::ScreenShadowConstants);
     desc.colorFormats = {gpu::Format::R32Float};
     desc.depthTest = desc.depthWrite = false;
     desc.cullMode = gpu::CullMode::None;
@@ -78,11 +79,11 @@ gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, con
     commands.beginRendering(rendering);
     commands.bindPipeline(resolve_);
     std::vector<gpu::DescriptorWrite> writes = inputs.writes;
-    writes.push_back({10, {}, depth_, pointSampler_});
-    writes.push_back({11, {}, normals_, pointSampler_});
+    writes.push_back({gpu_data::kScreenShadowBindingSceneDepth, {}, depth_, pointSampler_});
+    writes.push_back({gpu_data::kScreenShadowBindingSceneNormals, {}, normals_, pointSampler_});
     commands.pushDescriptors(writes);
-    const glm::uvec4 slot(mainLightSlot, 0, 0, 0);
-    commands.pushConstants(&slot, sizeof(slot));
+    const gpu_data::ScreenShadowConstants constants{mainLightSlot};
+    commands.pushConstants(&constants, sizeof(constants));
     commands.draw(3);
     commands.endRendering();
     commands.transition(shadows_, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);

@@ -1,15 +1,16 @@
 #include "render/shadow_caster_pass.h"
 
+#include "pass_bindings.h"
 #include "render/main_pass.h"
+#include "render/pass_layouts.h"
 
 namespace penumbra {
 
 ShadowCasterPass::ShadowCasterPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {
     gpu::GraphicsPipelineDesc desc;
     desc.vertexShader = "shadow_caster.vert";
-    desc.bindings = sceneBindings();
-    desc.bindings.push_back({12, gpu::DescriptorType::StorageBuffer});  // the tile's visible instances
-    desc.pushConstantSize = sizeof(glm::mat4);
+    desc.bindings = shadowCasterBindings();
+    desc.pushConstantSize = sizeof(gpu_data::CasterConstants);
     desc.textureTable = gpuScene.textureTable();
     desc.depthFormat = gpu::Format::D32Float;
     desc.depthCompare = gpu::CompareOp::LessOrEqual;  // standard depth in shadow maps: 0 = near the light
@@ -48,7 +49,7 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
         commands.clearDepthRects(rects, 1.0f);
     }
     std::vector<gpu::DescriptorWrite> casterWrites = writes;
-    casterWrites.push_back({12, culling.visibleInstances(), {}, {}});
+    casterWrites.push_back({gpu_data::kCasterBindingVisibleInstances, culling.visibleInstances(), {}, {}});
     for (uint32_t kind = 0; kind < 2 && !draw.empty(); ++kind) {
         commands.bindPipeline(kind ? alphaTested_ : depthOnly_);
         commands.pushDescriptors(casterWrites);
@@ -65,7 +66,8 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
             commands.setViewport(rect);
             commands.setScissor(scissor);
             commands.setDepthBias(0.0f, tile.slopeScaleBias);
-            commands.pushConstants(&tile.clipFromWorld, sizeof(glm::mat4));
+            const gpu_data::CasterConstants constants{tile.clipFromWorld};
+            commands.pushConstants(&constants, sizeof(constants));
             const ShadowCullingPass::DrawList draws = culling.drawList(firstCullTile + i, kind);
             commands.drawIndexedIndirectCount(draws.commands, draws.offset, draws.count, draws.countOffset, draws.maxDraws);
         }

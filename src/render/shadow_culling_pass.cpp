@@ -5,6 +5,8 @@
 
 #include "core/error.h"
 #include "cull_structs.h"
+#include "pass_bindings.h"
+#include "render/pass_layouts.h"
 
 namespace penumbra {
 
@@ -30,23 +32,15 @@ ShadowCullingPass::ShadowCullingPass(gpu::Device& device, const GpuScene& gpuSce
 void ShadowCullingPass::create() {
     gpu::Device& device = device_;
     const GpuScene& gpuScene = scene_;
-    using gpu::DescriptorType;
     gpu::ComputePipelineDesc desc;
     desc.shader = "shadow_cull.comp";
-    desc.bindings = {{0, DescriptorType::UniformBuffer}, {1, DescriptorType::StorageBuffer},
-                     {2, DescriptorType::StorageBuffer}, {3, DescriptorType::StorageBuffer},
-                     {4, DescriptorType::StorageBuffer}, {5, DescriptorType::StorageBuffer},
-                     {9, DescriptorType::StorageBuffer}, {10, DescriptorType::StorageBuffer},
-                     {11, DescriptorType::StorageBuffer}};
+    desc.bindings = shadowCullBindings();
     desc.pushConstantSize = sizeof(gpu_data::CullConstants);
     desc.debugName = "shadow caster and main view culling";
     cull_ = device.createComputePipeline(desc);
     desc.pushConstantSize = 0;
     desc.shader = "shadow_draws.comp";
-    desc.bindings = {{0, DescriptorType::UniformBuffer}, {2, DescriptorType::StorageBuffer},
-                     {3, DescriptorType::StorageBuffer}, {4, DescriptorType::StorageBuffer},
-                     {6, DescriptorType::StorageBuffer}, {7, DescriptorType::StorageBuffer},
-                     {8, DescriptorType::StorageBuffer}};
+    desc.bindings = shadowDrawsBindings();
     desc.debugName = "shadow draw lists";
     buildDraws_ = device.createComputePipeline(desc);
 
@@ -88,19 +82,20 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
     if (tileCount == 0) return;
     commands.bindPipeline(cull_);
     commands.pushDescriptors(cullWrites(cullFrame, viewHistory_));  // no pyramid read: any buffer
-    const gpu_data::CullConstants constants{glm::uvec4(gpu_data::kCullPassShadows, 0, 0, 0)};
+    const gpu_data::CullConstants constants{gpu_data::kCullPassShadows};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), tileCount);
     commands.memoryBarrier();
     commands.bindPipeline(buildDraws_);
+    using namespace gpu_data;
     const std::vector<gpu::DescriptorWrite> drawWrites = {
-        {0, cullFrame},
-        {2, scene_.cullMeshBuffer(), {}, {}},
-        {3, scene_.materialBuffer(), {}, {}},
-        {4, listCounts_, {}, {}},
-        {6, drawCommands_, {}, {}},
-        {7, drawCounts_, {}, {}},
-        {8, tileStats_, {}, {}}};
+        {kCullBindingFrame, cullFrame},
+        {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
+        {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
+        {kCullBindingListCounts, listCounts_, {}, {}},
+        {kDrawsBindingDrawCommands, drawCommands_, {}, {}},
+        {kDrawsBindingDrawCounts, drawCounts_, {}, {}},
+        {kDrawsBindingTileStats, tileStats_, {}, {}}};
     commands.pushDescriptors(drawWrites);
     commands.dispatch(groupsFor(scene_.meshSlotCount()), tileCount);
     commands.memoryBarrier();  // the draws read the commands (indirect) and the lists (vertex shader)
@@ -108,15 +103,16 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
 
 std::vector<gpu::DescriptorWrite> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
                                                                gpu::BufferHandle pyramid) const {
-    return {{0, cullFrame},
-            {1, scene_.cullInstanceBuffer(), {}, {}},
-            {2, scene_.cullMeshBuffer(), {}, {}},
-            {3, scene_.materialBuffer(), {}, {}},
-            {4, listCounts_, {}, {}},
-            {5, visible_, {}, {}},
-            {9, viewHistory_, {}, {}},
-            {10, pyramid, {}, {}},
-            {11, tileStats_, {}, {}}};
+    using namespace gpu_data;
+    return {{kCullBindingFrame, cullFrame},
+            {kCullBindingInstances, scene_.cullInstanceBuffer(), {}, {}},
+            {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
+            {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
+            {kCullBindingListCounts, listCounts_, {}, {}},
+            {kCullBindingVisibleInstances, visible_, {}, {}},
+            {kCullBindingViewHistory, viewHistory_, {}, {}},
+            {kCullBindingPyramid, pyramid, {}, {}},
+            {kCullBindingTileStats, tileStats_, {}, {}}};
 }
 
 void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,
@@ -124,7 +120,7 @@ void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::Buffer
     PENUMBRA_ASSERT(phase == gpu_data::kCullPassCameraEarly || phase == gpu_data::kCullPassCameraLate);
     commands.bindPipeline(cull_);
     commands.pushDescriptors(cullWrites(cullFrame, pyramid));
-    const gpu_data::CullConstants constants{glm::uvec4(phase, 0, 0, 0)};
+    const gpu_data::CullConstants constants{phase};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), 1);
     commands.memoryBarrier();  // the rasterizer reads the lists

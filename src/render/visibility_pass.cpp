@@ -5,7 +5,9 @@
 
 #include "cull_structs.h"
 #include "render/compute_raster_pass.h"
+#include "pass_bindings.h"
 #include "render/main_pass.h"
+#include "render/pass_layouts.h"
 #include "shadows/cull_packing.h"
 #include "visibility_structs.h"
 
@@ -42,12 +44,8 @@ bool VisibilityPass::supported(const gpu::Device& device, const GpuScene& gpuSce
 }
 
 void VisibilityPass::create() {
-    using gpu::DescriptorType;
     gpu::ComputePipelineDesc desc;
-    desc.bindings = sceneBindings();
-    for (uint32_t binding : {6u, 7u, gpu_data::kBindingVisibility, 9u, 10u, 11u, gpu_data::kBindingViewListCounts,
-                             gpu_data::kBindingViewLists, gpu_data::kBindingRasterMeshlets})
-        desc.bindings.push_back({binding, DescriptorType::StorageBuffer});
+    desc.bindings = visibilityRasterBindings();
     desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
     desc.textureTable = scene_.textureTable();
     for (auto [pipeline, shader] : {std::pair{&raster_, "visibility_raster.comp"}, std::pair{&bin_, "visibility_raster_bin.comp"},
@@ -59,8 +57,7 @@ void VisibilityPass::create() {
     args_ = createRasterArgsPipeline(device_, "visibility raster dispatch sizes");
     gpu::ComputePipelineDesc pyramid;
     pyramid.shader = "depth_pyramid.comp";
-    pyramid.bindings = {{gpu_data::kBindingPyramidVisibility, DescriptorType::StorageBuffer},
-                        {gpu_data::kBindingPyramid, DescriptorType::StorageBuffer}};
+    pyramid.bindings = depthPyramidBindings();
     pyramid.pushConstantSize = sizeof(gpu_data::PyramidConstants);
     pyramid.debugName = "main view depth pyramid";
     pyramid_ = device_.createComputePipeline(pyramid);
@@ -105,11 +102,8 @@ gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecC
     // The compute resolve writes buffers (one pipeline for every format); the fragment one the target.
     gpu::PipelineHandle& pipeline = resolve_[{constants, fragmentResolve_ ? colorFormat : gpu::Format::Undefined}];
     if (pipeline) return pipeline;
-    using gpu::DescriptorType;
-    std::vector<gpu::BindingDesc> bindings = shadedSceneBindings();
-    const uint32_t last = fragmentResolve_ ? gpu_data::kBindingResolveInstances : gpu_data::kBindingResolvedDepth;
-    for (uint32_t binding = gpu_data::kBindingResolveVisibility; binding <= last; ++binding)
-        bindings.push_back({binding, DescriptorType::StorageBuffer});
+    const std::vector<gpu::BindingDesc> bindings =
+        visibilityResolveBindings(fragmentResolve_ ? gpu::kStageFragment : gpu::kStageCompute);
     if (fragmentResolve_) {
         gpu::GraphicsPipelineDesc desc;
         desc.vertexShader = "fullscreen.vert";
@@ -140,10 +134,10 @@ gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecC
 void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                    const Target& target, const gpu_data::VisibilityConstants& constants) {
     std::vector<gpu::DescriptorWrite> resolveWrites = writes;
-    resolveWrites.push_back({gpu_data::kBindingResolveVisibility, visibility_, {}, {}});
-    resolveWrites.push_back({gpu_data::kBindingResolveIndices, scene_.indexBuffer(), {}, {}});
-    resolveWrites.push_back({gpu_data::kBindingResolveMeshes, scene_.cullMeshBuffer(), {}, {}});
-    resolveWrites.push_back({gpu_data::kBindingResolveInstances, scene_.cullInstanceBuffer(), {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingVisibility, visibility_, {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingIndices, scene_.indexBuffer(), {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingMeshes, scene_.cullMeshBuffer(), {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingInstances, scene_.cullInstanceBuffer(), {}, {}});
     auto bind = [&]() {
         commands.bindPipeline(resolvePipeline(target.specialization, target.colorFormat));
         commands.pushDescriptors(resolveWrites);
@@ -167,8 +161,8 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
         commands.endRendering();
         return;
     }
-    resolveWrites.push_back({gpu_data::kBindingResolvedColor, color_, {}, {}});
-    resolveWrites.push_back({gpu_data::kBindingResolvedDepth, depth_, {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingColor, color_, {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingDepth, depth_, {}, {}});
     bind();
     const uint32_t group = gpu_data::kResolveGroupSize;
     commands.dispatch((target.width + group - 1) / group, (target.height + group - 1) / group);
@@ -177,15 +171,17 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
 
 void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                   gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling) {
-    constants.list = glm::uvec4(list, scene_.instanceCount(), meshletCulling ? 1u : 0u, 0u);
+    constants.list = list;
+    constants.instanceCount = scene_.instanceCount();
+    constants.meshletCulling = meshletCulling ? 1u : 0u;
     auto bind = [&](gpu::PipelineHandle pipeline) {
         commands.bindPipeline(pipeline);
         commands.pushDescriptors(writes);
         commands.bindTextureTable(scene_.textureTable());
         commands.pushConstants(&constants, sizeof(constants));
     };
-    auto sizeDispatch = [&](uint32_t which) {
-        recordRasterDispatchSize(commands, args_, counters_, which, kLargeCapacity, kChunkCapacity);
+    auto sizeDispatch = [&](uint32_t queue) {
+        recordRasterDispatchSize(commands, args_, counters_, queue, kLargeCapacity, kChunkCapacity);
     };
     // The queues' counters; the meshlet counts add up over both phases of the frame.
     commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshlets)}, 0);
@@ -194,10 +190,10 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<
     bind(raster_);
     commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
                       (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
-    sizeDispatch(0);
+    sizeDispatch(gpu_data::kRasterArgsLarge);
     bind(bin_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-    sizeDispatch(1);
+    sizeDispatch(gpu_data::kRasterArgsChunks);
     bind(chunks_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
     commands.memoryBarrier();
@@ -206,15 +202,24 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<
 void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
     const DepthPyramidLayout layout = depthPyramidLayout(width_, height_);
     commands.bindPipeline(pyramid_);
-    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kBindingPyramidVisibility, visibility_, {}, {}},
-                                                      {gpu_data::kBindingPyramid, pyramidTexels_, {}, {}}};
+    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kPyramidBindingVisibility, visibility_, {}, {}},
+                                                      {gpu_data::kPyramidBindingTexels, pyramidTexels_, {}, {}}};
     commands.pushDescriptors(writes);
     for (size_t level = 0; level < layout.sizes.size(); ++level) {
         const glm::uvec2 target = layout.sizes[level];
         gpu_data::PyramidConstants constants{};
-        constants.source = level == 0 ? glm::uvec4(0u, width_, height_, 1u)
-                                      : glm::uvec4(layout.offsets[level - 1], layout.sizes[level - 1], 0u);
-        constants.target = glm::uvec4(layout.offsets[level], target, 0u);
+        if (level == 0) {
+            constants.sourceWidth = width_;
+            constants.sourceHeight = height_;
+            constants.fromVisibility = 1u;
+        } else {
+            constants.sourceOffset = layout.offsets[level - 1];
+            constants.sourceWidth = layout.sizes[level - 1].x;
+            constants.sourceHeight = layout.sizes[level - 1].y;
+        }
+        constants.targetOffset = layout.offsets[level];
+        constants.targetWidth = target.x;
+        constants.targetHeight = target.y;
         commands.pushConstants(&constants, sizeof(constants));
         const uint32_t group = gpu_data::kPyramidGroupSize;
         commands.dispatch((target.x + group - 1) / group, (target.y + group - 1) / group);
@@ -227,20 +232,21 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
                             ViewCulling viewCulling, bool meshletCulling) {
     ensureSize(target.width, target.height);
     gpu_data::VisibilityConstants constants{};
-    constants.view = glm::uvec4(target.width, target.height, scene_.triangleIdBits(),
-                                target.colorFormat == gpu::Format::RGBA8Srgb ? 1u : 0u);
-    constants.capacity = glm::uvec4(kLargeCapacity, kChunkCapacity, packRgba8(target.clearColor, false),
-                                    scene_.meshSlotCount());
-    std::vector<gpu::DescriptorWrite> rasterWrites(writes.begin(), writes.begin() + 5);  // scene 0-4
-    rasterWrites.push_back({6, scene_.cullMeshBuffer(), {}, {}});
-    rasterWrites.push_back({7, scene_.indexBuffer(), {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingVisibility, visibility_, {}, {}});
-    rasterWrites.push_back({9, counters_, {}, {}});
-    rasterWrites.push_back({10, large_, {}, {}});
-    rasterWrites.push_back({11, chunkList_, {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingViewListCounts, culling.listCounts(), {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingViewLists, culling.visibleInstances(), {}, {}});
-    rasterWrites.push_back({gpu_data::kBindingRasterMeshlets, scene_.meshletBuffer(), {}, {}});
+    constants.width = target.width;
+    constants.height = target.height;
+    constants.triangleBits = scene_.triangleIdBits();
+    constants.encodeSrgb = target.colorFormat == gpu::Format::RGBA8Srgb ? 1u : 0u;
+    constants.largeCapacity = kLargeCapacity;
+    constants.chunkCapacity = kChunkCapacity;
+    constants.background = packRgba8(target.clearColor, false);
+    constants.meshSlots = scene_.meshSlotCount();
+    using namespace gpu_data;
+    std::vector<gpu::DescriptorWrite> rasterWrites;  // the scene's (not the lit pass's: 8 is the visibility buffer here)
+    for (const gpu::DescriptorWrite& w : writes)
+        for (uint32_t scene : {kSceneBindingFrame, kSceneBindingVertices, kSceneBindingInstances, kSceneBindingMaterials})
+            if (w.binding == scene) rasterWrites.push_back(w);
+    rasterWrites.push_back({kVisibilityRasterBindingVisibility, visibility_, {}, {}});
+    appendRasterMeshWrites(rasterWrites, scene_, culling, {counters_, large_, chunkList_});
 
     commands.beginTimer("main/cull");
     commands.memoryBarrier();  // the previous frame may still read these buffers

@@ -2,7 +2,9 @@
 
 #include <cstring>
 
+#include "pass_bindings.h"
 #include "render/frame_data.h"
+#include "render/pass_layouts.h"
 #include "render/screen_space_shadow_pass.h"
 
 namespace penumbra {
@@ -22,8 +24,8 @@ VisibleSurfacePass::VisibleSurfacePass(gpu::Device& device, const GpuScene& gpuS
                                  "visible-surface frame");
     gpu::ComputePipelineDesc desc;
     desc.shader = "depth_subsample.comp";
-    desc.bindings = {{0, gpu::DescriptorType::SampledTexture}, {1, gpu::DescriptorType::StorageBuffer}};
-    desc.pushConstantSize = sizeof(glm::uvec4);
+    desc.bindings = depthSubsampleBindings();
+    desc.pushConstantSize = sizeof(gpu_data::SubsampleConstants);
     desc.debugName = "depth subsample";
     subsample_ = device.createComputePipeline(desc);
     pointSampler_ = device.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
@@ -58,9 +60,7 @@ VisibleSurfaces VisibleSurfacePass::now(const Scene& scene, const CameraView& vi
     const gpu_data::FrameData frame = cameraFrameData(view);
     device_.writeBuffer(frame_, &frame, sizeof(frame));
     MainPassInputs inputs;
-    inputs.writes = {{0, gpu::BufferSlice{frame_, 0, sizeof(frame)}}, {1, gpuScene_.vertexBuffer(), {}, {}},
-                     {2, gpuScene_.instanceBuffer(), {}, {}}, {3, gpuScene_.materialBuffer(), {}, {}},
-                     {4, gpuScene_.materialBuffer(), {}, {}}};  // 4 (lights) is read by no prepass shader
+    inputs.writes = sceneDescriptorWrites(gpuScene_, gpu::BufferSlice{frame_, 0, sizeof(frame)}, {});  // no lights: the prepass reads none
     MainPass::Target target;
     target.color = normals_;
     target.depth = depth_;
@@ -83,9 +83,10 @@ uint64_t VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::Te
     const glm::uvec2 size = subsampleSize(view);
     commands.transition(depth, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
     commands.bindPipeline(subsample_);
-    const std::vector<gpu::DescriptorWrite> writes = {{0, {}, depth, pointSampler_}, {1, depths_, {}, {}}};
+    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kSubsampleBindingDepth, {}, depth, pointSampler_},
+                                                      {gpu_data::kSubsampleBindingDepths, depths_, {}, {}}};
     commands.pushDescriptors(writes);
-    const glm::uvec4 constants(size, kStride, 0);
+    const gpu_data::SubsampleConstants constants{size.x, size.y, kStride};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch((size.x + 7) / 8, (size.y + 7) / 8);
     commands.transition(depth, gpu::TextureState::ShaderRead, gpu::TextureState::DepthTarget);

@@ -8,6 +8,21 @@
 
 namespace penumbra {
 
+// The shadow data carries these enums as integers (shadow_structs.h); spot_shadow_planner.cpp packs
+// the same ones for the other atlas.
+static_assert(uint32_t(ShadowFilter::PCF2x2) == gpu_data::kShadowFilterPcf2x2 &&
+              uint32_t(ShadowFilter::PCF3x3) == gpu_data::kShadowFilterPcf3x3 &&
+              uint32_t(ShadowFilter::PCF5x5) == gpu_data::kShadowFilterPcf5x5 &&
+              uint32_t(ShadowFilter::PCF7x7) == gpu_data::kShadowFilterPcf7x7);
+static_assert(uint32_t(CascadeBlend::Hard) == gpu_data::kCascadeBlendHard &&
+              uint32_t(CascadeBlend::Soft) == gpu_data::kCascadeBlendSoft &&
+              uint32_t(CascadeBlend::Dither) == gpu_data::kCascadeBlendDither);
+static_assert(uint32_t(ShadowBiasMode::Normal) == gpu_data::kShadowBiasNormal &&
+              uint32_t(ShadowBiasMode::ScaledNormal) == gpu_data::kShadowBiasScaledNormal &&
+              uint32_t(ShadowBiasMode::ReceiverPlane) == gpu_data::kShadowBiasReceiverPlane);
+static_assert(uint32_t(ShadowFadeMode::Linear) == gpu_data::kShadowFadeLinear &&
+              uint32_t(ShadowFadeMode::Squared) == gpu_data::kShadowFadeSquared);
+
 // Catlike Coding "Directional Shadows" (PCF Filtering) scales the normal bias with the filter's whole
 // footprint, filter + 1 texels. Measured on lavapipe (tests/scenes/compare_table.sh; a 60° plane with no
 // slope bias, any darkening counted as acne), acne needs a unit of only about 1.0 / 1.1 / 1.6 / 2.1 texels

@@ -1,0 +1,114 @@
+// The set-0 binding number of every descriptor of every pass, by name, shared by C++ (render/pass_layouts.cpp
+// declares each pass's bindings with these, its descriptor types and stage masks; the passes write their
+// descriptors with them) and GLSL (`layout(set = 0, binding = kSceneBindingFrame)`). Pipeline creation
+// checks each declaration against the shaders' SPIR-V (src/gpu/shader_interface.h).
+//
+// Set 0 is pushed per pass (VK_KHR_push_descriptor); set 1 is the scene's texture table. A number means
+// one thing within a pass; passes that share shader code (bindings.glsl's scene, shadows.glsl's lighting,
+// raster_mesh.glsl's rasterizer) share its numbers. The push-constant blocks are the *Constants structs of
+// the other shared headers.
+#ifndef PENUMBRA_PASS_BINDINGS_H
+#define PENUMBRA_PASS_BINDINGS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+// The texture table (set 1): base colour textures, an array sized by specialization constant 0.
+PENUMBRA_CONST(uint, kTextureTableBinding, 0u)
+
+// The scene (bindings.glsl): the lit pass, its depth + normal prepass, the shadow casters, both compute
+// rasterizers and the visibility resolve.
+PENUMBRA_CONST(uint, kSceneBindingFrame, 0u)      // uniform FrameData (also background.frag)
+PENUMBRA_CONST(uint, kSceneBindingVertices, 1u)   // VertexData[]
+PENUMBRA_CONST(uint, kSceneBindingInstances, 2u)  // InstanceData[]
+PENUMBRA_CONST(uint, kSceneBindingMaterials, 3u)  // MaterialData[]
+PENUMBRA_CONST(uint, kSceneBindingLights, 4u)     // LightData[] (also the light cluster pass)
+
+// Lighting (shadows.glsl, shade_surface.glsl, light_clusters.glsl): the lit pass, the visibility resolve
+// and, in part, the screen-space shadow resolve.
+PENUMBRA_CONST(uint, kLitBindingDirectionalShadows, 5u)    // uniform DirectionalShadowData
+PENUMBRA_CONST(uint, kLitBindingDirectionalAtlas, 6u)      // sampler2DShadow
+PENUMBRA_CONST(uint, kLitBindingOtherShadows, 7u)          // uniform OtherShadowData
+PENUMBRA_CONST(uint, kLitBindingOtherAtlas, 8u)            // sampler2DShadow
+PENUMBRA_CONST(uint, kLitBindingScreenSpaceShadows, 9u)    // sampler2D, the screen-space resolve's output
+PENUMBRA_CONST(uint, kLitBindingDirectionalDepth, 12u)     // the directional atlas as raw depth (PCSS)
+PENUMBRA_CONST(uint, kLitBindingOtherDepth, 13u)           // the spot/point atlas as raw depth (PCSS)
+PENUMBRA_CONST(uint, kLitBindingLightClusters, 14u)        // uniform LightClusterData (also the cluster pass)
+PENUMBRA_CONST(uint, kLitBindingClusterMasks, 15u)         // the mask words (also the cluster pass)
+
+// The light cluster pass (light_cluster.comp), beyond the lights (4) and clusters (14, 15) above.
+PENUMBRA_CONST(uint, kClusterBindingStats, 16u)  // LightClusterStats
+
+// The screen-space shadow resolve (screen_space_shadows.frag), beyond the frame and directional lighting.
+PENUMBRA_CONST(uint, kScreenShadowBindingSceneDepth, 10u)    // the prepass's depth
+PENUMBRA_CONST(uint, kScreenShadowBindingSceneNormals, 11u)  // the prepass's normals
+
+// The shadow casters (shadow_caster.vert), beyond the scene.
+PENUMBRA_CONST(uint, kCasterBindingVisibleInstances, 12u)  // the culling pass's lists
+
+// Shadow-caster and main-view culling (shadow_cull.comp).
+PENUMBRA_CONST(uint, kCullBindingFrame, 0u)             // uniform CullFrame
+PENUMBRA_CONST(uint, kCullBindingInstances, 1u)         // CullInstance[]
+PENUMBRA_CONST(uint, kCullBindingMeshes, 2u)            // CullMesh[]
+PENUMBRA_CONST(uint, kCullBindingMaterials, 3u)         // MaterialData[]
+PENUMBRA_CONST(uint, kCullBindingListCounts, 4u)        // per (list, mesh)
+PENUMBRA_CONST(uint, kCullBindingVisibleInstances, 5u)  // the lists
+PENUMBRA_CONST(uint, kCullBindingViewHistory, 9u)       // kView* bits per instance
+PENUMBRA_CONST(uint, kCullBindingPyramid, 10u)          // the main view's depth pyramid
+PENUMBRA_CONST(uint, kCullBindingTileStats, 11u)        // CullTileStats[]
+// The draw lists (shadow_draws.comp): the culling pass's numbers where they hold the same buffer.
+PENUMBRA_CONST(uint, kDrawsBindingDrawCommands, 6u)  // VkDrawIndexedIndirectCommand[]
+PENUMBRA_CONST(uint, kDrawsBindingDrawCounts, 7u)    // per (tile, caster kind)
+PENUMBRA_CONST(uint, kDrawsBindingTileStats, 8u)     // CullTileStats[]
+
+// Both compute rasterizers (raster_mesh.glsl), beyond the scene.
+PENUMBRA_CONST(uint, kRasterBindingMeshes, 6u)            // CullMesh[]
+PENUMBRA_CONST(uint, kRasterBindingIndices, 7u)           // the scene's index buffer
+PENUMBRA_CONST(uint, kRasterBindingCounters, 9u)          // RasterCounters (also the dispatch-size pass)
+PENUMBRA_CONST(uint, kRasterBindingLargePieces, 10u)      // RasterPiece[]
+PENUMBRA_CONST(uint, kRasterBindingChunks, 11u)           // (large piece, chunk x | y << 16)
+PENUMBRA_CONST(uint, kRasterBindingListCounts, 12u)       // the culling pass's list counts
+PENUMBRA_CONST(uint, kRasterBindingVisibleInstances, 13u) // and lists
+PENUMBRA_CONST(uint, kRasterBindingMeshlets, 14u)         // Meshlet[]
+// The shadow rasterizer (shadow_raster.glsl).
+PENUMBRA_CONST(uint, kShadowRasterBindingCullFrame, 5u)   // uniform CullFrame (its tiles)
+PENUMBRA_CONST(uint, kShadowRasterBindingAtlasDepth, 8u)  // atlasSize^2 float bits
+// The visibility rasterizer (visibility_raster.glsl).
+PENUMBRA_CONST(uint, kVisibilityRasterBindingVisibility, 8u)  // uint64 per pixel
+
+// The visibility resolve (visibility_surface.glsl, visibility_resolve.comp), beyond the scene and lighting.
+PENUMBRA_CONST(uint, kResolveBindingVisibility, 16u)
+PENUMBRA_CONST(uint, kResolveBindingIndices, 17u)
+PENUMBRA_CONST(uint, kResolveBindingMeshes, 18u)     // CullMesh[]
+PENUMBRA_CONST(uint, kResolveBindingInstances, 19u)  // CullInstance[] (their mesh slots)
+PENUMBRA_CONST(uint, kResolveBindingColor, 20u)      // RGBA8 per pixel, copied into the colour target (compute only)
+PENUMBRA_CONST(uint, kResolveBindingDepth, 21u)      // float per pixel, copied into the depth target (compute only)
+
+// The main view's depth pyramid (depth_pyramid.comp).
+PENUMBRA_CONST(uint, kPyramidBindingVisibility, 0u)
+PENUMBRA_CONST(uint, kPyramidBindingTexels, 1u)
+
+// The visible-surface depth subsample (depth_subsample.comp).
+PENUMBRA_CONST(uint, kSubsampleBindingDepth, 0u)   // sampler2D, the prepass's depth
+PENUMBRA_CONST(uint, kSubsampleBindingDepths, 1u)  // float per output texel
+
+// Push constants of the passes whose data has no header of its own.
+struct CasterConstants {  // shadow_caster.vert
+    mat4 clipFromWorld;   // the tile's
+};
+PENUMBRA_CHECK_SIZE(CasterConstants, 64)
+
+struct ScreenShadowConstants {  // screen_space_shadows.frag
+    uint lightSlot;             // the main light's shadowed directional slot
+};
+PENUMBRA_CHECK_SIZE(ScreenShadowConstants, 4)
+
+struct SubsampleConstants {  // depth_subsample.comp
+    uint width;              // output size
+    uint height;
+    uint stride;             // output texel (x, y) reads pixel (x, y) * stride
+};
+PENUMBRA_CHECK_SIZE(SubsampleConstants, 12)
+
+PENUMBRA_GPU_NAMESPACE_END
+#endif

@@ -1,0 +1,153 @@
+#include "render/pass_layouts.h"
+
+#include "core/error.h"
+#include "pass_bindings.h"
+
+namespace penumbra {
+
+namespace {
+
+using namespace gpu_data;
+using gpu::BindingDesc;
+constexpr gpu::DescriptorType kUniform = gpu::DescriptorType::UniformBuffer;
+constexpr gpu::DescriptorType kStorage = gpu::DescriptorType::StorageBuffer;
+constexpr gpu::DescriptorType kSampled = gpu::DescriptorType::SampledTexture;
+constexpr uint32_t kV = gpu::kStageVertex, kF = gpu::kStageFragment, kC = gpu::kStageCompute;
+
+// What shade_surface.glsl reads beyond the scene: lights, shadows, clusters (all in one stage).
+void appendLighting(std::vector<BindingDesc>& bindings, uint32_t stage) {
+    bindings.insert(bindings.end(), {{"LightBlock", kSceneBindingLights, kStorage, stage},
+                                     {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, stage},
+                                     {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, stage},
+                                     {"OtherShadowBlock", kLitBindingOtherShadows, kUniform, stage},
+                                     {"otherShadowAtlas", kLitBindingOtherAtlas, kSampled, stage},
+                                     {"screenSpaceShadows", kLitBindingScreenSpaceShadows, kSampled, stage},
+                                     {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, stage},
+                                     {"otherShadowDepth", kLitBindingOtherDepth, kSampled, stage},
+                                     {"LightClusterBlock", kLitBindingLightClusters, kUniform, stage},
+                                     {"ClusterMaskBlock", kLitBindingClusterMasks, kStorage, stage}});
+}
+
+// raster_mesh.glsl's buffers, shared by both compute rasterizers.
+void appendRasterMesh(std::vector<BindingDesc>& bindings) {
+    bindings.insert(bindings.end(), {{"VertexBlock", kSceneBindingVertices, kStorage, kC},
+                                     {"InstanceBlock", kSceneBindingInstances, kStorage, kC},
+                                     {"MaterialBlock", kSceneBindingMaterials, kStorage, kC},
+                                     {"CullMeshBlock", kRasterBindingMeshes, kStorage, kC},
+                                     {"IndexBlock", kRasterBindingIndices, kStorage, kC},
+                                     {"CounterBlock", kRasterBindingCounters, kStorage, kC},
+                                     {"LargeBlock", kRasterBindingLargePieces, kStorage, kC},
+                                     {"ChunkBlock", kRasterBindingChunks, kStorage, kC},
+                                     {"ListCountBlock", kRasterBindingListCounts, kStorage, kC},
+                                     {"VisibleBlock", kRasterBindingVisibleInstances, kStorage, kC},
+                                     {"MeshletBlock", kRasterBindingMeshlets, kStorage, kC}});
+}
+
+}  // namespace
+
+std::vector<BindingDesc> mainPassBindings(const std::string& fragmentShader) {
+    if (fragmentShader == "normal_prepass.frag")
+        return {{"FrameBlock", kSceneBindingFrame, kUniform, kV},
+                {"VertexBlock", kSceneBindingVertices, kStorage, kV},
+                {"InstanceBlock", kSceneBindingInstances, kStorage, kV | kF},
+                {"MaterialBlock", kSceneBindingMaterials, kStorage, kF}};
+    if (fragmentShader != "lit.frag") throw Error("internal: no main-pass bindings for '" + fragmentShader + "'");
+    std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, kV | kF},
+                                         {"VertexBlock", kSceneBindingVertices, kStorage, kV},
+                                         {"InstanceBlock", kSceneBindingInstances, kStorage, kV | kF},
+                                         {"MaterialBlock", kSceneBindingMaterials, kStorage, kF}};
+    appendLighting(bindings, kF);
+    return bindings;
+}
+
+std::vector<BindingDesc> backgroundBindings() { return {{"FrameBlock", kSceneBindingFrame, kUniform, kF}}; }
+
+std::vector<BindingDesc> shadowCasterBindings() {
+    return {{"VertexBlock", kSceneBindingVertices, kStorage, kV},
+            {"InstanceBlock", kSceneBindingInstances, kStorage, kV | kF},
+            {"MaterialBlock", kSceneBindingMaterials, kStorage, kF},
+            {"VisibleBlock", kCasterBindingVisibleInstances, kStorage, kV}};
+}
+
+std::vector<BindingDesc> screenSpaceShadowBindings() {
+    return {{"FrameBlock", kSceneBindingFrame, kUniform, kF},
+            {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, kF},
+            {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, kF},
+            {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, kF},
+            {"sceneDepth", kScreenShadowBindingSceneDepth, kSampled, kF},
+            {"sceneNormals", kScreenShadowBindingSceneNormals, kSampled, kF}};
+}
+
+std::vector<BindingDesc> shadowCullBindings() {
+    return {{"CullFrameBlock", kCullBindingFrame, kUniform, kC},
+            {"CullInstanceBlock", kCullBindingInstances, kStorage, kC},
+            {"CullMeshBlock", kCullBindingMeshes, kStorage, kC},
+            {"MaterialBlock", kCullBindingMaterials, kStorage, kC},
+            {"ListCountBlock", kCullBindingListCounts, kStorage, kC},
+            {"VisibleBlock", kCullBindingVisibleInstances, kStorage, kC},
+            {"ViewHistoryBlock", kCullBindingViewHistory, kStorage, kC},
+            {"PyramidBlock", kCullBindingPyramid, kStorage, kC},
+            {"TileStatsBlock", kCullBindingTileStats, kStorage, kC}};
+}
+
+std::vector<BindingDesc> shadowDrawsBindings() {
+    return {{"CullFrameBlock", kCullBindingFrame, kUniform, kC},
+            {"CullMeshBlock", kCullBindingMeshes, kStorage, kC},
+            {"MaterialBlock", kCullBindingMaterials, kStorage, kC},
+            {"ListCountBlock", kCullBindingListCounts, kStorage, kC},
+            {"DrawBlock", kDrawsBindingDrawCommands, kStorage, kC},
+            {"DrawCountBlock", kDrawsBindingDrawCounts, kStorage, kC},
+            {"StatsBlock", kDrawsBindingTileStats, kStorage, kC}};
+}
+
+std::vector<BindingDesc> shadowRasterBindings() {
+    std::vector<BindingDesc> bindings = {{"CullFrameBlock", kShadowRasterBindingCullFrame, kUniform, kC},
+                                         {"DepthBlock", kShadowRasterBindingAtlasDepth, kStorage, kC}};
+    appendRasterMesh(bindings);
+    return bindings;
+}
+
+std::vector<BindingDesc> visibilityRasterBindings() {
+    std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, kC},
+                                         {"VisibilityBlock", kVisibilityRasterBindingVisibility, kStorage, kC}};
+    appendRasterMesh(bindings);
+    return bindings;
+}
+
+std::vector<BindingDesc> rasterArgsBindings() { return {{"CounterBlock", kRasterBindingCounters, kStorage, kC}}; }
+
+std::vector<BindingDesc> visibilityResolveBindings(gpu::ShaderStage shading) {
+    const uint32_t s = shading;
+    std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, s},
+                                         {"VertexBlock", kSceneBindingVertices, kStorage, s},
+                                         {"InstanceBlock", kSceneBindingInstances, kStorage, s},
+                                         {"MaterialBlock", kSceneBindingMaterials, kStorage, s}};
+    appendLighting(bindings, s);
+    bindings.insert(bindings.end(), {{"VisibilityBlock", kResolveBindingVisibility, kStorage, s},
+                                     {"IndexBlock", kResolveBindingIndices, kStorage, s},
+                                     {"CullMeshBlock", kResolveBindingMeshes, kStorage, s},
+                                     {"CullInstanceBlock", kResolveBindingInstances, kStorage, s}});
+    if (shading == gpu::kStageCompute)
+        bindings.insert(bindings.end(), {{"ColorBlock", kResolveBindingColor, kStorage, kC},
+                                         {"DepthBlock", kResolveBindingDepth, kStorage, kC}});
+    return bindings;
+}
+
+std::vector<BindingDesc> depthPyramidBindings() {
+    return {{"VisibilityBlock", kPyramidBindingVisibility, kStorage, kC},
+            {"PyramidBlock", kPyramidBindingTexels, kStorage, kC}};
+}
+
+std::vector<BindingDesc> lightClusterBindings() {
+    return {{"LightBlock", kSceneBindingLights, kStorage, kC},
+            {"LightClusterBlock", kLitBindingLightClusters, kUniform, kC},
+            {"ClusterMaskBlock", kLitBindingClusterMasks, kStorage, kC},
+            {"ClusterStatsBlock", kClusterBindingStats, kStorage, kC}};
+}
+
+std::vector<BindingDesc> depthSubsampleBindings() {
+    return {{"sceneDepth", kSubsampleBindingDepth, kSampled, kC},
+            {"SubsampleBlock", kSubsampleBindingDepths, kStorage, kC}};
+}
+
+}  // namespace penumbra
