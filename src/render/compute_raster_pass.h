@@ -15,10 +15,13 @@ namespace penumbra {
 
 // What both compute rasterizers (this one and VisibilityPass) share: the pipeline that sizes the
 // indirect dispatches of passes 2 and 3 from a RasterCounters buffer (shadow_raster_args.comp), and
-// its recording (which = 0: the large-piece pass, 1: the chunk pass), between full barriers.
+// its recording as the frame graph pass `passName` (which = 0: the large-piece pass, 1: the chunk pass).
 gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName);
-void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
-                              uint32_t which, uint32_t largeCapacity, uint32_t chunkCapacity);
+void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passName, gpu::PipelineHandle args,
+                              gpu::BufferHandle counters, uint32_t which, uint32_t largeCapacity, uint32_t chunkCapacity);
+// The buffers every rasterizer dispatch may read: the scene's, the meshes, indices and meshlets, and
+// the culled lists.
+std::vector<gpu::ResourceUse> rasterReads(const GpuScene& scene, const ShadowCullingPass& culling);
 
 class ComputeRasterPass {
 public:

@@ -42,11 +42,10 @@ void LightClusterPass::destroyAll() {
 
 void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice& clusters,
                               const gpu::BufferSlice& lights, bool clustered) {
-    // The previous frame's lit pass may still read the masks: the clear waits for it.
-    commands.memoryBarrier();
+    commands.pass("lightClusters/clear", {gpu::use(stats_, gpu::Usage::TransferWrite)});
     commands.clearBuffer(stats_, 0);
-    commands.memoryBarrier();
     if (!clustered) return;
+    commands.pass("lightClusters", {gpu::use(masks_, gpu::Usage::ComputeWrite), gpu::use(stats_, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(pipeline_);
     const std::vector<gpu::DescriptorWrite> writes = {{4, lights},
                                                       {gpu_data::kBindingLightClusters, clusters},
@@ -54,7 +53,6 @@ void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice
                                                       {gpu_data::kBindingClusterStats, stats_, {}, {}}};
     commands.pushDescriptors(writes);
     commands.dispatch(gpu_data::kClusterCount, 1);  // a workgroup per cluster, an invocation per mask word
-    commands.memoryBarrier();
 }
 
 gpu::BufferSlice LightClusterPass::stats() const { return {stats_, 0, sizeof(gpu_data::LightClusterStats)}; }

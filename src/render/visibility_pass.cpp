@@ -137,9 +137,10 @@ gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecC
     return pipeline;
 }
 
-void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                                   const Target& target, const gpu_data::VisibilityConstants& constants) {
-    std::vector<gpu::DescriptorWrite> resolveWrites = writes;
+void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
+                                   const gpu_data::VisibilityConstants& constants) {
+    using gpu::Usage;
+    std::vector<gpu::DescriptorWrite> resolveWrites = inputs.writes;
     resolveWrites.push_back({gpu_data::kBindingResolveVisibility, visibility_, {}, {}});
     resolveWrites.push_back({gpu_data::kBindingResolveIndices, scene_.indexBuffer(), {}, {}});
     resolveWrites.push_back({gpu_data::kBindingResolveMeshes, scene_.cullMeshBuffer(), {}, {}});
@@ -150,9 +151,14 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
         commands.bindTextureTable(scene_.textureTable());
         commands.pushConstants(&constants, sizeof(constants));
     };
-    if (fragmentResolve_) {
-        commands.transition(target.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-        commands.transition(target.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    const Usage read = fragmentResolve_ ? Usage::GraphicsRead : Usage::ComputeRead;
+    std::vector<gpu::ResourceUse> uses = {gpu::use(visibility_, read), gpu::use(scene_.indexBuffer(), read),
+                                          gpu::use(scene_.cullMeshBuffer(), read), gpu::use(scene_.cullInstanceBuffer(), read)};
+    addShadingReads(uses, scene_, inputs, !fragmentResolve_);
+    if (fragmentResolve_) {  // every pixel is written
+        uses.push_back(gpu::discard(target.color, Usage::ColorTarget));
+        uses.push_back(gpu::discard(target.depth, Usage::DepthTarget));
+        commands.pass("main/resolve", uses);
         gpu::RenderingDesc rendering;
         rendering.width = target.width;
         rendering.height = target.height;
@@ -169,14 +175,18 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
     }
     resolveWrites.push_back({gpu_data::kBindingResolvedColor, color_, {}, {}});
     resolveWrites.push_back({gpu_data::kBindingResolvedDepth, depth_, {}, {}});
+    uses.push_back(gpu::use(color_, Usage::ComputeWrite));
+    uses.push_back(gpu::use(depth_, Usage::ComputeWrite));
+    commands.pass("main/resolve", uses);
     bind();
     const uint32_t group = gpu_data::kResolveGroupSize;
     commands.dispatch((target.width + group - 1) / group, (target.height + group - 1) / group);
-    commands.memoryBarrier();
 }
 
-void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::string& name,
+                                  const std::vector<gpu::DescriptorWrite>& writes, const std::vector<gpu::ResourceUse>& reads,
                                   gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling) {
+    using gpu::Usage;
     constants.list = glm::uvec4(list, scene_.instanceCount(), meshletCulling ? 1u : 0u, 0u);
     auto bind = [&](gpu::PipelineHandle pipeline) {
         commands.bindPipeline(pipeline);
@@ -184,23 +194,34 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<
         commands.bindTextureTable(scene_.textureTable());
         commands.pushConstants(&constants, sizeof(constants));
     };
-    auto sizeDispatch = [&](uint32_t which) {
-        recordRasterDispatchSize(commands, args_, counters_, which, kLargeCapacity, kChunkCapacity);
+    auto pass = [&](const std::string& passName, std::initializer_list<gpu::ResourceUse> more) {
+        std::vector<gpu::ResourceUse> uses = reads;
+        uses.insert(uses.end(), more);
+        commands.pass(passName, uses);
+    };
+    auto sizeDispatch = [&](const char* step, uint32_t which) {
+        recordRasterDispatchSize(commands, name + step, args_, counters_, which, kLargeCapacity, kChunkCapacity);
     };
     // The queues' counters; the meshlet counts add up over both phases of the frame.
+    commands.pass(name + "/clear", {gpu::use(counters_, Usage::TransferWrite)});
     commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshlets)}, 0);
-    commands.memoryBarrier();
     const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
+    pass(name, {gpu::use(visibility_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
+                gpu::use(large_, Usage::ComputeWrite)});
     bind(raster_);
     commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
                       (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
-    sizeDispatch(0);
+    sizeDispatch("/bin size", 0);
+    pass(name + "/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
+                         gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
     bind(bin_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-    sizeDispatch(1);
+    sizeDispatch("/chunks size", 1);
+    pass(name + "/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
+                            gpu::use(counters_, Usage::IndirectArguments), gpu::use(counters_, Usage::ComputeRead),
+                            gpu::use(visibility_, Usage::ComputeWrite)});
     bind(chunks_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
-    commands.memoryBarrier();
 }
 
 void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
@@ -217,13 +238,14 @@ void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
         constants.target = glm::uvec4(layout.offsets[level], target, 0u);
         commands.pushConstants(&constants, sizeof(constants));
         const uint32_t group = gpu_data::kPyramidGroupSize;
+        // Each level reads the one before (or the visibility buffer).
+        commands.pass("main/pyramid", {gpu::use(visibility_, gpu::Usage::ComputeRead),
+                                       gpu::use(pyramidTexels_, gpu::Usage::ComputeWrite)});
         commands.dispatch((target.x + group - 1) / group, (target.y + group - 1) / group);
-        commands.memoryBarrier();  // the next level reads this one
     }
 }
 
-void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                            const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
+void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
                             ViewCulling viewCulling, bool meshletCulling) {
     ensureSize(target.width, target.height);
     gpu_data::VisibilityConstants constants{};
@@ -231,7 +253,7 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
                                 target.colorFormat == gpu::Format::RGBA8Srgb ? 1u : 0u);
     constants.capacity = glm::uvec4(kLargeCapacity, kChunkCapacity, packRgba8(target.clearColor, false),
                                     scene_.meshSlotCount());
-    std::vector<gpu::DescriptorWrite> rasterWrites(writes.begin(), writes.begin() + 5);  // scene 0-4
+    std::vector<gpu::DescriptorWrite> rasterWrites(inputs.writes.begin(), inputs.writes.begin() + 5);  // scene 0-4
     rasterWrites.push_back({6, scene_.cullMeshBuffer(), {}, {}});
     rasterWrites.push_back({7, scene_.indexBuffer(), {}, {}});
     rasterWrites.push_back({gpu_data::kBindingVisibility, visibility_, {}, {}});
@@ -242,14 +264,15 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
     rasterWrites.push_back({gpu_data::kBindingViewLists, culling.visibleInstances(), {}, {}});
     rasterWrites.push_back({gpu_data::kBindingRasterMeshlets, scene_.meshletBuffer(), {}, {}});
 
+    const std::vector<gpu::ResourceUse> reads = rasterReads(scene_, culling);
     commands.beginTimer("main/cull");
-    commands.memoryBarrier();  // the previous frame may still read these buffers
+    commands.pass("main/clear", {gpu::use(visibility_, gpu::Usage::TransferWrite), gpu::use(counters_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(visibility_, 0);
     commands.fillBuffer(gpu::BufferSlice{counters_, offsetof(gpu_data::RasterCounters, meshlets), sizeof(glm::uvec4)}, 0);
     culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraEarly, pyramidTexels_);
     commands.endTimer();
     commands.beginTimer("main/raster");
-    recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraEarly, meshletCulling);
+    recordRaster(commands, "main/raster", rasterWrites, reads, constants, gpu_data::kCullListCameraEarly, meshletCulling);
     commands.endTimer();
     if (viewCulling == ViewCulling::Occlusion) {
         commands.beginTimer("main/occlusion");
@@ -257,17 +280,20 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
         culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraLate, pyramidTexels_);
         commands.endTimer();
         commands.beginTimer("main/rasterLate");
-        recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraLate, meshletCulling);
+        recordRaster(commands, "main/rasterLate", rasterWrites, reads, constants, gpu_data::kCullListCameraLate, meshletCulling);
         commands.endTimer();
     }
 
     commands.beginTimer("main/resolve");
-    recordResolve(commands, writes, target, constants);
+    recordResolve(commands, inputs, target, constants);
     commands.endTimer();
     if (fragmentResolve_) return;
     commands.beginTimer("main/copy");
-    commands.copyBufferToTexture(color_, target.color, gpu::TextureState::ColorTarget);
-    commands.copyBufferToTexture(depth_, target.depth, gpu::TextureState::DepthTarget);
+    commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::use(depth_, gpu::Usage::TransferRead),
+                                gpu::discard(target.color, gpu::Usage::TransferWrite),
+                                gpu::discard(target.depth, gpu::Usage::TransferWrite)});
+    commands.copyBufferToTexture(color_, target.color);
+    commands.copyBufferToTexture(depth_, target.depth);
     commands.endTimer();
 }
 
