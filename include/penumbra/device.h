@@ -16,6 +16,9 @@ class Device;
 struct DeviceOptions {
     std::string device = "auto";  // auto | gpu | cpu | N (index in `penumbra devices` order)
     bool validation = false;      // Khronos validation layer + debug messenger; messages are counted
+    // With validation: the layer's synchronization validation too (a missing or too narrow barrier
+    // between two commands is a message). Slower; the synchronization render tests turn it on.
+    bool synchronizationValidation = false;
     bool timestamps = true;       // GPU timestamps per pass
     uint32_t framesInFlight = 2;  // frames the CPU may record ahead of the GPU (1..4)
     // Folder of the persistent VkPipelineCache: "auto" = $XDG_CACHE_HOME/penumbra (else

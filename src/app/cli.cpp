@@ -101,6 +101,15 @@ int runCli(int argc, char** argv) {
     exporter->add_flag("--ground", exportOptions.ground, kGroundHelp);
     exporter->add_option("-o,--output", exportOptions.outputPath, "output .gltf or .glb")->required();
 
+    RenderOptions graphOptions;
+    std::string graphFormat = "mermaid";
+    uint32_t graphFrames = 1;
+    CLI::App* graph = app.add_subcommand("graph", "print the frame graph of a rendered frame: passes, dependencies, barriers");
+    addRenderOptions(*graph, graphOptions);
+    graph->add_option("--format", graphFormat, "mermaid | dot (Graphviz)")->check(CLI::IsMember({"mermaid", "dot"}));
+    graph->add_option("--frames", graphFrames, "frames to render; the last one's graph is printed (2: cached shadow tiles)")
+        ->check(CLI::Range(1u, 100u));
+
     CLI::App* devices = app.add_subcommand("devices", "list the Vulkan devices Penumbra can use");
 
     std::string diffA, diffB;
@@ -136,6 +145,7 @@ int runCli(int argc, char** argv) {
             benchSettings.varyPeriod = benchSettings.vary ? benchSettings.varyEvery : 0;
             return runBenchCommand(benchOptions, benchSettings);
         }
+        if (*graph) return runGraphCommand(graphOptions, graphFormat, graphFrames);
         if (*devices) return runDevicesCommand();
         if (*exporter) return runExportCommand(exportOptions);
         if (*diff) return runDiffCommand(diffA, diffB);

@@ -62,6 +62,19 @@ Settings loadSettings(const RenderOptions& options);
 // shadows.maxDistance from the scene's extent), each change as a warning on stderr.
 Settings withSceneDefaults(Settings settings, const Scene& scene, const CameraView& view);
 
+// What a command that renders the scene's camera view sets up, in this order: the settings (checked
+// before the device starts), the device, the renderer, the request, the view and the settings with
+// the scene defaults.
+struct ViewRender {
+    explicit ViewRender(const RenderOptions& options);
+    Settings userSettings;
+    Device device;
+    Renderer renderer;
+    RenderRequest request;
+    CameraView view;
+    Settings settings;
+};
+
 int runRenderCommand(const RenderOptions& options);
 int runReferenceCommand(const RenderOptions& options);
 int runCompareCommand(const RenderOptions& options);
@@ -70,6 +83,8 @@ int runDevicesCommand();
 // Writes the scene the options name (a file, the demo or a gen: scene) as .gltf or .glb.
 int runExportCommand(const RenderOptions& options);
 int runDiffCommand(const std::string& pathA, const std::string& pathB);
+// Renders `frames` frames and prints the last one's frame graph as "mermaid" or "dot" on stdout.
+int runGraphCommand(const RenderOptions& options, const std::string& format, uint32_t frames);
 // The settings reference (docs/settings.md) as Markdown, or with `json` every key's default as a
 // settings file; both made from the key table.
 int runSettingsCommand(bool json);

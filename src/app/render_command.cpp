@@ -70,6 +70,14 @@ Settings withSceneDefaults(Settings settings, const Scene& scene, const CameraVi
     return settings;
 }
 
+ViewRender::ViewRender(const RenderOptions& options)
+    : userSettings(loadSettings(options)),
+      device(deviceOptionsFor(options)),
+      renderer(device, loadSceneFor(options)),
+      request(makeRenderRequest(options)),
+      view(resolveCameraView(renderer.scene(), request.width, request.height)),
+      settings(withSceneDefaults(userSettings, renderer.scene(), view)) {}
+
 namespace {
 
 std::string statsJson(const RenderResult& result, const Device& device, const RenderOptions& options) {
@@ -107,15 +115,11 @@ int runRenderCommand(const RenderOptions& options) {
     checkWritable(options.outputPath);
     checkWritable(options.dumpAtlasPath);
     checkWritable(options.statsPath);
-    const Settings userSettings = loadSettings(options);
-    Device device = openDevice(options);
-    Scene scene = loadSceneFor(options);
-    if (!options.aov.empty() && !scene.lights.empty()) checkLightOption(options, scene);
-    Renderer renderer(device, std::move(scene));
-    const RenderRequest request = makeRenderRequest(options);
-    const CameraView view = resolveCameraView(renderer.scene(), request.width, request.height);
-    const Settings settings = withSceneDefaults(userSettings, renderer.scene(), view);
-    const RenderResult result = renderer.render(request, settings, view);
+    ViewRender setup(options);
+    const Device& device = setup.device;
+    const RenderRequest& request = setup.request;
+    if (!options.aov.empty() && !setup.renderer.scene().lights.empty()) checkLightOption(options, setup.renderer.scene());
+    const RenderResult result = setup.renderer.render(request, setup.settings, setup.view);
     for (const std::string& warning : result.stats.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     writePng(result.image, options.outputPath);
     if (request.captureAtlas) writePng(result.atlas, options.dumpAtlasPath);

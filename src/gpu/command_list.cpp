@@ -9,61 +9,53 @@ namespace penumbra::gpu {
 
 namespace {
 
-struct StateInfo {
-    VkImageLayout layout;
-    VkPipelineStageFlags2 stages;
-    VkAccessFlags2 access;
-};
-
-StateInfo stateInfo(TextureState state) {
-    switch (state) {
-        case TextureState::Undefined: return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, 0};
-        case TextureState::ColorTarget:
-            return {VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT};
-        case TextureState::DepthTarget:
-            return {VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT};
-        case TextureState::ShaderRead:
-            return {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_READ_BIT};
-        case TextureState::Storage:
-            return {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                    VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT};
-        case TextureState::TransferSrc:
-            return {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
-        case TextureState::TransferDst:
-            return {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
-    }
-    return {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0};
-}
-
 VkCommandBuffer native(const CommandList& list) { return static_cast<VkCommandBuffer>(list.nativeCommandBuffer); }
 Device::Impl& impl(const CommandList& list) { return list.device->impl(); }
 
 }  // namespace
 
-void recordTransition(VkCommandBuffer commandBuffer, const TextureResource& texture, TextureState from, TextureState to) {
-    const StateInfo src = stateInfo(from), dst = stateInfo(to);
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = src.stages;
-    barrier.srcAccessMask = src.access;
-    barrier.dstStageMask = dst.stages;
-    barrier.dstAccessMask = dst.access;
-    barrier.oldLayout = src.layout;
-    barrier.newLayout = dst.layout;
-    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = texture.image;
-    barrier.subresourceRange = {VkImageAspectFlags(isDepthFormat(texture.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
-                                0, texture.desc.mipLevels, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(commandBuffer, &dependency);
+VkImageAspectFlags aspectOf(const TextureResource& texture) {
+    return isDepthFormat(texture.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
 }
 
-void CommandList::transition(TextureHandle texture, TextureState from, TextureState to) {
-    recordTransition(native(*this), impl(*this).textures.at(texture.id), from, to);
+void CommandList::pass(std::string_view name, std::span<const ResourceUse> uses) {
+    Device::Impl& d = impl(*this);
+    const std::span<const Barrier> barriers = d.frameGraph.declare(name, uses);
+    if (barriers.empty()) return;
+    d.bufferBarriers.clear();
+    d.imageBarriers.clear();
+    for (const Barrier& b : barriers) {
+        if (b.resource.texture) {
+            const TextureResource& t = d.textures.at(b.resource.id);
+            VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            barrier.srcStageMask = b.srcStages;
+            barrier.srcAccessMask = b.srcAccess;
+            barrier.dstStageMask = b.dstStages;
+            barrier.dstAccessMask = b.dstAccess;
+            barrier.oldLayout = VkImageLayout(b.oldLayout);
+            barrier.newLayout = VkImageLayout(b.newLayout);
+            barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            barrier.image = t.image;
+            barrier.subresourceRange = {aspectOf(t), 0, VK_REMAINING_MIP_LEVELS, 0, 1};
+            d.imageBarriers.push_back(barrier);
+        } else {
+            VkBufferMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+            barrier.srcStageMask = b.srcStages;
+            barrier.srcAccessMask = b.srcAccess;
+            barrier.dstStageMask = b.dstStages;
+            barrier.dstAccessMask = b.dstAccess;
+            barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            barrier.buffer = d.buffers.at(b.resource.id).buffer;
+            barrier.size = VK_WHOLE_SIZE;
+            d.bufferBarriers.push_back(barrier);
+        }
+    }
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.bufferMemoryBarrierCount = uint32_t(d.bufferBarriers.size());
+    dependency.pBufferMemoryBarriers = d.bufferBarriers.data();
+    dependency.imageMemoryBarrierCount = uint32_t(d.imageBarriers.size());
+    dependency.pImageMemoryBarriers = d.imageBarriers.data();
+    vkCmdPipelineBarrier2(native(*this), &dependency);
 }
 
 void CommandList::beginRendering(const RenderingDesc& desc) {
@@ -200,30 +192,26 @@ void CommandList::fillBuffer(const BufferSlice& slice, uint32_t value) {
     vkCmdFillBuffer(native(*this), impl(*this).buffers.at(slice.buffer.id).buffer, slice.offset, slice.size, value);
 }
 
-void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState) {
+void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture) {
     Device::Impl& d = impl(*this);
     const TextureResource& t = d.textures.at(texture.id);
-    recordTransition(native(*this), t, TextureState::Undefined, TextureState::TransferDst);
     VkBufferImageCopy copy{};
-    copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+    copy.imageSubresource = {aspectOf(t), 0, 0, 1};
     copy.imageExtent = {t.desc.width, t.desc.height, 1};
     vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                            &copy);
-    recordTransition(native(*this), t, TextureState::TransferDst, finalState);
 }
 
-void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects,
-                                           TextureState from, TextureState to) {
+void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects) {
     Device::Impl& d = impl(*this);
     const TextureResource& t = d.textures.at(texture.id);
-    recordTransition(native(*this), t, from, TextureState::TransferDst);
     std::vector<VkBufferImageCopy> copies;
     for (const Rect& r : rects) {
         VkBufferImageCopy copy{};
         copy.bufferOffset = (uint64_t(r.y) * t.desc.width + uint64_t(r.x)) * bytesPerPixel(t.desc.format);
         copy.bufferRowLength = t.desc.width;
         copy.bufferImageHeight = t.desc.height;
-        copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+        copy.imageSubresource = {aspectOf(t), 0, 0, 1};
         copy.imageOffset = {r.x, r.y, 0};
         copy.imageExtent = {r.width, r.height, 1};
         copies.push_back(copy);
@@ -231,7 +219,6 @@ void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle te
     if (!copies.empty())
         vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                uint32_t(copies.size()), copies.data());
-    recordTransition(native(*this), t, TextureState::TransferDst, to);
 }
 
 void CommandList::clearDepthRects(std::span<const Rect> rects, float depth) {
@@ -246,11 +233,6 @@ void CommandList::clearDepthRects(std::span<const Rect> rects, float depth) {
 
 void CommandList::clearBuffer(BufferHandle buffer, uint32_t value) {
     vkCmdFillBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_WHOLE_SIZE, value);
-}
-
-void CommandList::memoryBarrier() {
-    recordMemoryBarrier(native(*this), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 void CommandList::beginTimer(const std::string& name) {
@@ -280,22 +262,14 @@ void CommandList::copyBuffer(const BufferSlice& source, BufferHandle destination
     vkCmdCopyBuffer(native(*this), d.buffers.at(source.buffer.id).buffer, d.buffers.at(destination.id).buffer, 1, &copy);
 }
 
-void CommandList::copyTextureToBuffer(TextureHandle texture, TextureState state, BufferHandle destination) {
+void CommandList::copyTextureToBuffer(TextureHandle texture, BufferHandle destination) {
     Device::Impl& d = impl(*this);
     const TextureResource& t = d.textures.at(texture.id);
-    recordTransition(native(*this), t, state, TextureState::TransferSrc);
     VkBufferImageCopy copy{};
-    copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
+    copy.imageSubresource = {aspectOf(t), 0, 0, 1};
     copy.imageExtent = {t.desc.width, t.desc.height, 1};
     vkCmdCopyImageToBuffer(native(*this), t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers.at(destination.id).buffer,
                            1, &copy);
-    recordTransition(native(*this), t, TextureState::TransferSrc, state);
-    hostReadBarrier();
-}
-
-void CommandList::hostReadBarrier() {
-    recordMemoryBarrier(native(*this), VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 void recordColorImageBarrier(VkCommandBuffer cb, VkImage image, uint32_t level, VkImageLayout from, VkImageLayout to,
@@ -334,7 +308,6 @@ void CommandList::blitToExternal(TextureHandle source, TextureHandle external, c
     Device::Impl& d = impl(*this);
     const TextureResource& src = d.textures.at(source.id);
     const VkImage dst = d.textures.at(external.id).image;
-    recordTransition(native(*this), src, TextureState::ColorTarget, TextureState::TransferSrc);
     recordColorImageBarrier(native(*this), dst, 0, VkImageLayout(target.initialLayout), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkImageBlit blit{};

@@ -1,9 +1,12 @@
 #pragma once
 // Records GPU work against the Device's handles. Created by Device::beginCommands().
 #include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <string>
+#include <string_view>
 
+#include "gpu/frame_graph.h"
 #include "gpu/types.h"
 
 namespace penumbra::gpu {
@@ -12,7 +15,13 @@ class Device;
 
 class CommandList {
 public:
-    void transition(TextureHandle texture, TextureState from, TextureState to);
+    // Declares the next pass of the frame graph: the resources it uses and how. Records the barriers
+    // and layout transitions those uses need after the passes declared before (frame_graph.h); every
+    // command below that touches a buffer or texture comes after the pass that declares it.
+    void pass(std::string_view name, std::span<const ResourceUse> uses);
+    void pass(std::string_view name, std::initializer_list<ResourceUse> uses) {
+        pass(name, std::span<const ResourceUse>(uses.begin(), uses.size()));
+    }
     void beginRendering(const RenderingDesc& desc);
     void endRendering();
     void bindPipeline(PipelineHandle pipeline);
@@ -34,26 +43,22 @@ public:
     void dispatchIndirect(BufferHandle arguments, uint64_t offset);  // a VkDispatchIndirectCommand
     void fillBuffer(BufferHandle buffer, uint32_t value);             // every 32-bit word
     void fillBuffer(const BufferSlice& slice, uint32_t value);        // the words of the slice (size a multiple of 4)
-    // Copies a tightly packed buffer into level 0 of `texture` (depth aspect for depth formats); the
-    // texture goes from Undefined to `finalState`.
-    void copyBufferToTexture(BufferHandle source, TextureHandle texture, TextureState finalState);
-    // Copies the rectangles `rects` of a tightly packed texture-sized buffer into them in `texture`,
-    // which goes from `from` (Undefined discards the rest) to `to`.
-    void copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects,
-                                  TextureState from, TextureState to);
+    // Copies a tightly packed buffer into level 0 of `texture` (depth aspect for depth formats), which
+    // its pass declared TransferWrite.
+    void copyBufferToTexture(BufferHandle source, TextureHandle texture);
+    // Copies the rectangles `rects` of a tightly packed texture-sized buffer into them in `texture`
+    // (declared TransferWrite).
+    void copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects);
     // Inside beginRendering: sets the depth of `rects` to `depth` (the rest of the target is kept).
     void clearDepthRects(std::span<const Rect> rects, float depth);
     void clearBuffer(BufferHandle buffer, uint32_t value);
     void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
-    // Copies level 0 of `texture` (in `state`, left there) tightly packed into `destination`.
-    void copyTextureToBuffer(TextureHandle texture, TextureState state, BufferHandle destination);
-    // Blits `source` (ColorTarget, left TransferSrc) onto an imported external image, converting the
-    // format, and leaves that image in target.finalLayout.
+    // Copies level 0 of `texture` (declared TransferRead) tightly packed into `destination`.
+    void copyTextureToBuffer(TextureHandle texture, BufferHandle destination);
+    // Blits `source` (declared TransferRead) onto an imported external image, converting the format:
+    // the external image goes from target.initialLayout to target.finalLayout here (the caller's
+    // layouts and semaphores, outside the frame graph).
     void blitToExternal(TextureHandle source, TextureHandle external, const ExternalTarget& target);
-    // A full memory barrier between compute/graphics writes and later reads (buffers and storage images).
-    void memoryBarrier();
-    // Transfer writes so far become visible to the host once the frame's fence has signalled.
-    void hostReadBarrier();
     // GPU timestamps around a named pass (timers nest: a pass may time its steps inside its own
     // timer); results in Device::takeCompletedFrames() once the frame is done. One-off command lists
     // (Device::beginCommands) record none.

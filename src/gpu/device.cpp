@@ -72,7 +72,7 @@ bool hasInstanceExtension(const char* name) {
 
 // VK_EXT_debug_utils is enabled whenever the loader offers it, so object names reach RenderDoc and
 // Nsight captures; the validation layer is only loaded on request.
-VkInstance createInstance(bool validation) {
+VkInstance createInstance(bool validation, bool synchronizationValidation) {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "penumbra";
     app.pEngineName = "penumbra";
@@ -93,6 +93,11 @@ VkInstance createInstance(bool validation) {
     info.ppEnabledLayerNames = layers.data();
     info.enabledExtensionCount = uint32_t(extensions.size());
     info.ppEnabledExtensionNames = extensions.data();
+    const VkValidationFeatureEnableEXT synchronization = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &synchronization;
+    if (validation && synchronizationValidation) info.pNext = &features;
     VkInstance instance = VK_NULL_HANDLE;
     const VkResult result = vkCreateInstance(&info, nullptr, &instance);
     if (result != VK_SUCCESS)
@@ -251,7 +256,7 @@ void nameMemory(void* user, VkDeviceMemory memory, const std::string& name) {
 }  // namespace
 
 std::vector<DeviceInfo> Device::listDevices() {
-    VkInstance instance = createInstance(false);
+    VkInstance instance = createInstance(false, false);
     std::vector<DeviceInfo> result;
     const auto devices = enumerateUsable(instance);
     for (uint32_t i = 0; i < devices.size(); ++i) result.push_back(describe(devices[i], i));
@@ -272,7 +277,7 @@ Device::Device(const DeviceOptions& options) : impl_(std::make_unique<Impl>()) {
 void Device::createOwnDevice(const DeviceOptions& options) {
     Impl& d = *impl_;
     d.options = options;
-    d.instance = createInstance(options.validation);
+    d.instance = createInstance(options.validation, options.synchronizationValidation);
     if (options.validation) installMessenger(d);
     const auto devices = enumerateUsable(d.instance);
     const uint32_t chosen = choosePhysicalDevice(devices, options.device);

@@ -16,6 +16,7 @@
 
 namespace penumbra::gpu {
 
+class FrameGraph;
 // The public options and, for tests, the faults to inject.
 struct DeviceOptions : penumbra::DeviceOptions {
     DeviceOptions() = default;
@@ -98,13 +99,15 @@ public:
     void trimMemory();
     // Frames finished since the last call, oldest first (timestamps per pass, submit-to-fence time).
     std::vector<CompletedFrame> takeCompletedFrames();
+    // The synchronisation state of every buffer and texture, and the passes of the frame being
+    // recorded when FrameGraph::recordPasses is on (penumbra graph).
+    FrameGraph& frameGraph();
 
     // ---- one-off work outside the frame ring (load time, debugging): waits for completion.
+    // Recorded and submitted outside any frame's recording: its passes join the frame graph's states
+    // in submission order.
     CommandList beginCommands();
     void submitAndWait(CommandList& commands);
-    // Copies a texture (RGBA8 / R8 / R32Float / D32Float) to host memory; the texture must be in
-    // `state` and is left there. Float formats come back as 4 bytes per pixel.
-    Image readTexture(TextureHandle texture, TextureState state);
     // Copies a whole buffer to host memory (waits for the GPU; tests and debugging).
     std::vector<uint8_t> readBuffer(BufferHandle buffer);
 

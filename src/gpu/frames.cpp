@@ -175,6 +175,7 @@ CommandList Device::beginFrame() {
     frame.uploadUsed = 0;
     frame.readbackRanges.clear();
     d.recordingSlot = int32_t(slot);
+    d.frameGraph.beginFrame();
 
     CommandList commands;
     commands.device = this;
@@ -225,9 +226,8 @@ uint64_t Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& so
     Impl& d = *impl_;
     if (d.recordingSlot < 0) throw Error("internal: readBackAtFrameEnd outside beginFrame/submitFrame");
     const FrameAllocation target = allocateFrameData(source.size, 16);
-    commands.memoryBarrier();
+    commands.pass("readback", {use(source.buffer, Usage::TransferRead), use(target.slice.buffer, Usage::TransferWrite)});
     commands.copyBuffer(source, target.slice.buffer, target.slice.offset);
-    commands.hostReadBarrier();
     auto& ranges = d.frames[d.recordingSlot].readbackRanges;
     uint64_t start = 0;  // the completed frame's readback joins the ranges in this order
     for (const auto& range : ranges) start += range.second;
@@ -239,6 +239,8 @@ uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) 
     Impl& d = *impl_;
     PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimers.empty());
     FrameContext& frame = d.frames[d.recordingSlot];
+    // The host reads what readBackAtFrameEnd copied once the fence has signalled.
+    if (!frame.readbackRanges.empty()) commands.pass("host readback", {use(frame.uploadBuffer, Usage::HostRead)});
     if (d.timestampsSupported)
         vkCmdWriteTimestamp2(frame.commandBuffer, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, d.timestampPool,
                              commands.queryBase + commands.queryCapacity + 1);
@@ -291,6 +293,7 @@ void Device::abandonFrame(CommandList& commands) {
     // Resetting the pool returns the command buffer to the initial state, recording or not (even
     // inside a render pass instance).
     vkResetCommandPool(d.device, frame.commandPool, 0);
+    d.frameGraph.abandonFrame();  // none of its barriers and transitions happened
     frame.readbackRanges.clear();
     Garbage& garbage = frame.garbage;
     auto append = [](auto& to, auto& from) {
@@ -326,6 +329,8 @@ void Device::waitIdle() {
 }
 
 void Device::trimMemory() { impl_->memory->releaseEmptyBlocks(); }
+
+FrameGraph& Device::frameGraph() { return impl_->frameGraph; }
 
 std::vector<CompletedFrame> Device::takeCompletedFrames() {
     std::vector<CompletedFrame> frames;
@@ -377,6 +382,8 @@ void Device::Impl::endImmediate(VkCommandBuffer commandBuffer) {
 }
 
 CommandList Device::beginCommands() {
+    // Its passes must join the frame graph in submission order: not between beginFrame and submitFrame.
+    if (impl_->recordingSlot >= 0) throw Error("internal: beginCommands while a frame is recording");
     CommandList commands;
     commands.device = this;
     commands.nativeCommandBuffer = impl_->beginImmediate();

@@ -61,6 +61,8 @@ BufferHandle Device::createBuffer(size_t size, uint32_t usage, MemoryKind memory
     d.setDebugName(VK_OBJECT_TYPE_BUFFER, uint64_t(resource.buffer), debugName);
     ++d.objectsCreated;
     const BufferHandle handle{d.buffers.insert(resource)};
+    d.frameGraph.forget({handle.id, false});  // a reused id starts unused
+    d.frameGraph.setName({handle.id, false}, debugName);
     if (initialData && size > 0) {
         if (resource.mapped) {
             std::memcpy(resource.mapped, initialData, size);
@@ -154,7 +156,10 @@ TextureHandle Device::createTexture(const TextureDesc& desc) {
     d.setDebugName(VK_OBJECT_TYPE_IMAGE, uint64_t(resource.image), desc.debugName);
     d.setDebugName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(resource.view), desc.debugName);
     ++d.objectsCreated;
-    return TextureHandle{d.textures.insert(resource)};
+    const TextureHandle handle{d.textures.insert(resource)};
+    d.frameGraph.forget({handle.id, true});  // a reused id starts unused (VK_IMAGE_LAYOUT_UNDEFINED)
+    d.frameGraph.setName({handle.id, true}, desc.debugName);
+    return handle;
 }
 
 TextureHandle Device::importTexture(const ExternalTarget& target, const std::string& debugName) {
@@ -167,7 +172,10 @@ TextureHandle Device::importTexture(const ExternalTarget& target, const std::str
     resource.format = VkFormat(target.format);
     resource.desc = {target.width, target.height, Format::Undefined, kTextureTransferDst, 1, debugName};
     ++d.objectsCreated;
-    return TextureHandle{d.textures.insert(resource)};
+    const TextureHandle handle{d.textures.insert(resource)};
+    d.frameGraph.forget({handle.id, true});
+    d.frameGraph.setName({handle.id, true}, debugName);
+    return handle;
 }
 
 const TextureDesc& Device::textureDesc(TextureHandle texture) const { return impl_->textures.at(texture.id).desc; }
@@ -344,33 +352,6 @@ std::vector<uint8_t> Device::readBuffer(BufferHandle handle) {
     BufferResource readbackResource = d.buffers.remove(readback.id);
     d.destroyNow(readbackResource);
     return bytes;
-}
-
-Image Device::readTexture(TextureHandle handle, TextureState state) {
-    Impl& d = *impl_;
-    const TextureResource& t = d.textures.at(handle.id);
-    const uint32_t bpp = bytesPerPixel(t.desc.format);
-    const size_t size = size_t(t.desc.width) * t.desc.height * bpp;
-    const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible, nullptr, "readback");
-    struct FreeReadback {
-        Impl& d;
-        BufferHandle readback;
-        ~FreeReadback() {
-            BufferResource resource = d.buffers.remove(readback.id);
-            d.destroyNow(resource);
-        }
-    } freeReadback{d, readback};
-    d.immediate([&](VkCommandBuffer cb) {
-        recordTransition(cb, t, state, TextureState::TransferSrc);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VkImageAspectFlags(isDepthFormat(t.desc.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 0, 1};
-        copy.imageExtent = {t.desc.width, t.desc.height, 1};
-        vkCmdCopyImageToBuffer(cb, t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.buffers.at(readback.id).buffer, 1, &copy);
-        recordTransition(cb, t, TextureState::TransferSrc, state);
-    });
-    Image image(t.desc.width, t.desc.height, bpp);
-    std::memcpy(image.pixels.data(), d.buffers.at(readback.id).mapped, size);
-    return image;
 }
 
 }  // namespace penumbra::gpu

@@ -32,9 +32,6 @@ enum TextureUsage : uint32_t {
     kTextureTransferSrc = 16, kTextureTransferDst = 32,
 };
 
-// Where a texture is in its life; the command list issues the barriers between states.
-enum class TextureState { Undefined, ColorTarget, DepthTarget, ShaderRead, Storage, TransferSrc, TransferDst };
-
 enum class Filter { Nearest, Linear };
 enum class AddressMode { Repeat, ClampToEdge, ClampToBorderWhite, MirroredRepeat };
 enum class CompareOp { Never, Less, LessOrEqual, Greater, GreaterOrEqual, Always };

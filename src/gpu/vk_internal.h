@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "gpu/device.h"
+#include "gpu/frame_graph.h"
 #include "gpu/handle_pool.h"
 #include "gpu/memory_allocator.h"
 
@@ -149,6 +150,12 @@ struct Device::Impl {
     Garbage pendingGarbage;       // destroyed since the last submit: attached to the next one
     std::vector<CompletedFrame> completed;
 
+    // The frame graph's resource states (frame_graph.h), shared by frames and one-off lists, and the
+    // barrier structures CommandList::pass fills (kept to reuse their memory).
+    FrameGraph frameGraph;
+    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
+    std::vector<VkImageMemoryBarrier2> imageBarriers;
+
     // One-off submissions (uploads at load time, readbacks outside a frame).
     VkCommandPool immediatePool = VK_NULL_HANDLE;
     VkFence immediateFence = VK_NULL_HANDLE;
@@ -234,7 +241,6 @@ VkFormat toVkFormat(Format format);
 VkCompareOp toVkCompareOp(CompareOp op);
 bool isDepthFormat(Format format);
 uint32_t bytesPerPixel(Format format);
-void recordTransition(VkCommandBuffer commandBuffer, const TextureResource& texture, TextureState from, TextureState to);
 // One layout transition of mip level `level` (count 1) of a colour image.
 void recordColorImageBarrier(VkCommandBuffer commandBuffer, VkImage image, uint32_t level, VkImageLayout from,
                              VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,

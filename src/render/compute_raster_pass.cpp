@@ -24,15 +24,24 @@ gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* de
     return device.createComputePipeline(args);
 }
 
-void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
-                              uint32_t queue, uint32_t largeCapacity, uint32_t chunkCapacity) {
-    commands.memoryBarrier();
+void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passName, gpu::PipelineHandle args,
+                              gpu::BufferHandle counters, uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity) {
+    commands.pass(passName, {gpu::use(counters, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(args);
     commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{gpu_data::kRasterBindingCounters, counters, {}, {}}});
     const gpu_data::RasterArgsConstants constants{queue, largeCapacity, chunkCapacity};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(1, 1);
-    commands.memoryBarrier();
+}
+
+std::vector<gpu::ResourceUse> rasterReads(const GpuScene& scene, const ShadowCullingPass& culling) {
+    using gpu::Usage;
+    std::vector<gpu::ResourceUse> uses = {
+        gpu::use(scene.cullMeshBuffer(), Usage::ComputeRead), gpu::use(scene.indexBuffer(), Usage::ComputeRead),
+        gpu::use(scene.meshletBuffer(), Usage::ComputeRead), gpu::use(culling.listCounts(), Usage::ComputeRead),
+        gpu::use(culling.visibleInstances(), Usage::ComputeRead)};
+    scene.addSceneReads(uses, Usage::ComputeRead);
+    return uses;
 }
 
 void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const GpuScene& gpuScene,
@@ -105,10 +114,10 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
                                const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling,
                                const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
                                gpu::BufferHandle depth, bool meshletCulling, const std::string& timerPrefix) {
+    using gpu::Usage;
     if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the atlas stays as it is
-        commands.memoryBarrier();
+        commands.pass(timerPrefix + "/clear", {gpu::use(counters_, Usage::TransferWrite)});
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
-        commands.memoryBarrier();
         return;
     }
     const uint32_t tileCount = uint32_t(tiles.rects.size());
@@ -126,43 +135,59 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
         commands.pushConstants(&constants, sizeof(constants));
     };
 
-    // The previous atlas pass (or frame) may still read these buffers.
     commands.beginTimer(timerPrefix + "/clear");
-    commands.memoryBarrier();
+    std::vector<gpu::ResourceUse> clears = {gpu::use(counters_, Usage::TransferWrite)};
+    if (tiles.freshAtlas) clears.push_back(gpu::use(depth, Usage::TransferWrite));
+    commands.pass(timerPrefix + "/clear", clears);
     if (tiles.freshAtlas) commands.fillBuffer(depth, kFarDepthBits);
     commands.fillBuffer(counters_, 0);
     if (!tiles.freshAtlas && tileCount > 0) {
         uint32_t largest = 0;
         for (const gpu::Rect& r : tiles.rects) largest = std::max({largest, r.width, r.height});
-        commands.memoryBarrier();
+        commands.pass(timerPrefix + "/clear tiles", {gpu::use(depth, Usage::ComputeWrite)});
         bind(clear_);
         commands.dispatch((largest + 15) / 16, (largest + 15) / 16, tileCount);
     }
-    commands.memoryBarrier();
     commands.endTimer();
     if (tileCount > 0) {
-        auto sizeDispatch = [&](uint32_t queue) {
-            recordRasterDispatchSize(commands, args_, counters_, queue, largeCapacity_, chunkCapacity_);
+        const std::vector<gpu::ResourceUse> reads = rasterReads(scene_, culling);
+        auto pass = [&](const char* step, std::initializer_list<gpu::ResourceUse> more) {
+            std::vector<gpu::ResourceUse> uses = reads;
+            uses.insert(uses.end(), more);
+            commands.pass(timerPrefix + step, uses);
+        };
+        auto sizeDispatch = [&](const char* step, uint32_t queue) {
+            recordRasterDispatchSize(commands, timerPrefix + step, args_, counters_, queue, largeCapacity_, chunkCapacity_);
         };
         const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
         commands.beginTimer(timerPrefix + "/instances");
+        pass("/instances", {gpu::use(depth, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
+                            gpu::use(large_, Usage::ComputeWrite)});
         bind(small_);
         commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
                           (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth, tileCount);
         commands.endTimer();
         commands.beginTimer(timerPrefix + "/chunks");
-        sizeDispatch(kRasterArgsLarge);
+        sizeDispatch("/bin size", kRasterArgsLarge);
+        pass("/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
+                      gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
         bind(bin_);
         commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-        sizeDispatch(kRasterArgsChunks);
+        sizeDispatch("/chunks size", kRasterArgsChunks);
+        pass("/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
+                         gpu::use(counters_, Usage::IndirectArguments), gpu::use(counters_, Usage::ComputeRead),
+                         gpu::use(depth, Usage::ComputeWrite)});
         bind(chunks_);
         commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
         commands.endTimer();
     }
     commands.beginTimer(timerPrefix + "/copy");
-    commands.memoryBarrier();
-    if (tiles.freshAtlas) commands.copyBufferToTexture(depth, atlas, gpu::TextureState::ShaderRead);
-    else commands.copyBufferToTextureRects(depth, atlas, tiles.rects, gpu::TextureState::ShaderRead, gpu::TextureState::ShaderRead);
+    // A fresh atlas is copied whole; else only the drawn tiles (the cached ones keep their depth).
+    commands.pass(timerPrefix + "/copy", {gpu::use(depth, Usage::TransferRead),
+                                          tiles.freshAtlas ? gpu::discard(atlas, Usage::TransferWrite)
+                                                           : gpu::use(atlas, Usage::TransferWrite)});
+    if (tiles.freshAtlas) commands.copyBufferToTexture(depth, atlas);
+    else commands.copyBufferToTextureRects(depth, atlas, tiles.rects);
     commands.endTimer();
 }
 

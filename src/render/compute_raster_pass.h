@@ -15,11 +15,13 @@ namespace penumbra {
 
 // What both compute rasterizers (this one and VisibilityPass) share: the pipeline that sizes the
 // indirect dispatches of passes 2 and 3 from a RasterCounters buffer (shadow_raster_args.comp), and
-// its recording (queue = kRasterArgsLarge or kRasterArgsChunks), between full barriers; and the
-// descriptors of raster_mesh.glsl that both bind (the queues, the meshes and the culling lists).
+// its recording as the frame graph pass `passName` (queue = kRasterArgsLarge or kRasterArgsChunks).
 gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName);
-void recordRasterDispatchSize(gpu::CommandList& commands, gpu::PipelineHandle args, gpu::BufferHandle counters,
-                              uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity);
+void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passName, gpu::PipelineHandle args,
+                              gpu::BufferHandle counters, uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity);
+// The buffers every rasterizer dispatch may read: the scene's, the meshes, indices and meshlets, and
+// the culled lists.
+std::vector<gpu::ResourceUse> rasterReads(const GpuScene& scene, const ShadowCullingPass& culling);
 struct RasterQueues {
     gpu::BufferHandle counters, large, chunks;
 };

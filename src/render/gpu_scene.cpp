@@ -297,8 +297,15 @@ void GpuScene::updatesSubmitted() {
 uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene) {
     if (dirtyInstances_.empty() && dirtyMaterials_.empty()) return 0;
     uint64_t bytes = 0;
-    // Earlier frames may still read these buffers: order the copies after them, and the draws after the copies.
-    commands.memoryBarrier();
+    // After the earlier frames' reads; the passes that read these next wait for the copies.
+    gpu::ResourceUse writes[3];
+    size_t count = 0;
+    if (!dirtyInstances_.empty()) {
+        writes[count++] = gpu::use(instances_, gpu::Usage::TransferWrite);
+        writes[count++] = gpu::use(cullInstances_, gpu::Usage::TransferWrite);
+    }
+    if (!dirtyMaterials_.empty()) writes[count++] = gpu::use(materials_, gpu::Usage::TransferWrite);
+    commands.pass("scene updates", std::span<const gpu::ResourceUse>(writes, count));
     forEachRun(dirtyInstances_, [&](uint32_t first, uint32_t count) {
         const uint64_t size = uint64_t(count) * sizeof(gpu_data::InstanceData);
         const gpu::FrameAllocation staging = device_.allocateFrameData(size, 16);
@@ -323,8 +330,11 @@ uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene)
         commands.copyBuffer(staging.slice, materials_, uint64_t(first) * sizeof(gpu_data::MaterialData));
         bytes += size;
     });
-    commands.memoryBarrier();
     return bytes;
+}
+
+void GpuScene::addSceneReads(std::vector<gpu::ResourceUse>& uses, gpu::Usage usage) const {
+    for (gpu::BufferHandle buffer : {vertices_, instances_, materials_}) uses.push_back(gpu::use(buffer, usage));
 }
 
 uint32_t GpuScene::viewInstanceCount(const Scene& scene) const {

@@ -54,6 +54,9 @@ public:
     // The meshlets of every mesh (cull_structs.h Meshlet; CullMesh.meshlets.x is a mesh's first); each
     // mesh's triangles lie in the index buffer meshlet by meshlet.
     gpu::BufferHandle meshletBuffer() const { return meshlets_; }
+    // The scene buffers the shaders read through bindings 1-3 (vertices, instances, materials), as
+    // frame graph uses of the given kind.
+    void addSceneReads(std::vector<gpu::ResourceUse>& uses, gpu::Usage usage) const;
     uint32_t meshletCount() const { return meshletCount_; }
     // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's meshlets.
     uint32_t rasterWorkItems() const { return rasterWorkItems_; }

@@ -40,11 +40,10 @@ void LightClusterPass::destroyAll() {
 
 void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice& clusters,
                               const gpu::BufferSlice& lights, bool clustered) {
-    // The previous frame's lit pass may still read the masks: the clear waits for it.
-    commands.memoryBarrier();
+    commands.pass("lightClusters/clear", {gpu::use(stats_, gpu::Usage::TransferWrite)});
     commands.clearBuffer(stats_, 0);
-    commands.memoryBarrier();
     if (!clustered) return;
+    commands.pass("lightClusters", {gpu::use(masks_, gpu::Usage::ComputeWrite), gpu::use(stats_, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(pipeline_);
     const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kSceneBindingLights, lights},
                                                       {gpu_data::kLitBindingLightClusters, clusters},
@@ -52,7 +51,6 @@ void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice
                                                       {gpu_data::kClusterBindingStats, stats_, {}, {}}};
     commands.pushDescriptors(writes);
     commands.dispatch(gpu_data::kClusterCount, 1);  // a workgroup per cluster, an invocation per mask word
-    commands.memoryBarrier();
 }
 
 gpu::BufferSlice LightClusterPass::stats() const { return {stats_, 0, sizeof(gpu_data::LightClusterStats)}; }

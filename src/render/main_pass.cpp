@@ -17,6 +17,16 @@ std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene
             {kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}, {kSceneBindingLights, lights}};
 }
 
+void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene, const MainPassInputs& inputs,
+                     bool compute) {
+    using gpu::Usage;
+    scene.addSceneReads(uses, compute ? Usage::ComputeRead : Usage::GraphicsRead);
+    for (gpu::TextureHandle texture : inputs.sampled)
+        uses.push_back(gpu::use(texture, compute ? Usage::ComputeSampled : Usage::FragmentSampled));
+    if (inputs.clusterMasks)
+        uses.push_back(gpu::use(inputs.clusterMasks, compute ? Usage::ComputeRead : Usage::GraphicsRead));
+}
+
 MainPass::~MainPass() {
     for (auto& [key, set] : pipelineSets_)
         for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]}) device_.destroy(p);
@@ -165,6 +175,16 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     std::copy(target.clearColor, target.clearColor + 4, color.clearColor);
     rendering.colors = {color};
     rendering.depth = {target.depth, !target.opaqueDone, 0.0f};
+    using gpu::Usage;
+    std::vector<gpu::ResourceUse> uses;
+    if (target.opaqueDone) {
+        uses = {gpu::use(target.color, Usage::ColorTarget), gpu::use(target.depth, Usage::DepthTarget)};
+    } else {  // cleared
+        uses = {gpu::discard(target.color, Usage::ColorTarget), gpu::discard(target.depth, Usage::DepthTarget)};
+    }
+    uses.push_back(gpu::use(scene_.indexBuffer(), Usage::IndexBuffer));
+    addShadingReads(uses, scene_, inputs, false);
+    commands.pass(target.passName, uses);
     commands.beginRendering(rendering);
     drawItems(commands, opaque, set, false, scene, inputs.writes);
     if (target.background) drawBackground(commands, target, inputs.writes);

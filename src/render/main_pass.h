@@ -25,7 +25,16 @@ namespace penumbra {
 // descriptors); each pipeline takes those it declares (render/pass_layouts.h).
 struct MainPassInputs {
     std::vector<gpu::DescriptorWrite> writes;
+    // What the shading reads through `writes` besides the scene buffers, for the frame graph: the
+    // textures sampled (shadow atlases, then the screen-space shadow texture) and the light cluster
+    // masks (none in the visible-surface prepass).
+    std::vector<gpu::TextureHandle> sampled;
+    gpu::BufferHandle clusterMasks;
 };
+// The uses of a pass that binds inputs.writes: the scene buffers and the shading inputs, read by the
+// vertex and fragment shaders or (compute) by a compute shader.
+void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene, const MainPassInputs& inputs,
+                     bool compute);
 
 std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
                                                         const gpu::BufferSlice& lights);
@@ -56,13 +65,15 @@ public:
         // The visibility buffer drew the opaque and alpha-tested surfaces already: keep the targets
         // (colour and depth) and draw only the blended materials on them.
         bool opaqueDone = false;
+        const char* passName = "main";  // in the frame graph
     };
-    // Records the pass into target.color / target.depth (both already in their target states).
+    // Records the pass into target.color / target.depth (cleared unless opaqueDone).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,
                 const Target& target);
     // Starts building a variant (Background: on the worker thread; OnDemand: now) unless it exists.
     void request(const MainPassVariant& variant);
     bool ready(const MainPassVariant& variant);
+    const GpuScene& scene() const { return scene_; }
 
 private:
     struct PipelineSet {

@@ -25,9 +25,6 @@ Renderer::State::State(gpu::Device& d, Scene s, const RendererOptions& o)
         pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
         noScreenShadows = d.createTexture(
             {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
-        gpu::CommandList commands = d.beginCommands();
-        commands.transition(noScreenShadows, gpu::TextureState::Undefined, gpu::TextureState::ShaderRead);
-        d.submitAndWait(commands);
         if (o.warmup == PipelineWarmup::Background) requestAllVariants();
     } catch (...) {
         destroyOwnObjects();  // the members' destructors run; this body's objects are ours to free

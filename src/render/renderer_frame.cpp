@@ -170,7 +170,7 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
                                  rasterDepth, recording.settings.render.meshletCulling, name);
             frame.readback.rasterCounters[pass] = device.readBackAtFrameEnd(commands, computeRaster.counters());
         } else {
-            casterPass.record(commands, tiles, drawn, fresh, firstTile, atlas, size, recording.casterWrites, culling);
+            casterPass.record(commands, tiles, drawn, fresh, firstTile, atlas, size, recording.casterWrites, culling, name);
         }
         commands.endTimer();
     };
@@ -203,9 +203,14 @@ MainPassInputs Renderer::State::recordLightingInputs(FrameRecording& recording) 
     inputs.writes.push_back({kLitBindingDirectionalDepth, {}, targets.directionalAtlas, pointSampler});
     inputs.writes.push_back({kLitBindingOtherDepth, {}, targets.otherAtlas, pointSampler});
     inputs.writes.push_back({kLitBindingScreenSpaceShadows, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
+    // noScreenShadows is never written: shaders read its binding only with shadows.screenSpace on.
+    inputs.sampled = {targets.directionalAtlas, targets.otherAtlas, noScreenShadows};
+    inputs.clusterMasks = lightClusters.masks();
     recording.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
-    if (recording.screenSpace)
+    if (recording.screenSpace) {
         inputs.writes.back().texture = screenSpacePass.record(commands, scene, recording.view, inputs, 0);
+        inputs.sampled.back() = inputs.writes.back().texture;
+    }
     return inputs;
 }
 
@@ -232,15 +237,12 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
                                       main.variant.specialization};
         std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
         // Leaves both targets in their target states.
-        visibility->record(commands, inputs.writes, opaque, culling, recording.cullSlice, render.viewCulling,
+        visibility->record(commands, inputs, opaque, culling, recording.cullSlice, render.viewCulling,
                            render.meshletCulling);
         main.opaqueDone = true;
         frame.stats.viewInstances = gpuScene.viewInstanceCount(scene);
         frame.readback.viewLists = device.readBackAtFrameEnd(commands, culling.viewStats());
         frame.readback.viewMeshlets = device.readBackAtFrameEnd(commands, visibility->meshletCounts());
-    } else {
-        commands.transition(targets.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-        commands.transition(targets.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
     }
     mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
@@ -254,13 +256,27 @@ gpu::ExternalTarget Renderer::State::recordOutputs(FrameRecording& recording, co
                                                    bool readback, bool captureAtlas) {
     gpu::CommandList& commands = recording.commands;
     recording.stage = "readback";
-    if (readback) commands.copyTextureToBuffer(targets.color, gpu::TextureState::ColorTarget, targets.colorReadback());
+    using gpu::Usage;
+    std::vector<std::pair<gpu::TextureHandle, gpu::BufferHandle>> copies;  // read by the host after the fence
+    if (readback) copies.emplace_back(targets.color, targets.colorReadback());
     if (captureAtlas) {
-        commands.copyTextureToBuffer(targets.directionalAtlas, gpu::TextureState::ShaderRead, targets.directionalReadback());
-        commands.copyTextureToBuffer(targets.otherAtlas, gpu::TextureState::ShaderRead, targets.otherReadback());
+        copies.emplace_back(targets.directionalAtlas, targets.directionalReadback());
+        copies.emplace_back(targets.otherAtlas, targets.otherReadback());
+    }
+    if (!copies.empty()) {
+        std::vector<gpu::ResourceUse> uses, hostReads;
+        for (const auto& [texture, buffer] : copies) {
+            uses.push_back(gpu::use(texture, Usage::TransferRead));
+            uses.push_back(gpu::use(buffer, Usage::TransferWrite));
+            hostReads.push_back(gpu::use(buffer, Usage::HostRead));
+        }
+        commands.pass("readback", uses);
+        for (const auto& [texture, buffer] : copies) commands.copyTextureToBuffer(texture, buffer);
+        commands.pass("readback/host", hostReads);
     }
     gpu::ExternalTarget sync;
     if (target) {
+        commands.pass("external target", {gpu::use(targets.color, Usage::TransferRead)});
         sync = {target->vkImage, target->vkFormat, target->width, target->height, target->vkInitialLayout,
                 target->vkFinalLayout, target->vkWaitSemaphore, target->vkWaitStageMask, target->vkSignalSemaphore};
         commands.blitToExternal(targets.color, importedTexture(*target), sync);

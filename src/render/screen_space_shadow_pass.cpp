@@ -57,21 +57,22 @@ gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, con
                                                  const MainPassInputs& inputs, uint32_t mainLightSlot) {
     ensureTargets(view.width, view.height);
     commands.beginTimer("depthPrepass");
-    commands.transition(depth_, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
-    commands.transition(normals_, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
     MainPass::Target prepass;
+    prepass.passName = "depthPrepass";
     prepass.color = normals_;
     prepass.depth = depth_;
     prepass.variant = prepassVariant();
     prepass.width = view.width;
     prepass.height = view.height;
     mainPass_.record(commands, scene, view, inputs, prepass);
-    commands.transition(depth_, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
-    commands.transition(normals_, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);
     commands.endTimer();
 
     commands.beginTimer("screenSpaceShadows");
-    commands.transition(shadows_, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
+    std::vector<gpu::ResourceUse> uses = {gpu::discard(shadows_, gpu::Usage::ColorTarget),
+                                          gpu::use(depth_, gpu::Usage::FragmentSampled),
+                                          gpu::use(normals_, gpu::Usage::FragmentSampled)};
+    addShadingReads(uses, mainPass_.scene(), inputs, false);
+    commands.pass("screenSpaceShadows", uses);
     gpu::RenderingDesc rendering;
     rendering.width = view.width;
     rendering.height = view.height;
@@ -86,7 +87,6 @@ gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, con
     commands.pushConstants(&constants, sizeof(constants));
     commands.draw(3);
     commands.endRendering();
-    commands.transition(shadows_, gpu::TextureState::ColorTarget, gpu::TextureState::ShaderRead);
     commands.endTimer();
     return shadows_;
 }

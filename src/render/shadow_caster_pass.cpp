@@ -33,10 +33,16 @@ ShadowCasterPass::~ShadowCasterPass() {
 void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<ShadowTile>& tiles,
                               const std::vector<uint32_t>& draw, bool freshAtlas, uint32_t firstCullTile,
                               gpu::TextureHandle atlas, uint32_t atlasSize,
-                              const std::vector<gpu::DescriptorWrite>& writes, const ShadowCullingPass& culling) {
+                              const std::vector<gpu::DescriptorWrite>& writes, const ShadowCullingPass& culling,
+                              std::string_view passName) {
     if (draw.empty() && !freshAtlas) return;  // every tile cached
-    commands.transition(atlas, freshAtlas ? gpu::TextureState::Undefined : gpu::TextureState::ShaderRead,
-                        gpu::TextureState::DepthTarget);
+    // A fresh atlas is cleared whole; else the drawn tiles are cleared and the cached ones kept.
+    std::vector<gpu::ResourceUse> uses = {freshAtlas ? gpu::discard(atlas, gpu::Usage::DepthTarget)
+                                                     : gpu::use(atlas, gpu::Usage::DepthTarget),
+                                          gpu::use(scene_.indexBuffer(), gpu::Usage::IndexBuffer)};
+    scene_.addSceneReads(uses, gpu::Usage::GraphicsRead);
+    culling.addDrawUses(uses);
+    commands.pass(passName, uses);
     gpu::RenderingDesc rendering;
     rendering.width = rendering.height = atlasSize;
     rendering.depth = {atlas, freshAtlas, 1.0f};
@@ -73,7 +79,6 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
         }
     }
     commands.endRendering();
-    commands.transition(atlas, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
 }
 
 }  // namespace penumbra

@@ -4,6 +4,7 @@
 // lists (opaque, alpha-tested) that the GPU culling pass wrote (after Catlike Coding "Directional Shadows":
 // Rendering Shadows, Configurable Biases, Shadow Pancaking, Transparency).
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gpu/device.h"
@@ -22,13 +23,14 @@ public:
     ShadowCasterPass& operator=(const ShadowCasterPass&) = delete;
 
     // Clears `atlas` (depth 1 = far, nothing cast) and draws every tile, tile i from the culling pass's
-    // lists of culling tile firstCullTile + i; `atlas` goes from Undefined to ShaderRead. `writes`:
-    // the scene bindings 0-4.
+    // lists of culling tile firstCullTile + i, as the frame graph pass `passName`. `writes`: the scene
+    // bindings 0-4.
     // Only the tiles `draw` lists (indices into `tiles`) are drawn; with freshAtlas false the others
-    // keep their depth (cached tiles: the atlas goes from ShaderRead and only the drawn tiles are cleared).
+    // keep their depth (cached tiles: only the drawn tiles are cleared).
     void record(gpu::CommandList& commands, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& draw,
                 bool freshAtlas, uint32_t firstCullTile, gpu::TextureHandle atlas, uint32_t atlasSize,
-                const std::vector<gpu::DescriptorWrite>& writes, const ShadowCullingPass& culling);
+                const std::vector<gpu::DescriptorWrite>& writes, const ShadowCullingPass& culling,
+                std::string_view passName);
 
 private:
     gpu::Device& device_;

@@ -73,19 +73,23 @@ void ShadowCullingPass::destroyAll() {
 }
 
 void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount) {
-    // Earlier frames may still draw from these lists: the clears wait for them.
-    commands.memoryBarrier();
+    using gpu::Usage;
+    commands.pass("shadows.culling/clear", {gpu::use(listCounts_, Usage::TransferWrite), gpu::use(drawCounts_, Usage::TransferWrite),
+                                            gpu::use(tileStats_, Usage::TransferWrite)});
     commands.clearBuffer(listCounts_, 0);
     commands.clearBuffer(drawCounts_, 0);
     commands.clearBuffer(tileStats_, 0);
-    commands.memoryBarrier();
     if (tileCount == 0) return;
+    commands.pass("shadows.culling", cullUses(viewHistory_));
     commands.bindPipeline(cull_);
     commands.pushDescriptors(cullWrites(cullFrame, viewHistory_));  // no pyramid read: any buffer
     const gpu_data::CullConstants constants{gpu_data::kCullPassShadows};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), tileCount);
-    commands.memoryBarrier();
+    commands.pass("shadows.culling/draws",
+                  {gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead), gpu::use(scene_.materialBuffer(), Usage::ComputeRead),
+                   gpu::use(listCounts_, Usage::ComputeRead), gpu::use(drawCommands_, Usage::ComputeWrite),
+                   gpu::use(drawCounts_, Usage::ComputeWrite), gpu::use(tileStats_, Usage::ComputeWrite)});
     commands.bindPipeline(buildDraws_);
     using namespace gpu_data;
     const std::vector<gpu::DescriptorWrite> drawWrites = {
@@ -98,7 +102,6 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
         {kDrawsBindingTileStats, tileStats_, {}, {}}};
     commands.pushDescriptors(drawWrites);
     commands.dispatch(groupsFor(scene_.meshSlotCount()), tileCount);
-    commands.memoryBarrier();  // the draws read the commands (indirect) and the lists (vertex shader)
 }
 
 std::vector<gpu::DescriptorWrite> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
@@ -115,15 +118,23 @@ std::vector<gpu::DescriptorWrite> ShadowCullingPass::cullWrites(const gpu::Buffe
             {kCullBindingTileStats, tileStats_, {}, {}}};
 }
 
+std::vector<gpu::ResourceUse> ShadowCullingPass::cullUses(gpu::BufferHandle pyramid) const {
+    using gpu::Usage;
+    return {gpu::use(scene_.cullInstanceBuffer(), Usage::ComputeRead), gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead),
+            gpu::use(scene_.materialBuffer(), Usage::ComputeRead),     gpu::use(pyramid, Usage::ComputeRead),
+            gpu::use(listCounts_, Usage::ComputeWrite),                gpu::use(visible_, Usage::ComputeWrite),
+            gpu::use(viewHistory_, Usage::ComputeWrite),               gpu::use(tileStats_, Usage::ComputeWrite)};
+}
+
 void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,
                                    gpu::BufferHandle pyramid) {
     PENUMBRA_ASSERT(phase == gpu_data::kCullPassCameraEarly || phase == gpu_data::kCullPassCameraLate);
+    commands.pass(phase == gpu_data::kCullPassCameraEarly ? "main/cull" : "main/cull late", cullUses(pyramid));
     commands.bindPipeline(cull_);
     commands.pushDescriptors(cullWrites(cullFrame, pyramid));
     const gpu_data::CullConstants constants{phase};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), 1);
-    commands.memoryBarrier();  // the rasterizer reads the lists
 }
 
 gpu::BufferSlice ShadowCullingPass::viewStats() const {
@@ -140,6 +151,12 @@ ShadowCullingPass::DrawList ShadowCullingPass::drawList(uint32_t tile, uint32_t 
     draws.countOffset = uint64_t(list) * 4;
     draws.maxDraws = scene_.meshSlotCount();
     return draws;
+}
+
+void ShadowCullingPass::addDrawUses(std::vector<gpu::ResourceUse>& uses) const {
+    uses.push_back(gpu::use(drawCommands_, gpu::Usage::IndirectArguments));
+    uses.push_back(gpu::use(drawCounts_, gpu::Usage::IndirectArguments));
+    uses.push_back(gpu::use(visible_, gpu::Usage::GraphicsRead));
 }
 
 std::vector<std::vector<uint32_t>> ShadowCullingPass::readVisibleLists(uint32_t tileCount) {

@@ -41,6 +41,9 @@ public:
         uint32_t maxDraws = 0;
     };
     DrawList drawList(uint32_t tile, uint32_t kind) const;
+    // The uses of a pass that draws drawList()s: the commands and counts as indirect arguments, the
+    // visible instances read by the vertex shader.
+    void addDrawUses(std::vector<gpu::ResourceUse>& uses) const;
     gpu::BufferHandle visibleInstances() const { return visible_; }
     gpu::BufferHandle listCounts() const { return listCounts_; }
     // Per-tile stats (CullTileStats), GPU-written; read them back with Device::readBackAtFrameEnd.
@@ -56,6 +59,7 @@ private:
     const GpuScene& scene_;
     gpu::PipelineHandle cull_, buildDraws_;
     std::vector<gpu::DescriptorWrite> cullWrites(const gpu::BufferSlice& cullFrame, gpu::BufferHandle pyramid) const;
+    std::vector<gpu::ResourceUse> cullUses(gpu::BufferHandle pyramid) const;  // the cull dispatch's, any phase
     gpu::BufferHandle listCounts_, visible_, drawCommands_, drawCounts_, tileStats_;
     gpu::BufferHandle viewHistory_;  // kView* bits per instance, carried from frame to frame
 };

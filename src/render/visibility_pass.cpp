@@ -131,9 +131,10 @@ gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecC
     return pipeline;
 }
 
-void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                                   const Target& target, const gpu_data::VisibilityConstants& constants) {
-    std::vector<gpu::DescriptorWrite> resolveWrites = writes;
+void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
+                                   const gpu_data::VisibilityConstants& constants) {
+    using gpu::Usage;
+    std::vector<gpu::DescriptorWrite> resolveWrites = inputs.writes;
     resolveWrites.push_back({gpu_data::kResolveBindingVisibility, visibility_, {}, {}});
     resolveWrites.push_back({gpu_data::kResolveBindingIndices, scene_.indexBuffer(), {}, {}});
     resolveWrites.push_back({gpu_data::kResolveBindingMeshes, scene_.cullMeshBuffer(), {}, {}});
@@ -144,9 +145,14 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
         commands.bindTextureTable(scene_.textureTable());
         commands.pushConstants(&constants, sizeof(constants));
     };
-    if (fragmentResolve_) {
-        commands.transition(target.color, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-        commands.transition(target.depth, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
+    const Usage read = fragmentResolve_ ? Usage::GraphicsRead : Usage::ComputeRead;
+    std::vector<gpu::ResourceUse> uses = {gpu::use(visibility_, read), gpu::use(scene_.indexBuffer(), read),
+                                          gpu::use(scene_.cullMeshBuffer(), read), gpu::use(scene_.cullInstanceBuffer(), read)};
+    addShadingReads(uses, scene_, inputs, !fragmentResolve_);
+    if (fragmentResolve_) {  // every pixel is written
+        uses.push_back(gpu::discard(target.color, Usage::ColorTarget));
+        uses.push_back(gpu::discard(target.depth, Usage::DepthTarget));
+        commands.pass("main/resolve", uses);
         gpu::RenderingDesc rendering;
         rendering.width = target.width;
         rendering.height = target.height;
@@ -163,14 +169,18 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const std::vector
     }
     resolveWrites.push_back({gpu_data::kResolveBindingColor, color_, {}, {}});
     resolveWrites.push_back({gpu_data::kResolveBindingDepth, depth_, {}, {}});
+    uses.push_back(gpu::use(color_, Usage::ComputeWrite));
+    uses.push_back(gpu::use(depth_, Usage::ComputeWrite));
+    commands.pass("main/resolve", uses);
     bind();
     const uint32_t group = gpu_data::kResolveGroupSize;
     commands.dispatch((target.width + group - 1) / group, (target.height + group - 1) / group);
-    commands.memoryBarrier();
 }
 
-void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::string& name,
+                                  const std::vector<gpu::DescriptorWrite>& writes, const std::vector<gpu::ResourceUse>& reads,
                                   gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling) {
+    using gpu::Usage;
     constants.list = list;
     constants.instanceCount = scene_.instanceCount();
     constants.meshletCulling = meshletCulling ? 1u : 0u;
@@ -180,23 +190,34 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::vector<
         commands.bindTextureTable(scene_.textureTable());
         commands.pushConstants(&constants, sizeof(constants));
     };
-    auto sizeDispatch = [&](uint32_t queue) {
-        recordRasterDispatchSize(commands, args_, counters_, queue, kLargeCapacity, kChunkCapacity);
+    auto pass = [&](const std::string& passName, std::initializer_list<gpu::ResourceUse> more) {
+        std::vector<gpu::ResourceUse> uses = reads;
+        uses.insert(uses.end(), more);
+        commands.pass(passName, uses);
+    };
+    auto sizeDispatch = [&](const char* step, uint32_t queue) {
+        recordRasterDispatchSize(commands, name + step, args_, counters_, queue, kLargeCapacity, kChunkCapacity);
     };
     // The queues' counters; the meshlet counts add up over both phases of the frame.
+    commands.pass(name + "/clear", {gpu::use(counters_, Usage::TransferWrite)});
     commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshlets)}, 0);
-    commands.memoryBarrier();
     const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
+    pass(name, {gpu::use(visibility_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
+                gpu::use(large_, Usage::ComputeWrite)});
     bind(raster_);
     commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
                       (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
-    sizeDispatch(gpu_data::kRasterArgsLarge);
+    sizeDispatch("/bin size", gpu_data::kRasterArgsLarge);
+    pass(name + "/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
+                         gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
     bind(bin_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-    sizeDispatch(gpu_data::kRasterArgsChunks);
+    sizeDispatch("/chunks size", gpu_data::kRasterArgsChunks);
+    pass(name + "/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
+                            gpu::use(counters_, Usage::IndirectArguments), gpu::use(counters_, Usage::ComputeRead),
+                            gpu::use(visibility_, Usage::ComputeWrite)});
     bind(chunks_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
-    commands.memoryBarrier();
 }
 
 void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
@@ -222,13 +243,14 @@ void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
         constants.targetHeight = target.y;
         commands.pushConstants(&constants, sizeof(constants));
         const uint32_t group = gpu_data::kPyramidGroupSize;
+        // Each level reads the one before (or the visibility buffer).
+        commands.pass("main/pyramid", {gpu::use(visibility_, gpu::Usage::ComputeRead),
+                                       gpu::use(pyramidTexels_, gpu::Usage::ComputeWrite)});
         commands.dispatch((target.x + group - 1) / group, (target.y + group - 1) / group);
-        commands.memoryBarrier();  // the next level reads this one
     }
 }
 
-void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                            const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
+void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
                             ViewCulling viewCulling, bool meshletCulling) {
     ensureSize(target.width, target.height);
     gpu_data::VisibilityConstants constants{};
@@ -242,20 +264,21 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
     constants.meshSlots = scene_.meshSlotCount();
     using namespace gpu_data;
     std::vector<gpu::DescriptorWrite> rasterWrites;  // the scene's (not the lit pass's: 8 is the visibility buffer here)
-    for (const gpu::DescriptorWrite& w : writes)
+    for (const gpu::DescriptorWrite& w : inputs.writes)
         for (uint32_t scene : {kSceneBindingFrame, kSceneBindingVertices, kSceneBindingInstances, kSceneBindingMaterials})
             if (w.binding == scene) rasterWrites.push_back(w);
     rasterWrites.push_back({kVisibilityRasterBindingVisibility, visibility_, {}, {}});
     appendRasterMeshWrites(rasterWrites, scene_, culling, {counters_, large_, chunkList_});
 
+    const std::vector<gpu::ResourceUse> reads = rasterReads(scene_, culling);
     commands.beginTimer("main/cull");
-    commands.memoryBarrier();  // the previous frame may still read these buffers
+    commands.pass("main/clear", {gpu::use(visibility_, gpu::Usage::TransferWrite), gpu::use(counters_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(visibility_, 0);
     commands.fillBuffer(gpu::BufferSlice{counters_, offsetof(gpu_data::RasterCounters, meshlets), sizeof(glm::uvec4)}, 0);
     culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraEarly, pyramidTexels_);
     commands.endTimer();
     commands.beginTimer("main/raster");
-    recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraEarly, meshletCulling);
+    recordRaster(commands, "main/raster", rasterWrites, reads, constants, gpu_data::kCullListCameraEarly, meshletCulling);
     commands.endTimer();
     if (viewCulling == ViewCulling::Occlusion) {
         commands.beginTimer("main/occlusion");
@@ -263,17 +286,20 @@ void VisibilityPass::record(gpu::CommandList& commands, const std::vector<gpu::D
         culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraLate, pyramidTexels_);
         commands.endTimer();
         commands.beginTimer("main/rasterLate");
-        recordRaster(commands, rasterWrites, constants, gpu_data::kCullListCameraLate, meshletCulling);
+        recordRaster(commands, "main/rasterLate", rasterWrites, reads, constants, gpu_data::kCullListCameraLate, meshletCulling);
         commands.endTimer();
     }
 
     commands.beginTimer("main/resolve");
-    recordResolve(commands, writes, target, constants);
+    recordResolve(commands, inputs, target, constants);
     commands.endTimer();
     if (fragmentResolve_) return;
     commands.beginTimer("main/copy");
-    commands.copyBufferToTexture(color_, target.color, gpu::TextureState::ColorTarget);
-    commands.copyBufferToTexture(depth_, target.depth, gpu::TextureState::DepthTarget);
+    commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::use(depth_, gpu::Usage::TransferRead),
+                                gpu::discard(target.color, gpu::Usage::TransferWrite),
+                                gpu::discard(target.depth, gpu::Usage::TransferWrite)});
+    commands.copyBufferToTexture(color_, target.color);
+    commands.copyBufferToTexture(depth_, target.depth);
     commands.endTimer();
 }
 

@@ -15,12 +15,14 @@
 // functions in a compute shader (seen as crashes in later, unrelated calls; it does not happen with the
 // same code in a fragment shader). GPUs run the compute resolve.
 #include <map>
+#include <string>
 #include <vector>
 
 #include "cull_structs.h"
 #include "gpu/device.h"
 #include "penumbra/render_settings.h"
 #include "render/gpu_scene.h"
+#include "render/main_pass.h"
 #include "render/shadow_culling_pass.h"
 #include "visibility_structs.h"
 
@@ -51,11 +53,11 @@ public:
         ensureSize(width, height);
     }
     bool fragmentResolve() const { return fragmentResolve_; }
-    // `writes`: the shaded scene bindings 0-16 (MainPassInputs); `cullFrame` holds CullFrame::camera
+    // inputs.writes: the shaded scene bindings 0-16; `cullFrame` holds CullFrame::camera
     // of this view and `culling`. meshletCulling: skip meshlets outside the view or facing away
     // (render.meshletCulling). Timed as main/cull, main/raster, main/occlusion (pyramid and late
     // culling), main/rasterLate, main/resolve, main/copy.
-    void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
+    void record(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
                 ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
                 bool meshletCulling);
     // The meshlets skipped in the last recorded frame (RasterCounters::meshlets: x outside, y facing
@@ -69,10 +71,13 @@ private:
     void destroyAll();
     void ensureSize(uint32_t width, uint32_t height);
     gpu::PipelineHandle resolvePipeline(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat);
-    void recordRaster(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                      gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling);
+    // One phase's rasterization (frame graph passes `name`, name/bin, name/chunks and the sizes);
+    // `reads`: rasterReads().
+    void recordRaster(gpu::CommandList& commands, const std::string& name, const std::vector<gpu::DescriptorWrite>& writes,
+                      const std::vector<gpu::ResourceUse>& reads, gpu_data::VisibilityConstants constants, uint32_t list,
+                      bool meshletCulling);
     void recordPyramid(gpu::CommandList& commands);
-    void recordResolve(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const Target& target,
+    void recordResolve(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
                        const gpu_data::VisibilityConstants& constants);
 
     gpu::Device& device_;

@@ -67,11 +67,13 @@ VisibleSurfaces VisibleSurfacePass::now(const Scene& scene, const CameraView& vi
     target.variant = ScreenSpaceShadowPass::prepassVariant();  // alpha-tested like the lit pass
     target.width = view.width;
     target.height = view.height;
+    target.passName = "visibleSurfaces";
     gpu::CommandList commands = device_.beginCommands();
-    commands.transition(normals_, gpu::TextureState::Undefined, gpu::TextureState::ColorTarget);
-    commands.transition(depth_, gpu::TextureState::Undefined, gpu::TextureState::DepthTarget);
     mainPass_.record(commands, scene, view, inputs, target);
-    commands.copyTextureToBuffer(depth_, gpu::TextureState::DepthTarget, readback_);
+    commands.pass("visibleSurfaces/readback", {gpu::use(depth_, gpu::Usage::TransferRead),
+                                               gpu::use(readback_, gpu::Usage::TransferWrite)});
+    commands.copyTextureToBuffer(depth_, readback_);
+    commands.pass("visibleSurfaces/host", {gpu::use(readback_, gpu::Usage::HostRead)});
     device_.submitAndWait(commands);
     Image depth(view.width, view.height, 4);
     std::memcpy(depth.pixels.data(), device_.mappedPointer(readback_), depth.pixels.size());
@@ -81,7 +83,8 @@ VisibleSurfaces VisibleSurfacePass::now(const Scene& scene, const CameraView& vi
 uint64_t VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view) {
     ensureTargets(view.width, view.height);
     const glm::uvec2 size = subsampleSize(view);
-    commands.transition(depth, gpu::TextureState::DepthTarget, gpu::TextureState::ShaderRead);
+    commands.pass("visibleSurfaces/subsample",
+                  {gpu::use(depth, gpu::Usage::ComputeSampled), gpu::use(depths_, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(subsample_);
     const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kSubsampleBindingDepth, {}, depth, pointSampler_},
                                                       {gpu_data::kSubsampleBindingDepths, depths_, {}, {}}};
@@ -89,7 +92,6 @@ uint64_t VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::Te
     const gpu_data::SubsampleConstants constants{size.x, size.y, kStride};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch((size.x + 7) / 8, (size.y + 7) / 8);
-    commands.transition(depth, gpu::TextureState::ShaderRead, gpu::TextureState::DepthTarget);
     return device_.readBackAtFrameEnd(commands, {depths_, 0, readbackBytes(view)});
 }
 

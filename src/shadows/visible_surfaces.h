@@ -21,7 +21,7 @@ struct VisibleSurfaces {
     bool empty() const { return wsPoints.empty(); }
 };
 
-// depth: the main view's reversed-Z depth as Device::readTexture gives a D32 target (4 bytes of float
+// depth: the main view's reversed-Z depth as a D32 target reads back (4 bytes of float
 // per pixel, 0 = nothing drawn), view.width x view.height; or, with stride > 1, every stride-th pixel
 // of it in x and y (ceil(width / stride) x ceil(height / stride), pixel (x, y) = view pixel
 // (x * stride, y * stride)), as the real-time path reads it back.

@@ -142,8 +142,8 @@ TEST(CliErrors, OutOfGpuMemoryIsOneLineAndWritesNoImage) {
 TEST(CliErrors, DeviceLostIsOneLineNamingThePassesAndLeavesTheOldImage) {
     const fs::path dir = freshFolder("lost");
     std::ofstream(dir / "out.png") << "the previous image";
-    // Submissions 1 and 2 upload the scene, 3 reads back the tight fit's visible surfaces; 4 is the frame.
-    const CliRun run = runPenumbra("render -o " + (dir / "out.png").string() + kSmall, "PENUMBRA_FAULT_INJECTION=submit=4");
+    // Submission 1 uploads the scene, 2 reads back the tight fit's visible surfaces; 3 is the frame.
+    const CliRun run = runPenumbra("render -o " + (dir / "out.png").string() + kSmall, "PENUMBRA_FAULT_INJECTION=submit=3");
     expectOneLineError(run, "GPU device lost (VK_ERROR_DEVICE_LOST) submitting frame 0 (passes shadows.culling, shadows.directional");
     std::ifstream old(dir / "out.png");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(old), {}), "the previous image");
@@ -152,7 +152,7 @@ TEST(CliErrors, DeviceLostIsOneLineNamingThePassesAndLeavesTheOldImage) {
 
 TEST(CliErrors, DeviceLostWhileWaitingIsOneLine) {
     const fs::path dir = freshFolder("lost_wait");
-    expectOneLineError(runPenumbra("render -o " + (dir / "out.png").string() + kSmall, "PENUMBRA_FAULT_INJECTION=wait=4"),
+    expectOneLineError(runPenumbra("render -o " + (dir / "out.png").string() + kSmall, "PENUMBRA_FAULT_INJECTION=wait=3"),
                        "while the GPU ran frame 0");
     EXPECT_EQ(fileCount(dir), 0u);
 }

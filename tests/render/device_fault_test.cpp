@@ -258,9 +258,9 @@ TEST(DeviceFaults, EveryFrameAfterADeviceLossFailsAtOnce) {
 
 TEST(DeviceFaults, ALostDeviceWithFramesInFlightIsDestroyedCleanly) {
     gpu::DeviceFaultInjection faults;
-    // The scene upload, the placeholder texture, then per frame the tight fit's one-off depth reduction
-    // (no earlier frame has finished) and the frame itself: submission 6 is frame 1's.
-    faults.loseDeviceAtSubmit = 6;
+    // The scene upload, then per frame the tight fit's one-off depth reduction (no earlier frame has
+    // finished) and the frame itself: submission 5 is frame 1's.
+    faults.loseDeviceAtSubmit = 5;
     Device device(faultyDevice(faults));
     {
         Renderer renderer(device, faultScene());

@@ -1,0 +1,98 @@
+// The frame graph's barriers under the validation layer's synchronization validation: every canonical
+// scene and every path (hardware and compute shadow raster, forward and visibility main view, cached
+// tiles on a second frame, clustered lights, the screen-space resolve, the tight fit, spot and point
+// lights, atlas capture) renders without one hazard. Small frames and atlases: the layer checks every
+// command, and lavapipe runs them on the CPU.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "penumbra/scene_loading.h"
+#include "render_test_support.h"
+#include "scene/canonical_scenes.h"
+
+namespace penumbra::test {
+namespace {
+
+// A device of its own: synchronization validation on (the shared device has the other checks only).
+Device& synchronizationDevice() {
+    static std::unique_ptr<Device> device = [] {
+        DeviceOptions options = testDeviceOptions();
+        options.synchronizationValidation = true;
+        return std::make_unique<Device>(options);
+    }();
+    return *device;
+}
+
+Settings smallSettings(ShadowRaster raster, MainView mainView) {
+    Settings settings;
+    settings.shadows.raster = raster;
+    settings.render.mainView = mainView;
+    settings.shadows.directional.atlasSize = 256;
+    settings.shadows.spot.atlasSize = 256;
+    return settings;
+}
+
+RenderRequest smallRequest() {
+    RenderRequest request;
+    request.width = 64;
+    request.height = 36;
+    return request;
+}
+
+class SynchronizationTest : public ::testing::Test {
+protected:
+    Device& device() { return synchronizationDevice(); }
+    // Two frames (the second reuses the cached tiles) with these settings; the hazards they raised.
+    uint32_t hazardsOfTwoFrames(const Scene& scene, const Settings& settings, RenderRequest request = smallRequest()) {
+        const uint32_t before = device().validationMessageCount();
+        Renderer renderer(device(), scene);
+        renderer.render(request, settings);
+        const RenderResult second = renderer.render(request, settings);
+        EXPECT_GT(second.stats.tilesReused, 0u) << "the second frame draws from cached tiles";
+        return device().validationMessageCount() - before;
+    }
+};
+
+TEST_F(SynchronizationTest, EveryCanonicalSceneRendersWithoutHazards) {
+    for (const CanonicalSceneInfo& info : canonicalScenes()) {
+        if (info.name == "cad_engine") continue;  // 121k triangles: the same passes as the others, slower
+        SCOPED_TRACE(info.name);
+        EXPECT_EQ(hazardsOfTwoFrames(makeCanonicalScene(info.name), smallSettings(ShadowRaster::Hw, MainView::Forward)), 0u);
+    }
+}
+
+TEST_F(SynchronizationTest, EveryRasterAndMainViewPathRendersWithoutHazards) {
+    // The demo scene: a sun and a spot light; spot_lights and point_light: the other-light atlas.
+    const Scene scenes[] = {makeDemoScene(), makeCanonicalScene("point_light")};
+    for (const Scene& scene : scenes) {
+        for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+            for (MainView mainView : {MainView::Forward, MainView::Visibility}) {
+                SCOPED_TRACE(std::string(shadowRasterName(raster)) + ", " + mainViewName(mainView));
+                EXPECT_EQ(hazardsOfTwoFrames(scene, smallSettings(raster, mainView)), 0u);
+            }
+        }
+    }
+}
+
+TEST_F(SynchronizationTest, ScreenSpaceTightFitAndAtlasCaptureRenderWithoutHazards) {
+    for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+        SCOPED_TRACE(shadowRasterName(raster));
+        Settings settings = smallSettings(raster, MainView::Forward);
+        settings.shadows.screenSpace = true;
+        settings.shadows.directional.fit = CascadeFit::Tight;
+        RenderRequest request = smallRequest();
+        request.captureAtlas = true;
+        EXPECT_EQ(hazardsOfTwoFrames(makeDemoScene(), settings, request), 0u);
+    }
+}
+
+TEST_F(SynchronizationTest, LightCullingWithoutClustersAndFrustumCullingRenderWithoutHazards) {
+    Settings settings = smallSettings(ShadowRaster::Compute, MainView::Visibility);
+    settings.render.lightCulling = LightCulling::None;
+    settings.render.viewCulling = ViewCulling::Frustum;
+    EXPECT_EQ(hazardsOfTwoFrames(makeCanonicalScene("spot_lights"), settings), 0u);
+}
+
+}  // namespace
+}  // namespace penumbra::test
