@@ -1,4 +1,4 @@
-# The library's layers (docs/architecture-layers.md): one object library penumbra_<layer> per folder
+# The library's layers (docs/architecture.md): one object library penumbra_<layer> per folder
 # of src/, compiled with an include path that reaches only its own folder, the folders of the layers
 # below it and their public headers. An #include of anything else finds no file and fails to compile;
 # so does any Vulkan header outside the gpu layer. penumbra_lib archives every layer's objects into
@@ -15,7 +15,7 @@ file(REMOVE_RECURSE ${PENUMBRA_LAYER_ROOT})  # links, not what they point to; st
 set(PENUMBRA_NO_VULKAN_DIR ${PENUMBRA_LAYER_ROOT}/no-vulkan)
 foreach(header vulkan.h vulkan_core.h vulkan.hpp vk_platform.h)
   file(WRITE ${PENUMBRA_NO_VULKAN_DIR}/vulkan/${header}
-       "#error \"Vulkan is used only inside the gpu layer (src/gpu/*.cpp): docs/architecture-layers.md\"\n")
+       "#error \"Vulkan is used only inside the gpu layer (src/gpu/*.cpp): docs/architecture.md\"\n")
 endforeach()
 
 # What every layer compiles with; the same definitions are public on penumbra_lib.
@@ -77,7 +77,7 @@ function(penumbra_check_layer_folders)
   foreach(folder ${folders})
     if(IS_DIRECTORY ${CMAKE_SOURCE_DIR}/src/${folder} AND NOT folder IN_LIST layers AND NOT folder IN_LIST ARGN)
       message(FATAL_ERROR "src/${folder}/ is in no layer: add it with penumbra_add_layer in CMakeLists.txt "
-                          "(docs/architecture-layers.md)")
+                          "(docs/architecture.md)")
     endif()
   endforeach()
 endfunction()

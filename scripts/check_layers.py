@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks the library's layers (docs/architecture-layers.md) against the graph CMake declares.
+"""Checks the library's layers (docs/architecture.md) against the graph CMake declares.
 
     scripts/check_layers.py BUILD/layers/layers.json            # the sources' #includes
     scripts/check_layers.py BUILD/layers/layers.json --compile  # the include paths themselves
@@ -28,7 +28,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
-DOC = "docs/architecture-layers.md"
+DOC = "docs/architecture.md"
 
 
 def below(layers, name):
@@ -151,7 +151,7 @@ def check_compile(graph, build_layers):
 
 
 def mermaid(graph):
-    """The layer targets and what each USES, as a Mermaid flowchart (docs/architecture-layers.md)."""
+    """The layer targets and what each USES, as a Mermaid flowchart (docs/architecture.md)."""
     lines = ["```mermaid", "flowchart BT"]
     for name, layer in graph["layers"].items():
         lines.append("    %s[penumbra_%s]" % (name, name))

@@ -85,6 +85,11 @@ public:
     // penumbra::Error; destroy the renderers and this device, then make a new one.
     bool lost() const;
     void waitIdle();
+    // The frame graph (docs/architecture.md): with recording on, each frame keeps its declared passes,
+    // and frameGraphText prints the last frame's passes, their dependencies and barriers as
+    // format "mermaid" or "dot" (penumbra graph). Off by default: recording costs CPU time per pass.
+    void recordFrameGraph(bool on);
+    std::string frameGraphText(const std::string& format) const;
 
 private:
     friend struct DeviceAccess;  // the library's own layers (src/gpu/device_access.h)

@@ -72,7 +72,7 @@ Settings withSceneDefaults(Settings settings, const Scene& scene, const CameraVi
 
 ViewRender::ViewRender(const RenderOptions& options)
     : userSettings(loadSettings(options)),
-      device(deviceOptionsFor(options)),
+      device(openDevice(options)),
       renderer(device, loadSceneFor(options)),
       request(makeRenderRequest(options)),
       view(resolveCameraView(renderer.scene(), request.width, request.height)),

@@ -8,7 +8,7 @@
 // (a cached shadow atlas, a conditional pass) simply declares nothing.
 //
 // Pure bookkeeping, no Vulkan calls: CommandList::pass records the barriers this returns, and the
-// unit tests check them on the CPU. docs/architecture-framegraph.md describes it.
+// unit tests check them on the CPU. docs/architecture.md describes it.
 #include <cstdint>
 #include <span>
 #include <string>

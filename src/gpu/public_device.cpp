@@ -1,5 +1,6 @@
 // penumbra::Device, the public face of gpu::Device.
 #include "gpu/device_access.h"
+#include "gpu/frame_graph.h"
 
 namespace penumbra {
 
@@ -24,6 +25,10 @@ uint32_t Device::maxImageSize() const { return device_->maxImageSize(); }
 bool Device::lost() const { return device_->lost(); }
 
 DeviceObjectCounts Device::liveObjects() const { return device_->objectCounts(); }
+void Device::recordFrameGraph(bool on) { device_->frameGraph().recordPasses = on; }
+std::string Device::frameGraphText(const std::string& format) const {
+    return gpu::printFrameGraph(device_->frameGraph(), format);
+}
 
 Device DeviceAccess::makeDevice(const gpu::DeviceOptions& options) {
     return Device(std::make_unique<gpu::Device>(options));

@@ -23,6 +23,7 @@
 #include <new>
 
 #include "gpu/device.h"
+#include "gpu/device_access.h"
 #include "penumbra/scene_loading.h"
 #include "render/shadow_stats_json.h"
 #include "render/tile_cache.h"
@@ -207,7 +208,7 @@ TEST_F(FrameAllocationTest, DISABLED_SteadyForwardFrameWithAMovingCameraAllocate
 }
 
 TEST_F(FrameAllocationTest, DISABLED_SteadyVisibilityBufferFrameAllocatesNothing) {
-    if (!deviceWithoutValidation().backend().hasBufferInt64Atomics()) GTEST_SKIP() << "no 64-bit buffer atomics";
+    if (!gpu::backend(deviceWithoutValidation()).hasBufferInt64Atomics()) GTEST_SKIP() << "no 64-bit buffer atomics";
     EXPECT_EQ(steadyFrameAllocations(visibilitySettings(), true), 0u);
 }
 
