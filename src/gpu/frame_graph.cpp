@@ -2,6 +2,8 @@
 // read since, and the uses that write was made visible to.
 #include "gpu/frame_graph.h"
 
+#include "gpu/handle_pool.h"
+
 #include <vulkan/vulkan_core.h>
 
 #include "core/error.h"
@@ -63,6 +65,8 @@ UsageInfo info(Usage usage) {
 
 constexpr uint32_t bit(Usage usage) { return 1u << uint32_t(usage); }
 
+uint32_t slotOf(ResourceKey resource) { return resource.id & HandlePool<int>::kIndexMask; }
+
 }  // namespace
 
 const char* usageName(Usage usage) { return info(usage).name; }
@@ -70,8 +74,11 @@ bool isWrite(Usage usage) { return info(usage).write; }
 
 FrameGraph::State& FrameGraph::state(ResourceKey resource) {
     std::vector<State>& states = resource.texture ? textures_ : buffers_;
-    if (resource.id >= states.size()) states.resize(resource.id + 1);
-    return states[resource.id];
+    const uint32_t slot = slotOf(resource);
+    if (slot >= states.size()) states.resize(slot + 1);
+    State& s = states[slot];
+    if (s.id != resource.id) s = State{.id = resource.id};
+    return s;
 }
 
 std::span<const Barrier> FrameGraph::declare(std::string_view pass, std::span<const ResourceUse> uses) {
@@ -146,24 +153,27 @@ std::span<const Barrier> FrameGraph::declare(std::string_view pass, std::span<co
 }
 
 void FrameGraph::forget(ResourceKey resource) {
-    state(resource) = State{};
+    state(resource) = State{.id = resource.id};
     forgotten_.push_back(resource);
 }
 
 void FrameGraph::setName(ResourceKey resource, const std::string& name) {
-    std::vector<std::string>& names = resource.texture ? textureNames_ : bufferNames_;
-    if (resource.id >= names.size()) names.resize(resource.id + 1);
-    names[resource.id] = name;
+    auto& names = resource.texture ? textureNames_ : bufferNames_;
+    const uint32_t slot = slotOf(resource);
+    if (slot >= names.size()) names.resize(slot + 1);
+    names[slot] = {resource.id, name};
 }
 
 std::string FrameGraph::name(ResourceKey resource) const {
-    const std::vector<std::string>& names = resource.texture ? textureNames_ : bufferNames_;
-    if (resource.id < names.size() && !names[resource.id].empty()) return names[resource.id];
+    const auto& names = resource.texture ? textureNames_ : bufferNames_;
+    const uint32_t slot = slotOf(resource);
+    if (slot < names.size() && names[slot].first == resource.id) return names[slot].second;
     return std::string(resource.texture ? "texture " : "buffer ") + std::to_string(resource.id);
 }
 
 uint32_t FrameGraph::layout(TextureHandle texture) const {
-    return texture.id < textures_.size() ? textures_[texture.id].layout : 0u;
+    const uint32_t slot = slotOf({texture.id, true});
+    return slot < textures_.size() && textures_[slot].id == texture.id ? textures_[slot].layout : 0u;
 }
 
 void FrameGraph::beginFrame() {
@@ -176,7 +186,7 @@ void FrameGraph::beginFrame() {
 void FrameGraph::abandonFrame() {
     buffers_ = savedBuffers_;
     textures_ = savedTextures_;
-    for (ResourceKey resource : forgotten_) state(resource) = State{};
+    for (ResourceKey resource : forgotten_) state(resource) = State{.id = resource.id};
     forgotten_.clear();
 }
 

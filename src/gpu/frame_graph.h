@@ -39,7 +39,7 @@ const char* usageName(Usage usage);
 bool isWrite(Usage usage);
 
 struct ResourceKey {
-    uint32_t id = 0;  // the handle's id
+    uint32_t id = 0;  // the handle's id: slot and generation (gpu/handle_pool.h)
     bool texture = false;
     bool operator==(const ResourceKey&) const = default;
 };
@@ -78,8 +78,10 @@ public:
     // (two bindings) counts once, with the union of its uses; a texture's uses must agree on a layout.
     std::span<const Barrier> declare(std::string_view pass, std::span<const ResourceUse> uses);
 
-    // A destroyed handle: its id may come back for a new resource, which starts unused.
+    // A destroyed handle: its slot may come back for a new resource, which starts unused.
     void forget(ResourceKey resource);
+    // The slots tracked (states are kept per handle slot, not per id: an id carries a generation).
+    size_t trackedSlots() const { return buffers_.size() + textures_.size(); }
     // Names shown by the printers (the debug names given at creation).
     void setName(ResourceKey resource, const std::string& name);
     std::string name(ResourceKey resource) const;
@@ -102,13 +104,15 @@ private:
         uint64_t readStages = 0;                    // stages that read since then
         uint32_t visibleTo = 0;                     // Usage bits the last write was made visible to
         uint32_t layout = 0;
+        uint32_t id = 0;  // the id (with its generation) these states belong to
     };
+    // The state of the resource's slot; a slot last used by another generation starts unused.
     State& state(ResourceKey resource);
 
     std::vector<State> buffers_, textures_;
     std::vector<State> savedBuffers_, savedTextures_;
     std::vector<ResourceKey> forgotten_;  // during the frame: forgotten again after abandonFrame
-    std::vector<std::string> bufferNames_, textureNames_;
+    std::vector<std::pair<uint32_t, std::string>> bufferNames_, textureNames_;  // per slot: id, name
     std::vector<ResourceUse> merged_;
     std::vector<uint32_t> mergedUsages_;
     std::vector<Barrier> barriers_;

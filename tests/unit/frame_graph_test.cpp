@@ -177,6 +177,26 @@ TEST(FrameGraphTest, AForgottenHandleStartsUnused) {
     EXPECT_EQ(barriers[0].srcStages, VK_PIPELINE_STAGE_2_NONE);
 }
 
+// Handle ids carry a generation above the slot index (gpu/handle_pool.h): states are kept per slot.
+TEST(FrameGraphTest, ALaterGenerationOfASlotStartsUnused) {
+    FrameGraph graph;
+    declare(graph, {use(kTexture, Usage::ColorTarget)});
+    const TextureHandle reused{kTexture.id | (1u << 20)};
+    EXPECT_EQ(graph.layout(reused), VK_IMAGE_LAYOUT_UNDEFINED);
+    const std::vector<Barrier> barriers = declare(graph, {use(reused, Usage::FragmentSampled)});
+    ASSERT_EQ(barriers.size(), 1u);
+    EXPECT_EQ(barriers[0].srcStages, VK_PIPELINE_STAGE_2_NONE);
+    EXPECT_EQ(barriers[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+}
+
+TEST(FrameGraphTest, StatesGrowWithSlotsNotWithGenerations) {
+    FrameGraph graph;
+    for (uint32_t generation = 0; generation < 4096; generation += 97)
+        declare(graph, {use(BufferHandle{3u | (generation << 20)}, Usage::ComputeWrite),
+                        use(TextureHandle{2u | (generation << 20)}, Usage::ColorTarget)});
+    EXPECT_LE(graph.trackedSlots(), 4u + 3u);
+}
+
 TEST(FrameGraphTest, PrintsTheRecordedPassesAsMermaidWithAnEdgePerDependency) {
     FrameGraph graph;
     graph.setName({kBuffer.id, false}, "counts");
