@@ -17,5 +17,5 @@ void main() {
     vec2 ndc = gl_FragCoord.xy * frame.viewport.zw * 2.0 - 1.0;
     vec4 wsNear = frame.worldFromClip * vec4(ndc, 1.0, 1.0);
     vec3 wsDirection = wsNear.xyz / wsNear.w - frame.wsCameraPosition.xyz;
-    outColor = vec4(toneMap(backgroundRadiance(wsDirection) * frame.params.x, uint(frame.params.w)), 1.0);
+    outColor = vec4(toneMap(backgroundRadiance(wsDirection) * frame.exposure, frame.toneMapping), 1.0);
 }

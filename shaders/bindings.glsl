@@ -16,7 +16,7 @@ layout(set = 1, binding = kTextureTableBinding) uniform sampler2D baseColorTextu
 // Base colour (factor x texture) of a material at uv; alpha included.
 vec4 materialBaseColor(MaterialData material, vec2 uv) {
     vec4 color = material.baseColorFactor;
-    if (material.flags.x != 0u) color *= texture(baseColorTextures[material.flags.x - 1u], uv);
+    if (material.baseColorTexture != 0u) color *= texture(baseColorTextures[material.baseColorTexture - 1u], uv);
     return color;
 }
 
@@ -32,7 +32,7 @@ float textureLevel(uint texture, vec2 dx, vec2 dy) {
 // Base colour (factor x texture) with an explicit level (textureLevel); alpha included.
 vec4 materialBaseColorLod(MaterialData material, vec2 uv, float level) {
     vec4 color = material.baseColorFactor;
-    if (material.flags.x != 0u) color *= textureLod(baseColorTextures[material.flags.x - 1u], uv, level);
+    if (material.baseColorTexture != 0u) color *= textureLod(baseColorTextures[material.baseColorTexture - 1u], uv, level);
     return color;
 }
 

@@ -16,7 +16,7 @@ layout(set = 0, binding = kClusterBindingStats, std430) buffer ClusterStatsBlock
 shared uint clusterLightCount;
 
 void main() {
-    uint cluster = gl_WorkGroupID.x, word = gl_LocalInvocationID.x, words = clusters.config.z;
+    uint cluster = gl_WorkGroupID.x, word = gl_LocalInvocationID.x, words = clusters.wordsPerCluster;
     if (word == 0u) clusterLightCount = 0u;
     barrier();
     if (word < words) {
@@ -27,7 +27,7 @@ void main() {
         uint bits = 0u;
         for (uint bit = 0u; bit < 32u; ++bit) {
             uint light = word * 32u + bit;
-            if (light < clusters.config.x && clusterLightTouchesBox(lights[clusters.config.y + light], vsMin, vsMax))
+            if (light < clusters.lightCount && clusterLightTouchesBox(lights[clusters.firstLight + light], vsMin, vsMax))
                 bits |= 1u << bit;
         }
         clusterMasks[cluster * words + word] = bits;
@@ -35,7 +35,7 @@ void main() {
     }
     barrier();
     if (word == 0u) {
-        atomicAdd(clusterStats.counts.x, clusterLightCount);
-        atomicMax(clusterStats.counts.y, clusterLightCount);
+        atomicAdd(clusterStats.lightBits, clusterLightCount);
+        atomicMax(clusterStats.mostLightsInACluster, clusterLightCount);
     }
 }

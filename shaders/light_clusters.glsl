@@ -15,7 +15,7 @@ vec3 clusterViewPointAtDepth(float ndcX, float ndcY, float vsDepth) {
     return onRay * (vsDepth / -onRay.z);
 }
 
-float clusterSliceDepth(uint slice) { return clusters.slicing.x * exp(float(slice) / clusters.slicing.z); }
+float clusterSliceDepth(uint slice) { return clusters.nearDepth * exp(float(slice) / clusters.slicesPerLogDepth); }
 
 // light_clusters.cpp clusterViewBox: the box around cluster (tile.x, tile.y, slice), grown.
 void clusterViewBox(uvec3 cluster, out vec3 vsMin, out vec3 vsMax) {
@@ -61,11 +61,11 @@ bool clusterLightTouchesBox(LightData light, vec3 vsMin, vec3 vsMax) {
 
 // light_clusters.cpp clusterOfPixel: the cluster of a fragment, -1 beyond the last slice.
 int clusterOfFragment(vec2 pixel, float vsDepth) {
-    if (!(vsDepth <= clusters.slicing.y)) return -1;
-    float slice = floor(log(max(vsDepth, clusters.slicing.x) / clusters.slicing.x) * clusters.slicing.z);
+    if (!(vsDepth <= clusters.farDepth)) return -1;
+    float slice = floor(log(max(vsDepth, clusters.nearDepth) / clusters.nearDepth) * clusters.slicesPerLogDepth);
     uint z = min(uint(max(slice, 0.0)), kClusterSlices - 1u);
-    uint x = min(uint(pixel.x * clusters.tileScale.x), kClusterTilesX - 1u);
-    uint y = min(uint(pixel.y * clusters.tileScale.y), kClusterTilesY - 1u);
+    uint x = min(uint(pixel.x * clusters.tilesPerPixel.x), kClusterTilesX - 1u);
+    uint y = min(uint(pixel.y * clusters.tilesPerPixel.y), kClusterTilesY - 1u);
     return int((z * kClusterTilesY + y) * kClusterTilesX + x);
 }
 #endif

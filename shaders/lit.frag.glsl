@@ -19,9 +19,9 @@ void main() {
     if (!gl_FrontFacing) wsNormal = -wsNormal;  // double-sided back faces
     // Before any discard or branch: derivatives need the whole quad (the biases use the triangle's plane).
     vec3 wsGeometricNormal = geometricNormal(inWsPosition, wsNormal);
-    MaterialData material = materials[instances[inInstance].info.x];
+    MaterialData material = materials[instances[inInstance].materialIndex];
     vec4 baseColor = materialBaseColor(material, inUv);
-    if (material.flags.z == kAlphaMask && baseColor.a < material.params.z) discard;
+    if (material.alphaMode == kAlphaMask && baseColor.a < material.alphaCutoff) discard;
     outColor = shadeSurface(SurfaceInput(inWsPosition, wsNormal, wsGeometricNormal, gl_FragCoord.xy, material, baseColor,
                                          kBlendPass));
 }

@@ -15,7 +15,7 @@ void main() {
     vec3 wsNormal = normalize(inWsNormal);
     if (!gl_FrontFacing) wsNormal = -wsNormal;
     vec3 wsGeometricNormal = geometricNormal(inWsPosition, wsNormal);
-    MaterialData material = materials[instances[inInstance].info.x];
-    if (material.flags.z == kAlphaMask && materialBaseColor(material, inUv).a < material.params.z) discard;
+    MaterialData material = materials[instances[inInstance].materialIndex];
+    if (material.alphaMode == kAlphaMask && materialBaseColor(material, inUv).a < material.alphaCutoff) discard;
     outWsNormal = vec4(octEncode(wsNormal), octEncode(wsGeometricNormal));
 }

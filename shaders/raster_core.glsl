@@ -194,12 +194,12 @@ bool overlapsChunk(RasterTriangleSetup t, ivec2 origin, int chunk) {
 float rasterBaseAlpha(RasterTriangleSetup t, vec3 weights, ivec2 d) {
     MaterialData material = materials[t.materialIndex];
     float alpha = material.baseColorFactor.a;
-    if (material.flags.x != 0u) {
+    if (material.baseColorTexture != 0u) {
         vec2 uv = perspectiveUv(t, weights);
         vec2 uvAtD = perspectiveUv(t, planeWeights(t, d.x, d.y));
         vec2 dx = perspectiveUv(t, planeWeights(t, d.x + 1, d.y)) - uvAtD;
         vec2 dy = perspectiveUv(t, planeWeights(t, d.x, d.y + 1)) - uvAtD;
-        uint texture = subgroupBroadcastFirst(material.flags.x - 1u);
+        uint texture = subgroupBroadcastFirst(material.baseColorTexture - 1u);
         alpha *= textureLod(baseColorTextures[texture], uv, textureLevel(texture, dx, dy)).a;
     }
     return alpha;

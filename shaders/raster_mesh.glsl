@@ -28,7 +28,7 @@ uint meshOfWorkItem(uint item, uint meshCount) {
     uint lo = 0u, hi = meshCount - 1u;
     while (lo < hi) {
         uint mid = (lo + hi + 1u) / 2u;
-        if (cullMeshes[mid].counts.z <= item) lo = mid;
+        if (cullMeshes[mid].firstRasterItem <= item) lo = mid;
         else hi = mid - 1u;
     }
     return lo;
@@ -46,8 +46,8 @@ RasterVertex casterVertex(uint vertexIndex, mat4 clipFromObject) {
 // clipFromWorld x the instance's worldFromObject).
 void fetchTriangle(CullMesh mesh, uint triangle, mat4 clipFromObject, out RasterVertex v[3]) {
     for (int i = 0; i < 3; ++i) {
-        uint index = indices[mesh.draw.y + triangle * 3u + uint(i)];
-        v[i] = casterVertex(uint(int(index) + int(mesh.draw.z)), clipFromObject);
+        uint index = indices[mesh.firstIndex + triangle * 3u + uint(i)];
+        v[i] = casterVertex(uint(int(index) + mesh.vertexOffset), clipFromObject);
     }
 }
 

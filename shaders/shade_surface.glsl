@@ -49,12 +49,12 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
     ShadowSample shadow = ShadowSample(1.0, -1);
     if (uint(light.colorIntensity.a) == kLightDirectional) {
         // Transparent surfaces are not in the depth prepass: they sample the atlas directly, as in URP.
-        bool resolved = frame.params.z > 0.5 && light.shadow.y == 0u && !pixel.blendPass &&
+        bool resolved = frame.screenSpaceShadows != 0u && light.shadowSlot == 0u && !pixel.blendPass &&
                         pixel.outputMode != kOutputCascadesAov;
         if (pixel.receives && resolved)
             shadow = ShadowSample(texelFetch(screenSpaceShadows, ivec2(pixel.pixel), 0).r, -1);
         else if (pixel.receives)
-            shadow = directionalShadow(light.shadow.y, pixel.receiver, pixel.pixel);
+            shadow = directionalShadow(light.shadowSlot, pixel.receiver, pixel.pixel);
     } else {
         vec3 wsOffset = light.wsPosition.xyz - pixel.surface.wsPosition;
         float distanceSquared = dot(wsOffset, wsOffset);
@@ -62,53 +62,53 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
         attenuation = rangeAttenuation(distanceSquared, light.wsPosition.w);
         if (uint(light.colorIntensity.a) == kLightSpot)
             attenuation *= spotAttenuation(-wsToLight, -light.wsToLight.xyz, light.spotAngles);
-        if (pixel.receives) shadow = otherShadow(light.shadow.y, pixel.receiver, wsToLight);
+        if (pixel.receives) shadow = otherShadow(light.shadowSlot, pixel.receiver, wsToLight);
     }
-    if (light.shadow.x == frame.counts.w) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
+    if (light.sceneLightIndex == frame.aovLightIndex) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
     float nDotL = max(dot(pixel.surface.wsNormal, wsToLight), 0.0);
     return brdf(pixel.surface, wsToLight) * light.colorIntensity.rgb * (nDotL * attenuation * shadow.attenuation);
 }
 
 // The pixel's output: colour x exposure, tone mapped (render.toneMapping; alpha for blended draws), or
-// the AOV of frame.counts.z.
+// the AOV of frame.outputMode.
 vec4 shadeSurface(SurfaceInput s) {
     MaterialData material = s.material;
     vec3 wsToCamera = normalize(frame.wsCameraPosition.xyz - s.wsPosition);
-    PixelLighting pixel = PixelLighting(Surface(s.wsPosition, s.wsNormal, wsToCamera, s.baseColor.rgb, material.params.x,
-                                                material.params.y),
+    PixelLighting pixel = PixelLighting(Surface(s.wsPosition, s.wsNormal, wsToCamera, s.baseColor.rgb, material.metallic,
+                                                material.roughness),
                                         ShadowReceiver(s.wsPosition, s.wsNormal, s.wsGeometricNormal), s.pixel,
-                                        (material.flags.y & kMaterialReceiveShadows) != 0u, s.blendPass, frame.counts.z);
+                                        (material.flags & kMaterialReceiveShadows) != 0u, s.blendPass, frame.outputMode);
     uint outputMode = pixel.outputMode;
 
     // The ambient sky light (render.ambient, sky_light.glsl), unshadowed; then every light.
-    vec3 radiance = ambientRadiance(s.wsNormal, s.baseColor.rgb, frame.params.y);
+    vec3 radiance = ambientRadiance(s.wsNormal, s.baseColor.rgb, frame.ambient);
     float aovShadow = 1.0;
     int aovCascade = -1;
-    for (uint i = 0u; i < frame.counts.x; ++i) radiance += shadeLight(i, pixel, aovShadow, aovCascade);
+    for (uint i = 0u; i < frame.directionalLightCount; ++i) radiance += shadeLight(i, pixel, aovShadow, aovCascade);
     // Spot and point lights: the cluster's (a culled light adds exactly nothing here), or all of them
     // for the AOVs (the AOV light's shadow term is wanted where it does not light) and beyond the slices.
     float vsDepth = -dot(vec4(frame.viewFromWorld[0].z, frame.viewFromWorld[1].z, frame.viewFromWorld[2].z,
                               frame.viewFromWorld[3].z), vec4(s.wsPosition, 1.0));
-    int cluster = clusters.config.w != 0u && outputMode == kOutputColor ? clusterOfFragment(s.pixel, vsDepth) : -1;
+    int cluster = clusters.clustered != 0u && outputMode == kOutputColor ? clusterOfFragment(s.pixel, vsDepth) : -1;
     if (cluster < 0) {
-        for (uint i = frame.counts.x; i < frame.counts.x + frame.counts.y; ++i)
+        for (uint i = frame.directionalLightCount; i < frame.directionalLightCount + frame.otherLightCount; ++i)
             radiance += shadeLight(i, pixel, aovShadow, aovCascade);
     } else {
-        uint words = clusters.config.z;
+        uint words = clusters.wordsPerCluster;
         for (uint word = 0u; word < words; ++word) {
             uint bits = clusterMasks[uint(cluster) * words + word];
             while (bits != 0u) {
                 uint bit = uint(findLSB(bits));
                 bits &= bits - 1u;
-                radiance += shadeLight(clusters.config.y + word * 32u + bit, pixel, aovShadow, aovCascade);
+                radiance += shadeLight(clusters.firstLight + word * 32u + bit, pixel, aovShadow, aovCascade);
             }
         }
     }
-    if ((material.flags.y & kMaterialUnlit) != 0u) radiance = s.baseColor.rgb;
+    if ((material.flags & kMaterialUnlit) != 0u) radiance = s.baseColor.rgb;
 
     if (outputMode == kOutputShadowAov) return vec4(vec3(aovShadow), 1.0);
     if (outputMode == kOutputCascadesAov) return vec4(cascadeColor(aovCascade), 1.0);
-    return vec4(toneMap(radiance * frame.params.x, uint(frame.params.w)), s.blendPass ? s.baseColor.a : 1.0);
+    return vec4(toneMap(radiance * frame.exposure, frame.toneMapping), s.blendPass ? s.baseColor.a : 1.0);
 }
 
 #endif

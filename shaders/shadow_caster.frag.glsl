@@ -9,10 +9,10 @@ layout(location = 0) in vec2 inUv;
 layout(location = 1) flat in uint inInstance;
 
 void main() {
-    MaterialData material = materials[instances[inInstance].info.x];
+    MaterialData material = materials[instances[inInstance].materialIndex];
     // The level rule of the compute rasterizer too (bindings.glsl textureLevel).
-    float level = material.flags.x != 0u ? textureLevel(material.flags.x - 1u, dFdx(inUv), dFdy(inUv)) : 0.0;
+    float level = material.baseColorTexture != 0u ? textureLevel(material.baseColorTexture - 1u, dFdx(inUv), dFdy(inUv)) : 0.0;
     float alpha = materialBaseColorLod(material, inUv, level).a;
-    if (material.flags.w == kShadowModeClip && alpha < material.params.z) discard;
-    if (material.flags.w == kShadowModeDither && alpha < interleavedGradientNoise(gl_FragCoord.xy)) discard;
+    if (material.shadowMode == kShadowModeClip && alpha < material.alphaCutoff) discard;
+    if (material.shadowMode == kShadowModeDither && alpha < interleavedGradientNoise(gl_FragCoord.xy)) discard;
 }

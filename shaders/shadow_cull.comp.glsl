@@ -64,10 +64,10 @@ bool directionalKeeps(CullTile tile, vec3 wsMin, vec3 wsMax) {
     vec3 halfExtent = absRotation * (0.5 * (wsMax - wsMin));
     vec3 translation = tile.lightFromWorld[3].xyz;
     vec3 lsMin = (center - halfExtent) + translation, lsMax = (center + halfExtent) + translation;
-    float h = tile.params.x, farDistance = tile.params.y;
+    float h = tile.halfExtent, farDistance = tile.farDistance;
     if (!(lsMax.z >= -farDistance && lsMin.x <= h && lsMax.x >= -h && lsMin.y <= h && lsMax.y >= -h)) return false;
-    float factor = tile.params.w;
-    int cascade = int(tile.params.z);
+    float factor = tile.blendCullingFactor;
+    int cascade = int(tile.cascadeIndex);
     for (int j = 0; j < cascade && factor > 0.0; ++j) {
         if (insideScaledSphere(wsMin, wsMax, cull.spheres[j], factor) &&
             shadowInsideScaledSphere(wsMin, wsMax, tile.wsLightDirection.xyz, cull.spheres[j], factor))
@@ -109,7 +109,7 @@ bool projectBox(vec4 corners[8], out ivec4 pixels, out float nearestDepth) {
         ndcMax = max(ndcMax, clip.xy / clip.w);
         nearestDepth = max(nearestDepth, clip.z / clip.w);
     }
-    vec2 size = vec2(cull.camera.view.xy);
+    vec2 size = vec2(cull.camera.width, cull.camera.height);
     // Window coordinates as the rasterizer's (raster_core.glsl setupTriangle); a pixel is covered when
     // its centre is, so every pixel the box can cover lies in floor(min) .. floor(max).
     vec2 windowMin = clamp((ndcMin * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
@@ -119,7 +119,7 @@ bool projectBox(vec4 corners[8], out ivec4 pixels, out float nearestDepth) {
 }
 
 float pyramidTexel(uint level, ivec2 texel) {
-    uvec2 size = cull.camera.pyramid.xy;
+    uvec2 size = uvec2(cull.camera.pyramidWidth, cull.camera.pyramidHeight);
     uint offset = 0u;
     for (uint l = 0u; l < level; ++l) {
         offset += size.x * size.y;
@@ -137,7 +137,7 @@ bool occluded(vec4 corners[8]) {
     float nearestDepth;
     if (!projectBox(corners, pixels, nearestDepth)) return false;
     uint level = 0u;
-    while (level + 1u < cull.camera.view.z &&
+    while (level + 1u < cull.camera.pyramidLevels &&
            any(greaterThan((pixels.zw >> int(level + 1u)) - (pixels.xy >> int(level + 1u)), ivec2(1))))
         ++level;
     ivec4 texels = pixels >> int(level + 1u);
@@ -164,11 +164,11 @@ bool boxInCameraFrustum(vec4 corners[8]) {
 }
 
 void appendToView(uint list, uint instance, CullMesh mesh, uint meshSlot) {
-    uint meshCount = cull.counts.z;
+    uint meshCount = cull.meshCount;
     uint slot = atomicAdd(listCounts[list * meshCount + meshSlot], 1u);
-    visibleInstances[list * cull.counts.y + mesh.counts.x + slot] = instance;
-    atomicAdd(tileStats[list].counts.y, 1u);
-    atomicAdd(tileStats[list].counts.z, mesh.draw.x / 3u);
+    visibleInstances[list * cull.instanceCount + mesh.firstListSlot + slot] = instance;
+    atomicAdd(tileStats[list].instances, 1u);
+    atomicAdd(tileStats[list].triangles, mesh.indexCount / 3u);
 }
 
 // The early phase: the frustum's instances visible last frame (every one in frustum without
@@ -176,12 +176,12 @@ void appendToView(uint list, uint instance, CullMesh mesh, uint meshSlot) {
 // pyramid does not hide, less those drawn early. Unbounded instances are always drawn early.
 void cullCamera(uint instance) {
     CullInstance candidate = cullInstances[instance];
-    if ((candidate.info.y & kCullInstanceHasMesh) == 0u) return;
-    uint meshSlot = candidate.info.x;
+    if ((candidate.flags & kCullInstanceHasMesh) == 0u) return;
+    uint meshSlot = candidate.meshSlot;
     CullMesh mesh = cullMeshes[meshSlot];
-    if (materials[mesh.draw.w].flags.z == kAlphaBlend) return;  // the forward pass draws them afterwards
-    uint culling = cull.camera.view.w;
-    bool bounded = (candidate.info.y & kCullInstanceBounded) != 0u;
+    if (materials[mesh.materialIndex].alphaMode == kAlphaBlend) return;  // the forward pass draws them afterwards
+    uint culling = cull.camera.culling;
+    bool bounded = (candidate.flags & kCullInstanceBounded) != 0u;
     vec4 corners[8];
     cameraClipCorners(candidate.wsMin.xyz, candidate.wsMax.xyz, corners);
     bool inFrustum = culling == kViewCullingNone || !bounded || boxInCameraFrustum(corners);
@@ -199,21 +199,21 @@ void cullCamera(uint instance) {
 
 void main() {
     if (constants.pass != kCullPassShadows) {
-        if (gl_GlobalInvocationID.x < cull.counts.y) cullCamera(gl_GlobalInvocationID.x);
+        if (gl_GlobalInvocationID.x < cull.instanceCount) cullCamera(gl_GlobalInvocationID.x);
         return;
     }
     uint instance = gl_GlobalInvocationID.x;
     uint tileIndex = gl_WorkGroupID.y;
-    uint instanceCount = cull.counts.y, meshCount = cull.counts.z;
-    if (instance >= instanceCount || tileIndex >= cull.counts.x) return;
+    uint instanceCount = cull.instanceCount, meshCount = cull.meshCount;
+    if (instance >= instanceCount || tileIndex >= cull.tileCount) return;
     CullInstance caster = cullInstances[instance];
-    if ((caster.info.y & kCullInstanceCasts) == 0u) return;
-    CullMesh mesh = cullMeshes[caster.info.x];
-    if (materials[mesh.draw.w].flags.w == kShadowModeOff) return;
+    if ((caster.flags & kCullInstanceCasts) == 0u) return;
+    CullMesh mesh = cullMeshes[caster.meshSlot];
+    if (materials[mesh.materialIndex].shadowMode == kShadowModeOff) return;
     CullTile tile = cull.tiles[tileIndex];
     bool keep = uint(tile.frustumMin.w) == kCullTileDirectional ? directionalKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz)
                                                                : perspectiveKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz);
     if (!keep) return;
-    uint slot = atomicAdd(listCounts[tileIndex * meshCount + caster.info.x], 1u);
-    visibleInstances[tileIndex * instanceCount + mesh.counts.x + slot] = instance;
+    uint slot = atomicAdd(listCounts[tileIndex * meshCount + caster.meshSlot], 1u);
+    visibleInstances[tileIndex * instanceCount + mesh.firstListSlot + slot] = instance;
 }

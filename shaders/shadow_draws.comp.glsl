@@ -22,21 +22,21 @@ layout(set = 0, binding = kDrawsBindingTileStats, std430) buffer StatsBlock { Cu
 void main() {
     uint meshIndex = gl_GlobalInvocationID.x;
     uint tile = gl_WorkGroupID.y;
-    uint meshCount = cull.counts.z;
-    if (meshIndex >= meshCount || tile >= cull.counts.x) return;
+    uint meshCount = cull.meshCount;
+    if (meshIndex >= meshCount || tile >= cull.tileCount) return;
     uint count = listCounts[tile * meshCount + meshIndex];
     if (count == 0u) return;
     CullMesh mesh = cullMeshes[meshIndex];
-    uint kind = materials[mesh.draw.w].flags.w == kShadowModeOn ? 0u : 1u;
+    uint kind = materials[mesh.materialIndex].shadowMode == kShadowModeOn ? 0u : 1u;
     uint list = tile * kCasterKinds + kind;
     uint slot = atomicAdd(drawCounts[list], 1u);
     uint base = (list * meshCount + slot) * 5u;
-    drawCommands[base + 0u] = mesh.draw.x;
+    drawCommands[base + 0u] = mesh.indexCount;
     drawCommands[base + 1u] = count;
-    drawCommands[base + 2u] = mesh.draw.y;
-    drawCommands[base + 3u] = mesh.draw.z;
-    drawCommands[base + 4u] = tile * cull.counts.y + mesh.counts.x;
-    atomicAdd(tileStats[tile].counts.x, 1u);
-    atomicAdd(tileStats[tile].counts.y, count);
-    atomicAdd(tileStats[tile].counts.z, count * (mesh.draw.x / 3u));
+    drawCommands[base + 2u] = mesh.firstIndex;
+    drawCommands[base + 3u] = uint(mesh.vertexOffset);
+    drawCommands[base + 4u] = tile * cull.instanceCount + mesh.firstListSlot;
+    atomicAdd(tileStats[tile].draws, 1u);
+    atomicAdd(tileStats[tile].instances, count);
+    atomicAdd(tileStats[tile].triangles, count * (mesh.indexCount / 3u));
 }

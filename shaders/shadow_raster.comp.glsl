@@ -16,12 +16,12 @@ shared bool meshletSkipped;
 
 // Rasterizes a small piece at once; queues a large one, set up, for passes 2 and 3.
 void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
-    t.materialIndex = mesh.draw.w;
+    t.materialIndex = mesh.materialIndex;
     t.alphaTested = isAlphaTested(mesh);
     if (boundsArea(t.bounds) > kRasterSmallArea) {
-        uint queued = atomicAdd(counters.counts.x, 1u);
+        uint queued = atomicAdd(counters.largeQueued, 1u);
         if (queued < raster.largeCapacity) largePieces[queued] = packPiece(t, slopeBias);
-        else atomicAdd(counters.counts.z, 1u);
+        else atomicAdd(counters.largeDropped, 1u);
         return;
     }
     for (int y = t.bounds.y; y <= t.bounds.w; ++y)
@@ -31,15 +31,15 @@ void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
     uint tileIndex = rasterTile(raster.firstRasterTile + gl_WorkGroupID.z);
-    uint instanceCount = cull.counts.y, meshCount = cull.counts.z;
+    uint instanceCount = cull.instanceCount, meshCount = cull.meshCount;
     uint meshSlot = meshOfWorkItem(item, meshCount);
     CullMesh mesh = cullMeshes[meshSlot];
-    uint local = item - mesh.counts.z;
-    if (mesh.counts.w == 0u || local >= mesh.counts.y * mesh.counts.w) return;  // past the last item
-    uint instanceInMesh = local / mesh.counts.w;
+    uint local = item - mesh.firstRasterItem;
+    if (mesh.meshletCount == 0u || local >= mesh.instanceCount * mesh.meshletCount) return;  // past the last item
+    uint instanceInMesh = local / mesh.meshletCount;
     if (instanceInMesh >= listCounts[tileIndex * meshCount + meshSlot]) return;  // culled slot
-    uint instance = visibleInstances[tileIndex * instanceCount + mesh.counts.x + instanceInMesh];
-    Meshlet meshlet = meshlets[mesh.meshlets.x + local % mesh.counts.w];
+    uint instance = visibleInstances[tileIndex * instanceCount + mesh.firstListSlot + instanceInMesh];
+    Meshlet meshlet = meshlets[mesh.firstMeshlet + local % mesh.meshletCount];
     CullTile tile = cull.tiles[tileIndex];
     float slopeBias = tile.wsLightDirection.w;
     if (gl_LocalInvocationID.x == 0u) {
@@ -47,12 +47,12 @@ void main() {
         // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.
         meshletSkipped = raster.meshletCulling != 0u && meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
                                                                   kMeshletSidesXY | kMeshletSideNearW);
-        if (meshletSkipped) atomicAdd(counters.meshlets.x, 1u);
+        if (meshletSkipped) atomicAdd(counters.meshletsOutside, 1u);
     }
     barrier();
     if (meshletSkipped) return;
-    uint lastTriangle = meshlet.triangles.x + meshlet.triangles.y;
-    for (uint triangle = meshlet.triangles.x + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
+    uint lastTriangle = meshlet.firstTriangle + meshlet.triangleCount;
+    for (uint triangle = meshlet.firstTriangle + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         RasterTriangleSetup t;

@@ -30,8 +30,8 @@ uint rasterTile(uint i) { return cull.rasterTiles[i / 4u][i % 4u]; }
 bool alphaKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
     MaterialData material = materials[t.materialIndex];
     float alpha = rasterBaseAlpha(t, weights, ivec2(x, y));
-    if (material.flags.w == kShadowModeClip && alpha < material.params.z) return false;
-    if (material.flags.w == kShadowModeDither && alpha < interleavedGradientNoise(vec2(x, y) + 0.5)) return false;
+    if (material.shadowMode == kShadowModeClip && alpha < material.alphaCutoff) return false;
+    if (material.shadowMode == kShadowModeDither && alpha < interleavedGradientNoise(vec2(x, y) + 0.5)) return false;
     return true;
 }
 
@@ -48,7 +48,7 @@ void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
     if (bits < atlasDepth[texel]) atomicMin(atlasDepth[texel], bits);
 }
 
-bool isAlphaTested(CullMesh mesh) { return materials[mesh.draw.w].flags.w != kShadowModeOn; }
+bool isAlphaTested(CullMesh mesh) { return materials[mesh.materialIndex].shadowMode != kShadowModeOn; }
 
 // The planes a shadow tile clips to (depth is clamped, not clipped: pancaking).
 const uint kShadowClipPlanes = kClipNearW | kClipGuard;

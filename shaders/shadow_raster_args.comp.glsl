@@ -12,6 +12,6 @@ uvec4 dispatchFor(uint count) {
 }
 
 void main() {
-    if (args.queue == kRasterArgsLarge) counters.largeDispatch = dispatchFor(min(counters.counts.x, args.largeCapacity));
-    else counters.chunkDispatch = dispatchFor(min(counters.counts.y, args.chunkCapacity));
+    if (args.queue == kRasterArgsLarge) counters.largeDispatch = dispatchFor(min(counters.largeQueued, args.largeCapacity));
+    else counters.chunkDispatch = dispatchFor(min(counters.chunksQueued, args.chunkCapacity));
 }

@@ -10,7 +10,7 @@ shared ivec2 chunkOrigin;
 
 void main() {
     uint large = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    if (large >= min(counters.counts.x, raster.largeCapacity)) return;
+    if (large >= min(counters.largeQueued, raster.largeCapacity)) return;
     RasterTriangleSetup t = unpackPiece(largePieces[large]);
     if (gl_LocalInvocationID.x == 0u) {
         chunkOrigin = t.bounds.xy;
@@ -21,8 +21,8 @@ void main() {
     for (uint i = gl_LocalInvocationID.x; i < chunkCount; i += 64u) {
         uvec2 origin = uvec2(chunkOrigin) + uvec2(i % chunksWide, i / chunksWide) * kRasterChunk;
         if (!overlapsChunk(t, ivec2(origin), int(kRasterChunk))) continue;
-        uint slot = atomicAdd(counters.counts.y, 1u);
+        uint slot = atomicAdd(counters.chunksQueued, 1u);
         if (slot < raster.chunkCapacity) chunks[slot] = uvec2(large, origin.x | (origin.y << 16));
-        else atomicAdd(counters.counts.w, 1u);
+        else atomicAdd(counters.chunksDropped, 1u);
     }
 }

@@ -7,7 +7,7 @@ layout(local_size_x = 16, local_size_y = 16) in;
 
 void main() {
     uint chunk = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    if (chunk >= min(counters.counts.y, raster.chunkCapacity)) return;
+    if (chunk >= min(counters.chunksQueued, raster.chunkCapacity)) return;
     uvec2 entry = chunks[chunk];
     RasterPiece piece = largePieces[entry.x];
     RasterTriangleSetup t = unpackPiece(piece);

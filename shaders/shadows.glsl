@@ -18,8 +18,6 @@ layout(set = 0, binding = kLitBindingDirectionalAtlas) uniform sampler2DShadow d
 layout(set = 0, binding = kLitBindingDirectionalDepth) uniform sampler2D directionalShadowDepth;
 layout(set = 0, binding = kLitBindingOtherDepth) uniform sampler2D otherShadowDepth;
 
-const uint kNoShadowSlot = 0xffffffffu;
-
 struct ShadowSample {
     float attenuation;  // 1 = lit, 0 = fully shadowed (strength and fades applied)
     int cascade;        // cascade index sampled, -1 = none

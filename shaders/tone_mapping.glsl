@@ -43,7 +43,7 @@ PENUMBRA_INLINE vec3 toneMapAces(vec3 x) {
 }
 
 // Linear display values (sRGB encoding follows in the colour target) of exposed linear radiance;
-// `mode` is a kToneMap* constant (FrameData.params.w). kToneMapNone leaves the values as they are
+// `mode` is a kToneMap* constant (FrameData.toneMapping). kToneMapNone leaves the values as they are
 // (the target clamps them): linear values, no display transform.
 PENUMBRA_INLINE vec3 toneMap(vec3 radiance, uint mode) {
     if (mode == kToneMapNeutral) return toneMapNeutral(max(radiance, vec3(0.0f)));

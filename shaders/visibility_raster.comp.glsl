@@ -18,14 +18,14 @@ shared bool meshletSkipped;
 
 void rasterizeOrQueue(RasterTriangleSetup t, uint materialIndex, uint payload) {
     t.materialIndex = materialIndex;
-    t.alphaTested = materials[materialIndex].flags.z == kAlphaMask;
+    t.alphaTested = materials[materialIndex].alphaMode == kAlphaMask;
     if (boundsArea(t.bounds) > kRasterSmallArea) {
-        uint queued = atomicAdd(counters.counts.x, 1u);
+        uint queued = atomicAdd(counters.largeQueued, 1u);
         if (queued < raster.largeCapacity) {
             largePieces[queued] = packViewPiece(t, payload);
             return;
         }
-        atomicAdd(counters.counts.z, 1u);  // full: this thread draws it (slower, nothing lost)
+        atomicAdd(counters.largeDropped, 1u);  // full: this thread draws it (slower, nothing lost)
     }
     rasterizePiece(t, payload);
 }
@@ -34,14 +34,14 @@ void rasterizeOrQueue(RasterTriangleSetup t, uint materialIndex, uint payload) {
 // single-sided material on an instance that is not mirrored, every triangle facing away from the camera.
 bool skipMeshlet(Meshlet meshlet, uint instance, bool doubleSided) {
     if (meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz, kMeshletSidesXY | kMeshletSidesDepth)) {
-        atomicAdd(counters.meshlets.x, 1u);
+        atomicAdd(counters.meshletsOutside, 1u);
         return true;
     }
     mat4 worldFromObject = instances[instance].worldFromObject;
     if (doubleSided || determinant(mat3(worldFromObject)) <= 0.0) return false;
     vec3 osEye = meshletObjectEye(worldFromObject, frame.wsCameraPosition.xyz);
     if (!meshletFacesAway(meshlet.coneApex, meshlet.coneAxis, osEye)) return false;
-    atomicAdd(counters.meshlets.y, 1u);
+    atomicAdd(counters.meshletsFacingAway, 1u);
     return true;
 }
 
@@ -49,14 +49,14 @@ void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
     uint meshSlot = meshOfWorkItem(item, raster.meshSlots);
     CullMesh mesh = cullMeshes[meshSlot];
-    uint local = item - mesh.counts.z;
-    if (mesh.counts.w == 0u || local >= mesh.counts.y * mesh.counts.w) return;  // past the last item
-    uint list = raster.list, instanceInMesh = local / mesh.counts.w;
+    uint local = item - mesh.firstRasterItem;
+    if (mesh.meshletCount == 0u || local >= mesh.instanceCount * mesh.meshletCount) return;  // past the last item
+    uint list = raster.list, instanceInMesh = local / mesh.meshletCount;
     if (instanceInMesh >= listCounts[list * raster.meshSlots + meshSlot]) return;  // culled slot
-    uint instance = visibleInstances[list * raster.instanceCount + mesh.counts.x + instanceInMesh];
-    Meshlet meshlet = meshlets[mesh.meshlets.x + local % mesh.counts.w];
-    MaterialData material = materials[mesh.draw.w];
-    bool doubleSided = (material.flags.y & kMaterialDoubleSided) != 0u;
+    uint instance = visibleInstances[list * raster.instanceCount + mesh.firstListSlot + instanceInMesh];
+    Meshlet meshlet = meshlets[mesh.firstMeshlet + local % mesh.meshletCount];
+    MaterialData material = materials[mesh.materialIndex];
+    bool doubleSided = (material.flags & kMaterialDoubleSided) != 0u;
     if (gl_LocalInvocationID.x == 0u) {
         clipFromObject = frame.clipFromWorld * instances[instance].worldFromObject;
         meshletSkipped = raster.meshletCulling != 0u && skipMeshlet(meshlet, instance, doubleSided);
@@ -65,21 +65,21 @@ void main() {
     if (meshletSkipped) return;
     vec4 viewport = vec4(0.0, 0.0, float(viewWidth()), float(viewHeight()));
     uvec4 scissor = uvec4(0u, 0u, viewWidth(), viewHeight());
-    uint lastTriangle = meshlet.triangles.x + meshlet.triangles.y;
-    for (uint triangle = meshlet.triangles.x + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
+    uint lastTriangle = meshlet.firstTriangle + meshlet.triangleCount;
+    for (uint triangle = meshlet.firstTriangle + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         if (!facesShown(v, doubleSided)) continue;
         uint payload = ((instance << raster.triangleBits) | triangle) + 1u;
         RasterTriangleSetup t;
         if (!needsClipping(v, kViewClipPlanes)) {
-            if (setupTriangle(viewport, scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh.draw.w, payload);
+            if (setupTriangle(viewport, scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh.materialIndex, payload);
             continue;
         }
         RasterVertex polygon[kMaxClipped];
         int vertexCount = clipTriangle(v, kViewClipPlanes, polygon);
         for (int i = 1; i + 1 < vertexCount; ++i)
             if (setupTriangle(viewport, scissor, polygon[0], polygon[i], polygon[i + 1], t))
-                rasterizeOrQueue(t, mesh.draw.w, payload);
+                rasterizeOrQueue(t, mesh.materialIndex, payload);
     }
 }

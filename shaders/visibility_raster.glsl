@@ -37,7 +37,7 @@ bool facesShown(RasterVertex v[3], bool doubleSided) {
 // lit.frag's alpha test (MASK materials): base colour alpha below the cutoff is discarded.
 bool maskKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
     // Derivatives of the pixel's 2 x 2 quad, as the hardware's implicit level in lit.frag takes them.
-    return rasterBaseAlpha(t, weights, ivec2(x, y) & ~1) >= materials[t.materialIndex].params.z;
+    return rasterBaseAlpha(t, weights, ivec2(x, y) & ~1) >= materials[t.materialIndex].alphaCutoff;
 }
 
 void rasterizePixel(RasterTriangleSetup t, uint payload, int x, int y) {
@@ -67,7 +67,7 @@ RasterPiece packViewPiece(RasterTriangleSetup t, uint payload) {
 RasterTriangleSetup unpackViewPiece(RasterPiece piece, out uint payload) {
     RasterTriangleSetup t = unpackPiece(piece);
     payload = uint(piece.point2.w);
-    t.alphaTested = materials[t.materialIndex].flags.z == kAlphaMask;
+    t.alphaTested = materials[t.materialIndex].alphaMode == kAlphaMask;
     return t;
 }
 

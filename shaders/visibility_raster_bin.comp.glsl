@@ -10,7 +10,7 @@ shared uint chunkCount, chunksWide;
 
 void main() {
     uint large = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    if (large >= min(counters.counts.x, raster.largeCapacity)) return;
+    if (large >= min(counters.largeQueued, raster.largeCapacity)) return;
     uint payload;
     RasterTriangleSetup t = unpackViewPiece(largePieces[large], payload);
     if (gl_LocalInvocationID.x == 0u) {
@@ -21,12 +21,12 @@ void main() {
     for (uint i = gl_LocalInvocationID.x; i < chunkCount; i += 64u) {
         ivec2 origin = t.bounds.xy + ivec2(i % chunksWide, i / chunksWide) * int(kRasterChunk);
         if (!overlapsChunk(t, origin, int(kRasterChunk))) continue;
-        uint slot = atomicAdd(counters.counts.y, 1u);
+        uint slot = atomicAdd(counters.chunksQueued, 1u);
         if (slot < raster.chunkCapacity) {
             chunks[slot] = uvec2(large, uint(origin.x) | (uint(origin.y) << 16));
             continue;
         }
-        atomicAdd(counters.counts.w, 1u);  // full: this thread draws the chunk
+        atomicAdd(counters.chunksDropped, 1u);  // full: this thread draws the chunk
         ivec2 last = min(origin + int(kRasterChunk) - 1, t.bounds.zw);
         for (int y = origin.y; y <= last.y; ++y)
             for (int x = origin.x; x <= last.x; ++x) rasterizePixel(t, payload, x, y);

@@ -37,8 +37,8 @@ vec3 barycentricsAt(mat3 edges, vec2 ndc) {
 // of a workgroup may show different materials.
 vec4 baseColorGrad(MaterialData material, vec2 uv, vec2 dx, vec2 dy) {
     vec4 color = material.baseColorFactor;
-    if (material.flags.x == 0u) return color;
-    uint wanted = material.flags.x - 1u;
+    if (material.baseColorTexture == 0u) return color;
+    uint wanted = material.baseColorTexture - 1u;
     vec4 texel = vec4(1.0);
     for (;;) {
         uint texture = subgroupBroadcastFirst(wanted);
@@ -52,13 +52,13 @@ vec4 baseColorGrad(MaterialData material, vec2 uv, vec2 dx, vec2 dy) {
 
 // The surface of `triangle` of `instance` at pixel centre `pixel`.
 SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
-    CullMesh mesh = cullMeshes[cullInstances[instance].info.x];
+    CullMesh mesh = cullMeshes[cullInstances[instance].meshSlot];
     InstanceData data = instances[instance];
     VertexData v[3];
     vec3 wsPositions[3];
     mat3 clipRows;
     for (int i = 0; i < 3; ++i) {
-        v[i] = vertices[uint(int(indices[mesh.draw.y + triangle * 3u + uint(i)]) + int(mesh.draw.z))];
+        v[i] = vertices[uint(int(indices[mesh.firstIndex + triangle * 3u + uint(i)]) + mesh.vertexOffset)];
         wsPositions[i] = (data.worldFromObject * vec4(v[i].osPositionU.xyz, 1.0)).xyz;
         vec4 clip = frame.clipFromWorld * vec4(wsPositions[i], 1.0);
         clipRows[i] = clip.xyw;
@@ -86,7 +86,7 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     float length2 = dot(wsGeometric, wsGeometric);
     wsGeometric = length2 > 1e-30 ? wsGeometric * inversesqrt(length2) : wsNormal;
     if (dot(wsGeometric, wsNormal) < 0.0) wsGeometric = -wsGeometric;
-    MaterialData material = materials[data.info.x];
+    MaterialData material = materials[data.materialIndex];
     vec4 baseColor = baseColorGrad(material, uv, uvs * (bx - bq), uvs * (by - bq));
     return SurfaceInput(wsPosition, wsNormal, wsGeometric, pixel, material, baseColor, false);
 }

@@ -6,7 +6,7 @@
 // one list per tile and caster kind, drawn with vkCmdDrawIndexedIndirectCount.
 //
 // Visible-instance list layout: tile t, mesh m, entry i lives at
-//   t * instanceCount + meshes[m].counts.x + i      (counts.x = the mesh's first slot, a prefix sum)
+//   t * instanceCount + meshes[m].firstListSlot + i      (a prefix sum over the meshes' instance counts)
 // so a draw's firstInstance is where its list starts and gl_InstanceIndex indexes the list.
 //
 // The main view's visibility buffer (render.mainView = visibility) is culled by the same pass, in two more
@@ -28,14 +28,14 @@ PENUMBRA_CONST(uint, kCullListCameraLate, 33u)
 PENUMBRA_CONST(uint, kCullListCount, 34u)
 PENUMBRA_CONST(uint, kCullWorkgroupSize, 64u)
 PENUMBRA_CONST(uint, kCasterKinds, 2u)  // 0: opaque (depth-only pipeline), 1: alpha-tested (clip, dither)
-PENUMBRA_CONST(uint, kCullInstanceCasts, 1u)  // CullInstance.info.y bit: node casts and has bounds
-PENUMBRA_CONST(uint, kCullInstanceBounded, 2u)  // CullInstance.info.y bit: wsMin / wsMax hold its bounds
-PENUMBRA_CONST(uint, kCullInstanceHasMesh, 4u)  // CullInstance.info.y bit: the instance has geometry (a mesh slot)
+PENUMBRA_CONST(uint, kCullInstanceCasts, 1u)  // CullInstance.flags bit: node casts and has bounds
+PENUMBRA_CONST(uint, kCullInstanceBounded, 2u)  // CullInstance.flags bit: wsMin / wsMax hold its bounds
+PENUMBRA_CONST(uint, kCullInstanceHasMesh, 4u)  // CullInstance.flags bit: the instance has geometry (a mesh slot)
 // What a culling dispatch does (CullConstants.pass): the shadow tiles, or a main-view phase.
 PENUMBRA_CONST(uint, kCullPassShadows, 0u)
 PENUMBRA_CONST(uint, kCullPassCameraEarly, 1u)
 PENUMBRA_CONST(uint, kCullPassCameraLate, 2u)
-// How the main view culls (CullCamera.view.w, render.viewCulling).
+// How the main view culls (CullCamera.culling, render.viewCulling).
 PENUMBRA_CONST(uint, kViewCullingNone, 0u)
 PENUMBRA_CONST(uint, kViewCullingFrustum, 1u)
 PENUMBRA_CONST(uint, kViewCullingOcclusion, 2u)
@@ -51,19 +51,32 @@ PENUMBRA_CONST(uint, kCullTilePerspective, 1u)
 struct CullInstance {
     vec4 wsMin;   // xyz: world bounds
     vec4 wsMax;
-    uvec4 info;   // x = mesh slot (index into CullMesh; 0 without geometry), y = kCullInstance* bits
+    uint meshSlot;  // index into CullMesh; 0 without geometry
+    uint flags;     // kCullInstance* bits
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(CullInstance, 48)
+PENUMBRA_CHECK_LAYOUT(CullInstance, meshSlot, 32)
 
 // Per mesh with geometry.
 struct CullMesh {
-    uvec4 draw;    // x = index count, y = first index, z = vertex offset (int bits), w = material index
-    uvec4 counts;  // x = first slot of the mesh's instances in a tile's list, y = its instance count,
-                   // z = its first compute-raster work item, w = its meshlets (work items per instance)
-    uvec4 meshlets;  // x = its first Meshlet; yzw unused
+    uint indexCount;
+    uint firstIndex;
+    int vertexOffset;
+    uint materialIndex;
+    uint firstListSlot;    // of the mesh's instances in a tile's list
+    uint instanceCount;
+    uint firstRasterItem;  // its first compute-raster work item
+    uint meshletCount;     // its meshlets (work items per instance)
+    uint firstMeshlet;
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
 PENUMBRA_CHECK_SIZE(CullMesh, 48)
-PENUMBRA_CHECK_LAYOUT(CullMesh, counts, 16)
+PENUMBRA_CHECK_LAYOUT(CullMesh, firstListSlot, 16)
+PENUMBRA_CHECK_LAYOUT(CullMesh, firstMeshlet, 32)
 
 // The compute rasterizers' unit of work (scene/meshlets.h): up to kRasterBatch triangles of one mesh,
 // near each other (meshoptimizer's meshlets), stored consecutively in the index buffer, with bounds
@@ -74,10 +87,13 @@ struct Meshlet {
     vec4 osMax;
     vec4 coneApex;    // xyz: apex of its normal cone (meshopt_computeClusterBounds); w unused
     vec4 coneAxis;    // xyz: the cone's axis; w = its cutoff (>= 1: the normals spread too far for a cone)
-    uvec4 triangles;  // x = first triangle, counted from the mesh's first index / 3; y = triangles
+    uint firstTriangle;  // counted from the mesh's first index / 3
+    uint triangleCount;
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(Meshlet, 80)
-PENUMBRA_CHECK_LAYOUT(Meshlet, triangles, 64)
+PENUMBRA_CHECK_LAYOUT(Meshlet, firstTriangle, 64)
 
 // Per shadow tile of the frame (both atlases, directional first).
 struct CullTile {
@@ -85,7 +101,11 @@ struct CullTile {
     vec4 planes[5];       // perspective: clip-frustum planes (shadows/spot_culling.h)
     vec4 frustumMin;      // perspective: world bounds of the frustum; w = kind (kCullTile*)
     vec4 frustumMax;
-    vec4 params;          // directional: x = half extent, y = far distance, z = cascade index, w = blend culling factor
+    // Directional: the cascade's half extent and far distance, its index, the blend culling factor.
+    float halfExtent;
+    float farDistance;
+    float cascadeIndex;
+    float blendCullingFactor;
     vec4 wsLightDirection;  // directional: xyz = the way the light travels; w = slope-scale depth bias
     // The compute rasterizer (shadow_raster.glsl): what the caster pass's vertex shader and viewport do.
     mat4 clipFromWorld;
@@ -95,7 +115,8 @@ struct CullTile {
 PENUMBRA_CHECK_SIZE(CullTile, 304)
 PENUMBRA_CHECK_LAYOUT(CullTile, planes, 64)
 PENUMBRA_CHECK_LAYOUT(CullTile, frustumMin, 144)
-PENUMBRA_CHECK_LAYOUT(CullTile, params, 176)
+PENUMBRA_CHECK_LAYOUT(CullTile, halfExtent, 176)
+PENUMBRA_CHECK_LAYOUT(CullTile, blendCullingFactor, 188)
 PENUMBRA_CHECK_LAYOUT(CullTile, clipFromWorld, 208)
 PENUMBRA_CHECK_LAYOUT(CullTile, viewport, 272)
 
@@ -105,17 +126,28 @@ PENUMBRA_CHECK_LAYOUT(CullTile, viewport, 272)
 // under it, so texel (x, y) of level L covers pixels [x, x + 1) * 2^(L+1) in each axis.
 struct CullCamera {
     mat4 clipFromWorld;
-    uvec4 view;     // x = width, y = height, z = pyramid levels, w = kViewCulling*
-    uvec4 pyramid;  // x, y = level 0 size
+    uint width;
+    uint height;
+    uint pyramidLevels;
+    uint culling;        // kViewCulling*
+    uint pyramidWidth;   // of level 0
+    uint pyramidHeight;
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(CullCamera, 96)
+PENUMBRA_CHECK_LAYOUT(CullCamera, width, 64)
+PENUMBRA_CHECK_LAYOUT(CullCamera, pyramidWidth, 80)
 
 struct CullFrame {
     CullTile tiles[32];
     vec4 spheres[4];           // cascade culling spheres: xyz centre, w radius (shared by every light)
     vec4 wsReceiverMin;        // bounds of every shadow receiver (blend culling's reach of shadows)
     vec4 wsReceiverMax;
-    uvec4 counts;              // x = tiles, y = instances, z = meshes
+    uint tileCount;
+    uint instanceCount;
+    uint meshCount;
+    uint reserved;
     // The tiles the compute rasterizer draws this frame (the others are cached), 4 per uvec4: the
     // directional atlas's first, then the spot/point atlas's; a raster pass reads its part.
     uvec4 rasterTiles[8];
@@ -123,7 +155,7 @@ struct CullFrame {
 };
 PENUMBRA_CHECK_SIZE(CullFrame, 10064)
 PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 9728)
-PENUMBRA_CHECK_LAYOUT(CullFrame, counts, 9824)
+PENUMBRA_CHECK_LAYOUT(CullFrame, tileCount, 9824)
 PENUMBRA_CHECK_LAYOUT(CullFrame, rasterTiles, 9840)
 PENUMBRA_CHECK_LAYOUT(CullFrame, camera, 9968)
 
@@ -134,9 +166,12 @@ struct CullConstants {
 PENUMBRA_CHECK_SIZE(CullConstants, 4)
 
 // What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done; the
-// main view's two lists count instances (y) and triangles (z) in the culling pass itself.
+// main view's two lists count instances and triangles in the culling pass itself.
 struct CullTileStats {
-    uvec4 counts;  // x = draws (indirect commands), y = instances drawn, z = triangles, w unused
+    uint draws;  // indirect commands
+    uint instances;
+    uint triangles;
+    uint reserved;
 };
 PENUMBRA_CHECK_SIZE(CullTileStats, 16)
 
@@ -167,17 +202,24 @@ struct RasterPiece {
 };
 PENUMBRA_CHECK_SIZE(RasterPiece, 112)
 
-// Counters of one atlas pass: x = large triangles queued, y = chunks queued, z = large triangles
-// dropped (queue full), w = chunks dropped; then the two indirect dispatches (x, y, z) sized from them;
-// then the meshlets skipped (render.meshletCulling): x = outside the view or tile, y = facing away.
+// Counters of one atlas pass: large triangles and chunks queued, and dropped (queue full, drawn by the
+// thread that found them instead); the two indirect dispatches (x, y, z) sized from them; the meshlets
+// skipped (render.meshletCulling): outside the view or tile, facing away.
 struct RasterCounters {
-    uvec4 counts;
+    uint largeQueued;
+    uint chunksQueued;
+    uint largeDropped;
+    uint chunksDropped;
     uvec4 largeDispatch;
     uvec4 chunkDispatch;
-    uvec4 meshlets;
+    uint meshletsOutside;
+    uint meshletsFacingAway;
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(RasterCounters, 64)
-PENUMBRA_CHECK_LAYOUT(RasterCounters, meshlets, 48)
+PENUMBRA_CHECK_LAYOUT(RasterCounters, largeDispatch, 16)
+PENUMBRA_CHECK_LAYOUT(RasterCounters, meshletsOutside, 48)
 
 // Push constants of the shadow rasterizer's passes (shadow_raster*.comp).
 struct ShadowRasterConstants {

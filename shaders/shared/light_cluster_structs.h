@@ -2,7 +2,7 @@
 // and render/light_cluster_pass) and GLSL (light_cluster.comp, light_clusters.glsl, lit.frag).
 //
 // The view is cut into froxels: kClusterTilesX x kClusterTilesY screen tiles times kClusterSlices
-// depth slices, spaced exponentially in view depth from the camera's near plane to `slicing.y` (the
+// depth slices, spaced exponentially in view depth from the camera's near plane to `farDepth` (the
 // camera's far plane, or the far end of the scene's bounds when the camera's is infinite). Each
 // cluster holds one bit per spot / point light: set when the light's range sphere (and, for a spot,
 // its cone) touches the cluster's view-space bounding box. The test is conservative, so a light whose
@@ -11,8 +11,8 @@
 // bounds) loop over every light. Directional lights are never culled.
 //
 // Mask layout: cluster c = (slice * kClusterTilesY + tileY) * kClusterTilesX + tileX, word w of
-// config.z words lives at c * config.z + w; bit b of word w is spot / point light w * 32 + b, i.e.
-// LightData index config.y + w * 32 + b.
+// wordsPerCluster lives at c * wordsPerCluster + w; bit b of word w is spot / point light w * 32 + b,
+// i.e. LightData index firstLight + w * 32 + b.
 #ifndef PENUMBRA_LIGHT_CLUSTER_STRUCTS_H
 #define PENUMBRA_LIGHT_CLUSTER_STRUCTS_H
 #include "gpu_shared.h"
@@ -31,19 +31,29 @@ PENUMBRA_CONST(float, kClusterBoundsMargin, 1.0e-3f)
 struct LightClusterData {
     mat4 viewFromClip;   // inverse projection: froxel corners from NDC
     mat4 viewFromWorld;  // lights into view space
-    vec4 slicing;        // x = near view depth, y = far view depth, z = kClusterSlices / log(far / near), w unused
-    vec4 tileScale;      // x, y = tiles per pixel (kClusterTilesX / width, kClusterTilesY / height); z, w = width, height
-    uvec4 config;        // x = spot/point light count, y = first spot/point LightData index, z = mask words per
-                         // cluster, w = 1 clustered (0: every pixel loops over every light)
+    float nearDepth;         // view depth of the first slice's near end
+    float farDepth;          // view depth of the last slice's far end
+    float slicesPerLogDepth; // kClusterSlices / log(far / near)
+    float reserved;
+    vec2 tilesPerPixel;      // kClusterTilesX / width, kClusterTilesY / height
+    vec2 viewSize;           // width, height in pixels
+    uint lightCount;         // spot / point lights
+    uint firstLight;         // LightData index of the first spot / point light
+    uint wordsPerCluster;    // mask words per cluster
+    uint clustered;          // 1 clustered (0: every pixel loops over every light)
 };
 PENUMBRA_CHECK_SIZE(LightClusterData, 176)
-PENUMBRA_CHECK_LAYOUT(LightClusterData, slicing, 128)
-PENUMBRA_CHECK_LAYOUT(LightClusterData, config, 160)
+PENUMBRA_CHECK_LAYOUT(LightClusterData, nearDepth, 128)
+PENUMBRA_CHECK_LAYOUT(LightClusterData, tilesPerPixel, 144)
+PENUMBRA_CHECK_LAYOUT(LightClusterData, viewSize, 152)
+PENUMBRA_CHECK_LAYOUT(LightClusterData, lightCount, 160)
 
-// What the cluster pass counts for --stats: x = light bits set over all clusters, y = the most lights
-// in one cluster, zw unused.
+// What the cluster pass counts for --stats.
 struct LightClusterStats {
-    uvec4 counts;
+    uint lightBits;               // light bits set over all clusters
+    uint mostLightsInACluster;
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(LightClusterStats, 16)
 

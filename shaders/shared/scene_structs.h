@@ -13,17 +13,17 @@ PENUMBRA_CONST(uint, kOutputColor, 0u)
 PENUMBRA_CONST(uint, kOutputShadowAov, 1u)
 PENUMBRA_CONST(uint, kOutputCascadesAov, 2u)
 
-// Tone mapping of the colour output (FrameData.params.w; = penumbra::ToneMapping, tone_mapping.glsl).
+// Tone mapping of the colour output (FrameData.toneMapping; = penumbra::ToneMapping, tone_mapping.glsl).
 PENUMBRA_CONST(uint, kToneMapNone, 0u)
 PENUMBRA_CONST(uint, kToneMapNeutral, 1u)
 PENUMBRA_CONST(uint, kToneMapAces, 2u)
 
-// Material flags (MaterialData.flags.y)
+// Material flags (MaterialData.flags)
 PENUMBRA_CONST(uint, kMaterialUnlit, 1u)
 PENUMBRA_CONST(uint, kMaterialDoubleSided, 2u)
 PENUMBRA_CONST(uint, kMaterialReceiveShadows, 4u)
 
-// Alpha and shadow modes (MaterialData.flags.z / .w) mirror scene::AlphaMode and MaterialShadowMode.
+// Alpha and shadow modes (MaterialData.alphaMode / .shadowMode) mirror scene::AlphaMode and MaterialShadowMode.
 PENUMBRA_CONST(uint, kAlphaOpaque, 0u)
 PENUMBRA_CONST(uint, kAlphaMask, 1u)
 PENUMBRA_CONST(uint, kAlphaBlend, 2u)
@@ -31,6 +31,8 @@ PENUMBRA_CONST(uint, kShadowModeOn, 0u)
 PENUMBRA_CONST(uint, kShadowModeClip, 1u)
 PENUMBRA_CONST(uint, kShadowModeDither, 2u)
 PENUMBRA_CONST(uint, kShadowModeOff, 3u)
+
+PENUMBRA_CONST(uint, kNoShadowSlot, 0xffffffffu)  // LightData.shadowSlot of a light without shadows
 
 PENUMBRA_CONST(uint, kLightDirectional, 0u)
 PENUMBRA_CONST(uint, kLightSpot, 1u)
@@ -42,41 +44,63 @@ struct FrameData {
     mat4 worldFromClip;     // inverse of clipFromWorld: depth-buffer positions back to world space
     vec4 wsCameraPosition;  // xyz, w unused
     vec4 viewport;          // width, height, 1/width, 1/height
-    uvec4 counts;           // directional light count, other light count, output mode, AOV light index
-    vec4 params;            // exposure, ambient, 1 = main light's shadows come from the screen-space resolve, kToneMap*
+    uint directionalLightCount;
+    uint otherLightCount;
+    uint outputMode;          // kOutput*
+    uint aovLightIndex;       // the scene light whose shadow the AOV outputs show
+    float exposure;
+    float ambient;
+    uint screenSpaceShadows;  // 1: the main light's shadows come from the screen-space resolve
+    uint toneMapping;         // kToneMap*
 };
 PENUMBRA_CHECK_SIZE(FrameData, 256)
 PENUMBRA_CHECK_LAYOUT(FrameData, viewFromWorld, 64)
 PENUMBRA_CHECK_LAYOUT(FrameData, worldFromClip, 128)
 PENUMBRA_CHECK_LAYOUT(FrameData, wsCameraPosition, 192)
-PENUMBRA_CHECK_LAYOUT(FrameData, counts, 224)
-PENUMBRA_CHECK_LAYOUT(FrameData, params, 240)
+PENUMBRA_CHECK_LAYOUT(FrameData, directionalLightCount, 224)
+PENUMBRA_CHECK_LAYOUT(FrameData, exposure, 240)
+PENUMBRA_CHECK_LAYOUT(FrameData, toneMapping, 252)
 
 struct LightData {
     vec4 colorIntensity;  // rgb = colour x intensity, a = light type
     vec4 wsPosition;      // xyz position (spot, point), w = 1 / range^2 (0 = infinite)
     vec4 wsToLight;       // xyz unit vector toward the light (directional) / opposite of the spot axis
     vec4 spotAngles;      // x = 1/(cos inner - cos outer), y = -cos outer * x (KHR_lights_punctual)
-    uvec4 shadow;         // x = scene light index, y = shadow slot (~0u = none), zw reserved
+    uint sceneLightIndex;
+    uint shadowSlot;      // kNoShadowSlot = none
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(LightData, 80)
-PENUMBRA_CHECK_LAYOUT(LightData, shadow, 64)
+PENUMBRA_CHECK_LAYOUT(LightData, sceneLightIndex, 64)
+PENUMBRA_CHECK_LAYOUT(LightData, shadowSlot, 68)
 
 struct InstanceData {
     mat4 worldFromObject;
     mat4 normalFromObject;  // inverse transpose of worldFromObject (upper 3x3 used)
-    uvec4 info;             // x = material index, yzw reserved
+    uint materialIndex;
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
 PENUMBRA_CHECK_SIZE(InstanceData, 144)
-PENUMBRA_CHECK_LAYOUT(InstanceData, info, 128)
+PENUMBRA_CHECK_LAYOUT(InstanceData, materialIndex, 128)
 
 struct MaterialData {
     vec4 baseColorFactor;
-    vec4 params;  // metallic, roughness, alphaCutoff, unused
-    uvec4 flags;  // x = base colour texture index + 1 (0 = none), y = kMaterial* bits, z = alpha mode, w = shadow mode
+    float metallic;
+    float roughness;
+    float alphaCutoff;
+    float reserved;
+    uint baseColorTexture;  // texture index + 1 (0 = none)
+    uint flags;             // kMaterial* bits
+    uint alphaMode;         // kAlpha*
+    uint shadowMode;        // kShadowMode*
 };
 PENUMBRA_CHECK_SIZE(MaterialData, 48)
-PENUMBRA_CHECK_LAYOUT(MaterialData, flags, 32)
+PENUMBRA_CHECK_LAYOUT(MaterialData, alphaCutoff, 24)
+PENUMBRA_CHECK_LAYOUT(MaterialData, baseColorTexture, 32)
+PENUMBRA_CHECK_LAYOUT(MaterialData, shadowMode, 44)
 
 // One vertex as the shaders pull it from the vertex storage buffer.
 struct VertexData {

@@ -40,10 +40,10 @@ void applyCullTiles(FrameStats& stats, const ShadowFrame& plan, const FrameReadb
     for (size_t i = 0; i < tileCount; ++i) {
         const size_t atlasIndex = i < directionalTiles ? 0 : 1;
         if (atlasIndex < stats.atlases.size()) {
-            stats.atlases[atlasIndex].draws += tiles[i].counts.x;
-            stats.atlases[atlasIndex].triangles += tiles[i].counts.z;
+            stats.atlases[atlasIndex].draws += tiles[i].draws;
+            stats.atlases[atlasIndex].triangles += tiles[i].triangles;
         }
-        counts[i] = {tiles[i].counts.y, tiles[i].counts.z};
+        counts[i] = {tiles[i].instances, tiles[i].triangles};
     }
     fillShadowPlanStats(plan, stats.shadows);
     setGpuTileCounts(stats.shadows, std::span<const CullTileCount>(counts.data(), tileCount));
@@ -54,11 +54,11 @@ void applyRasterCounters(FrameStats& stats, const FrameReadbackLayout& layout, c
     for (uint64_t offset : layout.rasterCounters) {
         gpu_data::RasterCounters counters{};
         if (!readPiece(readback, offset, &counters)) continue;
-        stats.rasterLargeTriangles += counters.counts.x;
-        stats.rasterChunks += counters.counts.y;
-        stats.rasterDropped += uint64_t(counters.counts.z) + counters.counts.w;
-        stats.shadowMeshletsOutside += counters.meshlets.x;
-        rasterNeeded = glm::max(rasterNeeded, glm::uvec2(counters.counts.x, counters.counts.y));
+        stats.rasterLargeTriangles += counters.largeQueued;
+        stats.rasterChunks += counters.chunksQueued;
+        stats.rasterDropped += uint64_t(counters.largeDropped) + counters.chunksDropped;
+        stats.shadowMeshletsOutside += counters.meshletsOutside;
+        rasterNeeded = glm::max(rasterNeeded, glm::uvec2(counters.largeQueued, counters.chunksQueued));
     }
     if (stats.rasterDropped > 0)
         stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
@@ -69,9 +69,9 @@ void applyRasterCounters(FrameStats& stats, const FrameReadbackLayout& layout, c
 void applyViewCulling(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback) {
     gpu_data::CullTileStats lists[2]{};
     if (readPiece(readback, layout.viewLists, lists, 2)) {
-        stats.viewInstancesEarly = lists[0].counts.y;
-        stats.viewInstancesLate = lists[1].counts.y;
-        stats.viewTriangles = uint64_t(lists[0].counts.z) + lists[1].counts.z;
+        stats.viewInstancesEarly = lists[0].instances;
+        stats.viewInstancesLate = lists[1].instances;
+        stats.viewTriangles = uint64_t(lists[0].triangles) + lists[1].triangles;
     }
     glm::uvec4 meshlets{0u};
     if (readPiece(readback, layout.viewMeshlets, &meshlets)) {
@@ -83,8 +83,8 @@ void applyViewCulling(FrameStats& stats, const FrameReadbackLayout& layout, cons
 void applyLightClusters(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback) {
     gpu_data::LightClusterStats counts{};
     if (!readPiece(readback, layout.lightClusters, &counts)) return;
-    stats.lightsPerClusterMean = double(counts.counts.x) / double(gpu_data::kClusterCount);
-    stats.lightsPerClusterMax = counts.counts.y;
+    stats.lightsPerClusterMean = double(counts.lightBits) / double(gpu_data::kClusterCount);
+    stats.lightsPerClusterMax = counts.mostLightsInACluster;
 }
 
 }  // namespace

@@ -35,11 +35,16 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
     uint32_t mode = gpu_data::kOutputColor;
     if (request.output == OutputMode::ShadowAov) mode = gpu_data::kOutputShadowAov;
     if (request.output == OutputMode::CascadesAov) mode = gpu_data::kOutputCascadesAov;
-    frame.counts = glm::uvec4(lights.directionalCount, lights.otherCount, mode, request.aovLight);
+    frame.directionalLightCount = lights.directionalCount;
+    frame.otherLightCount = lights.otherCount;
+    frame.outputMode = mode;
+    frame.aovLightIndex = request.aovLight;
     static_assert(uint32_t(ToneMapping::None) == gpu_data::kToneMapNone && uint32_t(ToneMapping::Neutral) == gpu_data::kToneMapNeutral &&
                   uint32_t(ToneMapping::Aces) == gpu_data::kToneMapAces);
-    frame.params = glm::vec4(settings.render.exposure, settings.render.ambient, screenSpaceShadows ? 1.0f : 0.0f,
-                             float(settings.render.toneMapping));
+    frame.exposure = settings.render.exposure;
+    frame.ambient = settings.render.ambient;
+    frame.screenSpaceShadows = screenSpaceShadows ? 1u : 0u;
+    frame.toneMapping = uint32_t(settings.render.toneMapping);
     return frame;
 }
 

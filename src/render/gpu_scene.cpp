@@ -14,7 +14,7 @@ namespace penumbra {
 
 namespace {
 
-// MaterialData.flags carries these enums as integers (scene_structs.h kAlpha*, kShadowMode*).
+// MaterialData.alphaMode and .shadowMode carry these enums as integers (scene_structs.h kAlpha*, kShadowMode*).
 static_assert(uint32_t(AlphaMode::Opaque) == gpu_data::kAlphaOpaque && uint32_t(AlphaMode::Mask) == gpu_data::kAlphaMask &&
               uint32_t(AlphaMode::Blend) == gpu_data::kAlphaBlend);
 static_assert(uint32_t(MaterialShadowMode::On) == gpu_data::kShadowModeOn &&
@@ -25,13 +25,17 @@ static_assert(uint32_t(MaterialShadowMode::On) == gpu_data::kShadowModeOn &&
 gpu_data::MaterialData packMaterial(const Material& m) {
     gpu_data::MaterialData data{};
     data.baseColorFactor = m.baseColorFactor;
-    data.params = glm::vec4(m.metallic, m.roughness, m.alphaCutoff, 0.0f);
+    data.metallic = m.metallic;
+    data.roughness = m.roughness;
+    data.alphaCutoff = m.alphaCutoff;
     uint32_t bits = 0;
     if (m.unlit) bits |= gpu_data::kMaterialUnlit;
     if (m.doubleSided) bits |= gpu_data::kMaterialDoubleSided;
     if (m.receiveShadows) bits |= gpu_data::kMaterialReceiveShadows;
-    data.flags = glm::uvec4(m.baseColorTexture >= 0 ? uint32_t(m.baseColorTexture) + 1 : 0u, bits,
-                            uint32_t(m.alphaMode), uint32_t(m.shadows));
+    data.baseColorTexture = m.baseColorTexture >= 0 ? uint32_t(m.baseColorTexture) + 1 : 0u;
+    data.flags = bits;
+    data.alphaMode = uint32_t(m.alphaMode);
+    data.shadowMode = uint32_t(m.shadows);
     return data;
 }
 
@@ -48,7 +52,7 @@ gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance
     gpu_data::InstanceData data{};
     data.worldFromObject = instance.worldFromObject;
     data.normalFromObject = glm::mat4(normalMatrix(instance.worldFromObject));
-    data.info = glm::uvec4(scene.meshes.at(instance.meshIndex).materialIndex, 0, 0, 0);
+    data.materialIndex = scene.meshes.at(instance.meshIndex).materialIndex;
     return data;
 }
 
@@ -58,7 +62,8 @@ gpu_data::Meshlet packMeshlet(const Meshlet& meshlet) {
     packed.osMax = glm::vec4(meshlet.osMax, 0.0f);
     packed.coneApex = glm::vec4(meshlet.coneApex, 0.0f);
     packed.coneAxis = glm::vec4(meshlet.coneAxis, meshlet.coneCutoff);
-    packed.triangles = glm::uvec4(meshlet.firstTriangle, meshlet.triangleCount, 0u, 0u);
+    packed.firstTriangle = meshlet.firstTriangle;
+    packed.triangleCount = meshlet.triangleCount;
     return packed;
 }
 
@@ -72,7 +77,8 @@ gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshS
     data.wsMax = glm::vec4(bounded ? instance.wsBounds.max : glm::vec3(0.0f), 0.0f);
     const uint32_t bits = (casts ? gpu_data::kCullInstanceCasts : 0u) | (bounded ? gpu_data::kCullInstanceBounded : 0u) |
                           (meshSlot != ~0u ? gpu_data::kCullInstanceHasMesh : 0u);
-    data.info = glm::uvec4(meshSlot != ~0u ? meshSlot : 0u, bits, 0u, 0u);
+    data.meshSlot = meshSlot != ~0u ? meshSlot : 0u;
+    data.flags = bits;
     return data;
 }
 
@@ -188,10 +194,12 @@ void GpuScene::create(const Scene& scene) {
         if (ranges[m].indexCount == 0) continue;
         meshSlotOfMesh_[m] = uint32_t(cullMeshes.size());
         gpu_data::CullMesh mesh{};
-        mesh.draw = glm::uvec4(ranges[m].indexCount, ranges[m].firstIndex, uint32_t(ranges[m].vertexOffset),
-                               scene.meshes[m].materialIndex);
-        mesh.meshlets.x = uint32_t(meshlets.size());
-        mesh.counts.w = uint32_t(meshletMeshes[m].meshlets.size());
+        mesh.indexCount = ranges[m].indexCount;
+        mesh.firstIndex = ranges[m].firstIndex;
+        mesh.vertexOffset = int32_t(ranges[m].vertexOffset);
+        mesh.materialIndex = scene.meshes[m].materialIndex;
+        mesh.firstMeshlet = uint32_t(meshlets.size());
+        mesh.meshletCount = uint32_t(meshletMeshes[m].meshlets.size());
         for (const Meshlet& meshlet : meshletMeshes[m].meshlets) meshlets.push_back(packMeshlet(meshlet));
         cullMeshes.push_back(mesh);
     }
@@ -199,18 +207,18 @@ void GpuScene::create(const Scene& scene) {
     std::vector<gpu_data::CullInstance> cullInstances;
     for (const Instance& instance : scene.instances) {
         const uint32_t slot = meshSlotOfMesh_[instance.meshIndex];
-        if (slot != ~0u) ++cullMeshes[slot].counts.y;
+        if (slot != ~0u) ++cullMeshes[slot].instanceCount;
         cullInstances.push_back(packCullInstance(instance, slot));
     }
     uint32_t firstSlot = 0;
     for (gpu_data::CullMesh& mesh : cullMeshes) {
-        mesh.counts.x = firstSlot;
-        firstSlot += mesh.counts.y;
-        mesh.counts.z = rasterWorkItems_;
-        rasterWorkItems_ += mesh.counts.y * mesh.counts.w;
+        mesh.firstListSlot = firstSlot;
+        firstSlot += mesh.instanceCount;
+        mesh.firstRasterItem = rasterWorkItems_;
+        rasterWorkItems_ += mesh.instanceCount * mesh.meshletCount;
     }
     uint32_t maxTriangles = 1;
-    for (const gpu_data::CullMesh& mesh : cullMeshes) maxTriangles = std::max(maxTriangles, mesh.draw.x / 3);
+    for (const gpu_data::CullMesh& mesh : cullMeshes) maxTriangles = std::max(maxTriangles, mesh.indexCount / 3);
     triangleIdBits_ = uint32_t(std::bit_width(maxTriangles - 1u));
     const uint64_t largestId = (uint64_t(scene.instances.size()) << triangleIdBits_) + 1;
     visibilityIdsFit_ = largestId <= UINT32_MAX;

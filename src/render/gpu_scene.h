@@ -51,7 +51,7 @@ public:
     gpu::BufferHandle cullMeshBuffer() const { return cullMeshes_; }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t meshSlotCount() const { return meshSlotCount_; }
-    // The meshlets of every mesh (cull_structs.h Meshlet; CullMesh.meshlets.x is a mesh's first); each
+    // The meshlets of every mesh (cull_structs.h Meshlet; CullMesh.firstMeshlet is a mesh's first); each
     // mesh's triangles lie in the index buffer meshlet by meshlet.
     gpu::BufferHandle meshletBuffer() const { return meshlets_; }
     // The scene buffers the shaders read through bindings 1-3 (vertices, instances, materials), as

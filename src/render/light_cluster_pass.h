@@ -16,7 +16,7 @@ public:
     LightClusterPass& operator=(const LightClusterPass&) = delete;
 
     // Writes the masks for `clusters` (a LightClusterData in this frame's upload ring) from `lights`
-    // (the frame's LightData array). Nothing is dispatched when clusters.config.w is 0.
+    // (the frame's LightData array). Nothing is dispatched when clusters.clustered is 0.
     void record(gpu::CommandList& commands, const gpu::BufferSlice& clusters, const gpu::BufferSlice& lights,
                 bool clustered);
     gpu::BufferHandle masks() const { return masks_; }

@@ -21,7 +21,7 @@ glm::vec3 viewPointAtDepth(const glm::mat4& viewFromClip, float ndcX, float ndcY
 
 // The start of a slice in view depth: near * (far / near)^(slice / slices).
 float sliceDepth(const gpu_data::LightClusterData& clusters, uint32_t slice) {
-    return clusters.slicing.x * std::exp(float(slice) / clusters.slicing.z);
+    return clusters.nearDepth * std::exp(float(slice) / clusters.slicesPerLogDepth);
 }
 
 }  // namespace
@@ -46,10 +46,15 @@ gpu_data::LightClusterData makeLightClusterData(const CameraView& view, const Aa
     clusters.viewFromClip = glm::inverse(view.clipFromView);
     clusters.viewFromWorld = view.viewFromWorld;
     const float near = view.zNear, far = clusterFarDepth(view, wsSceneBounds);
-    clusters.slicing = glm::vec4(near, far, float(kClusterSlices) / std::log(far / near), 0.0f);
-    clusters.tileScale = glm::vec4(float(kClusterTilesX) / float(view.width), float(kClusterTilesY) / float(view.height),
-                                   float(view.width), float(view.height));
-    clusters.config = glm::uvec4(otherCount, firstOther, (otherCount + 31u) / 32u, clustered && otherCount > 0 ? 1u : 0u);
+    clusters.nearDepth = near;
+    clusters.farDepth = far;
+    clusters.slicesPerLogDepth = float(kClusterSlices) / std::log(far / near);
+    clusters.tilesPerPixel = glm::vec2(float(kClusterTilesX) / float(view.width), float(kClusterTilesY) / float(view.height));
+    clusters.viewSize = glm::vec2(float(view.width), float(view.height));
+    clusters.lightCount = otherCount;
+    clusters.firstLight = firstOther;
+    clusters.wordsPerCluster = (otherCount + 31u) / 32u;
+    clusters.clustered = clustered && otherCount > 0 ? 1u : 0u;
     return clusters;
 }
 
@@ -99,25 +104,25 @@ bool lightTouchesViewBox(const gpu_data::LightData& light, const glm::mat4& view
 }
 
 int32_t clusterOfPixel(const gpu_data::LightClusterData& clusters, const glm::vec2& pixel, float vsDepth) {
-    if (!(vsDepth <= clusters.slicing.y)) return -1;
-    const float slice = std::floor(std::log(std::max(vsDepth, clusters.slicing.x) / clusters.slicing.x) * clusters.slicing.z);
+    if (!(vsDepth <= clusters.farDepth)) return -1;
+    const float slice = std::floor(std::log(std::max(vsDepth, clusters.nearDepth) / clusters.nearDepth) * clusters.slicesPerLogDepth);
     const uint32_t z = std::min(uint32_t(std::max(slice, 0.0f)), kClusterSlices - 1);
-    const uint32_t x = std::min(uint32_t(pixel.x * clusters.tileScale.x), kClusterTilesX - 1);
-    const uint32_t y = std::min(uint32_t(pixel.y * clusters.tileScale.y), kClusterTilesY - 1);
+    const uint32_t x = std::min(uint32_t(pixel.x * clusters.tilesPerPixel.x), kClusterTilesX - 1);
+    const uint32_t y = std::min(uint32_t(pixel.y * clusters.tilesPerPixel.y), kClusterTilesY - 1);
     return int32_t((z * kClusterTilesY + y) * kClusterTilesX + x);
 }
 
 std::vector<uint32_t> clusterLightMasks(const gpu_data::LightClusterData& clusters,
                                         const std::vector<gpu_data::LightData>& lights) {
-    const uint32_t words = clusters.config.z;
+    const uint32_t words = clusters.wordsPerCluster;
     std::vector<uint32_t> masks(size_t(gpu_data::kClusterCount) * words, 0u);
     for (uint32_t slice = 0; slice < kClusterSlices; ++slice)
         for (uint32_t y = 0; y < kClusterTilesY; ++y)
             for (uint32_t x = 0; x < kClusterTilesX; ++x) {
                 const ViewBox box = clusterViewBox(clusters, x, y, slice);
                 const size_t cluster = (size_t(slice) * kClusterTilesY + y) * kClusterTilesX + x;
-                for (uint32_t i = 0; i < clusters.config.x; ++i)
-                    if (lightTouchesViewBox(lights.at(clusters.config.y + i), clusters.viewFromWorld, box))
+                for (uint32_t i = 0; i < clusters.lightCount; ++i)
+                    if (lightTouchesViewBox(lights.at(clusters.firstLight + i), clusters.viewFromWorld, box))
                         masks[cluster * words + i / 32] |= 1u << (i % 32);
             }
     return masks;

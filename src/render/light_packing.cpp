@@ -19,7 +19,8 @@ gpu_data::LightData packLight(const Light& light, uint32_t sceneIndex, uint32_t 
     const float cosInner = std::cos(std::min(light.innerConeAngle, light.outerConeAngle - 1e-4f));
     const float scale = 1.0f / std::max(1e-4f, cosInner - cosOuter);
     data.spotAngles = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
-    data.shadow = glm::uvec4(sceneIndex, shadowSlot, 0u, 0u);
+    data.sceneLightIndex = sceneIndex;
+    data.shadowSlot = shadowSlot;
     return data;
 }
 

@@ -16,7 +16,7 @@ struct PackedLights {
     std::vector<std::string> warnings;  // lights beyond the limits, named
 };
 
-inline constexpr uint32_t kNoShadowSlot = ~0u;
+using gpu_data::kNoShadowSlot;
 
 // shadowSlotOf(sceneLightIndex) gives the light's shadow slot or kNoShadowSlot.
 template <typename SlotOf>

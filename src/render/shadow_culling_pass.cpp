@@ -171,8 +171,8 @@ std::vector<std::vector<uint32_t>> ShadowCullingPass::readVisibleLists(uint32_t 
     std::vector<std::vector<uint32_t>> lists(tileCount);
     for (uint32_t tile = 0; tile < tileCount; ++tile) {
         for (uint32_t mesh = 0; mesh < meshCount; ++mesh) {
-            constexpr size_t kStride = sizeof(gpu_data::CullMesh) / 4, kCounts = offsetof(gpu_data::CullMesh, counts) / 4;
-            const uint32_t first = meshes[mesh * kStride + kCounts];  // CullMesh::counts.x
+            constexpr size_t kStride = sizeof(gpu_data::CullMesh) / 4, kFirst = offsetof(gpu_data::CullMesh, firstListSlot) / 4;
+            const uint32_t first = meshes[mesh * kStride + kFirst];  // CullMesh::firstListSlot
             for (uint32_t i = 0; i < counts[tile * meshCount + mesh]; ++i)
                 lists[tile].push_back(visible[size_t(tile) * instanceCount + first + i]);
         }

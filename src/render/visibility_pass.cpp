@@ -200,7 +200,7 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::string&
     };
     // The queues' counters; the meshlet counts add up over both phases of the frame.
     commands.pass(name + "/clear", {gpu::use(counters_, Usage::TransferWrite)});
-    commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshlets)}, 0);
+    commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshletsOutside)}, 0);
     const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
     pass(name, {gpu::use(visibility_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                 gpu::use(large_, Usage::ComputeWrite)});
@@ -274,7 +274,7 @@ void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& in
     commands.beginTimer("main/cull");
     commands.pass("main/clear", {gpu::use(visibility_, gpu::Usage::TransferWrite), gpu::use(counters_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(visibility_, 0);
-    commands.fillBuffer(gpu::BufferSlice{counters_, offsetof(gpu_data::RasterCounters, meshlets), sizeof(glm::uvec4)}, 0);
+    commands.fillBuffer(gpu::BufferSlice{counters_, offsetof(gpu_data::RasterCounters, meshletsOutside), 4 * sizeof(uint32_t)}, 0);
     culling.recordView(commands, cullFrame, gpu_data::kCullPassCameraEarly, pyramidTexels_);
     commands.endTimer();
     commands.beginTimer("main/raster");

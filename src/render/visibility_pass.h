@@ -60,10 +60,10 @@ public:
     void record(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
                 ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
                 bool meshletCulling);
-    // The meshlets skipped in the last recorded frame (RasterCounters::meshlets: x outside, y facing
-    // away), for the frame-end readback.
+    // The meshlets skipped in the last recorded frame (RasterCounters::meshletsOutside and
+    // meshletsFacingAway, then two reserved words), for the frame-end readback.
     gpu::BufferSlice meshletCounts() const {
-        return {counters_, offsetof(gpu_data::RasterCounters, meshlets), sizeof(glm::uvec4)};
+        return {counters_, offsetof(gpu_data::RasterCounters, meshletsOutside), 4 * sizeof(uint32_t)};
     }
 
 private:

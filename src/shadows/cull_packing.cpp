@@ -22,7 +22,10 @@ gpu_data::CullTile directionalTile(const ShadowTile& tile, float blendCullingFac
     gpu_data::CullTile packed{};
     packed.lightFromWorld = tile.lightFromWorld;
     packed.frustumMin.w = float(gpu_data::kCullTileDirectional);
-    packed.params = glm::vec4(tile.lsHalfExtent, tile.farDistance, float(tile.cascadeIndex), blendCullingFactor);
+    packed.halfExtent = tile.lsHalfExtent;
+    packed.farDistance = tile.farDistance;
+    packed.cascadeIndex = float(tile.cascadeIndex);
+    packed.blendCullingFactor = blendCullingFactor;
     // The light travels along -Z of its view: the third row of the rotation, negated (as caster_culling.cpp).
     packed.wsLightDirection = glm::vec4(-tile.lightFromWorld[0][2], -tile.lightFromWorld[1][2], -tile.lightFromWorld[2][2], 0.0f);
     packRaster(packed, tile);
@@ -59,7 +62,9 @@ gpu_data::CullFrame packCullFrame(const ShadowFrame& frame, uint32_t instanceCou
         packed.spheres[i] = glm::vec4(directional.cascades[i].wsCenter, directional.cascades[i].radius);
     packed.wsReceiverMin = glm::vec4(receivers ? directional.wsReceiverBounds.min : glm::vec3(0.0f), 0.0f);
     packed.wsReceiverMax = glm::vec4(receivers ? directional.wsReceiverBounds.max : glm::vec3(0.0f), 0.0f);
-    packed.counts = glm::uvec4(uint32_t(tileCount), instanceCount, meshCount, 0);
+    packed.tileCount = uint32_t(tileCount);
+    packed.instanceCount = instanceCount;
+    packed.meshCount = meshCount;
     return packed;
 }
 
@@ -93,8 +98,12 @@ gpu_data::CullCamera packCullCamera(const glm::mat4& clipFromWorld, uint32_t wid
                     std::to_string(gpu_data::kMaxPyramidLevels) + ")");
     gpu_data::CullCamera camera{};
     camera.clipFromWorld = clipFromWorld;
-    camera.view = glm::uvec4(width, height, uint32_t(pyramid.sizes.size()), mode);
-    camera.pyramid = glm::uvec4(pyramid.sizes[0], 0, 0);
+    camera.width = width;
+    camera.height = height;
+    camera.pyramidLevels = uint32_t(pyramid.sizes.size());
+    camera.culling = mode;
+    camera.pyramidWidth = pyramid.sizes[0].x;
+    camera.pyramidHeight = pyramid.sizes[0].y;
     return camera;
 }
 

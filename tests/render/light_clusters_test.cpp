@@ -71,7 +71,7 @@ TEST_F(LightClustersTest, GpuMasksEqualTheCpuReference) {
     gpu::CommandList commands = gpu.beginCommands();
     pass.record(commands, {clusterBuffer, 0, sizeof(clusters)}, {lightBuffer, 0, lightBytes}, true);
     gpu.submitAndWait(commands);
-    const std::vector<uint32_t> gpuMasks = pass.readMasks(clusters.config.z);
+    const std::vector<uint32_t> gpuMasks = pass.readMasks(clusters.wordsPerCluster);
     const std::vector<uint32_t> cpuMasks = clusterLightMasks(clusters, packed.lights);
     ASSERT_EQ(gpuMasks.size(), cpuMasks.size());
     size_t differentBits = 0, setBits = 0;

@@ -35,10 +35,11 @@ TEST(DepthPyramidLayout, AOnePixelViewHasOneLevel) {
 TEST(CullCamera, CarriesTheViewThePyramidAndTheCullingMode) {
     const gpu_data::CullCamera camera = packCullCamera(glm::mat4(2.0f), 1920, 1080, ViewCulling::Frustum);
     EXPECT_EQ(camera.clipFromWorld, glm::mat4(2.0f));
-    EXPECT_EQ(camera.view, glm::uvec4(1920, 1080, 11, gpu_data::kViewCullingFrustum));
-    EXPECT_EQ(camera.pyramid, glm::uvec4(960, 540, 0, 0));
-    EXPECT_EQ(packCullCamera(glm::mat4(1.0f), 8, 8, ViewCulling::Occlusion).view.w, gpu_data::kViewCullingOcclusion);
-    EXPECT_EQ(packCullCamera(glm::mat4(1.0f), 8, 8, ViewCulling::None).view.w, gpu_data::kViewCullingNone);
+    EXPECT_EQ(glm::uvec4(camera.width, camera.height, camera.pyramidLevels, camera.culling),
+              glm::uvec4(1920, 1080, 11, gpu_data::kViewCullingFrustum));
+    EXPECT_EQ(glm::uvec2(camera.pyramidWidth, camera.pyramidHeight), glm::uvec2(960, 540));
+    EXPECT_EQ(packCullCamera(glm::mat4(1.0f), 8, 8, ViewCulling::Occlusion).culling, gpu_data::kViewCullingOcclusion);
+    EXPECT_EQ(packCullCamera(glm::mat4(1.0f), 8, 8, ViewCulling::None).culling, gpu_data::kViewCullingNone);
 }
 
 }  // namespace

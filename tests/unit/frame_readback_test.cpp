@@ -36,8 +36,10 @@ FrameStats statsWithAtlases() {
 
 gpu_data::RasterCounters rasterCounters(uint32_t large, uint32_t chunks, uint32_t dropped, uint32_t meshletsOutside) {
     gpu_data::RasterCounters counters{};
-    counters.counts = glm::uvec4(large, chunks, dropped, 0);
-    counters.meshlets = glm::uvec4(meshletsOutside, 0, 0, 0);
+    counters.largeQueued = large;
+    counters.chunksQueued = chunks;
+    counters.largeDropped = dropped;
+    counters.meshletsOutside = meshletsOutside;
     return counters;
 }
 
@@ -46,7 +48,7 @@ gpu_data::RasterCounters rasterCounters(uint32_t large, uint32_t chunks, uint32_
 TEST(FrameReadback, CullTileCountsGoToTheirAtlasAndTheStatsJson) {
     const ShadowFrame plan = groundAndBoxPlan(2);
     ASSERT_EQ(plan.directional.tiles.size(), 2u);
-    const gpu_data::CullTileStats tiles[2] = {{glm::uvec4(3, 5, 700, 0)}, {glm::uvec4(4, 6, 900, 0)}};
+    const gpu_data::CullTileStats tiles[2] = {{3, 5, 700, 0}, {4, 6, 900, 0}};
     Readback readback;
     const uint32_t padding[4] = {99, 99, 99, 99};  // another piece first: the tiles are not at offset 0
     readback.append(padding, 4);
@@ -68,13 +70,13 @@ TEST(FrameReadback, PiecesAreReadAtTheirOffsetsInAnyOrder) {
     Readback readback;
     FrameReadbackLayout layout;
     // The reverse of the order a frame records them in.
-    const gpu_data::LightClusterStats clusters{glm::uvec4(2 * gpu_data::kClusterCount, 9, 0, 0)};
+    const gpu_data::LightClusterStats clusters{2 * gpu_data::kClusterCount, 9, 0, 0};
     layout.lightClusters = readback.append(&clusters);
     const glm::uvec4 meshlets(11, 12, 0, 0);
     layout.viewMeshlets = readback.append(&meshlets);
-    const gpu_data::CullTileStats lists[2] = {{glm::uvec4(0, 20, 3000, 0)}, {glm::uvec4(0, 4, 500, 0)}};
+    const gpu_data::CullTileStats lists[2] = {{0, 20, 3000, 0}, {0, 4, 500, 0}};
     layout.viewLists = readback.append(lists, 2);
-    const gpu_data::CullTileStats tile{glm::uvec4(1, 1, 10, 0)};
+    const gpu_data::CullTileStats tile{1, 1, 10, 0};
     layout.cullTiles = readback.append(&tile);
     FrameStats stats = statsWithAtlases();
     glm::uvec2 needed{0};
@@ -113,7 +115,7 @@ TEST(FrameReadback, DroppedRasterPiecesAreCountedAndWarned) {
     Readback readback;
     FrameReadbackLayout layout;
     gpu_data::RasterCounters counters = rasterCounters(10, 20, 3, 0);
-    counters.counts.w = 4;  // chunks dropped
+    counters.chunksDropped = 4;
     layout.rasterCounters[1] = readback.append(&counters);
     FrameStats stats = statsWithAtlases();
     stats.frameIndex = 42;
@@ -128,7 +130,7 @@ TEST(FrameReadback, DroppedRasterPiecesAreCountedAndWarned) {
 TEST(FrameReadback, PiecesTheFrameDidNotReadBackLeaveTheirStatsAtZero) {
     const ShadowFrame plan = groundAndBoxPlan(1);
     Readback readback;
-    const gpu_data::LightClusterStats clusters{glm::uvec4(5000, 9, 0, 0)};
+    const gpu_data::LightClusterStats clusters{5000, 9, 0, 0};
     readback.append(&clusters);  // in the bytes, but the layout does not name it
     FrameStats stats = statsWithAtlases();
     glm::uvec2 needed{0};

@@ -78,14 +78,17 @@ std::vector<gpu_data::LightData> assortedLights(uint32_t count) {
 TEST(LightClusters, SlicesRunFromTheNearPlaneToTheFarEndOfTheSceneWhenTheCameraHasNoFarPlane) {
     const CameraView view = testView();
     const gpu_data::LightClusterData clusters = makeLightClusterData(view, sceneBounds(), 1, 10, true);
-    EXPECT_FLOAT_EQ(clusters.slicing.x, 0.1f);
-    EXPECT_GT(clusters.slicing.y, 30.0f);  // the far corners of a 40 m square seen from 12 m out
-    EXPECT_LT(clusters.slicing.y, 40.0f);
+    EXPECT_FLOAT_EQ(clusters.nearDepth, 0.1f);
+    EXPECT_GT(clusters.farDepth, 30.0f);  // the far corners of a 40 m square seen from 12 m out
+    EXPECT_LT(clusters.farDepth, 40.0f);
     EXPECT_FLOAT_EQ(testView(25.0f).zFar, 25.0f);
-    EXPECT_FLOAT_EQ(makeLightClusterData(testView(25.0f), sceneBounds(), 1, 10, true).slicing.y, 25.0f);
-    EXPECT_EQ(clusters.config, glm::uvec4(10, 1, 1, 1));
-    EXPECT_EQ(makeLightClusterData(view, sceneBounds(), 1, 33, true).config.z, 2u);
-    EXPECT_EQ(makeLightClusterData(view, sceneBounds(), 1, 0, true).config.w, 0u) << "no light: nothing to cull";
+    EXPECT_FLOAT_EQ(makeLightClusterData(testView(25.0f), sceneBounds(), 1, 10, true).farDepth, 25.0f);
+    EXPECT_EQ(clusters.lightCount, 10u);
+    EXPECT_EQ(clusters.firstLight, 1u);
+    EXPECT_EQ(clusters.wordsPerCluster, 1u);
+    EXPECT_EQ(clusters.clustered, 1u);
+    EXPECT_EQ(makeLightClusterData(view, sceneBounds(), 1, 33, true).wordsPerCluster, 2u);
+    EXPECT_EQ(makeLightClusterData(view, sceneBounds(), 1, 0, true).clustered, 0u) << "no light: nothing to cull";
 }
 
 TEST(LightClusters, EveryPixelAndDepthFallsInAClusterWhoseBoxHoldsIt) {
@@ -95,7 +98,7 @@ TEST(LightClusters, EveryPixelAndDepthFallsInAClusterWhoseBoxHoldsIt) {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int i = 0; i < 20000; ++i) {
         const glm::vec2 pixel(float(kWidth) * unit(random), float(kHeight) * unit(random));
-        const float vsDepth = clusters.slicing.x * std::pow(clusters.slicing.y / clusters.slicing.x, unit(random));
+        const float vsDepth = clusters.nearDepth * std::pow(clusters.farDepth / clusters.nearDepth, unit(random));
         const int32_t cluster = clusterOfPixel(clusters, pixel, vsDepth);
         ASSERT_GE(cluster, 0);
         const uint32_t x = uint32_t(cluster) % 16, y = (uint32_t(cluster) / 16) % 9, slice = uint32_t(cluster) / 144;
@@ -104,7 +107,7 @@ TEST(LightClusters, EveryPixelAndDepthFallsInAClusterWhoseBoxHoldsIt) {
         ASSERT_TRUE(glm::all(glm::greaterThanEqual(vsPoint, box.vsMin)) && glm::all(glm::lessThanEqual(vsPoint, box.vsMax)))
             << "pixel " << pixel.x << ", " << pixel.y << " depth " << vsDepth << " in cluster " << cluster;
     }
-    EXPECT_EQ(clusterOfPixel(clusters, {1.0f, 1.0f}, 1.01f * clusters.slicing.y), -1) << "beyond the slices";
+    EXPECT_EQ(clusterOfPixel(clusters, {1.0f, 1.0f}, 1.01f * clusters.farDepth), -1) << "beyond the slices";
 }
 
 TEST(LightClusters, ALightLeftOutOfAClusterAddsNothingAnywhereInIt) {
@@ -117,11 +120,11 @@ TEST(LightClusters, ALightLeftOutOfAClusterAddsNothingAnywhereInIt) {
     size_t culled = 0, checked = 0;
     for (int i = 0; i < 40000; ++i) {
         const glm::vec2 pixel(float(kWidth) * unit(random), float(kHeight) * unit(random));
-        const float vsDepth = clusters.slicing.x * std::pow(clusters.slicing.y / clusters.slicing.x, unit(random));
+        const float vsDepth = clusters.nearDepth * std::pow(clusters.farDepth / clusters.nearDepth, unit(random));
         const int32_t cluster = clusterOfPixel(clusters, pixel, vsDepth);
         const glm::vec3 wsPoint = worldPointAt(view, pixel.x, pixel.y, vsDepth);
         for (uint32_t light = 0; light < 64; ++light) {
-            if ((masks[size_t(cluster) * clusters.config.z + light / 32] >> (light % 32)) & 1u) continue;
+            if ((masks[size_t(cluster) * clusters.wordsPerCluster + light / 32] >> (light % 32)) & 1u) continue;
             ++culled;
             const float attenuation = shaderAttenuation(lights[1 + light], wsPoint);
             checked += attenuation > 0.0f;
