@@ -140,7 +140,7 @@ void CommandList::bindTextureTable(TextureTableHandle table) {
 
 void CommandList::pushConstants(const void* data, uint32_t size) {
     const PipelineResource& p = impl(*this).pipelines.at(boundPipeline.id);
-    vkCmdPushConstants(native(*this), p.layout, VK_SHADER_STAGE_ALL, 0, size, data);
+    vkCmdPushConstants(native(*this), p.layout, p.pushStages, 0, size, data);
 }
 
 void CommandList::setViewport(const Rect& rect) {

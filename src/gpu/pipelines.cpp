@@ -26,17 +26,30 @@ VkShaderStageFlags toVkShaderStages(uint32_t stages) {
     return flags;
 }
 
-// The pass's declaration against the shaders' SPIR-V (shader_interface.h); throws Error.
-void checkInterface(const GraphicsPipelineDesc& desc) {
+std::vector<PipelineStage> pipelineStages(const GraphicsPipelineDesc& desc) {
     std::vector<PipelineStage> stages = {{kStageVertex, desc.vertexShader}};
     if (!desc.fragmentShader.empty()) stages.push_back({kStageFragment, desc.fragmentShader});
-    checkPipelineInterface(desc.debugName, stages, desc.bindings, desc.pushConstantSize, bool(desc.textureTable));
+    return stages;
+}
+std::vector<PipelineStage> pipelineStages(const ComputePipelineDesc& desc) { return {{kStageCompute, desc.shader}}; }
+
+// The pass's declaration against the shaders' SPIR-V (shader_interface.h); throws Error.
+template <typename Desc>
+void checkInterface(const Desc& desc) {
+    checkPipelineInterface(desc.debugName, pipelineStages(desc), desc.bindings, desc.pushConstantSize,
+                           bool(desc.textureTable));
 }
 
-void checkInterface(const ComputePipelineDesc& desc) {
-    const PipelineStage stage{kStageCompute, desc.shader};
-    checkPipelineInterface(desc.debugName, std::span(&stage, 1), desc.bindings, desc.pushConstantSize,
-                           bool(desc.textureTable));
+// The push-constant range's stages: the shaders whose SPIR-V uses the block (every stage of the
+// pipeline when none does, as a range needs one).
+template <typename Desc>
+VkShaderStageFlags pushConstantStages(const Desc& desc) {
+    uint32_t used = 0, all = 0;
+    for (const PipelineStage& stage : pipelineStages(desc)) {
+        all |= stage.stage;
+        if (embeddedShaderInterface(stage.shader).pushConstantSize) used |= stage.stage;
+    }
+    return toVkShaderStages(used ? used : all);
 }
 
 // Specialization data outlives the create call through this holder.
@@ -61,6 +74,7 @@ struct Specialization {
 
 void createLayout(Device::Impl& d, PipelineResource& p, const std::vector<BindingDesc>& bindings,
                   uint32_t pushConstantSize, TextureTableHandle table) {
+    // p.pushStages is set by the caller (pushConstantStages).
     std::vector<VkDescriptorSetLayoutBinding> vkBindings;
     for (const BindingDesc& b : bindings)
         vkBindings.push_back({b.binding, toVkDescriptorType(b.type), 1, toVkShaderStages(b.stages), nullptr});
@@ -71,7 +85,7 @@ void createLayout(Device::Impl& d, PipelineResource& p, const std::vector<Bindin
     VK_CHECK(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &p.pushSetLayout));
     VkDescriptorSetLayout setLayouts[2] = {p.pushSetLayout, VK_NULL_HANDLE};
     if (table) setLayouts[1] = d.tables.at(table.id).layout;
-    VkPushConstantRange range{VK_SHADER_STAGE_ALL, 0, pushConstantSize};
+    VkPushConstantRange range{p.pushStages, 0, pushConstantSize};
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layoutInfo.setLayoutCount = table ? 2 : 1;
     layoutInfo.pSetLayouts = setLayouts;
@@ -199,6 +213,7 @@ PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) 
     PipelineResource p;
     const uint32_t textureCount = tableSize(d, desc.textureTable);
     const std::string key = Impl::reuseKey(desc, textureCount);
+    p.pushStages = pushConstantStages(desc);
     if (d.takeParkedPipeline(key, p)) {
         p.bindings = desc.bindings;
     } else {
@@ -223,6 +238,7 @@ PipelineHandle Device::createGraphicsPipelineAsync(const GraphicsPipelineDesc& d
     const uint32_t textureCount = tableSize(d, desc.textureTable);
     const std::string key = Impl::reuseKey(desc, textureCount);
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    p.pushStages = pushConstantStages(desc);
     ++d.objectsCreated;
     if (d.takeParkedPipeline(key, p)) {  // compiled already: ready at once
         p.bindings = desc.bindings;
@@ -360,6 +376,7 @@ PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     PipelineResource p;
     const uint32_t textureCount = tableSize(d, desc.textureTable);
     const std::string key = Impl::reuseKey(desc, textureCount);
+    p.pushStages = pushConstantStages(desc);
     if (d.takeParkedPipeline(key, p)) {
         p.bindings = desc.bindings;
         p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;

@@ -53,6 +53,7 @@ struct PipelineResource {
     VkPipelineLayout layout = VK_NULL_HANDLE;
     VkDescriptorSetLayout pushSetLayout = VK_NULL_HANDLE;
     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    VkShaderStageFlags pushStages = 0;  // of the push-constant range: the stages whose shaders use it
     std::vector<BindingDesc> bindings;
     std::string reuseKey;  // everything the compiled pipeline depends on (pipeline_reuse.cpp)
 };
