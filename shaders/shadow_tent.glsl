@@ -8,7 +8,7 @@
 // Inputs: a sampler2DShadow with compare op LESS_OR_EQUAL and linear filtering, and a sampler2D of the
 // same atlas (raw depth, for the receiver-plane compare); uvDepth = (atlas u,
 // atlas v, fragment depth) as DirectionalShadowData.atlasFromWorld gives them; texelSize =
-// (1 / width, 1 / height, width, height) of the atlas, i.e. DirectionalShadowData.atlasSize.yyxx.
+// (1 / width, 1 / height, width, height) of the atlas (shadowTexelSize in shadows.glsl).
 #ifndef PENUMBRA_SHADOW_TENT_GLSL
 #define PENUMBRA_SHADOW_TENT_GLSL
 

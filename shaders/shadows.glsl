@@ -23,6 +23,9 @@ struct ShadowSample {
     int cascade;        // cascade index sampled, -1 = none
 };
 
+// (1 / size, 1 / size, size, size) of a square atlas: the texelSize of the tent filters (shadow_tent.glsl).
+vec4 shadowTexelSize(float atlasSize, float invAtlasSize) { return vec4(invAtlasSize, invAtlasSize, atlasSize, atlasSize); }
+
 // FadedShadowStrength ("Directional Shadows", Fading Shadows): saturate((1 - distance * scale) * fade).
 float fadedShadowStrength(float distance, float scale, float fade) {
     return clamp((1.0 - distance * scale) * fade, 0.0, 1.0);
@@ -31,7 +34,7 @@ float fadedShadowStrength(float distance, float scale, float fade) {
 // The uv rectangle of directional tile `tile` less one texel: where filter taps may read (tiles in rows
 // of `split`, as "Directional Shadows", Multiple Lights lays them out).
 vec4 directionalTileBounds(uint tile) {
-    float tileSize = directionalShadows.atlasSize.z, atlasSize = directionalShadows.atlasSize.x;
+    float tileSize = directionalShadows.tileSize, atlasSize = directionalShadows.atlasSize;
     uint split = uint(atlasSize / tileSize + 0.5);
     vec2 origin = vec2(float(tile % split), float(tile / split)) * tileSize;
     return vec4(origin + 1.0, origin + tileSize - 1.0) / atlasSize;
@@ -41,30 +44,31 @@ vec4 directionalTileBounds(uint tile) {
 // shadows.bias says (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent
 // (shadow_tent.glsl).
 float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
-    vec4 light = directionalShadows.lights[slot];
-    vec4 lightBias = directionalShadows.lightBias[slot];
-    uint filterMode = uint(lightBias.z);
-    mat4 atlasFromWorld = directionalShadows.atlasFromWorld[uint(light.y) + uint(cascade)];
+    DirectionalShadowLight light = directionalShadows.lights[slot];
+    uint filterMode = light.filterMode;
+    uint tile = light.firstTile + uint(cascade);
+    mat4 atlasFromWorld = directionalShadows.atlasFromWorld[tile];
     // The tile's world texel: 1 / (atlas texels per metre along u), exact for sphere and tight tiles.
-    float wsTexel = 1.0 / (directionalShadows.atlasSize.x * length(vec3(atlasFromWorld[0][0], atlasFromWorld[1][0],
-                                                                        atlasFromWorld[2][0])));
-    ShadowBiasParams bias = ShadowBiasParams(directionalShadows.modes.x, lightBias.x, lightBias.y, wsTexel,
+    float wsTexel = 1.0 / (directionalShadows.atlasSize * length(vec3(atlasFromWorld[0][0], atlasFromWorld[1][0],
+                                                                      atlasFromWorld[2][0])));
+    ShadowBiasParams bias = ShadowBiasParams(directionalShadows.biasMode, light.normalBias, light.slopeBias, wsTexel,
                                              normalOffsetFootprint(filterMode), 0.0);
-    vec3 wsToLight = directionalShadows.lightDirections[slot].xyz;
+    vec3 wsToLight = light.wsToLight.xyz;
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
-    ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize.x);
-    if (lightBias.w > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
+    ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize);
+    vec4 texelSize = shadowTexelSize(directionalShadows.atlasSize, directionalShadows.invAtlasSize);
+    if (light.pcssTanRadius > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
         float metresPerDepth = 1.0 / length(vec3(atlasFromWorld[0][2], atlasFromWorld[1][2], atlasFromWorld[2][2]));
-        PcssLight pcss = PcssLight(0.0, vec4(metresPerDepth, lightBias.w, wsTexel, 0.0));
-        return pcssShadow(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth, lookup.depthGradient, directionalShadows.atlasSize.yyxx,
-                          directionalTileBounds(uint(light.y) + uint(cascade)), pcss);
+        PcssLight pcss = PcssLight(0.0, vec4(metresPerDepth, light.pcssTanRadius, wsTexel, 0.0));
+        return pcssShadow(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth, lookup.depthGradient, texelSize,
+                          directionalTileBounds(tile), pcss);
     }
     return sampleShadowFiltered(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth,
-                                directionalShadows.atlasSize.yyxx, filterMode, lookup.depthGradient, lookup.perTexelPlane);
+                                texelSize, filterMode, lookup.depthGradient, lookup.perTexelPlane);
 }
 
 bool insideCullingSphere(int cascade, vec3 wsPosition) {
-    vec4 sphere = directionalShadows.cullingSpheres[cascade];
+    vec4 sphere = directionalShadows.cascades[cascade].cullingSphere;
     vec3 offset = wsPosition - sphere.xyz;
     return dot(offset, offset) < sphere.w;
 }
@@ -78,34 +82,41 @@ struct CascadeChoice {
 // point, faded over the sphere's outer band (squared distances); or, for tight cascades, the first slice
 // whose split lies beyond the point's view depth, faded over the slice's last cascadeFade of view depth.
 CascadeChoice selectDirectionalCascade(vec3 wsPosition, float viewDepth) {
-    int cascadeCount = int(directionalShadows.config.x);
-    bool tight = directionalShadows.modes.z == kCascadeFitTight;
+    int cascadeCount = int(directionalShadows.cascadeCount);
+    bool tight = directionalShadows.cascadeFit == kCascadeFitTight;
     for (int cascade = 0; cascade < cascadeCount; ++cascade) {
-        vec4 data = directionalShadows.cascadeData[cascade];
+        DirectionalCascade data = directionalShadows.cascades[cascade];
         if (tight) {
-            if (viewDepth < data.w)
-                return CascadeChoice(cascade, fadedShadowStrength(viewDepth, 1.0 / data.w, directionalShadows.depthSelection.x));
+            if (viewDepth < data.vsSplit)
+                return CascadeChoice(cascade, fadedShadowStrength(viewDepth, 1.0 / data.vsSplit, directionalShadows.invCascadeFade));
             continue;
         }
-        vec4 sphere = directionalShadows.cullingSpheres[cascade];
-        vec3 offset = wsPosition - sphere.xyz;
+        vec3 offset = wsPosition - data.cullingSphere.xyz;
         float distanceSquared = dot(offset, offset);
-        if (distanceSquared < sphere.w)
-            return CascadeChoice(cascade, fadedShadowStrength(distanceSquared, data.x, directionalShadows.fade.z));
+        if (distanceSquared < data.cullingSphere.w)
+            return CascadeChoice(cascade, fadedShadowStrength(distanceSquared, data.invRadiusSquared, directionalShadows.cascadeFadeScale));
     }
     return CascadeChoice(-1, 0.0);
 }
 
-// The distance fade of every shadow (fade = DirectionalShadowData.fade or OtherShadowData.fade): by view
+// The distance fade of every shadow (the fields of DirectionalShadowData or OtherShadowData): by view
 // depth ("Directional Shadows", Fading Shadows; kShadowFadeLinear), or URP's GetMainLightShadowFade
 // (_MainLightShadowParams.zw) by the squared distance to the camera, saturate(d^2 * scale + bias)
 // fading the shadow out (kShadowFadeSquared).
-float distanceFadeStrength(vec3 wsPosition, float viewDepth, vec4 fade, uint mode, vec2 squaredScaleBias) {
-    if (mode == kShadowFadeSquared) {
+struct DistanceFade {
+    uint mode;  // kShadowFade*
+    float invShadowDistance;
+    float invDistanceFade;
+    float squaredScale;
+    float squaredBias;
+};
+
+float distanceFadeStrength(vec3 wsPosition, float viewDepth, DistanceFade fade) {
+    if (fade.mode == kShadowFadeSquared) {
         vec3 fromCamera = wsPosition - frame.wsCameraPosition.xyz;
-        return 1.0 - clamp(dot(fromCamera, fromCamera) * squaredScaleBias.x + squaredScaleBias.y, 0.0, 1.0);
+        return 1.0 - clamp(dot(fromCamera, fromCamera) * fade.squaredScale + fade.squaredBias, 0.0, 1.0);
     }
-    return fadedShadowStrength(viewDepth, fade.x, fade.y);
+    return fadedShadowStrength(viewDepth, fade.invShadowDistance, fade.invDistanceFade);
 }
 
 // GetShadowData + GetDirectionalShadowAttenuation ("Directional Shadows", Culling Shadow Sampling to
@@ -113,27 +124,29 @@ float distanceFadeStrength(vec3 wsPosition, float viewDepth, vec4 fade, uint mod
 // distance and in the last cascade, blend cascades (soft: lerp two samples; dither: pick one by
 // interleaved gradient noise), then lerp(1, shadow, strength).
 ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
-    if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.config.w) return ShadowSample(1.0, -1);
+    if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.lightCount) return ShadowSample(1.0, -1);
     vec3 wsPosition = receiver.wsPosition;
     float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
-    float strength = distanceFadeStrength(wsPosition, viewDepth, directionalShadows.fade, directionalShadows.modes.y,
-                                          directionalShadows.depthSelection.yz);
+    DistanceFade fade = DistanceFade(directionalShadows.fadeMode, directionalShadows.invShadowDistance,
+                                     directionalShadows.invDistanceFade, directionalShadows.squaredFadeScale,
+                                     directionalShadows.squaredFadeBias);
+    float strength = distanceFadeStrength(wsPosition, viewDepth, fade);
     CascadeChoice choice = selectDirectionalCascade(wsPosition, viewDepth);
     if (choice.cascade < 0) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
     int cascade = choice.cascade;
     float cascadeBlend = 1.0;
-    if (cascade == int(directionalShadows.config.x) - 1) strength *= choice.fade;
+    if (cascade == int(directionalShadows.cascadeCount) - 1) strength *= choice.fade;
     else cascadeBlend = choice.fade;
     // Blend only toward a cascade that holds the point: culling spheres need not nest, and next to the
     // camera a point in cascade i's band can lie outside sphere i + 1 (its tile never saw it). A tight
     // cascade's box holds the previous one's band by construction.
-    if (cascadeBlend < 1.0 && directionalShadows.modes.z == kCascadeFitSphere && !insideCullingSphere(cascade + 1, wsPosition))
+    if (cascadeBlend < 1.0 && directionalShadows.cascadeFit == kCascadeFitSphere && !insideCullingSphere(cascade + 1, wsPosition))
         cascadeBlend = 1.0;
-    uint blendMode = directionalShadows.config.z;
+    uint blendMode = directionalShadows.cascadeBlend;
     if (blendMode == kCascadeBlendDither && cascadeBlend < interleavedGradientNoise(pixel)) cascade += 1;
     if (blendMode != kCascadeBlendSoft) cascadeBlend = 1.0;
 
-    strength *= directionalShadows.lights[shadowSlot].x;
+    strength *= directionalShadows.lights[shadowSlot].strength;
     if (strength <= 0.0) return ShadowSample(1.0, cascade);
     float shadow = sampleDirectionalCascade(shadowSlot, cascade, receiver);
     if (cascadeBlend < 1.0)
@@ -157,8 +170,8 @@ layout(set = 0, binding = kLitBindingOtherAtlas) uniform sampler2DShadow otherSh
 // spot.filter's tent.
 float filterOtherShadow(ShadowLookup lookup, bool soft) {
     bool useSoft = kOtherShadowMode == kOtherShadowsSoft || (kOtherShadowMode != kOtherShadowsHard && soft);
-    vec4 texelSize = otherShadows.atlasSize.yyxx;
-    uint filterMode = kOtherShadowFilter == kShadowFilterFromData ? otherShadows.config.y : kOtherShadowFilter;
+    vec4 texelSize = shadowTexelSize(otherShadows.atlasSize, otherShadows.invAtlasSize);
+    uint filterMode = kOtherShadowFilter == kShadowFilterFromData ? otherShadows.filterMode : kOtherShadowFilter;
     if (useSoft)
         return sampleShadowFiltered(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, filterMode,
                                     lookup.depthGradient, lookup.perTexelPlane);
@@ -181,29 +194,28 @@ uint pointLightFace(vec3 wsFromLight) {
 // Fragments behind a spot light or outside its tile's frustum are not shadowed.
 ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLight) {
     if (kOtherShadowMode == 0u) return ShadowSample(1.0, -1);
-    if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.config.x) return ShadowSample(1.0, -1);
-    vec4 light = otherShadows.lights[shadowSlot];
+    if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.lightCount) return ShadowSample(1.0, -1);
+    OtherShadowLight light = otherShadows.lights[shadowSlot];
     float viewDepth = -(frame.viewFromWorld * vec4(receiver.wsPosition, 1.0)).z;
-    float strength = light.x * distanceFadeStrength(receiver.wsPosition, viewDepth, otherShadows.fade,
-                                                    otherShadows.modes.y, otherShadows.fade.zw);
+    DistanceFade fade = DistanceFade(otherShadows.fadeMode, otherShadows.invShadowDistance, otherShadows.invDistanceFade,
+                                     otherShadows.squaredFadeScale, otherShadows.squaredFadeBias);
+    float strength = light.strength * distanceFadeStrength(receiver.wsPosition, viewDepth, fade);
     if (strength <= 0.0) return ShadowSample(1.0, -1);
 
-    vec4 position = otherShadows.lightPositions[shadowSlot];
-    vec4 direction = otherShadows.lightDirections[shadowSlot];
-    vec4 lightBias = otherShadows.lightBias[shadowSlot];
-    vec3 wsFromLight = receiver.wsPosition - position.xyz;
-    bool pointLight = light.w > 0.5;
+    vec3 wsFromLight = receiver.wsPosition - light.wsPosition.xyz;
+    bool pointLight = light.point != 0u;
     float distance = pointLight ? max(max(abs(wsFromLight.x), abs(wsFromLight.y)), abs(wsFromLight.z))
-                                : dot(wsFromLight, direction.xyz);
+                                : dot(wsFromLight, light.wsAxis.xyz);
     if (distance <= 0.0) return ShadowSample(1.0, -1);
-    bool soft = light.z > 0.5;
-    ShadowBiasParams bias = ShadowBiasParams(otherShadows.modes.x, lightBias.x, lightBias.y, lightBias.z * distance,
-                                             normalOffsetFootprint(uint(lightBias.w)), direction.w);
+    bool soft = light.soft != 0u;
+    ShadowBiasParams bias = ShadowBiasParams(otherShadows.biasMode, light.normalBias, light.slopeBias,
+                                             light.wsTexelPerDistance * distance, normalOffsetFootprint(light.filterMode),
+                                             light.depthBias);
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
-    uint tile = uint(light.y);
-    if (pointLight) tile += pointLightFace(wsLookup - position.xyz);  // the face that holds the lookup point
+    uint tile = light.firstTile;
+    if (pointLight) tile += pointLightFace(wsLookup - light.wsPosition.xyz);  // the face that holds the lookup point
     ShadowLookup lookup = shadowLookup(otherShadows.atlasFromWorld[tile], receiver, wsLookup, wsToLight, bias,
-                                       otherShadows.atlasSize.x);
+                                       otherShadows.atlasSize);
     if (lookup.w <= 0.0) return ShadowSample(1.0, -1);
     if (lookup.uvDepth.z >= 1.0) return ShadowSample(1.0, -1);  // beyond the far plane (range): no caster drawn there
 
@@ -213,10 +225,10 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
     // would smear edge texels into streaks across the AOV.
     if (any(lessThan(lookup.uvDepth.xy, bounds.xy)) || any(greaterThan(lookup.uvDepth.xy, bounds.zw)))
         return ShadowSample(1.0, -1);
-    vec4 pcss = otherShadows.pcss[shadowSlot];
-    float shadow = pcss.x > 0.0
-        ? pcssShadow(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, lookup.depthGradient, otherShadows.atlasSize.yyxx, bounds,
-                     PcssLight(1.0, vec4(pcss.x, pcss.y, pcss.z, lightBias.z)))
+    float shadow = light.pcssRadius > 0.0
+        ? pcssShadow(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, lookup.depthGradient,
+                     shadowTexelSize(otherShadows.atlasSize, otherShadows.invAtlasSize), bounds,
+                     PcssLight(1.0, vec4(light.pcssRadius, light.nearDistance, light.farDistance, light.wsTexelPerDistance)))
         : filterOtherShadow(lookup, soft);
     return ShadowSample(mix(1.0, shadow, strength), -1);
 }

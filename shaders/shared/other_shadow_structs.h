@@ -19,48 +19,58 @@ PENUMBRA_CONST(uint, kMaxShadowedOtherLights, 16u)
 PENUMBRA_CONST(uint, kOtherShadowsHard, 1u)
 PENUMBRA_CONST(uint, kOtherShadowsSoft, 2u)
 
+// One shadowed spot or point light (a slot).
+struct OtherShadowLight {
+    float strength;
+    uint firstTile;          // a point light's face f is tile firstTile + f, faces ordered +X, -X, +Y, -Y, +Z, -Z
+    uint soft;               // 1 soft, 0 hard
+    uint point;              // 1 point, 0 spot
+    vec4 wsPosition;         // xyz, w unused
+    vec4 wsAxis;             // xyz = spot axis (unit, the way the light travels; unused for points), w unused
+    float normalBias;        // shadowNormalBias
+    float slopeBias;         // shadowBias, applied in the lit pass
+    float wsTexelPerDistance;  // world texel size per unit of distance along the tile's axis
+    uint filterMode;         // kShadowFilter*: spot.filter for a soft light, PCF2x2 for a hard one
+    float pcssRadius;        // emitter radius of a "pcss" light (its shadowLightSize; 0 = not pcss)
+    float nearDistance;      // of its tiles (to turn depths into distances)
+    float farDistance;
+    float depthBias;         // clip-space depth bias subtracted from the receiver's clip z before the divide
+};
+PENUMBRA_CHECK_SIZE(OtherShadowLight, 80)
+
 struct OtherShadowData {
-    // Per tile: world -> homogeneous (atlas u, atlas v, depth, w). A point light's face f is tile
-    // lights[slot].y + f, faces ordered +X, -X, +Y, -Y, +Z, -Z.
+    // Per tile: world -> homogeneous (atlas u, atlas v, depth, w).
     mat4 atlasFromWorld[16];
     // Per tile: (min u, min v, max u, max v) where a filter may be centred without reading outside the
     // tile's drawn interior (the 4-texel scissored border and the filter's reach excluded).
     vec4 tileBounds[16];
-    // Per shadowed light slot: x = strength, y = first tile, z = 1 soft / 0 hard, w = 1 point / 0 spot.
-    vec4 lights[16];
-    // Per slot: xyz = light position, w unused.
-    vec4 lightPositions[16];
-    // Per slot: xyz = spot axis (unit, the direction the light travels; unused for points), w = constant
-    // clip-space depth bias subtracted from the receiver's clip z before the divide (spot.depthBias).
-    vec4 lightDirections[16];
-    // x = 1 / shadow distance, y = 1 / distanceFade: the directional lights' distance fade by view depth;
-    // z, w = scale and bias of the squared-distance fade (modes.y = kShadowFadeSquared, shadow_fade.h).
-    vec4 fade;
-    // x = shadowed light count, y = soft filter (kShadowFilter*), z = tiles used, w = split.
-    uvec4 config;
-    // x = atlas size in texels, y = 1 / atlas size, z = tile size, w = 1 / tile size.
-    vec4 atlasSize;
-    // Per slot: x = normal-bias multiplier (shadowNormalBias), y = slope-scale bias (shadowBias, applied
-    // in the lit pass), z = world texel size per unit of distance along the tile's axis, w = filter
-    // (kShadowFilter*: spot.filter for a soft light, PCF2x2 for a hard one).
-    vec4 lightBias[16];
-    // x = bias mode (kShadowBias*, shadow_structs.h), y = fade mode (0 linear, 1 squared), zw unused.
-    uvec4 modes;
-    // Per slot: x = emitter radius of a "pcss" light (its shadowLightSize; 0 = not pcss), y = near and
-    // z = far distance of its tiles (to turn depths into distances), w unused.
-    vec4 pcss[16];
+    OtherShadowLight lights[16];
+    // The directional lights' distance fade by view depth, and the squared-distance fade's scale and
+    // bias (fadeMode = kShadowFadeSquared, shadow_fade.h).
+    float invShadowDistance;
+    float invDistanceFade;
+    float squaredFadeScale;
+    float squaredFadeBias;
+    uint lightCount;   // shadowed spot and point lights
+    uint filterMode;   // the soft filter (kShadowFilter*)
+    uint tilesUsed;
+    uint split;        // tiles per atlas row
+    float atlasSize;   // in texels
+    float invAtlasSize;
+    float tileSize;
+    float invTileSize;
+    uint biasMode;     // kShadowBias* (shadow_structs.h)
+    uint fadeMode;     // kShadowFade*
+    uint reserved0;
+    uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(OtherShadowData, 2624)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, tileBounds, 1024)
 PENUMBRA_CHECK_LAYOUT(OtherShadowData, lights, 1280)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightPositions, 1536)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightDirections, 1792)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, fade, 2048)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, config, 2064)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, atlasSize, 2080)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightBias, 2096)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, modes, 2352)
-PENUMBRA_CHECK_LAYOUT(OtherShadowData, pcss, 2368)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, invShadowDistance, 2560)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, lightCount, 2576)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, atlasSize, 2592)
+PENUMBRA_CHECK_LAYOUT(OtherShadowData, biasMode, 2608)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

@@ -19,13 +19,13 @@ PENUMBRA_CONST(uint, kMaxShadowedDirectionalLights, 4u)
 PENUMBRA_CONST(uint, kMaxCascades, 4u)
 PENUMBRA_CONST(uint, kMaxDirectionalShadowTiles, 16u)
 
-// DirectionalShadowData.config.y mirrors ShadowFilter, .z mirrors CascadeBlend.
+// DirectionalShadowData.filterMode mirrors ShadowFilter, .cascadeBlend mirrors CascadeBlend.
 PENUMBRA_CONST(uint, kShadowFilterPcf2x2, 0u)
 PENUMBRA_CONST(uint, kShadowFilterPcf3x3, 1u)
 PENUMBRA_CONST(uint, kShadowFilterPcf5x5, 2u)
 PENUMBRA_CONST(uint, kShadowFilterPcf7x7, 3u)
 // Value of the lit pass's spot-filter specialization constant that reads the filter from
-// OtherShadowData.config.y instead: the generic variant used while a specialized one is built.
+// OtherShadowData.filterMode instead: the generic variant used while a specialized one is built.
 PENUMBRA_CONST(uint, kShadowFilterFromData, 4u)
 PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
 PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
@@ -41,11 +41,11 @@ PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the 
 // keeps that many texels around the visible receivers of a pcss light.
 PENUMBRA_CONST(float, kPcssMaxRadiusTexels, 24.0f)
 
-// modes.z: how cascades were fitted and so how the lit pass selects one (shadows.directional.fit).
+// DirectionalShadowData.cascadeFit: how cascades were fitted and so how the lit pass selects one (shadows.directional.fit).
 PENUMBRA_CONST(uint, kCascadeFitSphere, 0u)  // the first culling sphere that holds the point
 PENUMBRA_CONST(uint, kCascadeFitTight, 1u)   // the first slice whose split lies beyond the point's view depth
 
-// modes.y: the distance fade (shadows.fadeMode).
+// fadeMode: the distance fade (shadows.fadeMode).
 PENUMBRA_CONST(uint, kShadowFadeLinear, 0u)   // by view depth, over the last distanceFade
 PENUMBRA_CONST(uint, kShadowFadeSquared, 1u)  // URP's: by squared camera distance, scale and bias
 
@@ -54,61 +54,75 @@ PENUMBRA_CONST(uint, kShadowFadeSquared, 1u)  // URP's: by squared camera distan
 // filterMode = kShadowFilter* of the light (PCF2x2 for "hard" lights). Measured in shadow_gpu_packing.cpp.
 PENUMBRA_INLINE float normalOffsetFootprint(uint filterMode) { return (1.0f + 0.5f * float(filterMode)) * 1.4142136f; }
 
+// One cascade (shared by all lights).
+struct DirectionalCascade {
+    // xyz = world centre, w = (r - filterSize)^2, the radius shrunk by the filter footprint so filtering
+    // stays inside the tile (as SetCascadeData of Catlike Coding "Directional Shadows", PCF Filtering).
+    vec4 cullingSphere;
+    float invRadiusSquared;  // 1 / cullingSphere.w
+    // One unit of shadowNormalBias ("shadow texels", docs/scene-format.md) in world units = texel *
+    // (1 + filter / 2) * sqrt(2): the texel diagonal (as in "Directional Shadows", Normal Bias) times
+    // 1 / 1.5 / 2 / 2.5 for PCF2x2 / 3x3 / 5x5 / 7x7. The tutorial (PCF Filtering) scales by filter + 1
+    // (1 / 2 / 3 / 4); measured, that over-biases wide filters (thin_wall PCF7x7: 2.25 % misclassified,
+    // 0.28 % interior) while half a texel per filter step already removes acne (1.47 % / 0.00 %); numbers
+    // in src/shadows/shadow_gpu_packing.cpp.
+    float normalBiasUnit;
+    float wsTexelSize;  // 2r / tileSize
+    float vsSplit;      // the view depth where the cascade's slice ends
+};
+PENUMBRA_CHECK_SIZE(DirectionalCascade, 32)
+
+// One shadowed directional light (a slot).
+struct DirectionalShadowLight {
+    float strength;
+    uint firstTile;       // its cascades' tiles follow
+    float normalBias;     // shadowNormalBias: multiplies the cascade's normalBiasUnit
+    uint sceneLightIndex;
+    float slopeBias;      // shadowBias: depth per texel of receiver slope, applied in the lit pass
+    uint filterMode;      // kShadowFilter*: the directional filter, or PCF2x2 for a "hard" light
+    float pcssTanRadius;  // a "pcss" light: tan of the sun's angular radius (shadowLightSize / 2); else 0
+    float reserved;
+    vec4 wsToLight;       // xyz = unit vector toward the light (opposite to the way it travels)
+};
+PENUMBRA_CHECK_SIZE(DirectionalShadowLight, 48)
+
 struct DirectionalShadowData {
-    // Tile t = lights[slot].y + cascade: world -> (atlas uv, depth). Unused tiles are zero.
+    // Tile t = lights[slot].firstTile + cascade: world -> (atlas uv, depth). Unused tiles are zero.
     mat4 atlasFromWorld[16];
-    // Per cascade (shared by all lights): xyz = world centre, w = (r - filterSize)^2, the radius shrunk
-    // by the filter footprint so filtering stays inside the tile (as SetCascadeData of Catlike Coding
-    // "Directional Shadows", PCF Filtering).
-    vec4 cullingSpheres[4];
-    // Per cascade: x = 1 / cullingSpheres.w, y = the world-space normal-bias unit,
-    // z = world texel size (2r / tileSize), w = the view depth where the cascade's slice ends (its split).
-    // One unit of shadowNormalBias ("shadow texels", docs/scene-format.md) = texel * (1 + filter / 2) *
-    // sqrt(2): the texel diagonal (as in "Directional Shadows", Normal Bias) times 1 / 1.5 / 2 / 2.5 for
-    // PCF2x2 / 3x3 / 5x5 / 7x7. The tutorial (PCF Filtering) scales by filter + 1 (1 / 2 / 3 / 4); measured,
-    // that over-biases wide filters (thin_wall PCF7x7: 2.25 % misclassified, 0.28 % interior) while half a
-    // texel per filter step already removes acne (1.47 % / 0.00 %); numbers in
-    // src/shadows/shadow_gpu_packing.cpp.
-    vec4 cascadeData[4];
-    // Per shadowed light slot: x = strength, y = first tile index, z = normal bias (light's
-    // shadowNormalBias, multiplies cascadeData.y), w = scene light index.
-    vec4 lights[4];
-    // x = 1 / shadow distance, y = 1 / distanceFade, z = 1 / (1 - (1 - cascadeFade)^2) ("Directional
-    // Shadows", Fading Shadows and Fading Cascades), w = shadow distance: maxDistance, or the camera's zFar
-    // when nearer (Max Distance). The
-    // lit pass: strength = saturate((1 - viewDepth * x) * y) * light strength; in the last cascade also
-    // * saturate((1 - distanceSqr * cascadeData.x) * z).
-    vec4 fade;
-    // x = cascade count, y = filter (kShadowFilter*), z = cascade blend (kCascadeBlend*),
-    // w = shadowed directional light count (0 = no directional shadows this frame).
-    uvec4 config;
-    // x = atlas size in texels, y = 1 / atlas size, z = tile size in texels, w = 1 / tile size.
-    // The tent filters take vec4(1/size, 1/size, size, size) = atlasSize.yyxx.
-    vec4 atlasSize;
-    // Per shadowed light slot: x = normal-bias multiplier (shadowNormalBias), y = slope-scale bias
-    // (shadowBias: depth per texel of receiver slope, applied in the lit pass, not the rasterizer),
-    // z = filter (kShadowFilter*: the directional filter, or PCF2x2 for a "hard" light), w = tan of the
-    // sun's angular radius for a "pcss" light (its shadowLightSize / 2), 0 for every other.
-    vec4 lightBias[4];
-    // Per shadowed light slot: xyz = unit vector toward the light (opposite to the way it travels).
-    vec4 lightDirections[4];
-    // x = bias mode (kShadowBias*), y = fade mode (kShadowFade*), z = cascade fit (kCascadeFit*), w unused.
-    uvec4 modes;
-    // x = 1 / cascadeFade: the tight fit's blend band, the last cascadeFade of a slice's view depth;
-    // y, z = scale and bias of the squared-distance fade (kShadowFadeSquared, shadow_fade.h); w unused.
-    vec4 depthSelection;
+    DirectionalCascade cascades[4];
+    DirectionalShadowLight lights[4];
+    // The distance fade ("Directional Shadows", Fading Shadows and Fading Cascades): the lit pass's
+    // strength = saturate((1 - viewDepth / shadowDistance) * invDistanceFade) * light strength; in the
+    // last cascade also * saturate((1 - distanceSqr * invRadiusSquared) * cascadeFadeScale).
+    float invShadowDistance;
+    float invDistanceFade;
+    float cascadeFadeScale;  // 1 / (1 - (1 - cascadeFade)^2)
+    float shadowDistance;    // maxDistance, or the camera's zFar when nearer (Max Distance)
+    uint cascadeCount;
+    uint filterMode;         // kShadowFilter*
+    uint cascadeBlend;       // kCascadeBlend*
+    uint lightCount;         // shadowed directional lights (0 = no directional shadows this frame)
+    float atlasSize;         // in texels
+    float invAtlasSize;
+    float tileSize;          // in texels
+    float invTileSize;
+    uint biasMode;           // kShadowBias*
+    uint fadeMode;           // kShadowFade*
+    uint cascadeFit;         // kCascadeFit*
+    uint reserved0;
+    float invCascadeFade;    // the tight fit's blend band: the last cascadeFade of a slice's view depth
+    float squaredFadeScale;  // scale and bias of the squared-distance fade (kShadowFadeSquared, shadow_fade.h)
+    float squaredFadeBias;
+    float reserved1;
 };
 PENUMBRA_CHECK_SIZE(DirectionalShadowData, 1424)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cullingSpheres, 1024)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascadeData, 1088)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascades, 1024)
 PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lights, 1152)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, fade, 1216)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, config, 1232)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, atlasSize, 1248)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightBias, 1264)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, lightDirections, 1328)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, modes, 1392)
-PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, depthSelection, 1408)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, invShadowDistance, 1344)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, cascadeCount, 1360)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, atlasSize, 1376)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, biasMode, 1392)
+PENUMBRA_CHECK_LAYOUT(DirectionalShadowData, invCascadeFade, 1408)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

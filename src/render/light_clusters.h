@@ -37,7 +37,7 @@ bool lightTouchesViewBox(const gpu_data::LightData& light, const glm::mat4& view
 // The cluster of a pixel (its centre in pixels) at view depth vsDepth, or -1 beyond the last slice.
 int32_t clusterOfPixel(const gpu_data::LightClusterData& clusters, const glm::vec2& pixel, float vsDepth);
 
-// Every cluster's mask words (config.z per cluster); `lights` is the frame's whole LightData array.
+// Every cluster's mask words (wordsPerCluster per cluster); `lights` is the frame's whole LightData array.
 std::vector<uint32_t> clusterLightMasks(const gpu_data::LightClusterData& clusters,
                                         const std::vector<gpu_data::LightData>& lights);
 

@@ -30,18 +30,19 @@ namespace {
 // selectDirectionalCascade. cascadeIndex == count when none does.
 std::pair<uint32_t, float> cascadeAndFade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
                                           float viewDepth) {
-    const uint32_t count = data.config.x;
-    const bool tight = data.modes.z == gpu_data::kCascadeFitTight;
+    const uint32_t count = data.cascadeCount;
+    const bool tight = data.cascadeFit == gpu_data::kCascadeFitTight;
     for (uint32_t i = 0; i < count; ++i) {
+        const gpu_data::DirectionalCascade& cascade = data.cascades[i];
         if (tight) {
-            const float split = data.cascadeData[i].w;
-            if (viewDepth < split) return {i, fadedShadowStrength(viewDepth, 1.0f / split, data.depthSelection.x)};
+            const float split = cascade.vsSplit;
+            if (viewDepth < split) return {i, fadedShadowStrength(viewDepth, 1.0f / split, data.invCascadeFade)};
             continue;
         }
-        const glm::vec4 sphere = data.cullingSpheres[i];
+        const glm::vec4 sphere = cascade.cullingSphere;
         const glm::vec3 d = wsPosition - glm::vec3(sphere);
         const float distanceSqr = glm::dot(d, d);
-        if (distanceSqr < sphere.w) return {i, fadedShadowStrength(distanceSqr, data.cascadeData[i].x, data.fade.z)};
+        if (distanceSqr < sphere.w) return {i, fadedShadowStrength(distanceSqr, cascade.invRadiusSquared, data.cascadeFadeScale)};
     }
     return {count, 0.0f};
 }
@@ -52,20 +53,20 @@ CascadeSelection selectCascade(const gpu_data::DirectionalShadowData& data, cons
                                float viewDepth, const glm::vec3& wsCamera) {
     CascadeSelection selection;
     const glm::vec3 fromCamera = wsPosition - wsCamera;
-    if (data.modes.y == gpu_data::kShadowFadeSquared) {
+    if (data.fadeMode == gpu_data::kShadowFadeSquared) {
         const float d2 = glm::dot(fromCamera, fromCamera);
-        selection.strength = 1.0f - std::clamp(d2 * data.depthSelection.y + data.depthSelection.z, 0.0f, 1.0f);
+        selection.strength = 1.0f - std::clamp(d2 * data.squaredFadeScale + data.squaredFadeBias, 0.0f, 1.0f);
     } else {
-        selection.strength = fadedShadowStrength(viewDepth, data.fade.x, data.fade.y);
+        selection.strength = fadedShadowStrength(viewDepth, data.invShadowDistance, data.invDistanceFade);
     }
-    const uint32_t count = data.config.x;
+    const uint32_t count = data.cascadeCount;
     const auto [i, fade] = cascadeAndFade(data, wsPosition, viewDepth);
     if (i == count) selection.strength = 0.0f;  // beyond the last cascade: no shadow
     else if (i == count - 1) selection.strength *= fade;
     else selection.cascadeBlend = fade;
     // Blend only toward a next cascade whose sphere holds the point (spheres need not nest).
-    if (selection.cascadeBlend < 1.0f && i + 1 < count && data.modes.z == gpu_data::kCascadeFitSphere) {
-        const glm::vec4 next = data.cullingSpheres[i + 1];
+    if (selection.cascadeBlend < 1.0f && i + 1 < count && data.cascadeFit == gpu_data::kCascadeFitSphere) {
+        const glm::vec4 next = data.cascades[i + 1].cullingSphere;
         const glm::vec3 d = wsPosition - glm::vec3(next);
         if (!(glm::dot(d, d) < next.w)) selection.cascadeBlend = 1.0f;
     }

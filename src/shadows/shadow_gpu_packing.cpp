@@ -34,16 +34,19 @@ static_assert(uint32_t(ShadowFadeMode::Linear) == gpu_data::kShadowFadeLinear &&
 // rule is gpu_data::normalOffsetFootprint (shadow_structs.h), shared with the shaders and with spot and point
 // lights (which used 1 + filter before).
 
-void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter, glm::vec4& cullingSphere,
-                 glm::vec4& cascadeData) {
+gpu_data::DirectionalCascade packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter) {
     const float texelSize = 2.0f * sphere.radius / float(tileSize);
     const float filterWorldSize = texelSize * (filterSize(filter) + 1.0f);
     // The tutorial subtracts without a floor; a floor keeps 1 / r^2 finite for degenerate tiny cascades.
     const float radius = std::max(sphere.radius - filterWorldSize, 1e-6f);
     const float radiusSqr = radius * radius;
-    cullingSphere = glm::vec4(sphere.wsCenter, radiusSqr);
-    const float normalBiasUnit = texelSize * gpu_data::normalOffsetFootprint(uint32_t(filter));
-    cascadeData = glm::vec4(1.0f / radiusSqr, normalBiasUnit, texelSize, sphere.vsFar);
+    gpu_data::DirectionalCascade cascade{};
+    cascade.cullingSphere = glm::vec4(sphere.wsCenter, radiusSqr);
+    cascade.invRadiusSquared = 1.0f / radiusSqr;
+    cascade.normalBiasUnit = texelSize * gpu_data::normalOffsetFootprint(uint32_t(filter));
+    cascade.wsTexelSize = texelSize;
+    cascade.vsSplit = sphere.vsFar;
+    return cascade;
 }
 
 gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShadowPlan& plan,
@@ -54,26 +57,42 @@ gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShado
     for (size_t i = 0; i < plan.tiles.size(); ++i) data.atlasFromWorld[i] = plan.tiles[i].atlasFromWorld;
     const uint32_t tileSize = std::max(plan.atlas.tileSize, 1u);
     for (size_t i = 0; i < plan.cascades.size() && i < gpu_data::kMaxCascades; ++i) {
-        packCascade(plan.cascades[i], tileSize, directional.filter, data.cullingSpheres[i], data.cascadeData[i]);
+        data.cascades[i] = packCascade(plan.cascades[i], tileSize, directional.filter);
     }
     for (size_t i = 0; i < plan.lights.size(); ++i) {
         const ReservedDirectionalLight& light = plan.lights[i];
-        data.lights[i] = glm::vec4(light.strength, float(light.firstTile), light.normalBias, float(light.sceneLightIndex));
+        gpu_data::DirectionalShadowLight& packed = data.lights[i];
+        packed.strength = light.strength;
+        packed.firstTile = light.firstTile;
+        packed.normalBias = light.normalBias;
+        packed.sceneLightIndex = light.sceneLightIndex;
+        packed.slopeBias = light.slopeScaleBias;
         const ShadowFilter filter = light.soft ? directional.filter : ShadowFilter::PCF2x2;  // URP's soft flag
-        data.lightBias[i] = glm::vec4(light.normalBias, light.slopeScaleBias, float(uint32_t(filter)), light.pcssTanRadius);
-        data.lightDirections[i] = glm::vec4(-light.wsDirection, 0.0f);
+        packed.filterMode = uint32_t(filter);
+        packed.pcssTanRadius = light.pcssTanRadius;
+        packed.wsToLight = glm::vec4(-light.wsDirection, 0.0f);
     }
-    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode),
-                            plan.tight ? gpu_data::kCascadeFitTight : gpu_data::kCascadeFitSphere, 0u);
+    data.biasMode = uint32_t(settings.bias);
+    data.fadeMode = uint32_t(settings.fadeMode);
+    data.cascadeFit = plan.tight ? gpu_data::kCascadeFitTight : gpu_data::kCascadeFitSphere;
     const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
-    data.depthSelection = glm::vec4(1.0f / directional.cascadeFade, squaredFade, 0.0f);
+    data.invCascadeFade = 1.0f / directional.cascadeFade;
+    data.squaredFadeScale = squaredFade.x;
+    data.squaredFadeBias = squaredFade.y;
     const float fade = directional.cascadeFade;
-    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade,
-                          1.0f / (1.0f - (1.0f - fade) * (1.0f - fade)), shadowDistance);
-    data.config = glm::uvec4(directional.cascadeCount, uint32_t(directional.filter),
-                             uint32_t(directional.cascadeBlend), uint32_t(plan.lights.size()));
+    data.invShadowDistance = 1.0f / shadowDistance;
+    data.invDistanceFade = 1.0f / settings.distanceFade;
+    data.cascadeFadeScale = 1.0f / (1.0f - (1.0f - fade) * (1.0f - fade));
+    data.shadowDistance = shadowDistance;
+    data.cascadeCount = directional.cascadeCount;
+    data.filterMode = uint32_t(directional.filter);
+    data.cascadeBlend = uint32_t(directional.cascadeBlend);
+    data.lightCount = uint32_t(plan.lights.size());
     const float atlasSize = float(std::max(plan.atlas.atlasSize, 1u));
-    data.atlasSize = glm::vec4(atlasSize, 1.0f / atlasSize, float(tileSize), 1.0f / float(tileSize));
+    data.atlasSize = atlasSize;
+    data.invAtlasSize = 1.0f / atlasSize;
+    data.tileSize = float(tileSize);
+    data.invTileSize = 1.0f / float(tileSize);
     return data;
 }
 

@@ -10,10 +10,10 @@ namespace penumbra {
 struct DirectionalShadowPlan;
 
 // SetCascadeData of "Directional Shadows" (PCF Filtering): texel = 2r / tileSize; filterSize = texel *
-// (filter + 1); sphere w = (r - filterSize)^2; cascadeData = (1 / w, texel * normalOffsetFootprint(filter),
-// texel, 0): the sphere still shrinks by the full filter footprint, the normal-bias unit is smaller.
-void packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter, glm::vec4& cullingSphere,
-                 glm::vec4& cascadeData);
+// (filter + 1); sphere w = (r - filterSize)^2; invRadiusSquared = 1 / w, normalBiasUnit = texel *
+// normalOffsetFootprint(filter), wsTexelSize = texel: the sphere still shrinks by the full filter footprint,
+// the normal-bias unit is smaller.
+gpu_data::DirectionalCascade packCascade(const CascadeSphere& sphere, uint32_t tileSize, ShadowFilter filter);
 
 // Everything of DirectionalShadowData from the plan's lights, cascades and tiles and the settings.
 gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShadowPlan& plan,

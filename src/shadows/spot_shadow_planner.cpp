@@ -61,16 +61,25 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
 
 void packLight(gpu_data::OtherShadowData& data, const Light& light, const ReservedOtherLight& reserved,
                const LightTiles& shape, const SpotAtlasLayout& layout, const ShadowSettings& settings, uint32_t slot) {
-    data.lights[slot] = glm::vec4(reserved.strength, float(reserved.firstTile), reserved.soft ? 1.0f : 0.0f,
-                                  reserved.point ? 1.0f : 0.0f);
+    gpu_data::OtherShadowLight& packed = data.lights[slot];
+    packed.strength = reserved.strength;
+    packed.firstTile = reserved.firstTile;
+    packed.soft = reserved.soft ? 1u : 0u;
+    packed.point = reserved.point ? 1u : 0u;
     // World texel size grows linearly with the distance d along the tile's axis: 2 d tan(fov/2) / tileSize.
     // The lit pass scales its biases by it, with the directional lights' rule (shadow_bias.glsl).
     const float texelPerDistance = 2.0f * shape.tanHalfFov / float(layout.tileSize);
     const ShadowFilter filter = reserved.soft ? settings.spot.filter : ShadowFilter::PCF2x2;
-    data.lightPositions[slot] = glm::vec4(light.wsPosition, 0.0f);
-    data.lightDirections[slot] = glm::vec4(glm::normalize(light.wsDirection), settings.spot.depthBias);
-    data.lightBias[slot] = glm::vec4(reserved.normalBias, reserved.slopeScaleBias, texelPerDistance, float(uint32_t(filter)));
-    data.pcss[slot] = glm::vec4(reserved.pcssRadius, reserved.nearDistance, reserved.farDistance, 0.0f);
+    packed.wsPosition = glm::vec4(light.wsPosition, 0.0f);
+    packed.wsAxis = glm::vec4(glm::normalize(light.wsDirection), 0.0f);
+    packed.depthBias = settings.spot.depthBias;
+    packed.normalBias = reserved.normalBias;
+    packed.slopeBias = reserved.slopeScaleBias;
+    packed.wsTexelPerDistance = texelPerDistance;
+    packed.filterMode = uint32_t(filter);
+    packed.pcssRadius = reserved.pcssRadius;
+    packed.nearDistance = reserved.nearDistance;
+    packed.farDistance = reserved.farDistance;
 }
 
 }  // namespace
@@ -105,13 +114,22 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
         packLight(data, light, reserved, shape, plan.atlas, settings, slot);
     }
     const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
-    data.fade = glm::vec4(1.0f / shadowDistance, 1.0f / settings.distanceFade, squaredFade);
-    data.modes = glm::uvec4(uint32_t(settings.bias), uint32_t(settings.fadeMode), 0u, 0u);
-    data.config = glm::uvec4(uint32_t(plan.lights.size()), uint32_t(settings.spot.filter), plan.atlas.tileCount,
-                             plan.atlas.split);
+    data.invShadowDistance = 1.0f / shadowDistance;
+    data.invDistanceFade = 1.0f / settings.distanceFade;
+    data.squaredFadeScale = squaredFade.x;
+    data.squaredFadeBias = squaredFade.y;
+    data.biasMode = uint32_t(settings.bias);
+    data.fadeMode = uint32_t(settings.fadeMode);
+    data.lightCount = uint32_t(plan.lights.size());
+    data.filterMode = uint32_t(settings.spot.filter);
+    data.tilesUsed = plan.atlas.tileCount;
+    data.split = plan.atlas.split;
     const float atlasSize = float(std::max(plan.atlas.atlasSize, 1u));
     const float tileSize = float(std::max(plan.atlas.tileSize, 1u));
-    data.atlasSize = glm::vec4(atlasSize, 1.0f / atlasSize, tileSize, 1.0f / tileSize);
+    data.atlasSize = atlasSize;
+    data.invAtlasSize = 1.0f / atlasSize;
+    data.tileSize = tileSize;
+    data.invTileSize = 1.0f / tileSize;
     return plan;
 }
 

@@ -34,10 +34,11 @@ Scene wallAlongTheView() {
 
 // Whether wsPosition lies in the fade band of sphere `cascade` (its fade below 1), whatever the next sphere.
 bool inFadeBandOfSphere(const gpu_data::DirectionalShadowData& data, int cascade, glm::vec3 wsPosition) {
-    const glm::vec3 offset = wsPosition - glm::vec3(data.cullingSpheres[cascade]);
+    const gpu_data::DirectionalCascade& sphere = data.cascades[cascade];
+    const glm::vec3 offset = wsPosition - glm::vec3(sphere.cullingSphere);
     const float distanceSquared = glm::dot(offset, offset);
-    return distanceSquared < data.cullingSpheres[cascade].w &&
-           fadedShadowStrength(distanceSquared, data.cascadeData[cascade].x, data.fade.z) < 1.0f;
+    return distanceSquared < sphere.cullingSphere.w &&
+           fadedShadowStrength(distanceSquared, sphere.invRadiusSquared, data.cascadeFadeScale) < 1.0f;
 }
 
 // Soft blending with wide (30 %) fade bands, 4 cascades over 40 m; the constant normal-offset bias, whose
@@ -102,8 +103,9 @@ TEST_F(CascadeBlendTest, SoftBlendNeverReadsACascadeWhoseSphereMissesThePoint) {
         for (uint32_t x = 0; x < kSize; ++x) {
             const auto ground = visibleGroundPoint(view, x, y, 50.0f, {});
             if (!ground || !inFadeBandOfSphere(data, 0, *ground)) continue;
-            const glm::vec3 offset = *ground - glm::vec3(data.cullingSpheres[1]);
-            if (glm::dot(offset, offset) < data.cullingSpheres[1].w) continue;
+            const glm::vec4 next = data.cascades[1].cullingSphere;
+            const glm::vec3 offset = *ground - glm::vec3(next);
+            if (glm::dot(offset, offset) < next.w) continue;
             ++outsideNext;
             shadowEdge += hard.at(x, y) < 128 ? 1 : 0;
             blended += std::abs(int(soft.at(x, y)) - int(hard.at(x, y))) > 1 ? 1 : 0;

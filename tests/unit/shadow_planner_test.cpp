@@ -33,7 +33,7 @@ TEST(ShadowPlanner, NoLightsGiveNoTilesAndZeroLightCount) {
     PlannerFixture f;
     const ShadowFrame frame = f.plan();
     EXPECT_TRUE(frame.directional.tiles.empty());
-    EXPECT_EQ(frame.directional.gpu.config.w, 0u);
+    EXPECT_EQ(frame.directional.gpu.lightCount, 0u);
     EXPECT_EQ(frame.stats.casterDraws, 0u);
 }
 
@@ -161,8 +161,12 @@ TEST(ShadowPlanner, TilesWriteExactDepthAndTheLitPassGetsTheLightsBiases) {
     const ShadowFrame frame = f.plan();
     EXPECT_EQ(frame.directional.tiles[2].slopeScaleBias, 0.0f);
     EXPECT_TRUE(frame.directional.tiles[2].depthClamp);
-    EXPECT_EQ(frame.directional.gpu.lightBias[0], glm::vec4(1.5f, 0.8f, float(gpu_data::kShadowFilterPcf5x5), 0.0f));
-    EXPECT_EQ(frame.directional.gpu.lightDirections[0], glm::vec4(0, 1, 0, 0));
+    const gpu_data::DirectionalShadowLight& light = frame.directional.gpu.lights[0];
+    EXPECT_EQ(light.normalBias, 1.5f);
+    EXPECT_EQ(light.slopeBias, 0.8f);
+    EXPECT_EQ(light.filterMode, gpu_data::kShadowFilterPcf5x5);
+    EXPECT_EQ(light.pcssTanRadius, 0.0f);
+    EXPECT_EQ(light.wsToLight, glm::vec4(0, 1, 0, 0));
 }
 
 // URP's per-light soft flag for directional lights too: "hard" = one hardware
@@ -173,8 +177,8 @@ TEST(ShadowPackedData, HardDirectionalLightsUseOneHardwarePcfTap) {
     addDirectionalLight(f.scene, {0.3f, -1, 0}, 1.0f, LightShadows::Hard);
     addDirectionalLight(f.scene, {-0.3f, -1, 0}, 1.0f, LightShadows::Soft);
     const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
-    EXPECT_EQ(gpu.lightBias[0].z, float(gpu_data::kShadowFilterPcf2x2));
-    EXPECT_EQ(gpu.lightBias[1].z, float(gpu_data::kShadowFilterPcf7x7));
+    EXPECT_EQ(gpu.lights[0].filterMode, gpu_data::kShadowFilterPcf2x2);
+    EXPECT_EQ(gpu.lights[1].filterMode, gpu_data::kShadowFilterPcf7x7);
 }
 
 TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
@@ -188,12 +192,12 @@ TEST(ShadowPackedData, CascadeSpheresShrinkByTheFilterSizeAndBiasByHalfOfIt) {
         const float texel = 2.0f * sphere.radius / 512.0f;  // 1024 atlas, 4 tiles -> 512
         const float filterWorld = texel * 3.0f;             // PCF5x5: filter + 1 = 3 (SetCascadeData)
         const float shrunk = sphere.radius - filterWorld;
-        EXPECT_NEAR(gpu.cullingSpheres[i].w, shrunk * shrunk, 1e-3f);
-        EXPECT_NEAR(gpu.cullingSpheres[i].x, sphere.wsCenter.x, 1e-5f);
-        EXPECT_NEAR(gpu.cascadeData[i].x, 1.0f / (shrunk * shrunk), 1e-6f);
+        EXPECT_NEAR(gpu.cascades[i].cullingSphere.w, shrunk * shrunk, 1e-3f);
+        EXPECT_NEAR(gpu.cascades[i].cullingSphere.x, sphere.wsCenter.x, 1e-5f);
+        EXPECT_NEAR(gpu.cascades[i].invRadiusSquared, 1.0f / (shrunk * shrunk), 1e-6f);
         // The normal-bias unit: PCF5x5 -> 1 + 2 / 2 = 2 texel diagonals, not the tutorial's 3.
-        EXPECT_NEAR(gpu.cascadeData[i].y, texel * 2.0f * std::sqrt(2.0f), 1e-5f);
-        EXPECT_NEAR(gpu.cascadeData[i].z, frame.directional.tiles[i].wsTexelSize, 1e-6f);
+        EXPECT_NEAR(gpu.cascades[i].normalBiasUnit, texel * 2.0f * std::sqrt(2.0f), 1e-5f);
+        EXPECT_NEAR(gpu.cascades[i].wsTexelSize, frame.directional.tiles[i].wsTexelSize, 1e-6f);
     }
 }
 
@@ -214,10 +218,16 @@ TEST(ShadowPackedData, HoldsLightsConfigAtlasAndMatrices) {
     f.scene.lights[1].shadowNormalBias = 0.3f;
     const ShadowFrame frame = f.plan();
     const gpu_data::DirectionalShadowData& gpu = frame.directional.gpu;
-    EXPECT_EQ(gpu.config, glm::uvec4(2, gpu_data::kShadowFilterPcf2x2, gpu_data::kCascadeBlendSoft, 1));
-    EXPECT_EQ(gpu.lights[0], glm::vec4(0.6f, 0.0f, 0.3f, 1.0f));
-    EXPECT_EQ(gpu.lights[1], glm::vec4(0.0f));
-    EXPECT_EQ(gpu.atlasSize, glm::vec4(1024.0f, 1.0f / 1024.0f, 512.0f, 1.0f / 512.0f));
+    EXPECT_EQ(glm::uvec4(gpu.cascadeCount, gpu.filterMode, gpu.cascadeBlend, gpu.lightCount),
+              glm::uvec4(2, gpu_data::kShadowFilterPcf2x2, gpu_data::kCascadeBlendSoft, 1));
+    EXPECT_EQ(gpu.lights[0].strength, 0.6f);
+    EXPECT_EQ(gpu.lights[0].firstTile, 0u);
+    EXPECT_EQ(gpu.lights[0].normalBias, 0.3f);
+    EXPECT_EQ(gpu.lights[0].sceneLightIndex, 1u);
+    EXPECT_EQ(gpu.lights[1].strength, 0.0f) << "an unused slot is zero";
+    EXPECT_EQ(gpu.lights[1].wsToLight, glm::vec4(0.0f));
+    EXPECT_EQ(glm::vec4(gpu.atlasSize, gpu.invAtlasSize, gpu.tileSize, gpu.invTileSize),
+              glm::vec4(1024.0f, 1.0f / 1024.0f, 512.0f, 1.0f / 512.0f));
     EXPECT_EQ(gpu.atlasFromWorld[1], frame.directional.tiles[1].atlasFromWorld);
     EXPECT_EQ(gpu.atlasFromWorld[2], glm::mat4(0.0f));
 }
@@ -227,18 +237,18 @@ TEST(ShadowPackedData, FadeHoldsReciprocalsOfDistanceAndFades) {
     f.settings.distanceFade = 0.2f;
     f.settings.directional.cascadeFade = 0.1f;
     const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
-    EXPECT_FLOAT_EQ(gpu.fade.x, 1.0f / 40.0f);
-    EXPECT_FLOAT_EQ(gpu.fade.y, 5.0f);
-    EXPECT_FLOAT_EQ(gpu.fade.z, 1.0f / (1.0f - 0.81f));
-    EXPECT_FLOAT_EQ(gpu.fade.w, 40.0f);
+    EXPECT_FLOAT_EQ(gpu.invShadowDistance, 1.0f / 40.0f);
+    EXPECT_FLOAT_EQ(gpu.invDistanceFade, 5.0f);
+    EXPECT_FLOAT_EQ(gpu.cascadeFadeScale, 1.0f / (1.0f - 0.81f));
+    EXPECT_FLOAT_EQ(gpu.shadowDistance, 40.0f);
 }
 
 TEST(ShadowFade, DistanceFadeIsOneBeforeTheBandLinearInItAndZeroAtMaxDistance) {
     PlannerFixture f;  // maxDistance 40, distanceFade 0.1: the band is 36..40
     const gpu_data::DirectionalShadowData gpu = f.plan().directional.gpu;
-    EXPECT_FLOAT_EQ(fadedShadowStrength(30.0f, gpu.fade.x, gpu.fade.y), 1.0f);
-    EXPECT_NEAR(fadedShadowStrength(38.0f, gpu.fade.x, gpu.fade.y), 0.5f, 1e-5f);
-    EXPECT_FLOAT_EQ(fadedShadowStrength(40.0f, gpu.fade.x, gpu.fade.y), 0.0f);
+    EXPECT_FLOAT_EQ(fadedShadowStrength(30.0f, gpu.invShadowDistance, gpu.invDistanceFade), 1.0f);
+    EXPECT_NEAR(fadedShadowStrength(38.0f, gpu.invShadowDistance, gpu.invDistanceFade), 0.5f, 1e-5f);
+    EXPECT_FLOAT_EQ(fadedShadowStrength(40.0f, gpu.invShadowDistance, gpu.invDistanceFade), 0.0f);
 }
 
 TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
@@ -255,7 +265,7 @@ TEST(ShadowFade, CascadeSelectionPicksTheFirstContainingSphereAndFadesTheLast) {
     EXPECT_EQ(outside.strength, 0.0f);
     // On the last sphere at distance^2 = (1 - f') r'^2 with f' = 1 - (1 - 0.2)^2 the cascade fade is 1,
     // halfway into the band it is 0.5 ("Fading Cascades").
-    const glm::vec4 last = gpu.cullingSpheres[3];
+    const glm::vec4 last = gpu.cascades[3].cullingSphere;
     const float band = 1.0f - 0.8f * 0.8f;
     const glm::vec3 side = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
     const glm::vec3 inBand = glm::vec3(last) + side * std::sqrt((1.0f - 0.5f * band) * last.w);
@@ -303,12 +313,17 @@ TEST(ShadowPlanner, CasterWhoseShadowStaysInTheSmallerCascadeIsLeftOutOfTheBigge
 
 TEST(ShadowFade, NoBlendTowardANextCascadeWhoseSphereMissesThePoint) {
     gpu_data::DirectionalShadowData data{};
-    data.config = glm::uvec4(2, 0, uint32_t(CascadeBlend::Soft), 1);
-    data.fade = glm::vec4(0.0f, 1.0f, 1.0f / (1.0f - 0.8f * 0.8f), 100.0f);  // cascade fade 0.2
-    data.cullingSpheres[0] = glm::vec4(0, 0, 0, 100);   // radius 10 around the origin
-    data.cullingSpheres[1] = glm::vec4(20, 0, 0, 144);  // radius 12 around x = 20
-    data.cascadeData[0].x = 1.0f / 100.0f;
-    data.cascadeData[1].x = 1.0f / 144.0f;
+    data.cascadeCount = 2;
+    data.cascadeBlend = uint32_t(CascadeBlend::Soft);
+    data.lightCount = 1;
+    data.invShadowDistance = 0.0f;
+    data.invDistanceFade = 1.0f;
+    data.cascadeFadeScale = 1.0f / (1.0f - 0.8f * 0.8f);  // cascade fade 0.2
+    data.shadowDistance = 100.0f;
+    data.cascades[0].cullingSphere = glm::vec4(0, 0, 0, 100);   // radius 10 around the origin
+    data.cascades[1].cullingSphere = glm::vec4(20, 0, 0, 144);  // radius 12 around x = 20
+    data.cascades[0].invRadiusSquared = 1.0f / 100.0f;
+    data.cascades[1].invRadiusSquared = 1.0f / 144.0f;
     EXPECT_LT(selectCascade(data, {9.5f, 0, 0}, 1.0f).cascadeBlend, 1.0f);   // in the band, inside sphere 1
     EXPECT_EQ(selectCascade(data, {-9.5f, 0, 0}, 1.0f).cascadeBlend, 1.0f);  // in the band, outside sphere 1
 }

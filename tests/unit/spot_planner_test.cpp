@@ -74,14 +74,28 @@ TEST(SpotShadowPlan, PackedLightDataCarriesStrengthKindAndBias) {
     ShadowSettings settings;
     settings.spot.filter = ShadowFilter::PCF3x3;
     const OtherShadowPlan plan = planFor(scene, settings).other;
-    EXPECT_EQ(plan.gpu.lights[0], glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
-    EXPECT_EQ(plan.gpu.lights[1], glm::vec4(0.5f, 1.0f, 1.0f, 0.0f));
+    EXPECT_EQ(plan.gpu.lights[0].strength, 1.0f);
+    EXPECT_EQ(plan.gpu.lights[0].firstTile, 0u);
+    EXPECT_EQ(plan.gpu.lights[0].soft, 0u);
+    EXPECT_EQ(plan.gpu.lights[0].point, 0u);
+    EXPECT_EQ(plan.gpu.lights[1].strength, 0.5f);
+    EXPECT_EQ(plan.gpu.lights[1].firstTile, 1u);
+    EXPECT_EQ(plan.gpu.lights[1].soft, 1u);
+    EXPECT_EQ(plan.gpu.lights[1].point, 0u);
     EXPECT_EQ(plan.specializationMode, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft);
-    EXPECT_EQ(plan.gpu.config, glm::uvec4(2u, uint32_t(ShadowFilter::PCF3x3), 2u, 2u));
+    EXPECT_EQ(plan.gpu.lightCount, 2u);
+    EXPECT_EQ(plan.gpu.filterMode, uint32_t(ShadowFilter::PCF3x3));
+    EXPECT_EQ(plan.gpu.tilesUsed, 2u);
+    EXPECT_EQ(plan.gpu.split, 2u);
     // Biases: normal-bias multiplier, slope-scale bias, world texel per unit distance (2 tan(fov/2) /
     // tileSize), the light's filter: spot.filter when soft, PCF2x2 when hard.
-    EXPECT_EQ(plan.gpu.lightBias[1], glm::vec4(2.0f, 0.0f, plan.tiles[1].wsTexelSize, float(gpu_data::kShadowFilterPcf3x3)));
-    EXPECT_EQ(plan.gpu.lightBias[0], glm::vec4(1.0f, 0.0f, plan.tiles[0].wsTexelSize, float(gpu_data::kShadowFilterPcf2x2)));
+    for (uint32_t slot : {0u, 1u}) {
+        const gpu_data::OtherShadowLight& light = plan.gpu.lights[slot];
+        EXPECT_EQ(light.normalBias, slot == 1 ? 2.0f : 1.0f);
+        EXPECT_EQ(light.slopeBias, 0.0f);
+        EXPECT_EQ(light.wsTexelPerDistance, plan.tiles[slot].wsTexelSize);
+        EXPECT_EQ(light.filterMode, slot == 1 ? gpu_data::kShadowFilterPcf3x3 : gpu_data::kShadowFilterPcf2x2);
+    }
     EXPECT_EQ(plan.slotOfSceneLight, (std::vector<int32_t>{0, 1}));
 }
 
@@ -93,7 +107,7 @@ TEST(SpotShadowPlan, SpotNormalBiasUnitIsTheDirectionalRule) {
     ShadowSettings settings;
     settings.spot.filter = ShadowFilter::PCF5x5;
     const OtherShadowPlan plan = planFor(scene, settings).other;
-    const uint32_t filter = uint32_t(plan.gpu.lightBias[0].w);
+    const uint32_t filter = plan.gpu.lights[0].filterMode;
     EXPECT_EQ(filter, gpu_data::kShadowFilterPcf5x5);
     EXPECT_FLOAT_EQ(gpu_data::normalOffsetFootprint(filter), 2.0f * std::sqrt(2.0f));  // not (1 + 2) sqrt(2)
 }
@@ -103,7 +117,7 @@ TEST(SpotShadowPlan, NoShadowedOtherLightGivesNoTilesAndModeZero) {
     EXPECT_TRUE(plan.tiles.empty());
     EXPECT_EQ(plan.atlas.tileCount, 0u);
     EXPECT_EQ(plan.specializationMode, 0u);
-    EXPECT_EQ(plan.gpu.config.x, 0u);
+    EXPECT_EQ(plan.gpu.lightCount, 0u);
 }
 
 TEST(SpotShadowPlan, PointLightHasSixFaceTilesEachSeeingItsOwnDirection) {
@@ -123,6 +137,6 @@ TEST(SpotShadowPlan, PointLightHasSixFaceTilesEachSeeingItsOwnDirection) {
         EXPECT_NEAR(uv.x, expected.x, 1e-4f) << "face " << face;
         EXPECT_NEAR(uv.y, expected.y, 1e-4f) << "face " << face;
     }
-    EXPECT_EQ(plan.gpu.lights[1].w, 1.0f);
-    EXPECT_EQ(plan.gpu.lights[1].y, 1.0f);
+    EXPECT_EQ(plan.gpu.lights[1].point, 1u);
+    EXPECT_EQ(plan.gpu.lights[1].firstTile, 1u);
 }

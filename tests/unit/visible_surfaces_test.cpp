@@ -63,7 +63,7 @@ TEST(TightFit, EveryVisiblePointMapsInsideItsCascadesTileWithSmallerTexels) {
     settings.directional.fit = CascadeFit::Sphere;
     const ShadowFrame sphere = ShadowPlanner::plan(scene, view, settings);
     ASSERT_TRUE(tight.directional.tight);
-    EXPECT_EQ(tight.directional.gpu.modes.z, gpu_data::kCascadeFitTight);
+    EXPECT_EQ(tight.directional.gpu.cascadeFit, gpu_data::kCascadeFitTight);
     const float atlasSize = float(tight.directional.atlas.atlasSize);
     double tightTexels = 0.0, sphereTexels = 0.0;  // the texel size each visible point is shadowed with
     for (size_t i = 0; i < visible.wsPoints.size(); ++i) {
@@ -82,7 +82,7 @@ TEST(TightFit, EveryVisiblePointMapsInsideItsCascadesTileWithSmallerTexels) {
         EXPECT_LT(p.z, 1.0f);
     }
     for (uint32_t c = 0; c < 4; ++c)
-        EXPECT_FLOAT_EQ(tight.directional.gpu.cascadeData[c].w, tight.directional.cascades[c].vsFar);
+        EXPECT_FLOAT_EQ(tight.directional.gpu.cascades[c].vsSplit, tight.directional.cascades[c].vsFar);
     std::printf("[tight fit] mean texel at the visible points: sphere %.4f m, tight %.4f m\n",
                 sphereTexels / double(visible.wsPoints.size()), tightTexels / double(visible.wsPoints.size()));
     EXPECT_LT(tightTexels, 0.8 * sphereTexels);
@@ -97,7 +97,7 @@ TEST(TightFit, WithoutVisibleSurfacesThePlanIsTheSphereFit) {
     settings.directional.fit = CascadeFit::Tight;
     const ShadowFrame frame = ShadowPlanner::plan(scene, cameraLookingAt({0, 3, 0}, {0, 0, -10}), settings);
     EXPECT_FALSE(frame.directional.tight);
-    EXPECT_EQ(frame.directional.gpu.modes.z, gpu_data::kCascadeFitSphere);
+    EXPECT_EQ(frame.directional.gpu.cascadeFit, gpu_data::kCascadeFitSphere);
 }
 
 TEST(ShadowFade, SquaredFadeRunsFromTheBandsStartToTheShadowDistanceInSquaredDistance) {
