@@ -7,7 +7,7 @@
 #include "scene_structs.h"
 #include "tone_mapping.glsl"
 
-layout(set = 0, binding = kSceneBindingFrame, std140) uniform FrameBlock { FrameData frame; };
+layout(set = kPassSet, binding = kSceneBindingFrame, std140) uniform FrameBlock { FrameData frame; };
 
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outColor;

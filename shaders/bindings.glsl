@@ -6,12 +6,12 @@
 
 layout(constant_id = 0) const uint kTextureCount = 1;
 
-layout(set = 0, binding = kSceneBindingFrame, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = kSceneBindingVertices, std430) readonly buffer VertexBlock { VertexData vertices[]; };
-layout(set = 0, binding = kSceneBindingInstances, std430) readonly buffer InstanceBlock { InstanceData instances[]; };
-layout(set = 0, binding = kSceneBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
-layout(set = 0, binding = kSceneBindingLights, std430) readonly buffer LightBlock { LightData lights[]; };
-layout(set = 1, binding = kTextureTableBinding) uniform sampler2D baseColorTextures[kTextureCount];
+layout(set = kPassSet, binding = kSceneBindingFrame, std140) uniform FrameBlock { FrameData frame; };
+layout(set = kPassSet, binding = kSceneBindingVertices, std430) readonly buffer VertexBlock { VertexData vertices[]; };
+layout(set = kPassSet, binding = kSceneBindingInstances, std430) readonly buffer InstanceBlock { InstanceData instances[]; };
+layout(set = kPassSet, binding = kSceneBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = kPassSet, binding = kSceneBindingLights, std430) readonly buffer LightBlock { LightData lights[]; };
+layout(set = kTextureTableSet, binding = kTextureTableBinding) uniform sampler2D baseColorTextures[kTextureCount];
 
 // Base colour (factor x texture) of a material at uv; alpha included.
 vec4 materialBaseColor(MaterialData material, vec2 uv) {

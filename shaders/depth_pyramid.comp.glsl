@@ -8,8 +8,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = kPyramidBindingVisibility, std430) readonly buffer VisibilityBlock { uvec2 visibility[]; };
-layout(set = 0, binding = kPyramidBindingTexels, std430) buffer PyramidBlock { float pyramid[]; };
+layout(set = kPassSet, binding = kPyramidBindingVisibility, std430) readonly buffer VisibilityBlock { uvec2 visibility[]; };
+layout(set = kPassSet, binding = kPyramidBindingTexels, std430) buffer PyramidBlock { float pyramid[]; };
 layout(push_constant) uniform PyramidConstantsBlock { PyramidConstants constants; };
 
 float sourceDepth(uvec2 texel) {

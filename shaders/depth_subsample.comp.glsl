@@ -4,8 +4,8 @@
 #include "pass_bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = kSubsampleBindingDepth) uniform sampler2D sceneDepth;
-layout(set = 0, binding = kSubsampleBindingDepths, std430) writeonly buffer SubsampleBlock { float depths[]; };
+layout(set = kPassSet, binding = kSubsampleBindingDepth) uniform sampler2D sceneDepth;
+layout(set = kPassSet, binding = kSubsampleBindingDepths, std430) writeonly buffer SubsampleBlock { float depths[]; };
 layout(push_constant) uniform SubsampleBlock { SubsampleConstants subsample; };
 
 void main() {

@@ -9,9 +9,9 @@
 
 layout(local_size_x = kMaxClusterLightWords) in;
 
-layout(set = 0, binding = kSceneBindingLights, std430) readonly buffer LightBlock { LightData lights[]; };
-layout(set = 0, binding = kLitBindingClusterMasks, std430) writeonly buffer ClusterMaskBlock { uint clusterMasks[]; };
-layout(set = 0, binding = kClusterBindingStats, std430) buffer ClusterStatsBlock { LightClusterStats clusterStats; };
+layout(set = kPassSet, binding = kSceneBindingLights, std430) readonly buffer LightBlock { LightData lights[]; };
+layout(set = kPassSet, binding = kLitBindingClusterMasks, std430) writeonly buffer ClusterMaskBlock { uint clusterMasks[]; };
+layout(set = kPassSet, binding = kClusterBindingStats, std430) buffer ClusterStatsBlock { LightClusterStats clusterStats; };
 
 shared uint clusterLightCount;
 

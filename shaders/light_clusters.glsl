@@ -6,7 +6,7 @@
 #include "pass_bindings.h"
 #include "light_cluster_structs.h"
 
-layout(set = 0, binding = kLitBindingLightClusters, std140) uniform LightClusterBlock { LightClusterData clusters; };
+layout(set = kPassSet, binding = kLitBindingLightClusters, std140) uniform LightClusterBlock { LightClusterData clusters; };
 
 // light_clusters.cpp viewPointAtDepth
 vec3 clusterViewPointAtDepth(float ndcX, float ndcY, float vsDepth) {

@@ -8,12 +8,12 @@
 #include "meshlet_culling.glsl"
 #include "raster_core.glsl"
 
-layout(set = 0, binding = kRasterBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = kRasterBindingIndices, std430) readonly buffer IndexBlock { uint indices[]; };
-layout(set = 0, binding = kRasterBindingCounters, std430) buffer CounterBlock { RasterCounters counters; };
-layout(set = 0, binding = kRasterBindingLargePieces, std430) buffer LargeBlock { RasterPiece largePieces[]; };
-layout(set = 0, binding = kRasterBindingChunks, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
-layout(set = 0, binding = kRasterBindingMeshlets, std430) readonly buffer MeshletBlock { Meshlet meshlets[]; };
+layout(set = kPassSet, binding = kRasterBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = kPassSet, binding = kRasterBindingIndices, std430) readonly buffer IndexBlock { uint indices[]; };
+layout(set = kPassSet, binding = kRasterBindingCounters, std430) buffer CounterBlock { RasterCounters counters; };
+layout(set = kPassSet, binding = kRasterBindingLargePieces, std430) buffer LargeBlock { RasterPiece largePieces[]; };
+layout(set = kPassSet, binding = kRasterBindingChunks, std430) buffer ChunkBlock { uvec2 chunks[]; };  // (large piece, chunk x | y << 16)
+layout(set = kPassSet, binding = kRasterBindingMeshlets, std430) readonly buffer MeshletBlock { Meshlet meshlets[]; };
 
 // Both rasterizers' constants have largeCapacity and chunkCapacity (the queues' sizes).
 #ifdef PENUMBRA_VIEW_RASTER

@@ -7,8 +7,8 @@
 #include "shadows.glsl"
 #include "surface_normals.glsl"
 
-layout(set = 0, binding = kScreenShadowBindingSceneDepth) uniform sampler2D sceneDepth;
-layout(set = 0, binding = kScreenShadowBindingSceneNormals) uniform sampler2D sceneNormals;
+layout(set = kPassSet, binding = kScreenShadowBindingSceneDepth) uniform sampler2D sceneDepth;
+layout(set = kPassSet, binding = kScreenShadowBindingSceneNormals) uniform sampler2D sceneNormals;
 layout(push_constant) uniform ScreenShadowBlock { ScreenShadowConstants resolve; };
 
 layout(location = 0) in vec2 inUv;

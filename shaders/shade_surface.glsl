@@ -12,8 +12,8 @@
 #include "sky_light.glsl"
 
 // The main directional light's shadow term from the screen-space resolve (shadows.screenSpace), when enabled.
-layout(set = 0, binding = kLitBindingScreenSpaceShadows) uniform sampler2D screenSpaceShadows;
-layout(set = 0, binding = kLitBindingClusterMasks, std430) readonly buffer ClusterMaskBlock { uint clusterMasks[]; };
+layout(set = kPassSet, binding = kLitBindingScreenSpaceShadows) uniform sampler2D screenSpaceShadows;
+layout(set = kPassSet, binding = kLitBindingClusterMasks, std430) readonly buffer ClusterMaskBlock { uint clusterMasks[]; };
 
 // What the rasterizer knows of the visible surface at a pixel.
 struct SurfaceInput {

@@ -9,7 +9,7 @@ layout(push_constant) uniform CasterBlock { CasterConstants caster; };
 
 // The tile's visible casters (cull_structs.h): gl_InstanceIndex = the draw's firstInstance + i
 // indexes the list the culling pass wrote.
-layout(set = 0, binding = kCasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kCasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) flat out uint outInstance;

@@ -11,15 +11,15 @@
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = kCullBindingFrame, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = 0, binding = kCullBindingInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
-layout(set = 0, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
-layout(set = 0, binding = kCullBindingListCounts, std430) buffer ListCountBlock { uint listCounts[]; };  // [tile * meshes + mesh]
-layout(set = 0, binding = kCullBindingVisibleInstances, std430) writeonly buffer VisibleBlock { uint visibleInstances[]; };
-layout(set = 0, binding = kCullBindingViewHistory, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
-layout(set = 0, binding = kCullBindingPyramid, std430) readonly buffer PyramidBlock { float pyramid[]; };
-layout(set = 0, binding = kCullBindingTileStats, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
+layout(set = kPassSet, binding = kCullBindingFrame, std140) uniform CullFrameBlock { CullFrame cull; };
+layout(set = kPassSet, binding = kCullBindingInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
+layout(set = kPassSet, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = kPassSet, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = kPassSet, binding = kCullBindingListCounts, std430) buffer ListCountBlock { uint listCounts[]; };  // [tile * meshes + mesh]
+layout(set = kPassSet, binding = kCullBindingVisibleInstances, std430) writeonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kCullBindingViewHistory, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
+layout(set = kPassSet, binding = kCullBindingPyramid, std430) readonly buffer PyramidBlock { float pyramid[]; };
+layout(set = kPassSet, binding = kCullBindingTileStats, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
 layout(push_constant) uniform CullConstantsBlock { CullConstants constants; };
 
 // Cascade blend culling (caster_culling.cpp insideScaledSphere): the box wholly inside the scaled sphere.

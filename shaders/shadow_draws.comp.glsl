@@ -9,15 +9,15 @@
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = kCullBindingFrame, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = 0, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
-layout(set = 0, binding = kCullBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = kPassSet, binding = kCullBindingFrame, std140) uniform CullFrameBlock { CullFrame cull; };
+layout(set = kPassSet, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = kPassSet, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
+layout(set = kPassSet, binding = kCullBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
 // [(tile * kCasterKinds + kind) * meshes + i] x 5 uints: indexCount, instanceCount, firstIndex,
 // vertexOffset, firstInstance.
-layout(set = 0, binding = kDrawsBindingDrawCommands, std430) writeonly buffer DrawBlock { uint drawCommands[]; };
-layout(set = 0, binding = kDrawsBindingDrawCounts, std430) buffer DrawCountBlock { uint drawCounts[]; };  // [tile * kCasterKinds + kind]
-layout(set = 0, binding = kDrawsBindingTileStats, std430) buffer StatsBlock { CullTileStats tileStats[]; };
+layout(set = kPassSet, binding = kDrawsBindingDrawCommands, std430) writeonly buffer DrawBlock { uint drawCommands[]; };
+layout(set = kPassSet, binding = kDrawsBindingDrawCounts, std430) buffer DrawCountBlock { uint drawCounts[]; };  // [tile * kCasterKinds + kind]
+layout(set = kPassSet, binding = kDrawsBindingTileStats, std430) buffer StatsBlock { CullTileStats tileStats[]; };
 
 void main() {
     uint meshIndex = gl_GlobalInvocationID.x;

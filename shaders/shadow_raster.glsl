@@ -19,8 +19,8 @@
 #include "cull_structs.h"
 #include "raster_mesh.glsl"
 
-layout(set = 0, binding = kShadowRasterBindingCullFrame, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = 0, binding = kShadowRasterBindingAtlasDepth, std430) buffer DepthBlock { uint atlasDepth[]; };  // atlasSize^2 float bits
+layout(set = kPassSet, binding = kShadowRasterBindingCullFrame, std140) uniform CullFrameBlock { CullFrame cull; };
+layout(set = kPassSet, binding = kShadowRasterBindingAtlasDepth, std430) buffer DepthBlock { uint atlasDepth[]; };  // atlasSize^2 float bits
 
 
 // Culling tile drawn by entry `i` of the frame's raster tile list.

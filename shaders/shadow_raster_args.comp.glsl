@@ -4,7 +4,7 @@
 #include "cull_structs.h"
 
 layout(local_size_x = 1) in;
-layout(set = 0, binding = kRasterBindingCounters, std430) buffer CounterBlock { RasterCounters counters; };
+layout(set = kPassSet, binding = kRasterBindingCounters, std430) buffer CounterBlock { RasterCounters counters; };
 layout(push_constant) uniform ArgsBlock { RasterArgsConstants args; };
 
 uvec4 dispatchFor(uint count) {

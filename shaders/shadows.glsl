@@ -12,11 +12,11 @@
 #include "shadow_pcss.glsl"
 #include "shadow_tent.glsl"
 
-layout(set = 0, binding = kLitBindingDirectionalShadows, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
-layout(set = 0, binding = kLitBindingDirectionalAtlas) uniform sampler2DShadow directionalShadowAtlas;
+layout(set = kPassSet, binding = kLitBindingDirectionalShadows, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
+layout(set = kPassSet, binding = kLitBindingDirectionalAtlas) uniform sampler2DShadow directionalShadowAtlas;
 // The same atlases read as raw depth (nearest): the receiver-plane compare and blocker searches.
-layout(set = 0, binding = kLitBindingDirectionalDepth) uniform sampler2D directionalShadowDepth;
-layout(set = 0, binding = kLitBindingOtherDepth) uniform sampler2D otherShadowDepth;
+layout(set = kPassSet, binding = kLitBindingDirectionalDepth) uniform sampler2D directionalShadowDepth;
+layout(set = kPassSet, binding = kLitBindingOtherDepth) uniform sampler2D otherShadowDepth;
 
 struct ShadowSample {
     float attenuation;  // 1 = lit, 0 = fully shadowed (strength and fades applied)
@@ -163,8 +163,8 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
 // same result for every frame; the renderer draws with it while the specialized one is still being built.
 layout(constant_id = 2) const uint kOtherShadowMode = 0u;
 layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
-layout(set = 0, binding = kLitBindingOtherShadows, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
-layout(set = 0, binding = kLitBindingOtherAtlas) uniform sampler2DShadow otherShadowAtlas;
+layout(set = kPassSet, binding = kLitBindingOtherShadows, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
+layout(set = kPassSet, binding = kLitBindingOtherAtlas) uniform sampler2DShadow otherShadowAtlas;
 
 // HardShadowAttenuation / SoftShadowAttenuation ("Spotlight Shadows", Soft Shadows), the soft one with
 // spot.filter's tent.

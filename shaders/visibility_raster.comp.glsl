@@ -10,8 +10,8 @@
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = 0, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 shared mat4 clipFromObject;
 shared bool meshletSkipped;

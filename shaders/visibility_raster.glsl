@@ -21,7 +21,7 @@
 #include "raster_mesh.glsl"
 #include "visibility_structs.h"
 
-layout(set = 0, binding = kVisibilityRasterBindingVisibility, std430) buffer VisibilityBlock { uint64_t visibility[]; };
+layout(set = kPassSet, binding = kVisibilityRasterBindingVisibility, std430) buffer VisibilityBlock { uint64_t visibility[]; };
 
 const uint kViewClipPlanes = kClipGuard | kClipDepthNear | kClipDepthFar;
 

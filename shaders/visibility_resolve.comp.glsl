@@ -8,8 +8,8 @@
 
 layout(local_size_x = kResolveGroupSize, local_size_y = kResolveGroupSize) in;
 
-layout(set = 0, binding = kResolveBindingColor, std430) writeonly buffer ColorBlock { uint resolvedColor[]; };
-layout(set = 0, binding = kResolveBindingDepth, std430) writeonly buffer DepthBlock { float resolvedDepth[]; };
+layout(set = kPassSet, binding = kResolveBindingColor, std430) writeonly buffer ColorBlock { uint resolvedColor[]; };
+layout(set = kPassSet, binding = kResolveBindingDepth, std430) writeonly buffer DepthBlock { float resolvedDepth[]; };
 
 vec3 srgbEncode(vec3 linear) {
     vec3 c = clamp(linear, 0.0, 1.0);

@@ -11,10 +11,10 @@
 #include "shade_surface.glsl"
 #include "visibility_structs.h"
 
-layout(set = 0, binding = kResolveBindingVisibility, std430) readonly buffer VisibilityBlock { uvec2 visibility[]; };  // (payload, depth bits): the 64-bit words
-layout(set = 0, binding = kResolveBindingIndices, std430) readonly buffer IndexBlock { uint indices[]; };
-layout(set = 0, binding = kResolveBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
-layout(set = 0, binding = kResolveBindingInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
+layout(set = kPassSet, binding = kResolveBindingVisibility, std430) readonly buffer VisibilityBlock { uvec2 visibility[]; };  // (payload, depth bits): the 64-bit words
+layout(set = kPassSet, binding = kResolveBindingIndices, std430) readonly buffer IndexBlock { uint indices[]; };
+layout(set = kPassSet, binding = kResolveBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
+layout(set = kPassSet, binding = kResolveBindingInstances, std430) readonly buffer CullInstanceBlock { CullInstance cullInstances[]; };
 layout(push_constant) uniform Constants { VisibilityConstants constants; };
 
 // Perspective-correct barycentrics at NDC point `ndc` of the triangle with clip-space (x, y, w) rows:

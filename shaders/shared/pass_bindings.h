@@ -1,6 +1,6 @@
 // The set-0 binding number of every descriptor of every pass, by name, shared by C++ (render/pass_layouts.cpp
 // declares each pass's bindings with these, its descriptor types and stage masks; the passes write their
-// descriptors with them) and GLSL (`layout(set = 0, binding = kSceneBindingFrame)`). Pipeline creation
+// descriptors with them) and GLSL (`layout(set = kPassSet, binding = kSceneBindingFrame)`). Pipeline creation
 // checks each declaration against the shaders' SPIR-V (src/gpu/shader_interface.h).
 //
 // Set 0 is pushed per pass (VK_KHR_push_descriptor); set 1 is the scene's texture table. A number means
@@ -13,7 +13,12 @@
 
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
-// The texture table (set 1): base colour textures, an array sized by specialization constant 0.
+// Descriptor sets: every pass's own bindings are pushed in set kPassSet (VK_KHR_push_descriptor); the
+// scene's texture table is set kTextureTableSet (= gpu::kPassDescriptorSet / kTextureTableDescriptorSet).
+PENUMBRA_CONST(uint, kPassSet, 0u)
+PENUMBRA_CONST(uint, kTextureTableSet, 1u)
+
+// The texture table (set kTextureTableSet): base colour textures, an array sized by specialization constant 0.
 PENUMBRA_CONST(uint, kTextureTableBinding, 0u)
 
 // The scene (bindings.glsl): the lit pass, its depth + normal prepass, the shadow casters, both compute

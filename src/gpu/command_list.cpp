@@ -129,13 +129,15 @@ void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
         }
         vkWrites.push_back(write);
     }
-    d.cmdPushDescriptorSet(native(*this), p.bindPoint, p.layout, 0, uint32_t(vkWrites.size()), vkWrites.data());
+    d.cmdPushDescriptorSet(native(*this), p.bindPoint, p.layout, kPassDescriptorSet, uint32_t(vkWrites.size()),
+                          vkWrites.data());
 }
 
 void CommandList::bindTextureTable(TextureTableHandle table) {
     Device::Impl& d = impl(*this);
     const PipelineResource& p = d.pipelines.at(boundPipeline.id);
-    vkCmdBindDescriptorSets(native(*this), p.bindPoint, p.layout, 1, 1, &d.tables.at(table.id).set, 0, nullptr);
+    vkCmdBindDescriptorSets(native(*this), p.bindPoint, p.layout, kTextureTableDescriptorSet, 1, &d.tables.at(table.id).set, 0,
+                            nullptr);
 }
 
 void CommandList::pushConstants(const void* data, uint32_t size) {

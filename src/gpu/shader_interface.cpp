@@ -122,18 +122,18 @@ const BindingDesc* findBinding(std::span<const BindingDesc> bindings, uint32_t b
 
 bool stageUses(const ShaderInterface& shader, uint32_t binding) {
     for (const ShaderResource& r : shader.resources)
-        if (r.set == 0 && r.binding == binding) return true;
+        if (r.set == kPassDescriptorSet && r.binding == binding) return true;
     return false;
 }
 
 void checkUsedBindings(std::string_view pass, const PipelineStage& stage, const ShaderInterface& shader,
                        std::span<const BindingDesc> bindings, bool textureTable) {
     for (const ShaderResource& used : shader.resources) {
-        if (used.set == 1) {
+        if (used.set == kTextureTableDescriptorSet) {
             if (!textureTable) mismatch(pass, stage.shader, used.binding, used.name, "set 1 is used but the pass has no texture table");
             continue;
         }
-        if (used.set != 0) mismatch(pass, stage.shader, used.binding, used.name, "set " + std::to_string(used.set) + " is not set 0 or 1");
+        if (used.set != kPassDescriptorSet) mismatch(pass, stage.shader, used.binding, used.name, "set " + std::to_string(used.set) + " is not set 0 or 1");
         const BindingDesc* declared = findBinding(bindings, used.binding);
         if (!declared) mismatch(pass, stage.shader, used.binding, used.name, "used by the shader but not declared by the pass");
         if (declared->type != used.type)

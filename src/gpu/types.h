@@ -62,6 +62,10 @@ struct SamplerDesc {
 // Shader stages, as a mask: which stages of a pipeline read a binding.
 enum ShaderStage : uint32_t { kStageVertex = 1, kStageFragment = 2, kStageCompute = 4 };
 
+// The descriptor sets of every pipeline: the pass's bindings (pushed), then the texture table.
+inline constexpr uint32_t kPassDescriptorSet = 0;
+inline constexpr uint32_t kTextureTableDescriptorSet = 1;
+
 // Set 0 of every pipeline is pushed per draw (VK_KHR_push_descriptor); set 1 optionally holds a
 // texture table (an array of sampled textures sized by specialization constant 0). Each pass declares
 // its set 0 once (render/pass_layouts.h, numbers from shaders/shared/pass_bindings.h); pipeline

@@ -3,6 +3,9 @@
 #include "core/error.h"
 #include "pass_bindings.h"
 
+static_assert(penumbra::gpu_data::kPassSet == penumbra::gpu::kPassDescriptorSet &&
+              penumbra::gpu_data::kTextureTableSet == penumbra::gpu::kTextureTableDescriptorSet);
+
 namespace penumbra {
 
 namespace {
