@@ -38,16 +38,16 @@ void clusterViewBox(uvec3 cluster, out vec3 vsMin, out vec3 vsMax) {
 // light_clusters.cpp lightTouchesViewBox: false only when the light adds nothing inside the box.
 bool clusterLightTouchesBox(LightData light, vec3 vsMin, vec3 vsMax) {
     vec3 vsLight = (clusters.viewFromWorld * vec4(light.wsPosition.xyz, 1.0)).xyz;
-    float inverseRangeSquared = light.wsPosition.w;
+    float inverseRangeSquared = light.invRangeSquared;
     bool ranged = inverseRangeSquared > 0.0;
     float range = ranged ? (1.0 + kClusterBoundsMargin) / sqrt(inverseRangeSquared) : 0.0;
     if (ranged) {
         vec3 offset = clamp(vsLight, vsMin, vsMax) - vsLight;
         if (dot(offset, offset) > range * range) return false;
     }
-    if (uint(light.colorIntensity.a) != kLightSpot) return true;
+    if (light.type != kLightSpot) return true;
     vec3 vsAxis = normalize(mat3(clusters.viewFromWorld) * -light.wsToLight.xyz);
-    float cosOuter = clamp(-light.spotAngles.y / light.spotAngles.x, -1.0, 1.0);
+    float cosOuter = clamp(-light.spotOffset / light.spotScale, -1.0, 1.0);
     float angle = min(acos(cosOuter) * (1.0 + kClusterBoundsMargin) + kClusterBoundsMargin, kPi);
     vec3 center = 0.5 * (vsMin + vsMax);
     float radius = 0.5 * length(vsMax - vsMin);

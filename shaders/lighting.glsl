@@ -52,9 +52,9 @@ float rangeAttenuation(float distanceSquared, float inverseRangeSquared) {
     return window * window / max(distanceSquared, 1e-4);
 }
 
-float spotAttenuation(vec3 wsFromLight, vec3 wsSpotDirection, vec4 spotAngles) {
+float spotAttenuation(vec3 wsFromLight, vec3 wsSpotDirection, float spotScale, float spotOffset) {
     float cd = dot(wsSpotDirection, wsFromLight);
-    float t = clamp(cd * spotAngles.x + spotAngles.y, 0.0, 1.0);
+    float t = clamp(cd * spotScale + spotOffset, 0.0, 1.0);
     return t * t;
 }
 #endif

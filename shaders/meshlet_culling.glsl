@@ -55,11 +55,11 @@ PENUMBRA_INLINE vec3 meshletObjectEye(mat4 worldFromObject, vec3 wsEye) {
 // cone test, dot(normalize(apex - eye), axis) >= cutoff. A triangle's facing is the sign of
 // dot(p - eye, n), which an affine transform keeps (times the sign of its determinant), so the test in
 // object space is the test in the world for instances that are not mirrored (the caller checks).
-PENUMBRA_INLINE bool meshletFacesAway(vec4 coneApex, vec4 coneAxis, vec3 osEye) {
-    float cutoff = coneAxis.w + kMeshletSlack;
+PENUMBRA_INLINE bool meshletFacesAway(vec3 coneApex, vec3 coneAxis, float coneCutoff, vec3 osEye) {
+    float cutoff = coneCutoff + kMeshletSlack;
     if (cutoff >= 1.0f) return false;
-    vec3 d = vec3(coneApex) - osEye;
-    return dot(d, vec3(coneAxis)) >= cutoff * length(d);
+    vec3 d = coneApex - osEye;
+    return dot(d, coneAxis) >= cutoff * length(d);
 }
 
 #ifdef __cplusplus

@@ -37,8 +37,8 @@ uint meshOfWorkItem(uint item, uint meshCount) {
 RasterVertex casterVertex(uint vertexIndex, mat4 clipFromObject) {
     VertexData vertex = vertices[vertexIndex];
     RasterVertex v;
-    v.clip = clipFromObject * vec4(vertex.osPositionU.xyz, 1.0);
-    v.uv = vec2(vertex.osPositionU.w, vertex.osNormalV.w);
+    v.clip = clipFromObject * vec4(vertex.osPosition, 1.0);
+    v.uv = vec2(vertex.u, vertex.v);
     return v;
 }
 

@@ -47,7 +47,7 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
     vec3 wsToLight = light.wsToLight.xyz;
     float attenuation = 1.0;
     ShadowSample shadow = ShadowSample(1.0, -1);
-    if (uint(light.colorIntensity.a) == kLightDirectional) {
+    if (light.type == kLightDirectional) {
         // Transparent surfaces are not in the depth prepass: they sample the atlas directly, as in URP.
         bool resolved = frame.screenSpaceShadows != 0u && light.shadowSlot == 0u && !pixel.blendPass &&
                         pixel.outputMode != kOutputCascadesAov;
@@ -59,14 +59,14 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
         vec3 wsOffset = light.wsPosition.xyz - pixel.surface.wsPosition;
         float distanceSquared = dot(wsOffset, wsOffset);
         wsToLight = wsOffset * inversesqrt(max(distanceSquared, 1e-8));
-        attenuation = rangeAttenuation(distanceSquared, light.wsPosition.w);
-        if (uint(light.colorIntensity.a) == kLightSpot)
-            attenuation *= spotAttenuation(-wsToLight, -light.wsToLight.xyz, light.spotAngles);
+        attenuation = rangeAttenuation(distanceSquared, light.invRangeSquared);
+        if (light.type == kLightSpot)
+            attenuation *= spotAttenuation(-wsToLight, -light.wsToLight, light.spotScale, light.spotOffset);
         if (pixel.receives) shadow = otherShadow(light.shadowSlot, pixel.receiver, wsToLight);
     }
     if (light.sceneLightIndex == frame.aovLightIndex) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
     float nDotL = max(dot(pixel.surface.wsNormal, wsToLight), 0.0);
-    return brdf(pixel.surface, wsToLight) * light.colorIntensity.rgb * (nDotL * attenuation * shadow.attenuation);
+    return brdf(pixel.surface, wsToLight) * light.color * (nDotL * attenuation * shadow.attenuation);
 }
 
 // The pixel's output: colour x exposure, tone mapped (render.toneMapping; alpha for blended draws), or

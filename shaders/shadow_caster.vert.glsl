@@ -18,7 +18,7 @@ void main() {
     VertexData vertex = vertices[gl_VertexIndex];
     uint instanceIndex = visibleInstances[gl_InstanceIndex];
     InstanceData instance = instances[instanceIndex];
-    outUv = vec2(vertex.osPositionU.w, vertex.osNormalV.w);
+    outUv = vec2(vertex.u, vertex.v);
     outInstance = instanceIndex;
-    gl_Position = caster.clipFromWorld * (instance.worldFromObject * vec4(vertex.osPositionU.xyz, 1.0));
+    gl_Position = caster.clipFromWorld * (instance.worldFromObject * vec4(vertex.osPosition, 1.0));
 }

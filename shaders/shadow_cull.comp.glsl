@@ -211,7 +211,7 @@ void main() {
     CullMesh mesh = cullMeshes[caster.meshSlot];
     if (materials[mesh.materialIndex].shadowMode == kShadowModeOff) return;
     CullTile tile = cull.tiles[tileIndex];
-    bool keep = uint(tile.frustumMin.w) == kCullTileDirectional ? directionalKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz)
+    bool keep = tile.kind == kCullTileDirectional ? directionalKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz)
                                                                : perspectiveKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz);
     if (!keep) return;
     uint slot = atomicAdd(listCounts[tileIndex * meshCount + caster.meshSlot], 1u);

@@ -41,7 +41,7 @@ void main() {
     uint instance = visibleInstances[tileIndex * instanceCount + mesh.firstListSlot + instanceInMesh];
     Meshlet meshlet = meshlets[mesh.firstMeshlet + local % mesh.meshletCount];
     CullTile tile = cull.tiles[tileIndex];
-    float slopeBias = tile.wsLightDirection.w;
+    float slopeBias = tile.slopeBias;
     if (gl_LocalInvocationID.x == 0u) {
         clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;
         // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.

@@ -40,7 +40,7 @@ bool skipMeshlet(Meshlet meshlet, uint instance, bool doubleSided) {
     mat4 worldFromObject = instances[instance].worldFromObject;
     if (doubleSided || determinant(mat3(worldFromObject)) <= 0.0) return false;
     vec3 osEye = meshletObjectEye(worldFromObject, frame.wsCameraPosition.xyz);
-    if (!meshletFacesAway(meshlet.coneApex, meshlet.coneAxis, osEye)) return false;
+    if (!meshletFacesAway(meshlet.coneApex.xyz, meshlet.coneAxis, meshlet.coneCutoff, osEye)) return false;
     atomicAdd(counters.meshletsFacingAway, 1u);
     return true;
 }

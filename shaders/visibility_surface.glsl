@@ -59,7 +59,7 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     mat3 clipRows;
     for (int i = 0; i < 3; ++i) {
         v[i] = vertices[uint(int(indices[mesh.firstIndex + triangle * 3u + uint(i)]) + mesh.vertexOffset)];
-        wsPositions[i] = (data.worldFromObject * vec4(v[i].osPositionU.xyz, 1.0)).xyz;
+        wsPositions[i] = (data.worldFromObject * vec4(v[i].osPosition, 1.0)).xyz;
         vec4 clip = frame.clipFromWorld * vec4(wsPositions[i], 1.0);
         clipRows[i] = clip.xyw;
     }
@@ -74,11 +74,11 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     vec3 bq = unclampedBarycentricsAt(edges, ndcQuad);
     vec3 bx = unclampedBarycentricsAt(edges, ndcQuad + vec2(ndcPerPixel.x, 0.0));
     vec3 by = unclampedBarycentricsAt(edges, ndcQuad + vec2(0.0, ndcPerPixel.y));
-    mat3x2 uvs = mat3x2(vec2(v[0].osPositionU.w, v[0].osNormalV.w), vec2(v[1].osPositionU.w, v[1].osNormalV.w),
-                        vec2(v[2].osPositionU.w, v[2].osNormalV.w));
+    mat3x2 uvs = mat3x2(vec2(v[0].u, v[0].v), vec2(v[1].u, v[1].v),
+                        vec2(v[2].u, v[2].v));
     vec2 uv = uvs * b;
     vec3 wsPosition = mat3(wsPositions[0], wsPositions[1], wsPositions[2]) * b;
-    vec3 osNormal = mat3(v[0].osNormalV.xyz, v[1].osNormalV.xyz, v[2].osNormalV.xyz) * b;
+    vec3 osNormal = mat3(v[0].osNormal, v[1].osNormal, v[2].osNormal) * b;
     vec3 wsNormal = normalize(mat3(data.normalFromObject) * osNormal);
     bool frontFacing = determinant(clipRows) < 0.0;  // visibility_raster.glsl facesShown
     if (!frontFacing) wsNormal = -wsNormal;

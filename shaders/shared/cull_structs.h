@@ -86,7 +86,8 @@ struct Meshlet {
     vec4 osMin;       // xyz: object-space bounds of its vertices; w unused
     vec4 osMax;
     vec4 coneApex;    // xyz: apex of its normal cone (meshopt_computeClusterBounds); w unused
-    vec4 coneAxis;    // xyz: the cone's axis; w = its cutoff (>= 1: the normals spread too far for a cone)
+    vec3 coneAxis;
+    float coneCutoff; // >= 1: the normals spread too far for a cone
     uint firstTriangle;  // counted from the mesh's first index / 3
     uint triangleCount;
     uint reserved0;
@@ -99,14 +100,17 @@ PENUMBRA_CHECK_LAYOUT(Meshlet, firstTriangle, 64)
 struct CullTile {
     mat4 lightFromWorld;  // directional: the cascade's light view (rotation + translation)
     vec4 planes[5];       // perspective: clip-frustum planes (shadows/spot_culling.h)
-    vec4 frustumMin;      // perspective: world bounds of the frustum; w = kind (kCullTile*)
-    vec4 frustumMax;
+    vec3 frustumMin;      // perspective: world bounds of the frustum
+    uint kind;            // kCullTile*
+    vec3 frustumMax;
+    float reserved0;
     // Directional: the cascade's half extent and far distance, its index, the blend culling factor.
     float halfExtent;
     float farDistance;
     float cascadeIndex;
     float blendCullingFactor;
-    vec4 wsLightDirection;  // directional: xyz = the way the light travels; w = slope-scale depth bias
+    vec3 wsLightDirection;  // directional: the way the light travels
+    float slopeBias;        // slope-scale depth bias
     // The compute rasterizer (shadow_raster.glsl): what the caster pass's vertex shader and viewport do.
     mat4 clipFromWorld;
     vec4 viewport;        // x, y, width, height in atlas texels
@@ -115,8 +119,11 @@ struct CullTile {
 PENUMBRA_CHECK_SIZE(CullTile, 304)
 PENUMBRA_CHECK_LAYOUT(CullTile, planes, 64)
 PENUMBRA_CHECK_LAYOUT(CullTile, frustumMin, 144)
+PENUMBRA_CHECK_LAYOUT(CullTile, kind, 156)
+PENUMBRA_CHECK_LAYOUT(CullTile, frustumMax, 160)
 PENUMBRA_CHECK_LAYOUT(CullTile, halfExtent, 176)
 PENUMBRA_CHECK_LAYOUT(CullTile, blendCullingFactor, 188)
+PENUMBRA_CHECK_LAYOUT(CullTile, slopeBias, 204)
 PENUMBRA_CHECK_LAYOUT(CullTile, clipFromWorld, 208)
 PENUMBRA_CHECK_LAYOUT(CullTile, viewport, 272)
 

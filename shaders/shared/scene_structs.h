@@ -62,16 +62,27 @@ PENUMBRA_CHECK_LAYOUT(FrameData, exposure, 240)
 PENUMBRA_CHECK_LAYOUT(FrameData, toneMapping, 252)
 
 struct LightData {
-    vec4 colorIntensity;  // rgb = colour x intensity, a = light type
-    vec4 wsPosition;      // xyz position (spot, point), w = 1 / range^2 (0 = infinite)
-    vec4 wsToLight;       // xyz unit vector toward the light (directional) / opposite of the spot axis
-    vec4 spotAngles;      // x = 1/(cos inner - cos outer), y = -cos outer * x (KHR_lights_punctual)
+    vec3 color;             // colour x intensity
+    uint type;              // kLight*
+    vec3 wsPosition;        // spot, point
+    float invRangeSquared;  // 1 / range^2 (0 = infinite)
+    vec3 wsToLight;         // unit vector toward the light (directional) / opposite of the spot axis
+    float reserved2;
+    float spotScale;        // 1 / (cos inner - cos outer)   (KHR_lights_punctual's spot attenuation)
+    float spotOffset;       // -cos outer * spotScale
+    float reserved3;
+    float reserved4;
     uint sceneLightIndex;
     uint shadowSlot;      // kNoShadowSlot = none
     uint reserved0;
     uint reserved1;
 };
 PENUMBRA_CHECK_SIZE(LightData, 80)
+PENUMBRA_CHECK_LAYOUT(LightData, type, 12)
+PENUMBRA_CHECK_LAYOUT(LightData, wsPosition, 16)
+PENUMBRA_CHECK_LAYOUT(LightData, invRangeSquared, 28)
+PENUMBRA_CHECK_LAYOUT(LightData, wsToLight, 32)
+PENUMBRA_CHECK_LAYOUT(LightData, spotScale, 48)
 PENUMBRA_CHECK_LAYOUT(LightData, sceneLightIndex, 64)
 PENUMBRA_CHECK_LAYOUT(LightData, shadowSlot, 68)
 
@@ -104,10 +115,14 @@ PENUMBRA_CHECK_LAYOUT(MaterialData, shadowMode, 44)
 
 // One vertex as the shaders pull it from the vertex storage buffer.
 struct VertexData {
-    vec4 osPositionU;  // xyz position, w = uv.x
-    vec4 osNormalV;    // xyz normal, w = uv.y
+    vec3 osPosition;
+    float u;  // texture coordinates
+    vec3 osNormal;
+    float v;
 };
 PENUMBRA_CHECK_SIZE(VertexData, 32)
+PENUMBRA_CHECK_LAYOUT(VertexData, u, 12)
+PENUMBRA_CHECK_LAYOUT(VertexData, osNormal, 16)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

@@ -61,7 +61,8 @@ gpu_data::Meshlet packMeshlet(const Meshlet& meshlet) {
     packed.osMin = glm::vec4(meshlet.osMin, 0.0f);
     packed.osMax = glm::vec4(meshlet.osMax, 0.0f);
     packed.coneApex = glm::vec4(meshlet.coneApex, 0.0f);
-    packed.coneAxis = glm::vec4(meshlet.coneAxis, meshlet.coneCutoff);
+    packed.coneAxis = meshlet.coneAxis;
+    packed.coneCutoff = meshlet.coneCutoff;
     packed.firstTriangle = meshlet.firstTriangle;
     packed.triangleCount = meshlet.triangleCount;
     return packed;
@@ -174,7 +175,7 @@ void GpuScene::create(const Scene& scene) {
         const std::vector<uint32_t>& meshIndices = meshletMeshes.back().indices;
         ranges.push_back({uint32_t(indices.size()), uint32_t(meshIndices.size()), int32_t(vertices.size())});
         for (const Vertex& v : mesh.vertices)
-            vertices.push_back({glm::vec4(v.osPosition, v.uv.x), glm::vec4(v.osNormal, v.uv.y)});
+            vertices.push_back({v.osPosition, v.uv.x, v.osNormal, v.uv.y});
         indices.insert(indices.end(), meshIndices.begin(), meshIndices.end());
     }
     std::vector<gpu_data::InstanceData> instances;

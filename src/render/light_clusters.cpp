@@ -78,8 +78,8 @@ ViewBox clusterViewBox(const gpu_data::LightClusterData& clusters, uint32_t tile
 }
 
 bool lightTouchesViewBox(const gpu_data::LightData& light, const glm::mat4& viewFromWorld, const ViewBox& box) {
-    const glm::vec3 vsLight = glm::vec3(viewFromWorld * glm::vec4(glm::vec3(light.wsPosition), 1.0f));
-    const float inverseRangeSquared = light.wsPosition.w;
+    const glm::vec3 vsLight = glm::vec3(viewFromWorld * glm::vec4(light.wsPosition, 1.0f));
+    const float inverseRangeSquared = light.invRangeSquared;
     const bool ranged = inverseRangeSquared > 0.0f;
     const float range = ranged ? (1.0f + kClusterBoundsMargin) / std::sqrt(inverseRangeSquared) : 0.0f;
     if (ranged) {  // the range sphere against the box
@@ -87,11 +87,11 @@ bool lightTouchesViewBox(const gpu_data::LightData& light, const glm::mat4& view
         const glm::vec3 offset = closest - vsLight;
         if (glm::dot(offset, offset) > range * range) return false;
     }
-    if (uint32_t(light.colorIntensity.a) != gpu_data::kLightSpot) return true;
+    if (light.type != gpu_data::kLightSpot) return true;
     // The cone (outer angle, grown) against the box's bounding sphere (Wronski's cone test): a lower
     // bound of the distance from the sphere's centre to the cone.
-    const glm::vec3 vsAxis = glm::normalize(glm::mat3(viewFromWorld) * -glm::vec3(light.wsToLight));
-    const float cosOuter = std::clamp(-light.spotAngles.y / light.spotAngles.x, -1.0f, 1.0f);
+    const glm::vec3 vsAxis = glm::normalize(glm::mat3(viewFromWorld) * -light.wsToLight);
+    const float cosOuter = std::clamp(-light.spotOffset / light.spotScale, -1.0f, 1.0f);
     const float angle = std::min(std::acos(cosOuter) * (1.0f + kClusterBoundsMargin) + kClusterBoundsMargin, 3.14159265f);
     const glm::vec3 center = 0.5f * (box.vsMin + box.vsMax);
     const float radius = 0.5f * glm::length(box.vsMax - box.vsMin);

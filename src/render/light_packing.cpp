@@ -10,15 +10,17 @@ gpu_data::LightData packLight(const Light& light, uint32_t sceneIndex, uint32_t 
     uint32_t type = gpu_data::kLightDirectional;
     if (light.type == LightType::Spot) type = gpu_data::kLightSpot;
     if (light.type == LightType::Point) type = gpu_data::kLightPoint;
-    data.colorIntensity = glm::vec4(light.color * light.intensity, float(type));
-    const float inverseRangeSquared = light.range > 0.0f ? 1.0f / (light.range * light.range) : 0.0f;
-    data.wsPosition = glm::vec4(light.wsPosition, inverseRangeSquared);
-    data.wsToLight = glm::vec4(-glm::normalize(light.wsDirection), 0.0f);
+    data.color = light.color * light.intensity;
+    data.type = type;
+    data.invRangeSquared = light.range > 0.0f ? 1.0f / (light.range * light.range) : 0.0f;
+    data.wsPosition = light.wsPosition;
+    data.wsToLight = -glm::normalize(light.wsDirection);
     // KHR_lights_punctual's recommended cone falloff: scale and offset on cos(angle).
     const float cosOuter = std::cos(light.outerConeAngle);
     const float cosInner = std::cos(std::min(light.innerConeAngle, light.outerConeAngle - 1e-4f));
     const float scale = 1.0f / std::max(1e-4f, cosInner - cosOuter);
-    data.spotAngles = glm::vec4(scale, -cosOuter * scale, 0.0f, 0.0f);
+    data.spotScale = scale;
+    data.spotOffset = -cosOuter * scale;
     data.sceneLightIndex = sceneIndex;
     data.shadowSlot = shadowSlot;
     return data;

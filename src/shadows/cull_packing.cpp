@@ -15,19 +15,19 @@ void packRaster(gpu_data::CullTile& packed, const ShadowTile& tile) {
     const uint32_t inset = tile.scissorInset;
     packed.scissor = glm::uvec4(tile.rect.offset.x + inset, tile.rect.offset.y + inset,
                                 tile.rect.offset.x + tile.rect.size - inset, tile.rect.offset.y + tile.rect.size - inset);
-    packed.wsLightDirection.w = tile.slopeScaleBias;
+    packed.slopeBias = tile.slopeScaleBias;
 }
 
 gpu_data::CullTile directionalTile(const ShadowTile& tile, float blendCullingFactor) {
     gpu_data::CullTile packed{};
     packed.lightFromWorld = tile.lightFromWorld;
-    packed.frustumMin.w = float(gpu_data::kCullTileDirectional);
+    packed.kind = gpu_data::kCullTileDirectional;
     packed.halfExtent = tile.lsHalfExtent;
     packed.farDistance = tile.farDistance;
     packed.cascadeIndex = float(tile.cascadeIndex);
     packed.blendCullingFactor = blendCullingFactor;
     // The light travels along -Z of its view: the third row of the rotation, negated (as caster_culling.cpp).
-    packed.wsLightDirection = glm::vec4(-tile.lightFromWorld[0][2], -tile.lightFromWorld[1][2], -tile.lightFromWorld[2][2], 0.0f);
+    packed.wsLightDirection = -glm::vec3(tile.lightFromWorld[0][2], tile.lightFromWorld[1][2], tile.lightFromWorld[2][2]);
     packRaster(packed, tile);
     return packed;
 }
@@ -37,8 +37,9 @@ gpu_data::CullTile perspectiveTile(const ShadowTile& tile) {
     const std::array<glm::vec4, 5> planes = clipFrustumPlanes(tile.clipFromWorld);
     for (size_t i = 0; i < planes.size(); ++i) packed.planes[i] = planes[i];
     const Aabb bounds = perspectiveFrustumBounds(tile.clipFromWorld, tile.wsApex);
-    packed.frustumMin = glm::vec4(bounds.min, float(gpu_data::kCullTilePerspective));
-    packed.frustumMax = glm::vec4(bounds.max, 0.0f);
+    packed.frustumMin = bounds.min;
+    packed.kind = gpu_data::kCullTilePerspective;
+    packed.frustumMax = bounds.max;
     packRaster(packed, tile);
     return packed;
 }

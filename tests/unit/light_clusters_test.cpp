@@ -38,17 +38,17 @@ glm::vec3 worldPointAt(const CameraView& view, float x, float y, float vsDepth) 
 
 // lighting.glsl rangeAttenuation x spotAttenuation: what the lit pass multiplies the light by.
 float shaderAttenuation(const gpu_data::LightData& light, const glm::vec3& wsPoint) {
-    const glm::vec3 offset = glm::vec3(light.wsPosition) - wsPoint;
+    const glm::vec3 offset = light.wsPosition - wsPoint;
     const float distanceSquared = glm::dot(offset, offset);
     float attenuation = 1.0f;
-    if (light.wsPosition.w > 0.0f) {
-        const float ratio = distanceSquared * light.wsPosition.w;
+    if (light.invRangeSquared > 0.0f) {
+        const float ratio = distanceSquared * light.invRangeSquared;
         const float window = std::clamp(1.0f - ratio * ratio, 0.0f, 1.0f);
         attenuation = window * window;
     }
-    if (uint32_t(light.colorIntensity.a) == gpu_data::kLightSpot) {
+    if (light.type == gpu_data::kLightSpot) {
         const glm::vec3 wsFromLight = -offset * (1.0f / std::sqrt(std::max(distanceSquared, 1e-8f)));
-        const float t = std::clamp(glm::dot(-glm::vec3(light.wsToLight), wsFromLight) * light.spotAngles.x + light.spotAngles.y,
+        const float t = std::clamp(glm::dot(-light.wsToLight, wsFromLight) * light.spotScale + light.spotOffset,
                                    0.0f, 1.0f);
         attenuation *= t * t;
     }

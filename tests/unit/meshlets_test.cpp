@@ -127,7 +127,7 @@ TEST(MeshletCulling, ConeTestSkipsOnlyMeshletsWhoseEveryTriangleFacesAway) {
             const glm::vec3 eye = center + glm::normalize(direction) * size * (0.6f + 2.0f * std::abs(unit(random)));
             for (const Meshlet& meshlet : split.meshlets) {
                 ++tested;
-                if (!mc::meshletFacesAway(glm::vec4(meshlet.coneApex, 0.0f), glm::vec4(meshlet.coneAxis, meshlet.coneCutoff), eye))
+                if (!mc::meshletFacesAway(meshlet.coneApex, meshlet.coneAxis, meshlet.coneCutoff, eye))
                     continue;
                 ++skipped;
                 for (uint32_t t = meshlet.firstTriangle; t < meshlet.firstTriangle + meshlet.triangleCount; ++t) {
