@@ -1,0 +1,115 @@
+#include "shadows/virtual_page_pool.h"
+
+#include <unordered_set>
+
+#include "core/error.h"
+
+namespace penumbra {
+
+size_t VirtualPageKeyHash::operator()(const VirtualPageKey& key) const {
+    uint64_t h = (uint64_t(key.map) << 40) ^ (uint64_t(uint32_t(key.page.x)) << 20) ^ uint64_t(uint32_t(key.page.y));
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    return size_t(h);
+}
+
+VirtualPagePool::VirtualPagePool(uint32_t capacity, uint32_t keepFrames) : capacity_(capacity), keepFrames_(keepFrames) {
+    free_.reserve(capacity);
+    for (uint32_t i = capacity; i > 0; --i) free_.push_back(i - 1);  // page 0 is handed out first
+}
+
+VirtualPageFrame VirtualPagePool::update(std::span<const VirtualPageKey> requests) {
+    ++frame_;
+    VirtualPageFrame frame;
+    freeIdlePages(frame);
+    // Resident requests first, so that no page this frame requests is taken for another.
+    std::vector<VirtualPageKey> missing;
+    std::unordered_set<VirtualPageKey, VirtualPageKeyHash> seen;
+    for (const VirtualPageKey& key : requests) {
+        if (!seen.insert(key).second) continue;
+        ++frame.requested;
+        const auto found = pages_.find(key);
+        if (found == pages_.end()) {
+            missing.push_back(key);
+            continue;
+        }
+        found->second.lastRequested = frame_;
+        ++frame.cached;
+        frame.toDraw += found->second.dirty ? 1u : 0u;
+    }
+    for (const VirtualPageKey& key : missing) {
+        if (allocate(key, frame)) {
+            ++frame.allocated;
+            ++frame.toDraw;
+        } else {
+            ++frame.overflowed;
+        }
+    }
+    return frame;
+}
+
+// A free physical page, or the one of the least recently requested page not requested this frame.
+bool VirtualPagePool::allocate(const VirtualPageKey& key, VirtualPageFrame& frame) {
+    uint32_t physical = 0;
+    if (!free_.empty()) {
+        physical = free_.back();
+        free_.pop_back();
+    } else {
+        auto victim = pages_.end();
+        for (auto it = pages_.begin(); it != pages_.end(); ++it)
+            if (it->second.lastRequested < frame_ &&
+                (victim == pages_.end() || it->second.lastRequested < victim->second.lastRequested))
+                victim = it;
+        if (victim == pages_.end()) return false;
+        physical = victim->second.physical;
+        pages_.erase(victim);
+        ++frame.evicted;
+    }
+    pages_[key] = Entry{physical, frame_, true};
+    return true;
+}
+
+void VirtualPagePool::freeIdlePages(VirtualPageFrame& frame) {
+    for (auto it = pages_.begin(); it != pages_.end();) {
+        if (frame_ - it->second.lastRequested > keepFrames_) {
+            free_.push_back(it->second.physical);
+            it = pages_.erase(it);
+            ++frame.evicted;
+        } else {
+            ++it;
+        }
+    }
+}
+
+std::optional<uint32_t> VirtualPagePool::physicalPage(const VirtualPageKey& key) const {
+    const auto found = pages_.find(key);
+    if (found == pages_.end()) return std::nullopt;
+    return found->second.physical;
+}
+
+bool VirtualPagePool::needsDraw(const VirtualPageKey& key) const {
+    const auto found = pages_.find(key);
+    return found != pages_.end() && found->second.dirty;
+}
+
+void VirtualPagePool::markDrawn(const VirtualPageKey& key) {
+    const auto found = pages_.find(key);
+    PENUMBRA_ASSERT(found != pages_.end());
+    if (found != pages_.end()) found->second.dirty = false;
+}
+
+void VirtualPagePool::invalidateMap(uint32_t map) {
+    for (auto& [key, entry] : pages_)
+        if (key.map == map) entry.dirty = true;
+}
+
+void VirtualPagePool::invalidatePages(uint32_t map, const PageRect& pages) {
+    if (pages.empty()) return;
+    for (auto& [key, entry] : pages_)
+        if (key.map == map && key.page.x >= pages.min.x && key.page.x <= pages.max.x && key.page.y >= pages.min.y &&
+            key.page.y <= pages.max.y)
+            entry.dirty = true;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,89 @@
+#pragma once
+// The physical page pool of the virtual shadow maps, as rules on the CPU: which virtual page owns which
+// physical page, which pages must be drawn, which are kept. The GPU allocator follows these rules and
+// its tests compare against this class; the renderer never reads the GPU's state back.
+//
+// Each frame the visible receivers request pages (virtual_clipmap.h receiverPages). A requested page
+// that is resident is cached: it keeps its physical page and is drawn again only when it is dirty. A
+// requested page that is not resident takes a free physical page, or else the least recently
+// requested resident page that this frame did not request; it starts dirty. When neither exists the
+// request overflows (the caller serves those receivers from a coarser level and reports it): requests
+// are served in the order given, so callers list the coarse levels first. A resident page nobody
+// requested for more than keepFrames frames is freed (Unreal keeps unrequested pages a few frames).
+//
+// Dirty pages: newly allocated ones, and those invalidated since they were drawn (a light that
+// changed invalidates its maps, a caster that moved the pages its old and new bounds touch).
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "shadows/virtual_clipmap.h"
+
+namespace penumbra {
+
+// A virtual page: which map (a directional light's clipmap level, a spot light's mip, a point light's
+// face and mip: the caller numbers them) and the page's global coordinates in it.
+struct VirtualPageKey {
+    uint32_t map = 0;
+    glm::ivec2 page{0};
+    bool operator==(const VirtualPageKey&) const = default;
+};
+
+struct VirtualPageKeyHash {
+    size_t operator()(const VirtualPageKey& key) const;
+};
+
+// What one frame's update did.
+struct VirtualPageFrame {
+    uint32_t requested = 0;   // distinct pages requested
+    uint32_t cached = 0;      // requested and already resident
+    uint32_t allocated = 0;   // requested, not resident, given a physical page
+    uint32_t evicted = 0;     // resident pages given to another page or freed after keepFrames
+    uint32_t overflowed = 0;  // requested pages that found no physical page
+    uint32_t toDraw = 0;      // requested pages that are dirty (allocated or invalidated)
+};
+
+class VirtualPagePool {
+public:
+    VirtualPagePool(uint32_t capacity, uint32_t keepFrames);
+
+    // Starts a new frame with these requests (duplicates count once).
+    VirtualPageFrame update(std::span<const VirtualPageKey> requests);
+
+    std::optional<uint32_t> physicalPage(const VirtualPageKey& key) const;
+    bool resident(const VirtualPageKey& key) const { return pages_.contains(key); }
+    // Resident and dirty: its contents must be drawn before it is sampled.
+    bool needsDraw(const VirtualPageKey& key) const;
+    void markDrawn(const VirtualPageKey& key);
+
+    // Every resident page of `map` becomes dirty (its light changed).
+    void invalidateMap(uint32_t map);
+    // The resident pages of `map` inside `pages` become dirty (a caster that moved touched them).
+    void invalidatePages(uint32_t map, const PageRect& pages);
+
+    uint32_t capacity() const { return capacity_; }
+    uint32_t residentCount() const { return uint32_t(pages_.size()); }
+
+private:
+    struct Entry {
+        uint32_t physical = 0;
+        uint64_t lastRequested = 0;  // the frame that last requested it
+        bool dirty = true;
+    };
+    bool allocate(const VirtualPageKey& key, VirtualPageFrame& frame);
+    void freeIdlePages(VirtualPageFrame& frame);
+
+    uint32_t capacity_ = 0;
+    uint32_t keepFrames_ = 0;
+    uint64_t frame_ = 0;
+    std::unordered_map<VirtualPageKey, Entry, VirtualPageKeyHash> pages_;
+    std::vector<uint32_t> free_;  // physical pages, popped from the back
+};
+
+}  // namespace penumbra
