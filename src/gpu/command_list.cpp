@@ -97,12 +97,29 @@ void CommandList::bindPipeline(PipelineHandle pipeline) {
     boundPipeline = pipeline;
 }
 
+std::string_view CommandList::joinName(std::string_view prefix, std::string_view suffix) {
+    std::string& name = impl(*this).scratchName;
+    name.assign(prefix).append(suffix);
+    return name;
+}
+
+std::span<const ResourceUse> CommandList::joinUses(std::span<const ResourceUse> first,
+                                                   std::initializer_list<ResourceUse> more) {
+    std::vector<ResourceUse>& uses = impl(*this).scratchUses;
+    uses.assign(first.begin(), first.end());
+    uses.insert(uses.end(), more);
+    return uses;
+}
+
 void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
     Device::Impl& d = impl(*this);
     const PipelineResource& p = d.pipelines.at(boundPipeline.id);
-    std::vector<VkWriteDescriptorSet> vkWrites;
-    std::vector<VkDescriptorBufferInfo> bufferInfos(writes.size());
-    std::vector<VkDescriptorImageInfo> imageInfos(writes.size());
+    std::vector<VkWriteDescriptorSet>& vkWrites = d.scratchWrites;
+    std::vector<VkDescriptorBufferInfo>& bufferInfos = d.scratchBufferInfos;
+    std::vector<VkDescriptorImageInfo>& imageInfos = d.scratchImageInfos;
+    vkWrites.clear();
+    bufferInfos.resize(std::max(bufferInfos.size(), writes.size()));  // sized first: writes point into them
+    imageInfos.resize(std::max(imageInfos.size(), writes.size()));
     for (size_t i = 0; i < writes.size(); ++i) {
         const DescriptorWrite& w = writes[i];
         const auto declared = std::find_if(p.bindings.begin(), p.bindings.end(),
@@ -237,14 +254,16 @@ void CommandList::clearBuffer(BufferHandle buffer, uint32_t value) {
     vkCmdFillBuffer(native(*this), impl(*this).buffers.at(buffer.id).buffer, 0, VK_WHOLE_SIZE, value);
 }
 
-void CommandList::beginTimer(const std::string& name) {
+void CommandList::beginTimer(std::string_view name) {
     Device::Impl& d = impl(*this);
-    if (queryBase == ~0u || (timerNames.size() + 1) * 2 > queryCapacity) {
+    if (queryBase == ~0u || (timerCount + 1) * 2 > queryCapacity) {
         openTimers.push_back(~0u);  // no room: this timer records nothing
         return;
     }
-    openTimers.push_back(uint32_t(timerNames.size()));
-    timerNames.push_back(name);
+    openTimers.push_back(timerCount);
+    if (timerCount < timerNames.size()) timerNames[timerCount].assign(name);
+    else timerNames.emplace_back(name);
+    ++timerCount;
     vkCmdWriteTimestamp2(native(*this), VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool,
                          queryBase + openTimers.back() * 2);
 }

@@ -22,6 +22,10 @@ public:
     void pass(std::string_view name, std::initializer_list<ResourceUse> uses) {
         pass(name, std::span<const ResourceUse>(uses.begin(), uses.size()));
     }
+    // Scratch for building a pass's name and uses without a heap allocation once warm: the result
+    // stays valid until the next call of the same function on any CommandList of the Device.
+    std::string_view joinName(std::string_view prefix, std::string_view suffix);
+    std::span<const ResourceUse> joinUses(std::span<const ResourceUse> first, std::initializer_list<ResourceUse> more);
     void beginRendering(const RenderingDesc& desc);
     void endRendering();
     void bindPipeline(PipelineHandle pipeline);
@@ -62,14 +66,15 @@ public:
     // GPU timestamps around a named pass (timers nest: a pass may time its steps inside its own
     // timer); results in Device::takeCompletedFrames() once the frame is done. One-off command lists
     // (Device::beginCommands) record none.
-    void beginTimer(const std::string& name);
+    void beginTimer(std::string_view name);
     void endTimer();
 
     // Internal: the Device fills these.
     Device* device = nullptr;
     void* nativeCommandBuffer = nullptr;
     PipelineHandle boundPipeline;
-    std::vector<std::string> timerNames;
+    std::vector<std::string> timerNames;  // the first timerCount are this list's (storage reused)
+    uint32_t timerCount = 0;
     std::vector<uint32_t> openTimers;  // nested timers, innermost last
     uint32_t queryBase = ~0u;  // first timestamp query of this list's range, ~0u = no timers
     uint32_t queryCapacity = 0;

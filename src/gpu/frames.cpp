@@ -16,16 +16,17 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-// "frame 3 (passes shadows.directional, main)": what a submission held, for error messages.
-std::string describeFrame(uint64_t frameIndex, const std::vector<std::string>& passes) {
-    std::string text = "frame " + std::to_string(frameIndex);
-    if (passes.empty()) return text;
-    text += " (passes ";
-    for (size_t i = 0; i < passes.size(); ++i) text += (i ? ", " : "") + passes[i];
-    return text + ")";
-}
-
 }  // namespace
+
+// "frame 3 (passes shadows.directional, main)": what a submission held, for error messages.
+std::string Device::Impl::SubmissionName::describe() const {
+    if (!text.empty()) return std::string(text);
+    std::string described = "frame " + std::to_string(frameIndex);
+    if (passes.empty()) return described;
+    described += " (passes ";
+    for (size_t i = 0; i < passes.size(); ++i) described += (i ? ", " : "") + passes[i];
+    return described + ")";
+}
 
 // ---- device loss
 
@@ -45,26 +46,26 @@ void Device::Impl::throwIfLost() const {
     if (lost) throw Error("GPU device lost earlier (" + lostAt + "); the device can't be used any more");
 }
 
-void Device::Impl::queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const std::string& what) {
+void Device::Impl::queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const SubmissionName& what) {
     throwIfLost();
     ++submissionCalls;
     const uint64_t injected = options.faults.loseDeviceAtSubmit;
     const VkResult result = submissionCalls == injected ? VK_ERROR_DEVICE_LOST : vkQueueSubmit2(queue, 1, &submit, fence);
-    if (result == VK_ERROR_DEVICE_LOST) throwLost("submitting " + what, result);
+    if (result == VK_ERROR_DEVICE_LOST) throwLost("submitting " + what.describe(), result);
     if (result != VK_SUCCESS)
-        throw Error("Vulkan call failed: vkQueueSubmit2 (" + what + ") returned " + vkResultName(result));
+        throw Error("Vulkan call failed: vkQueueSubmit2 (" + what.describe() + ") returned " + vkResultName(result));
     ++submits;
 }
 
-void Device::Impl::waitForFence(VkFence fence, const std::string& what) {
+void Device::Impl::waitForFence(VkFence fence, const SubmissionName& what) {
     throwIfLost();
     ++fenceWaits;
     const uint64_t injected = options.faults.loseDeviceAtWait;
     const VkResult result =
         fenceWaits == injected ? VK_ERROR_DEVICE_LOST : vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
-    if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what, result);
+    if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what.describe(), result);
     if (result != VK_SUCCESS)
-        throw Error("Vulkan call failed: vkWaitForFences (" + what + ") returned " + vkResultName(result));
+        throw Error("Vulkan call failed: vkWaitForFences (" + what.describe() + ") returned " + vkResultName(result));
 }
 
 void Device::Impl::createFrames(uint32_t count) {
@@ -113,13 +114,13 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         // Nothing of a lost device is waited for (throwLost waited once for all): the frame is
         // dropped, its objects freed.
         frame.inFlight = false;
-        frame.timerNames.clear();
+        frame.timerCount = 0;
         frame.readbackRanges.clear();
         destroyGarbage(frame.garbage);
         return;
     }
     try {
-        waitForFence(frame.fence, describeFrame(frame.frameIndex, frame.timerNames));
+        waitForFence(frame.fence, {{}, frame.frameIndex, std::span(frame.timerNames.data(), frame.timerCount)});
     } catch (const Error&) {
         retireFrame(frame);  // lost now: drop it as above
         throw;
@@ -130,13 +131,14 @@ void Device::Impl::retireFrame(FrameContext& frame) {
     if (timestampsSupported) {
         const uint32_t slot = uint32_t(&frame - frames.data());
         const double msPerTick = double(properties.limits.timestampPeriod) * 1e-6;
-        const uint32_t queryCount = uint32_t(frame.timerNames.size()) * 2;
-        std::vector<uint64_t> ticks(std::max<uint32_t>(queryCount, 1));
+        const uint32_t queryCount = frame.timerCount * 2;
+        std::vector<uint64_t>& ticks = scratchTicks;
+        ticks.resize(std::max<size_t>({ticks.size(), queryCount, 1}));
         if (queryCount > 0)
             VK_CHECK(vkGetQueryPoolResults(device, timestampPool, slot * timestampsPerFrame, queryCount,
-                                           ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                           queryCount * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-        for (size_t i = 0; i < frame.timerNames.size(); ++i)
+        for (size_t i = 0; i < frame.timerCount; ++i)
             done.timings.push_back({frame.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
         uint64_t whole[2] = {};
         VK_CHECK(vkGetQueryPoolResults(device, timestampPool, (slot + 1) * timestampsPerFrame - 2, 2, sizeof(whole),
@@ -150,7 +152,7 @@ void Device::Impl::retireFrame(FrameContext& frame) {
     frame.readbackRanges.clear();
     completed.push_back(std::move(done));
     frame.inFlight = false;
-    frame.timerNames.clear();
+    frame.timerCount = 0;
     destroyGarbage(frame.garbage);
 }
 
@@ -180,6 +182,9 @@ CommandList Device::beginFrame() {
     CommandList commands;
     commands.device = this;
     commands.nativeCommandBuffer = frame.commandBuffer;
+    commands.timerNames.swap(frame.timerNames);  // lent while it records (submitFrame gives them back)
+    commands.openTimers.swap(frame.openTimers);
+    commands.openTimers.clear();
     if (d.timestampsSupported) {
         // The slot's last two queries time the whole frame (submitFrame writes the end).
         commands.queryBase = slot * d.timestampsPerFrame;
@@ -266,9 +271,12 @@ uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) 
     }
     VK_CHECK(vkResetFences(d.device, 1, &frame.fence));
     frame.submitTime = std::chrono::steady_clock::now();
-    d.queueSubmit(submit, frame.fence, describeFrame(frame.frameIndex, commands.timerNames));
+    d.queueSubmit(submit, frame.fence, {{}, frame.frameIndex, std::span(commands.timerNames.data(), commands.timerCount)});
     frame.inFlight = true;
-    frame.timerNames = std::move(commands.timerNames);
+    frame.timerNames.swap(commands.timerNames);
+    frame.timerCount = commands.timerCount;
+    frame.openTimers.swap(commands.openTimers);
+    commands.timerCount = 0;
     // Objects destroyed since the last submit may be used by frames before this one: they go when
     // this frame (the latest on the queue) is done.
     Garbage& garbage = frame.garbage;
@@ -307,8 +315,10 @@ void Device::abandonFrame(CommandList& commands) {
     append(d.pendingGarbage.tables, garbage.tables);
     d.recordingSlot = -1;
     commands.nativeCommandBuffer = nullptr;
-    commands.timerNames.clear();
-    commands.openTimers.clear();
+    frame.timerNames.swap(commands.timerNames);
+    frame.timerCount = 0;
+    frame.openTimers.swap(commands.openTimers);
+    commands.timerCount = 0;
 }
 
 void Device::waitFrame(uint64_t frameIndex) {
@@ -376,9 +386,9 @@ void Device::Impl::endImmediate(VkCommandBuffer commandBuffer) {
     submit.commandBufferInfoCount = 1;
     submit.pCommandBufferInfos = &commandInfo;
     VK_CHECK(vkResetFences(device, 1, &immediateFence));
-    queueSubmit(submit, immediateFence, "a one-off submission (uploads or readback)");
+    queueSubmit(submit, immediateFence, {"a one-off submission (uploads or readback)"});
     ++deviceWaits;
-    waitForFence(immediateFence, "a one-off submission (uploads or readback)");
+    waitForFence(immediateFence, {"a one-off submission (uploads or readback)"});
 }
 
 CommandList Device::beginCommands() {

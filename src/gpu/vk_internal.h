@@ -6,7 +6,9 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <span>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <unordered_map>
 #include <vector>
@@ -94,7 +96,12 @@ struct FrameContext {
     bool inFlight = false;
     uint64_t frameIndex = 0;
     std::chrono::steady_clock::time_point submitTime;
+    // The timers of the frame it holds (the first timerCount names), lent to the frame's CommandList
+    // while it records and kept with their strings' storage from frame to frame (no allocation once
+    // warm).
     std::vector<std::string> timerNames;
+    uint32_t timerCount = 0;
+    std::vector<uint32_t> openTimers;
     Garbage garbage;
     // Upload ring: one host-visible buffer per slot, bump-allocated, reset when the slot is reused.
     BufferHandle uploadBuffer;
@@ -194,10 +201,25 @@ struct Device::Impl {
     uint64_t fenceWaits = 0;       // waits for a submission (fault injection counts these)
     [[noreturn]] void throwLost(const std::string& where, VkResult result);
     void throwIfLost() const;
+    // What a submission holds, spelled out only for an error message ("frame 3 (passes
+    // shadows.directional, main)" or a fixed text): a frame's submission allocates nothing.
+    struct SubmissionName {
+        std::string_view text;  // a fixed description; empty for a frame
+        uint64_t frameIndex = 0;
+        std::span<const std::string> passes;
+        std::string describe() const;
+    };
     // vkQueueSubmit2 / vkWaitForFences through the loss checks and the fault injection; `what`
-    // names the work in the error ("frame 3 (passes shadows.directional, main)").
-    void queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const std::string& what);
-    void waitForFence(VkFence fence, const std::string& what);
+    // names the work in the error.
+    void queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const SubmissionName& what);
+    void waitForFence(VkFence fence, const SubmissionName& what);
+    // Scratch of CommandList::pushDescriptors (capacity kept: no allocation per pass once warm).
+    std::vector<VkWriteDescriptorSet> scratchWrites;
+    std::vector<VkDescriptorBufferInfo> scratchBufferInfos;
+    std::vector<VkDescriptorImageInfo> scratchImageInfos;
+    std::vector<uint64_t> scratchTicks;
+    std::string scratchName;               // CommandList::joinName
+    std::vector<ResourceUse> scratchUses;  // CommandList::joinUses
 
     mutable std::mutex messagesMutex;
     std::vector<std::string> validationMessages;

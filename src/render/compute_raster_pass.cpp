@@ -28,20 +28,19 @@ void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passN
                               gpu::BufferHandle counters, uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity) {
     commands.pass(passName, {gpu::use(counters, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(args);
-    commands.pushDescriptors(std::vector<gpu::DescriptorWrite>{{gpu_data::kRasterBindingCounters, counters, {}, {}}});
+    const gpu::DescriptorWrite write{gpu_data::kRasterBindingCounters, counters, {}, {}};
+    commands.pushDescriptors(std::span(&write, 1));
     const gpu_data::RasterArgsConstants constants{queue, largeCapacity, chunkCapacity};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(1, 1);
 }
 
-std::vector<gpu::ResourceUse> rasterReads(const GpuScene& scene, const ShadowCullingPass& culling) {
+void rasterReads(const GpuScene& scene, const ShadowCullingPass& culling, std::vector<gpu::ResourceUse>& uses) {
     using gpu::Usage;
-    std::vector<gpu::ResourceUse> uses = {
-        gpu::use(scene.cullMeshBuffer(), Usage::ComputeRead), gpu::use(scene.indexBuffer(), Usage::ComputeRead),
-        gpu::use(scene.meshletBuffer(), Usage::ComputeRead), gpu::use(culling.listCounts(), Usage::ComputeRead),
-        gpu::use(culling.visibleInstances(), Usage::ComputeRead)};
+    uses.assign({gpu::use(scene.cullMeshBuffer(), Usage::ComputeRead), gpu::use(scene.indexBuffer(), Usage::ComputeRead),
+                 gpu::use(scene.meshletBuffer(), Usage::ComputeRead), gpu::use(culling.listCounts(), Usage::ComputeRead),
+                 gpu::use(culling.visibleInstances(), Usage::ComputeRead)});
     scene.addSceneReads(uses, Usage::ComputeRead);
-    return uses;
 }
 
 void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const GpuScene& gpuScene,
@@ -113,15 +112,18 @@ void ComputeRasterPass::destroyAll() {
 void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling,
                                const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
-                               gpu::BufferHandle depth, bool meshletCulling, const std::string& timerPrefix) {
+                               gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix) {
     using gpu::Usage;
+    // Step names: timerPrefix + step, built in timer_ (a timer keeps its own copy).
+    auto stepName = [&](std::string_view step) -> std::string_view { return timer_.assign(timerPrefix).append(step); };
     if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the atlas stays as it is
-        commands.pass(timerPrefix + "/clear", {gpu::use(counters_, Usage::TransferWrite)});
+        commands.pass(stepName("/clear"), {gpu::use(counters_, Usage::TransferWrite)});
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
         return;
     }
     const uint32_t tileCount = uint32_t(tiles.rects.size());
-    std::vector<gpu::DescriptorWrite> rasterWrites = writes;
+    std::vector<gpu::DescriptorWrite>& rasterWrites = writes_;
+    rasterWrites.assign(writes.begin(), writes.end());
     using namespace gpu_data;
     rasterWrites.push_back({kShadowRasterBindingCullFrame, cullFrame});
     rasterWrites.push_back({kShadowRasterBindingAtlasDepth, gpu::BufferSlice{depth, 0, uint64_t(atlasSize) * atlasSize * 4}});
@@ -135,39 +137,36 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
         commands.pushConstants(&constants, sizeof(constants));
     };
 
-    commands.beginTimer(timerPrefix + "/clear");
-    std::vector<gpu::ResourceUse> clears = {gpu::use(counters_, Usage::TransferWrite)};
-    if (tiles.freshAtlas) clears.push_back(gpu::use(depth, Usage::TransferWrite));
-    commands.pass(timerPrefix + "/clear", clears);
+    commands.beginTimer(stepName("/clear"));
+    const gpu::ResourceUse clears[2] = {gpu::use(counters_, Usage::TransferWrite), gpu::use(depth, Usage::TransferWrite)};
+    commands.pass(stepName("/clear"), std::span(clears, tiles.freshAtlas ? 2 : 1));
     if (tiles.freshAtlas) commands.fillBuffer(depth, kFarDepthBits);
     commands.fillBuffer(counters_, 0);
     if (!tiles.freshAtlas && tileCount > 0) {
         uint32_t largest = 0;
         for (const gpu::Rect& r : tiles.rects) largest = std::max({largest, r.width, r.height});
-        commands.pass(timerPrefix + "/clear tiles", {gpu::use(depth, Usage::ComputeWrite)});
+        commands.pass(stepName("/clear tiles"), {gpu::use(depth, Usage::ComputeWrite)});
         bind(clear_);
         commands.dispatch((largest + 15) / 16, (largest + 15) / 16, tileCount);
     }
     commands.endTimer();
     if (tileCount > 0) {
-        const std::vector<gpu::ResourceUse> reads = rasterReads(scene_, culling);
+        rasterReads(scene_, culling, reads_);
         auto pass = [&](const char* step, std::initializer_list<gpu::ResourceUse> more) {
-            std::vector<gpu::ResourceUse> uses = reads;
-            uses.insert(uses.end(), more);
-            commands.pass(timerPrefix + step, uses);
+            commands.pass(stepName(step), commands.joinUses(reads_, more));
         };
         auto sizeDispatch = [&](const char* step, uint32_t queue) {
-            recordRasterDispatchSize(commands, timerPrefix + step, args_, counters_, queue, largeCapacity_, chunkCapacity_);
+            recordRasterDispatchSize(commands, stepName(step), args_, counters_, queue, largeCapacity_, chunkCapacity_);
         };
         const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
-        commands.beginTimer(timerPrefix + "/instances");
+        commands.beginTimer(stepName("/instances"));
         pass("/instances", {gpu::use(depth, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                             gpu::use(large_, Usage::ComputeWrite)});
         bind(small_);
         commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
                           (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth, tileCount);
         commands.endTimer();
-        commands.beginTimer(timerPrefix + "/chunks");
+        commands.beginTimer(stepName("/chunks"));
         sizeDispatch("/bin size", kRasterArgsLarge);
         pass("/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
                       gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
@@ -181,9 +180,9 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
         commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
         commands.endTimer();
     }
-    commands.beginTimer(timerPrefix + "/copy");
+    commands.beginTimer(stepName("/copy"));
     // A fresh atlas is copied whole; else only the drawn tiles (the cached ones keep their depth).
-    commands.pass(timerPrefix + "/copy", {gpu::use(depth, Usage::TransferRead),
+    commands.pass(stepName("/copy"), {gpu::use(depth, Usage::TransferRead),
                                           tiles.freshAtlas ? gpu::discard(atlas, Usage::TransferWrite)
                                                            : gpu::use(atlas, Usage::TransferWrite)});
     if (tiles.freshAtlas) commands.copyBufferToTexture(depth, atlas);

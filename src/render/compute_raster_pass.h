@@ -20,8 +20,8 @@ gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* de
 void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passName, gpu::PipelineHandle args,
                               gpu::BufferHandle counters, uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity);
 // The buffers every rasterizer dispatch may read: the scene's, the meshes, indices and meshlets, and
-// the culled lists.
-std::vector<gpu::ResourceUse> rasterReads(const GpuScene& scene, const ShadowCullingPass& culling);
+// the culled lists (into `uses`, emptied first: its storage is reused frame to frame).
+void rasterReads(const GpuScene& scene, const ShadowCullingPass& culling, std::vector<gpu::ResourceUse>& uses);
 struct RasterQueues {
     gpu::BufferHandle counters, large, chunks;
 };
@@ -50,7 +50,7 @@ public:
     void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                 const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling, const AtlasTiles& tiles,
                 gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling,
-                const std::string& timerPrefix);
+                std::string_view timerPrefix);
     // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles and
     // skipped meshlets.
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
@@ -66,6 +66,10 @@ private:
     gpu::PipelineHandle clear_, small_, bin_, chunks_, args_;
     gpu::BufferHandle counters_, large_, chunkList_;
     uint32_t largeCapacity_ = 0, chunkCapacity_ = 0;
+    // Per-record scratch, kept so that a steady frame allocates nothing.
+    std::vector<gpu::DescriptorWrite> writes_;
+    std::vector<gpu::ResourceUse> reads_;
+    std::string timer_;
 };
 
 }  // namespace penumbra

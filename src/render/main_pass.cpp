@@ -151,7 +151,10 @@ void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const Dra
 void MainPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                       const MainPassInputs& inputs, const Target& target) {
     const PipelineSet& set = pipelinesFor(target);
-    std::vector<const DrawItem*> opaque, blended;
+    std::vector<const DrawItem*>& opaque = opaque_;  // members: their storage is reused frame to frame
+    std::vector<const DrawItem*>& blended = blended_;
+    opaque.clear();
+    blended.clear();
     for (const DrawItem& item : scene_.draws()) {
         const bool isBlend = scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend;
         if (isBlend) {
@@ -160,13 +163,17 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
             opaque.push_back(&item);
         }
     }
-    // Transparent draws back to front by the distance of their bounds' centre to the camera.
+    // Transparent draws back to front by the distance of their bounds' centre to the camera, equal
+    // distances in scene order (std::sort with that tie-break: stable_sort would allocate a buffer).
     auto distance = [&](const DrawItem* item) {
         return glm::length(scene.instances[item->instanceIndex].wsBounds.center() - view.wsPosition);
     };
-    std::stable_sort(blended.begin(), blended.end(), [&](auto* a, auto* b) { return distance(a) > distance(b); });
+    std::sort(blended.begin(), blended.end(), [&](auto* a, auto* b) {
+        const float da = distance(a), db = distance(b);
+        return da != db ? da > db : a < b;
+    });
 
-    gpu::RenderingDesc rendering;
+    gpu::RenderingDesc& rendering = rendering_;
     rendering.width = target.width;
     rendering.height = target.height;
     gpu::ColorAttachment color;
@@ -176,7 +183,7 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     rendering.colors = {color};
     rendering.depth = {target.depth, !target.opaqueDone, 0.0f};
     using gpu::Usage;
-    std::vector<gpu::ResourceUse> uses;
+    std::vector<gpu::ResourceUse>& uses = uses_;
     if (target.opaqueDone) {
         uses = {gpu::use(target.color, Usage::ColorTarget), gpu::use(target.depth, Usage::DepthTarget)};
     } else {  // cleared

@@ -96,6 +96,10 @@ private:
     PipelineWarmup warmup_;
     std::map<PipelineKey, PipelineSet> pipelineSets_;
     std::map<gpu::Format, gpu::PipelineHandle> backgrounds_;  // by colour format
+    // Per-record scratch, kept so that a steady frame allocates nothing.
+    std::vector<const DrawItem*> opaque_, blended_;
+    std::vector<gpu::ResourceUse> uses_;
+    gpu::RenderingDesc rendering_;
 };
 
 }  // namespace penumbra

@@ -160,9 +160,10 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
         recording.stage = name;
         commands.beginTimer(name);
         if (frame.computeRaster) {
-            ComputeRasterPass::AtlasTiles atlasTiles;
+            ComputeRasterPass::AtlasTiles& atlasTiles = atlasTilesScratch;  // its rects' storage is reused
             atlasTiles.listOffset = listOffset;
             atlasTiles.freshAtlas = fresh;
+            atlasTiles.rects.clear();
             for (uint32_t i : drawn)
                 atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
                                             tiles[i].rect.size, tiles[i].rect.size});

@@ -82,6 +82,7 @@ struct Renderer::State {
     ScreenSpaceShadowPass screenSpacePass;
     VisibleSurfacePass visiblePass;
     ComputeRasterPass computeRaster;
+    ComputeRasterPass::AtlasTiles atlasTilesScratch;  // recordShadowAtlases: the tiles an atlas pass draws
     LightClusterPass lightClusters;
     RasterChoice rasterChoice;
     std::unique_ptr<VisibilityPass> visibility;  // made by the first visibility-buffer frame

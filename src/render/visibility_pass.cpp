@@ -270,7 +270,8 @@ void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& in
     rasterWrites.push_back({kVisibilityRasterBindingVisibility, visibility_, {}, {}});
     appendRasterMeshWrites(rasterWrites, scene_, culling, {counters_, large_, chunkList_});
 
-    const std::vector<gpu::ResourceUse> reads = rasterReads(scene_, culling);
+    std::vector<gpu::ResourceUse> reads;
+    rasterReads(scene_, culling, reads);
     commands.beginTimer("main/cull");
     commands.pass("main/clear", {gpu::use(visibility_, gpu::Usage::TransferWrite), gpu::use(counters_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(visibility_, 0);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <string_view>
 #include <type_traits>
 
 #include <nlohmann/json.hpp>
@@ -226,9 +227,9 @@ bool settingValueAllowed(const SettingKey& key, double value) {
 
 // Validation of one group of keys ("shadows." or "render."): the first value out of its range, then the
 // ratios' order.
-void validateSettingKeys(const Settings& settings, const std::string& prefix) {
+void validateSettingKeys(const Settings& settings, std::string_view prefix) {
     for (const SettingKey& key : settingKeys()) {
-        if (std::string(key.key).rfind(prefix, 0) != 0) continue;
+        if (!std::string_view(key.key).starts_with(prefix)) continue;  // no allocation: runs every frame
         for (size_t i = 0; i < key.elements(); ++i) {
             const double value = key.get(settings, i);
             if (settingValueAllowed(key, value)) continue;
