@@ -88,23 +88,30 @@ DepthPyramidLayout depthPyramidLayout(uint32_t width, uint32_t height) {
     return layout;
 }
 
+uint32_t depthPyramidLevelCount(uint32_t width, uint32_t height) {
+    PENUMBRA_ASSERT(width > 0 && height > 0);
+    uint32_t levels = 1;
+    for (glm::uvec2 size((width + 1) / 2, (height + 1) / 2); size != glm::uvec2(1); size = (size + 1u) / 2u) ++levels;
+    return levels;
+}
+
 gpu_data::CullCamera packCullCamera(const glm::mat4& clipFromWorld, uint32_t width, uint32_t height, ViewCulling culling) {
     const uint32_t mode = culling == ViewCulling::Occlusion ? gpu_data::kViewCullingOcclusion
                           : culling == ViewCulling::Frustum ? gpu_data::kViewCullingFrustum
                                                             : gpu_data::kViewCullingNone;
-    const DepthPyramidLayout pyramid = depthPyramidLayout(width, height);
-    if (pyramid.sizes.size() > gpu_data::kMaxPyramidLevels)
+    const uint32_t levels = depthPyramidLevelCount(width, height);
+    if (levels > gpu_data::kMaxPyramidLevels)
         throw Error("internal: a " + std::to_string(width) + "x" + std::to_string(height) + " view needs " +
-                    std::to_string(pyramid.sizes.size()) + " depth pyramid levels (at most " +
+                    std::to_string(levels) + " depth pyramid levels (at most " +
                     std::to_string(gpu_data::kMaxPyramidLevels) + ")");
     gpu_data::CullCamera camera{};
     camera.clipFromWorld = clipFromWorld;
     camera.width = width;
     camera.height = height;
-    camera.pyramidLevels = uint32_t(pyramid.sizes.size());
+    camera.pyramidLevels = levels;
     camera.culling = mode;
-    camera.pyramidWidth = pyramid.sizes[0].x;
-    camera.pyramidHeight = pyramid.sizes[0].y;
+    camera.pyramidWidth = (width + 1) / 2;  // level 0
+    camera.pyramidHeight = (height + 1) / 2;
     return camera;
 }
 

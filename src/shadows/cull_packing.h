@@ -28,6 +28,8 @@ struct DepthPyramidLayout {
     uint32_t texels = 0;            // all levels
 };
 DepthPyramidLayout depthPyramidLayout(uint32_t width, uint32_t height);
+// Its level count alone, without building the layout (no allocation: packed every frame).
+uint32_t depthPyramidLevelCount(uint32_t width, uint32_t height);
 
 // The camera the main view's culling tests (CullFrame::camera).
 gpu_data::CullCamera packCullCamera(const glm::mat4& clipFromWorld, uint32_t width, uint32_t height, ViewCulling culling);

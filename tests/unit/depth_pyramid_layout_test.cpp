@@ -32,6 +32,13 @@ TEST(DepthPyramidLayout, AOnePixelViewHasOneLevel) {
     EXPECT_EQ(depthPyramidLayout(1, 1).sizes, (std::vector<glm::uvec2>{glm::uvec2(1, 1)}));
 }
 
+TEST(DepthPyramidLayout, TheLevelCountAloneMatchesTheLayout) {
+    for (uint32_t width : {1u, 2u, 3u, 7u, 64u, 96u, 1000u, 1920u, 4097u})
+        for (uint32_t height : {1u, 2u, 5u, 54u, 1080u, 2161u})
+            EXPECT_EQ(depthPyramidLevelCount(width, height), depthPyramidLayout(width, height).sizes.size())
+                << width << "x" << height;
+}
+
 TEST(CullCamera, CarriesTheViewThePyramidAndTheCullingMode) {
     const gpu_data::CullCamera camera = packCullCamera(glm::mat4(2.0f), 1920, 1080, ViewCulling::Frustum);
     EXPECT_EQ(camera.clipFromWorld, glm::mat4(2.0f));
