@@ -33,10 +33,12 @@ MainPass::~MainPass() {
     for (auto& [format, pipeline] : backgrounds_) device_.destroy(pipeline);
 }
 
-MainPass::PipelineKey MainPass::keyOf(const MainPassVariant& variant) {
-    std::vector<std::pair<uint32_t, uint32_t>> constants;
-    for (const gpu::SpecConstant& c : variant.specialization) constants.emplace_back(c.id, c.value);
-    return {variant.colorFormat, variant.fragmentShader, variant.drawBlended, constants};
+bool MainPass::VariantLess::operator()(const MainPassVariant& a, const MainPassVariant& b) const {
+    if (std::tie(a.colorFormat, a.fragmentShader, a.drawBlended) != std::tie(b.colorFormat, b.fragmentShader, b.drawBlended))
+        return std::tie(a.colorFormat, a.fragmentShader, a.drawBlended) < std::tie(b.colorFormat, b.fragmentShader, b.drawBlended);
+    return std::lexicographical_compare(
+        a.specialization.begin(), a.specialization.end(), b.specialization.begin(), b.specialization.end(),
+        [](const gpu::SpecConstant& x, const gpu::SpecConstant& y) { return std::tie(x.id, x.value) < std::tie(y.id, y.value); });
 }
 
 MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool async) {
@@ -65,7 +67,7 @@ MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool asy
     // The colour output's sets come with the background of their format (built alongside, so a
     // change of render.background builds nothing).
     if (variant.drawBlended) backgroundPipeline(variant.colorFormat, async);
-    return pipelineSets_.emplace(keyOf(variant), set).first->second;
+    return pipelineSets_.emplace(variant, set).first->second;
 }
 
 gpu::PipelineHandle MainPass::backgroundPipeline(gpu::Format colorFormat, bool async) {
@@ -108,23 +110,23 @@ void MainPass::waitFor(const PipelineSet& set) {
 }
 
 void MainPass::request(const MainPassVariant& variant) {
-    if (pipelineSets_.count(keyOf(variant)) == 0) create(variant, warmup_ == PipelineWarmup::Background);
+    if (pipelineSets_.count(variant) == 0) create(variant, warmup_ == PipelineWarmup::Background);
 }
 
 bool MainPass::ready(const MainPassVariant& variant) {
-    const auto found = pipelineSets_.find(keyOf(variant));
+    const auto found = pipelineSets_.find(variant);
     return found != pipelineSets_.end() && setReady(found->second);
 }
 
 const MainPass::PipelineSet& MainPass::pipelinesFor(const Target& target) {
     request(target.variant);
-    PipelineSet& wanted = pipelineSets_.at(keyOf(target.variant));
+    PipelineSet& wanted = pipelineSets_.at(target.variant);
     if (setReady(wanted)) return wanted;
     if (!target.genericSpecialization.empty()) {
         MainPassVariant generic = target.variant;
         generic.specialization = target.genericSpecialization;
         request(generic);
-        PipelineSet& fallback = pipelineSets_.at(keyOf(generic));
+        PipelineSet& fallback = pipelineSets_.at(generic);
         waitFor(fallback);  // only before the generic set's first build has finished
         return fallback;
     }

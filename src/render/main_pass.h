@@ -80,8 +80,11 @@ private:
         gpu::PipelineHandle opaque[2];   // [doubleSided]
         gpu::PipelineHandle blended[2];
     };
-    using PipelineKey = std::tuple<gpu::Format, std::string, bool, std::vector<std::pair<uint32_t, uint32_t>>>;
-    static PipelineKey keyOf(const MainPassVariant& variant);
+    // Orders variants by format, fragment shader, blended flag and specialization (id, value): the
+    // sets are found by the variant itself, with no key built per frame.
+    struct VariantLess {
+        bool operator()(const MainPassVariant& a, const MainPassVariant& b) const;
+    };
     PipelineSet& create(const MainPassVariant& variant, bool async);
     bool setReady(const PipelineSet& set);
     void waitFor(const PipelineSet& set);
@@ -94,7 +97,7 @@ private:
     gpu::Device& device_;
     const GpuScene& scene_;
     PipelineWarmup warmup_;
-    std::map<PipelineKey, PipelineSet> pipelineSets_;
+    std::map<MainPassVariant, PipelineSet, VariantLess> pipelineSets_;
     std::map<gpu::Format, gpu::PipelineHandle> backgrounds_;  // by colour format
     // Per-record scratch, kept so that a steady frame allocates nothing.
     std::vector<const DrawItem*> opaque_, blended_;

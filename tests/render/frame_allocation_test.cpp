@@ -12,10 +12,10 @@
 //
 // A whole steady-state frame does not reach 0 yet: the DISABLED_ tests below measure it (run them
 // with --gtest_also_run_disabled_tests; PENUMBRA_ALLOCATION_TRACE=1 prints the call stack of every
-// counted allocation, to find them). About 105 a frame are left (377 before the GPU layer's scratch
+// counted allocation, to find them). About 100 a frame are left (377 before the GPU layer's scratch
 // storage): the shadow planner's vectors (ShadowFrame is returned by value), the completed frames'
-// timings and readback copies (CompletedFrame, FrameStats by value), the pending-frame queue, the main
-// pass's pipeline keys and the visibility pass's write lists.
+// timings and readback copies (CompletedFrame, FrameStats by value), the pending-frame queue and the
+// visibility pass's write lists.
 #include <execinfo.h>
 #include <unistd.h>
 
