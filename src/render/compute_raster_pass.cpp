@@ -114,8 +114,8 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
                                const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
                                gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix) {
     using gpu::Usage;
-    // Step names: timerPrefix + step, built in timer_ (a timer keeps its own copy).
-    auto stepName = [&](std::string_view step) -> std::string_view { return timer_.assign(timerPrefix).append(step); };
+    // Step names: timerPrefix + step in the command list's scratch (a timer keeps its own copy).
+    auto stepName = [&](std::string_view step) { return commands.joinName(timerPrefix, step); };
     if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the atlas stays as it is
         commands.pass(stepName("/clear"), {gpu::use(counters_, Usage::TransferWrite)});
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)

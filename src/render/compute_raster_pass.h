@@ -69,7 +69,6 @@ private:
     // Per-record scratch, kept so that a steady frame allocates nothing.
     std::vector<gpu::DescriptorWrite> writes_;
     std::vector<gpu::ResourceUse> reads_;
-    std::string timer_;
 };
 
 }  // namespace penumbra

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gpu/frame_graph.h"
+#include "gpu/handle_pool.h"
 
 namespace penumbra::gpu {
 namespace {
@@ -178,10 +179,12 @@ TEST(FrameGraphTest, AForgottenHandleStartsUnused) {
 }
 
 // Handle ids carry a generation above the slot index (gpu/handle_pool.h): states are kept per slot.
+constexpr uint32_t kGenerationShift = HandlePool<int>::kIndexBits;
+
 TEST(FrameGraphTest, ALaterGenerationOfASlotStartsUnused) {
     FrameGraph graph;
     declare(graph, {use(kTexture, Usage::ColorTarget)});
-    const TextureHandle reused{kTexture.id | (1u << 20)};
+    const TextureHandle reused{kTexture.id | (1u << kGenerationShift)};
     EXPECT_EQ(graph.layout(reused), VK_IMAGE_LAYOUT_UNDEFINED);
     const std::vector<Barrier> barriers = declare(graph, {use(reused, Usage::FragmentSampled)});
     ASSERT_EQ(barriers.size(), 1u);
@@ -192,8 +195,8 @@ TEST(FrameGraphTest, ALaterGenerationOfASlotStartsUnused) {
 TEST(FrameGraphTest, StatesGrowWithSlotsNotWithGenerations) {
     FrameGraph graph;
     for (uint32_t generation = 0; generation < 4096; generation += 97)
-        declare(graph, {use(BufferHandle{3u | (generation << 20)}, Usage::ComputeWrite),
-                        use(TextureHandle{2u | (generation << 20)}, Usage::ColorTarget)});
+        declare(graph, {use(BufferHandle{3u | (generation << kGenerationShift)}, Usage::ComputeWrite),
+                        use(TextureHandle{2u | (generation << kGenerationShift)}, Usage::ColorTarget)});
     EXPECT_LE(graph.trackedSlots(), 4u + 3u);
 }
 
