@@ -156,6 +156,9 @@ public:
                          const ExternalImage* target = nullptr);
     // Stats of the frames the GPU has finished since the last call, oldest first.
     std::vector<FrameStats> takeCompletedFrames();
+    // The same into `frames` (replaced), for a loop that calls it every frame with the same vector:
+    // its elements are exchanged with the renderer's, so once warm neither side allocates.
+    void takeCompletedFrames(std::vector<FrameStats>& frames);
     void waitIdle();
 
     // Pipeline variants still building on the worker thread (PipelineWarmup::Background).

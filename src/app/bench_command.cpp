@@ -175,6 +175,7 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
     Settings current = settings;
     uint32_t step = 0, shadowedLights = 0;
     ProgressBar progress(bench.frames);
+    std::vector<FrameStats> finished;
     for (uint32_t i = 0; i < bench.frames; ++i) {
         if (bench.varyPeriod > 0 && i % bench.varyPeriod == 0) {
             step = (i / bench.varyPeriod) % uint32_t(benchVariations().size());
@@ -182,7 +183,8 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
             shadowedLights = applyShadowedLights(renderer, originalLights, benchVariations()[step].shadowedLightShare);
         }
         renderer.submitFrame(request, current, benchCamera(scene, start, bench.camera, frame++), nullptr);
-        for (const FrameStats& stats : renderer.takeCompletedFrames()) {
+        renderer.takeCompletedFrames(finished);  // exchanges elements with the renderer: no allocation once warm
+        for (const FrameStats& stats : finished) {
             run.measured.add(stats);
             run.warnings = stats.warnings;
         }

@@ -60,7 +60,8 @@ void CommandList::pass(std::string_view name, std::span<const ResourceUse> uses)
 
 void CommandList::beginRendering(const RenderingDesc& desc) {
     Device::Impl& d = impl(*this);
-    std::vector<VkRenderingAttachmentInfo> colors;
+    std::vector<VkRenderingAttachmentInfo>& colors = d.scratchAttachments;
+    colors.clear();
     for (const ColorAttachment& c : desc.colors) {
         VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         a.imageView = d.textures.at(c.texture.id).view;
@@ -224,7 +225,8 @@ void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture
 void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects) {
     Device::Impl& d = impl(*this);
     const TextureResource& t = d.textures.at(texture.id);
-    std::vector<VkBufferImageCopy> copies;
+    std::vector<VkBufferImageCopy>& copies = d.scratchCopies;
+    copies.clear();
     for (const Rect& r : rects) {
         VkBufferImageCopy copy{};
         copy.bufferOffset = (uint64_t(r.y) * t.desc.width + uint64_t(r.x)) * bytesPerPixel(t.desc.format);
@@ -245,7 +247,8 @@ void CommandList::clearDepthRects(std::span<const Rect> rects, float depth) {
     VkClearAttachment attachment{};
     attachment.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT;
     attachment.clearValue.depthStencil.depth = depth;
-    std::vector<VkClearRect> clears;
+    std::vector<VkClearRect>& clears = impl(*this).scratchClears;
+    clears.clear();
     for (const Rect& r : rects) clears.push_back({{{r.x, r.y}, {r.width, r.height}}, 0, 1});
     vkCmdClearAttachments(native(*this), 1, &attachment, uint32_t(clears.size()), clears.data());
 }

@@ -99,6 +99,11 @@ public:
     void trimMemory();
     // Frames finished since the last call, oldest first (timestamps per pass, submit-to-fence time).
     std::vector<CompletedFrame> takeCompletedFrames();
+    // The same without a heap allocation once warm: the frames finished since the last
+    // releaseCompletedFrames(), read in place (valid until the next call of beginFrame, waitFrame,
+    // waitIdle or releaseCompletedFrames), then released; their storage serves the next frames.
+    std::span<CompletedFrame> completedFrames();
+    void releaseCompletedFrames();
     // The synchronisation state of every buffer and texture, and the passes of the frame being
     // recorded when FrameGraph::recordPasses is on (penumbra graph).
     FrameGraph& frameGraph();

@@ -125,9 +125,12 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         retireFrame(frame);  // lost now: drop it as above
         throw;
     }
-    CompletedFrame done;
+    if (completedCount == completed.size()) completed.emplace_back();
+    CompletedFrame& done = completed[completedCount++];  // reused: every field is set here
     done.frameIndex = frame.frameIndex;
     done.submitToFenceMilliseconds = millisecondsSince(frame.submitTime);
+    done.gpuFrameMilliseconds = done.gpuEndMilliseconds = 0.0;
+    done.timings.resize(timestampsSupported ? frame.timerCount : 0);
     if (timestampsSupported) {
         const uint32_t slot = uint32_t(&frame - frames.data());
         const double msPerTick = double(properties.limits.timestampPeriod) * 1e-6;
@@ -138,8 +141,10 @@ void Device::Impl::retireFrame(FrameContext& frame) {
             VK_CHECK(vkGetQueryPoolResults(device, timestampPool, slot * timestampsPerFrame, queryCount,
                                            queryCount * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-        for (size_t i = 0; i < frame.timerCount; ++i)
-            done.timings.push_back({frame.timerNames[i], double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick});
+        for (size_t i = 0; i < frame.timerCount; ++i) {
+            done.timings[i].name.assign(frame.timerNames[i]);
+            done.timings[i].milliseconds = double(ticks[2 * i + 1] - ticks[2 * i]) * msPerTick;
+        }
         uint64_t whole[2] = {};
         VK_CHECK(vkGetQueryPoolResults(device, timestampPool, (slot + 1) * timestampsPerFrame - 2, 2, sizeof(whole),
                                        whole, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
@@ -147,10 +152,10 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         done.gpuEndMilliseconds = double(whole[1]) * msPerTick;
     }
     const auto* ring = static_cast<const uint8_t*>(buffers.at(frame.uploadBuffer.id).mapped);
+    done.readback.clear();
     for (const auto& [offset, size] : frame.readbackRanges)
         done.readback.insert(done.readback.end(), ring + offset, ring + offset + size);
     frame.readbackRanges.clear();
-    completed.push_back(std::move(done));
     frame.inFlight = false;
     frame.timerCount = 0;
     destroyGarbage(frame.garbage);
@@ -330,7 +335,8 @@ void Device::waitFrame(uint64_t frameIndex) {
 void Device::waitIdle() {
     Impl& d = *impl_;
     // Oldest first, so completed frames stay in order.
-    std::vector<FrameContext*> inFlight;
+    std::vector<FrameContext*>& inFlight = d.scratchInFlight;
+    inFlight.clear();
     for (FrameContext& frame : d.frames)
         if (frame.inFlight) inFlight.push_back(&frame);
     std::sort(inFlight.begin(), inFlight.end(), [](auto* a, auto* b) { return a->frameIndex < b->frameIndex; });
@@ -343,10 +349,15 @@ void Device::trimMemory() { impl_->memory->releaseEmptyBlocks(); }
 FrameGraph& Device::frameGraph() { return impl_->frameGraph; }
 
 std::vector<CompletedFrame> Device::takeCompletedFrames() {
-    std::vector<CompletedFrame> frames;
-    frames.swap(impl_->completed);
+    const std::span<CompletedFrame> done = completedFrames();
+    std::vector<CompletedFrame> frames(std::make_move_iterator(done.begin()), std::make_move_iterator(done.end()));
+    releaseCompletedFrames();
     return frames;
 }
+
+std::span<CompletedFrame> Device::completedFrames() { return {impl_->completed.data(), impl_->completedCount}; }
+
+void Device::releaseCompletedFrames() { impl_->completedCount = 0; }
 
 void Device::Impl::destroyGarbage(Garbage& garbage) {
     for (auto& b : garbage.buffers) destroyNow(b);

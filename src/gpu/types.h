@@ -152,7 +152,7 @@ struct DepthAttachment {
 
 struct RenderingDesc {
     uint32_t width = 0, height = 0;
-    std::vector<ColorAttachment> colors;
+    std::span<const ColorAttachment> colors;  // read by beginRendering only (not kept)
     DepthAttachment depth;  // texture id 0 = none
 };
 

@@ -156,7 +156,15 @@ struct Device::Impl {
     uint64_t nextFrameIndex = 0;  // index of the next frame beginFrame() starts
     int32_t recordingSlot = -1;   // slot between beginFrame and submitFrame, else -1
     Garbage pendingGarbage;       // destroyed since the last submit: attached to the next one
+    // Finished frames: the first completedCount are this time's; the elements after them keep their
+    // storage for the next frames (no allocation once warm).
     std::vector<CompletedFrame> completed;
+    size_t completedCount = 0;
+    // Scratch of CommandList's copy, clear and rendering commands (kept to reuse their memory).
+    std::vector<VkBufferImageCopy> scratchCopies;
+    std::vector<VkClearRect> scratchClears;
+    std::vector<VkRenderingAttachmentInfo> scratchAttachments;
+    std::vector<FrameContext*> scratchInFlight;
 
     // The frame graph's resource states (frame_graph.h), shared by frames and one-off lists, and the
     // barrier structures CommandList::pass fills (kept to reuse their memory).

@@ -14,12 +14,17 @@ gpu::Format colorFormatOf(OutputMode output) {
     return output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
 }
 
-MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter) {
-    MainPassVariant variant;
+void litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter, MainPassVariant& variant) {
     variant.colorFormat = format;
+    variant.fragmentShader.assign(MainPassVariant{}.fragmentShader);
     variant.drawBlended = format == gpu::Format::RGBA8Srgb;  // the AOVs show the opaque surface only
     const bool soft = (otherShadowMode & gpu_data::kOtherShadowsSoft) != 0;
     variant.specialization = {{2, otherShadowMode}, {3, soft ? spotFilter : gpu_data::kShadowFilterPcf5x5}};
+}
+
+MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter) {
+    MainPassVariant variant;
+    litVariant(format, otherShadowMode, spotFilter, variant);
     return variant;
 }
 
@@ -48,12 +53,13 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
     return frame;
 }
 
-PackedLights packFrameLights(const Scene& scene, const ShadowFrame& plan) {
-    return packLights(scene, [&](uint32_t i) {
+void packFrameLights(const Scene& scene, const ShadowFrame& plan, PackedLights& packed) {
+    const auto slotOf = [&](uint32_t i) {
         const bool directional = scene.lights[i].type == LightType::Directional;
         const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
         return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
-    });
+    };
+    packLights(scene, slotOf, packed);
 }
 
 FrameTargetSizes frameTargetSizes(const ShadowFrame& plan, const CameraView& view, OutputMode output,

@@ -21,6 +21,7 @@ gpu::Format colorFormatOf(OutputMode output);
 // specialization that stands for the _SHADOWS_HARD / _SHADOWS_SOFT keywords of Catlike Coding's "Spotlight
 // Shadows"). The filter only matters when some light is soft, so the others share one variant.
 MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter);
+void litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter, MainPassVariant& variant);  // in place
 // The specialization of the generic lit variant, which every frame can fall back on.
 const std::vector<gpu::SpecConstant>& genericLitSpecialization();
 
@@ -28,7 +29,7 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
                                   const Settings& settings, bool screenSpaceShadows);
 
 // The scene's lights for the GPU, each shadowed one with its slot in the plan's atlases.
-PackedLights packFrameLights(const Scene& scene, const ShadowFrame& plan);
+void packFrameLights(const Scene& scene, const ShadowFrame& plan, PackedLights& packed);  // replaced, storage reused
 
 // The targets and atlases a frame of this plan, view and output draws into.
 FrameTargetSizes frameTargetSizes(const ShadowFrame& plan, const CameraView& view, OutputMode output,

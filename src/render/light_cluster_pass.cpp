@@ -45,7 +45,7 @@ void LightClusterPass::record(gpu::CommandList& commands, const gpu::BufferSlice
     if (!clustered) return;
     commands.pass("lightClusters", {gpu::use(masks_, gpu::Usage::ComputeWrite), gpu::use(stats_, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(pipeline_);
-    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kSceneBindingLights, lights},
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kSceneBindingLights, lights},
                                                       {gpu_data::kLitBindingLightClusters, clusters},
                                                       {gpu_data::kLitBindingClusterMasks, masks_, {}, {}},
                                                       {gpu_data::kClusterBindingStats, stats_, {}, {}}};

@@ -18,16 +18,25 @@ struct PackedLights {
 
 using gpu_data::kNoShadowSlot;
 
-// shadowSlotOf(sceneLightIndex) gives the light's shadow slot or kNoShadowSlot.
+// shadowSlotOf(sceneLightIndex) gives the light's shadow slot or kNoShadowSlot. Packs into `packed`
+// (replaced; its storage reused).
 template <typename SlotOf>
-PackedLights packLights(const Scene& scene, SlotOf&& shadowSlotOf);
+void packLights(const Scene& scene, SlotOf&& shadowSlotOf, PackedLights& packed);
+template <typename SlotOf>
+PackedLights packLights(const Scene& scene, SlotOf&& shadowSlotOf) {
+    PackedLights packed;
+    packLights(scene, shadowSlotOf, packed);
+    return packed;
+}
 
 gpu_data::LightData packLight(const Light& light, uint32_t sceneIndex, uint32_t shadowSlot);
 
 template <typename SlotOf>
-PackedLights packLights(const Scene& scene, SlotOf&& shadowSlotOf) {
-    PackedLights packed;
-    std::vector<gpu_data::LightData> others;
+void packLights(const Scene& scene, SlotOf&& shadowSlotOf, PackedLights& packed) {
+    packed.lights.clear();
+    packed.warnings.clear();
+    packed.directionalCount = packed.otherCount = 0;
+    // Directional lights first, then the spot and point lights, each in scene order up to its limit.
     for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = scene.lights[i];
         const bool directional = light.type == LightType::Directional;
@@ -39,10 +48,14 @@ PackedLights packLights(const Scene& scene, SlotOf&& shadowSlotOf) {
             continue;
         }
         ++count;
-        (directional ? packed.lights : others).push_back(packLight(light, i, shadowSlotOf(i)));
+        if (directional) packed.lights.push_back(packLight(light, i, shadowSlotOf(i)));
     }
-    packed.lights.insert(packed.lights.end(), others.begin(), others.end());
-    return packed;
+    uint32_t others = 0;
+    for (uint32_t i = 0; i < scene.lights.size() && others < packed.otherCount; ++i) {
+        if (scene.lights[i].type == LightType::Directional) continue;
+        packed.lights.push_back(packLight(scene.lights[i], i, shadowSlotOf(i)));
+        ++others;
+    }
 }
 
 }  // namespace penumbra

@@ -9,12 +9,12 @@
 
 namespace penumbra {
 
-std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
-                                                        const gpu::BufferSlice& lights) {
+SceneWrites sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
+                                  const gpu::BufferSlice& lights) {
     using namespace gpu_data;
-    return {{kSceneBindingFrame, frame}, {kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
+    return {{{kSceneBindingFrame, frame}, {kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
             {kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
-            {kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}, {kSceneBindingLights, lights}};
+            {kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}, {kSceneBindingLights, lights}}};
 }
 
 void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene, const MainPassInputs& inputs,
@@ -182,7 +182,7 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
     color.texture = target.color;
     color.clear = !target.opaqueDone;
     std::copy(target.clearColor, target.clearColor + 4, color.clearColor);
-    rendering.colors = {color};
+    rendering.colors = std::span(&color, 1);
     rendering.depth = {target.depth, !target.opaqueDone, 0.0f};
     using gpu::Usage;
     std::vector<gpu::ResourceUse>& uses = uses_;

@@ -8,6 +8,7 @@
 // shadow kinds and filter) and, optionally, a generic set that gives the same image for every frame.
 // PipelineWarmup::OnDemand builds a variant the first time a frame needs it; Background builds them
 // on the device's worker thread and draws with the generic set until the specialized one is ready.
+#include <array>
 #include <map>
 #include <string>
 #include <tuple>
@@ -36,8 +37,10 @@ struct MainPassInputs {
 void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene, const MainPassInputs& inputs,
                      bool compute);
 
-std::vector<gpu::DescriptorWrite> sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame,
-                                                        const gpu::BufferSlice& lights);
+// The scene bindings every pass that draws the scene binds: frame data, vertices, instances, materials,
+// lights (a fixed array: callers copy it into their lists without a heap allocation).
+using SceneWrites = std::array<gpu::DescriptorWrite, 5>;
+SceneWrites sceneDescriptorWrites(const GpuScene& gpuScene, const gpu::BufferSlice& frame, const gpu::BufferSlice& lights);
 
 struct MainPassVariant {
     gpu::Format colorFormat = gpu::Format::RGBA8Srgb;

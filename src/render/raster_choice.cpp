@@ -55,6 +55,6 @@ void RasterChoice::measured(bool compute, double shadowMilliseconds) {
     phase_ = Phase::Decided;
 }
 
-std::string RasterChoice::describe() const { return phase_ == Phase::Decided ? reason_ : "measuring"; }
+const char* RasterChoice::describe() const { return phase_ == Phase::Decided ? reason_.c_str() : "measuring"; }
 
 }  // namespace penumbra

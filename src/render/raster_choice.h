@@ -33,8 +33,8 @@ public:
     // A finished auto frame: which path drew it and its shadow passes' GPU milliseconds.
     void measured(bool compute, double shadowMilliseconds);
     bool decided() const { return phase_ == Phase::Decided; }
-    // For the stats: "measuring", or the choice with its reason.
-    std::string describe() const;
+    // For the stats: "measuring", or the choice with its reason (valid until the next measured()).
+    const char* describe() const;
 
 private:
     enum class Phase { MeasureHw, MeasureCompute, Decided };

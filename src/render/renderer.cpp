@@ -145,11 +145,11 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
             s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas, true);
         s.device.waitFrame(frameIndex);
         s.collectCompleted();
-        const auto found = std::find_if(s.completed.begin(), s.completed.end(),
-                                        [&](const FrameStats& f) { return f.frameIndex == frameIndex; });
-        if (found != s.completed.end()) {
-            result.stats = std::move(*found);
-            s.completed.erase(found);
+        for (size_t i = 0; i < s.completed.size(); ++i) {
+            if (s.completed[i].frameIndex != frameIndex) continue;
+            result.stats = std::move(s.completed[i]);
+            s.completed.erase(i);
+            break;
         }
         if (result.stats.rasterDropped == 0) break;
     }
@@ -172,10 +172,21 @@ uint64_t Renderer::submitFrame(const RenderRequest& request, const Settings& set
 }
 
 std::vector<FrameStats> Renderer::takeCompletedFrames() {
-    state_->collectCompleted();
     std::vector<FrameStats> frames;
-    frames.swap(state_->completed);
+    takeCompletedFrames(frames);
     return frames;
+}
+
+void Renderer::takeCompletedFrames(std::vector<FrameStats>& frames) {
+    State& s = *state_;
+    s.collectCompleted();
+    frames.resize(s.completed.size());
+    // Swapped, not moved: the caller's previous elements go back to the renderer, whose next frames
+    // reuse their storage.
+    for (FrameStats& stats : frames) {
+        std::swap(stats, s.completed.front());
+        s.completed.popFront();
+    }
 }
 
 void Renderer::waitIdle() {

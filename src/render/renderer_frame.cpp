@@ -73,12 +73,13 @@ void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings,
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
     const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
     const VisibleSurfaces* planVisible = !tight ? nullptr : visibleNow ? &*visibleNow : &*latestVisible;
-    frame.plan = ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions);
+    ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions, frame.plan, planWorkspace);
 }
 
-MainPassVariant Renderer::State::prepareMainView(const Settings& settings, const ShadowFrame& plan,
+const MainPassVariant& Renderer::State::prepareMainView(const Settings& settings, const ShadowFrame& plan,
                                                  const FrameTargetSizes& sizes, bool visibilityWanted) {
-    MainPassVariant litPass = litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter));
+    MainPassVariant& litPass = litPassScratch;  // refilled in place: its lists keep their storage
+    litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter), litPass);
     if (options.forceGenericVariants) litPass.specialization = genericLitSpecialization();
     // Also while auto still draws forward frames to measure: the visibility frames that follow then
     // make nothing (the steady state allocates no GPU object).
@@ -105,7 +106,8 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     recording.clusterSlice = uploadFrameData(device, &clusterData, sizeof(clusterData));
     recording.directionalSlice = uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
     recording.otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
-    recording.casterWrites = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
+    const SceneWrites writes = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
+    recording.casterWrites.assign(writes.begin(), writes.end());
 }
 
 const TilesToDraw& Renderer::State::chooseTilesToDraw(FrameRecording& recording) {
@@ -180,10 +182,17 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
               sizes.directionalAtlas, targets.directionalRasterDepth);
     drawAtlas(1, plan.other.tiles, draw.other, draw.freshOther, directionalTiles, uint32_t(draw.directional.size()),
               targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth);
-    frame.stats.atlases = {{kAtlasPassNames[0], directionalTiles, 0, 0}, {kAtlasPassNames[1], cullTiles - directionalTiles, 0, 0}};
+    std::vector<AtlasDrawStats>& atlases = frame.stats.atlases;  // recycled: names keep their storage
+    atlases.resize(2);
+    const uint32_t tilesOf[2] = {directionalTiles, cullTiles - directionalTiles};
+    for (size_t pass = 0; pass < 2; ++pass) {
+        atlases[pass].pass.assign(kAtlasPassNames[pass]);
+        atlases[pass].tiles = tilesOf[pass];
+        atlases[pass].draws = atlases[pass].triangles = 0;
+    }
 }
 
-MainPassInputs Renderer::State::recordLightingInputs(FrameRecording& recording) {
+MainPassInputs& Renderer::State::recordLightingInputs(FrameRecording& recording) {
     gpu::CommandList& commands = recording.commands;
     recording.stage = "light clusters";
     commands.beginTimer("lightClusters");
@@ -191,8 +200,8 @@ MainPassInputs Renderer::State::recordLightingInputs(FrameRecording& recording) 
     commands.endTimer();
     if (recording.clustered) recording.frame.readback.lightClusters = device.readBackAtFrameEnd(commands, lightClusters.stats());
 
-    MainPassInputs inputs;
-    inputs.writes = recording.casterWrites;
+    MainPassInputs& inputs = mainInputs;  // refilled every frame: its lists keep their storage
+    inputs.writes.assign(recording.casterWrites.begin(), recording.casterWrites.end());
     using namespace gpu_data;
     inputs.writes.push_back({kLitBindingLightClusters, recording.clusterSlice});
     inputs.writes.push_back({kLitBindingClusterMasks, lightClusters.masks(), {}, {}});
@@ -223,7 +232,8 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     const RenderSettings& render = recording.settings.render;
     recording.stage = frame.visibilityView ? "main (visibility buffer)" : "main";
     commands.beginTimer("main");
-    MainPass::Target main;
+    // The State's targets, every field set here: copying into them reuses their lists' storage.
+    MainPass::Target& main = mainTarget;
     main.color = targets.color;
     main.depth = targets.depth;
     main.width = view.width;
@@ -231,11 +241,20 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     main.variant = litPass;
     main.genericSpecialization = genericLitSpecialization();
     // Shadow AOV: 1 (lit) where no geometry is; cascades: black; colour: black under the background.
-    if (request.output == OutputMode::ShadowAov) std::fill(main.clearColor, main.clearColor + 4, 1.0f);
+    const float clear = request.output == OutputMode::ShadowAov ? 1.0f : 0.0f;
+    std::fill(main.clearColor, main.clearColor + 3, clear);
+    main.clearColor[3] = 1.0f;
     main.background = request.output == OutputMode::Color && render.background == Background::Gradient;
+    main.opaqueDone = false;
+    main.passName = MainPass::Target{}.passName;
     if (frame.visibilityView) {
-        VisibilityPass::Target opaque{targets.color, targets.depth, recording.sizes.colorFormat, view.width, view.height, {},
-                                      main.variant.specialization};
+        VisibilityPass::Target& opaque = opaqueTarget;
+        opaque.color = targets.color;
+        opaque.depth = targets.depth;
+        opaque.colorFormat = recording.sizes.colorFormat;
+        opaque.width = view.width;
+        opaque.height = view.height;
+        opaque.specialization = main.variant.specialization;
         std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
         // Leaves both targets in their target states.
         visibility->record(commands, inputs, opaque, culling, recording.cullSlice, render.viewCulling,
@@ -290,9 +309,21 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
                                  bool oneShot) {
     validateSettings(requestedSettings);
     checkRequest(request, view);
-    PendingFrame frame;
+    PendingFrame& frame = pending.pushBack();  // recycled: what it held is reset or overwritten below
+    try {
+        return submitInto(frame, request, requestedSettings, view, target, readback, captureAtlas, oneShot);
+    } catch (...) {
+        pending.popBack();
+        throw;
+    }
+}
+
+uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& request,
+                                     const Settings& requestedSettings, const CameraView& view,
+                                     const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot) {
+    resetPendingFrame(frame);
     FrameStats& stats = frame.stats;
-    stats.warnings = gpuScene.warnings();
+    stats.warnings.assign(gpuScene.warnings().begin(), gpuScene.warnings().end());
     // The settings this device can hold (an atlas over its largest image is shrunk, with a warning).
     Settings settings = requestedSettings;
     settings.shadows = fitShadowSettings(requestedSettings.shadows, device.maxImageSize(), stats.warnings);
@@ -311,7 +342,8 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     }
     planShadows(frame, settings, view, visibleNow);
     const ShadowFrame& plan = frame.plan;
-    const PackedLights lights = packFrameLights(scene, plan);
+    const PackedLights& lights = packedLights;
+    packFrameLights(scene, plan, packedLights);
     stats.cpu.culling = plan.stats.cullingMilliseconds;
     stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
     stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
@@ -324,9 +356,9 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
         throw failed("render targets and shadow atlases", error);
     }
 
-    MainPassVariant litPass;
+    const MainPassVariant* litPass = nullptr;
     try {
-        litPass = prepareMainView(settings, plan, sizes, visibilityWanted);
+        litPass = &prepareMainView(settings, plan, sizes, visibilityWanted);
     } catch (const Error& error) {
         throw failed("the visibility-buffer main view", error);
     }
@@ -338,7 +370,7 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     gpu::CommandList commands = device.beginFrame();
     // A failure from here to the submission drops the frame (the next one starts clean) and names the
     // part being recorded.
-    FrameRecording recording{commands, frame, settings, view, sizes};
+    FrameRecording recording{commands, frame, settings, view, sizes, casterWrites};
     try {
         phase.restart();  // the wait for the slot's previous frame is not CPU work
         stats.sceneBytesUploaded = gpuScene.recordUpdates(commands, scene);
@@ -348,8 +380,8 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
 
         phase.restart();
         recordShadowAtlases(recording, draw);
-        MainPassInputs inputs = recordLightingInputs(recording);
-        recordMainView(recording, request, inputs, litPass, oneShot);
+        MainPassInputs& inputs = recordLightingInputs(recording);
+        recordMainView(recording, request, inputs, *litPass, oneShot);
         gpu::ExternalTarget sync = recordOutputs(recording, target, readback, captureAtlas);
         stats.cpu.record = phase.milliseconds();
 
@@ -368,9 +400,9 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     gpuScene.updatesSubmitted();
     stats.cpu.submit = phase.milliseconds();
     stats.frameIndex = frame.frameIndex;
-    pending.push_back(std::move(frame));
-    collectCompleted();
-    return pending.back().frameIndex;
+    const uint64_t submitted = frame.frameIndex;
+    collectCompleted();  // recycles only older slots: `frame` is the newest
+    return submitted;
 }
 
 // A frame the GPU has finished: its readback into its stats, its timings into the auto choices.
@@ -383,21 +415,29 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
     }
     if (const uint8_t* depths = readbackPiece(done.readback, finished.readback.visibleSurfaces,
                                               VisibleSurfacePass::readbackBytes(finished.view))) {
-        latestVisible = VisibleSurfacePass::fromReadback(depths, finished.view);
+        if (!latestVisible) latestVisible.emplace();
+        VisibleSurfacePass::fromReadback(depths, finished.view, *latestVisible);
         latestVisibleSize = glm::uvec2(finished.view.width, finished.view.height);
     }
-    for (const gpu::PassTiming& t : done.timings) stats.gpuTimings.push_back({t.name, t.milliseconds});
+    stats.gpuTimings.resize(done.timings.size());  // the elements' strings keep their storage
+    for (size_t i = 0; i < done.timings.size(); ++i) {
+        stats.gpuTimings[i].name.assign(done.timings[i].name);
+        stats.gpuTimings[i].milliseconds = done.timings[i].milliseconds;
+    }
     if (finished.autoRaster)
         rasterChoice.measured(finished.computeRaster, timedMilliseconds(stats, {kAtlasPassNames[0], kAtlasPassNames[1]}));
     if (finished.autoMainView) mainViewChoice.measured(finished.visibilityView, timedMilliseconds(stats, {"main"}));
+    // Assigned piece by piece into the recycled strings (no temporary string, no allocation once warm).
     if (finished.mainViewSetting != MainView::Auto)
-        stats.mainViewChoice = std::string("render.mainView = ") + mainViewName(finished.mainViewSetting);
+        stats.mainViewChoice.assign("render.mainView = ").append(mainViewName(finished.mainViewSetting));
+    else if (device.info().isCpu)
+        stats.mainViewChoice.assign("forward (a CPU device: auto keeps the forward pass)");
     else
-        stats.mainViewChoice = device.info().isCpu ? "forward (a CPU device: auto keeps the forward pass)"
-                                                   : mainViewChoice.describe();
-    stats.shadowRasterChoice = finished.rasterSetting == ShadowRaster::Auto
-                                   ? "auto: " + rasterChoice.describe()
-                                   : std::string("shadows.raster = ") + shadowRasterName(finished.rasterSetting);
+        stats.mainViewChoice.assign(mainViewChoice.describe());
+    if (finished.rasterSetting == ShadowRaster::Auto)
+        stats.shadowRasterChoice.assign("auto: ").append(rasterChoice.describe());
+    else
+        stats.shadowRasterChoice.assign("shadows.raster = ").append(shadowRasterName(finished.rasterSetting));
     stats.submitToFenceMilliseconds = done.submitToFenceMilliseconds;
     stats.gpuFrameMilliseconds = done.gpuFrameMilliseconds;
     if (lastGpuFrameEnd > 0.0) stats.gpuFramePeriodMilliseconds = done.gpuEndMilliseconds - lastGpuFrameEnd;
@@ -405,13 +445,41 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
 }
 
 void Renderer::State::collectCompleted() {
-    for (gpu::CompletedFrame& done : device.takeCompletedFrames()) {
-        while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.pop_front();  // not ours
+    for (gpu::CompletedFrame& done : device.completedFrames()) {
+        while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.popFront();  // not ours
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
         finishFrame(done, pending.front());
-        completed.push_back(std::move(pending.front().stats));
-        pending.pop_front();
+        // Swapped, not moved: the pending slot takes the completed slot's storage for a later frame.
+        std::swap(completed.pushBack(), pending.front().stats);
+        pending.popFront();
     }
+    device.releaseCompletedFrames();
+}
+
+// A recycled pending frame made new. The stats' lists that a frame refills element by element (pass
+// timings, atlases, the plan's stats) and its strings keep their storage; the plan is replaced by the
+// planner in place.
+void Renderer::State::resetPendingFrame(PendingFrame& frame) {
+    FrameStats& stats = frame.stats;
+    std::vector<PassTiming> timings = std::move(stats.gpuTimings);
+    std::vector<AtlasDrawStats> atlases = std::move(stats.atlases);
+    std::vector<std::string> warnings = std::move(stats.warnings);
+    ShadowPlanStats shadows = std::move(stats.shadows);
+    std::string rasterChoice = std::move(stats.shadowRasterChoice), viewChoice = std::move(stats.mainViewChoice);
+    stats = FrameStats{};
+    stats.gpuTimings = std::move(timings);
+    stats.atlases = std::move(atlases);
+    stats.warnings = std::move(warnings);
+    stats.warnings.clear();
+    stats.shadows = std::move(shadows);
+    stats.shadowRasterChoice = std::move(rasterChoice);
+    stats.mainViewChoice = std::move(viewChoice);
+    frame.frameIndex = 0;
+    frame.readback = FrameReadbackLayout{};
+    frame.computeRaster = frame.autoRaster = frame.visibilityView = frame.autoMainView = false;
+    frame.view = CameraView{};
+    frame.rasterSetting = ShadowRaster::Auto;
+    frame.mainViewSetting = MainView::Auto;
 }
 
 }  // namespace penumbra

@@ -2,11 +2,11 @@
 // Renderer::State: what a Renderer keeps across frames (its passes, targets, caches and the frames
 // still on the GPU), shared by renderer.cpp (the public API, construction) and renderer_frame.cpp
 // (recording, submitting and collecting a frame).
-#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
 
+#include "core/recycling_queue.h"
 #include "gpu/device.h"
 #include "penumbra/renderer.h"
 #include "render/compute_raster_pass.h"
@@ -57,10 +57,10 @@ struct FrameRecording {
     const Settings& settings;
     const CameraView& view;
     const FrameTargetSizes& sizes;
+    std::vector<gpu::DescriptorWrite>& casterWrites;  // scene bindings 0-4 (the State's storage)
     const char* stage = "scene updates";  // the part being recorded, named by a failure
     // Upload ring slices, all made before the frame's first readback (Device::allocateFrameData).
     gpu::BufferSlice frameSlice, lightSlice, clusterSlice, directionalSlice, otherSlice, cullSlice;
-    std::vector<gpu::DescriptorWrite> casterWrites;  // scene bindings 0-4
     bool clustered = false;    // the spot/point lights go through the light clusters
     bool screenSpace = false;  // URP's screen-space resolve of the directional shadows
 };
@@ -97,8 +97,17 @@ struct Renderer::State {
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
     std::vector<ImportedImage> imported;
-    std::deque<PendingFrame> pending;
-    std::vector<FrameStats> completed;
+    // Submitted frames, oldest first, and the finished frames' stats not yet taken: both recycle their
+    // elements (a steady-state frame reuses the storage of the frames before it).
+    RecyclingQueue<PendingFrame> pending;
+    RecyclingQueue<FrameStats> completed;
+    ShadowPlanWorkspace planWorkspace;
+    PackedLights packedLights;
+    MainPassInputs mainInputs;
+    std::vector<gpu::DescriptorWrite> casterWrites;
+    MainPassVariant litPassScratch;  // prepareMainView's
+    MainPass::Target mainTarget;     // recordMainView's
+    VisibilityPass::Target opaqueTarget;
     double lastGpuFrameEnd = 0.0;  // the latest finished frame's CompletedFrame::gpuEndMilliseconds
     // Lists every frame refills, kept so a steady-state frame reuses their storage.
     std::vector<TileSignature> directionalSignatures, otherSignatures;
@@ -121,6 +130,10 @@ struct Renderer::State {
     void collectCompleted();
 
 private:
+    uint64_t submitInto(PendingFrame& frame, const RenderRequest& request, const Settings& settings,
+                        const CameraView& view, const ExternalImage* target, bool readback, bool captureAtlas,
+                        bool oneShot);
+    static void resetPendingFrame(PendingFrame& frame);
     // The steps of submit(), in order.
     bool chooseMainView(const Settings& settings, PendingFrame& frame) const;  // true: the visibility pass is wanted
     // The tight fit's visible surfaces of this very view, when the frame cannot plan with a finished one's.
@@ -128,12 +141,12 @@ private:
     void planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view,
                      const std::optional<VisibleSurfaces>& visibleNow);
     // The frame's lit pass variant; makes what the visibility-buffer main view needs when it may draw.
-    MainPassVariant prepareMainView(const Settings& settings, const ShadowFrame& plan, const FrameTargetSizes& sizes,
+    const MainPassVariant& prepareMainView(const Settings& settings, const ShadowFrame& plan, const FrameTargetSizes& sizes,
                                     bool visibilityWanted);
     void uploadFrameInputs(FrameRecording& recording, const RenderRequest& request, const PackedLights& lights);
     const TilesToDraw& chooseTilesToDraw(FrameRecording& recording);
     void recordShadowAtlases(FrameRecording& recording, const TilesToDraw& draw);
-    MainPassInputs recordLightingInputs(FrameRecording& recording);
+    MainPassInputs& recordLightingInputs(FrameRecording& recording);
     void recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,
                         const MainPassVariant& litPass, bool oneShot);
     gpu::ExternalTarget recordOutputs(FrameRecording& recording, const ExternalImage* target, bool readback,

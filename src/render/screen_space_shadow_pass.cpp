@@ -76,7 +76,8 @@ gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, con
     gpu::RenderingDesc rendering;
     rendering.width = view.width;
     rendering.height = view.height;
-    rendering.colors = {gpu::ColorAttachment{shadows_, true, {1, 1, 1, 1}}};
+    const gpu::ColorAttachment color{shadows_, true, {1, 1, 1, 1}};
+    rendering.colors = std::span(&color, 1);
     commands.beginRendering(rendering);
     commands.bindPipeline(resolve_);
     std::vector<gpu::DescriptorWrite> writes = inputs.writes;

@@ -37,9 +37,9 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
                               std::string_view passName) {
     if (draw.empty() && !freshAtlas) return;  // every tile cached
     // A fresh atlas is cleared whole; else the drawn tiles are cleared and the cached ones kept.
-    std::vector<gpu::ResourceUse> uses = {freshAtlas ? gpu::discard(atlas, gpu::Usage::DepthTarget)
-                                                     : gpu::use(atlas, gpu::Usage::DepthTarget),
-                                          gpu::use(scene_.indexBuffer(), gpu::Usage::IndexBuffer)};
+    std::vector<gpu::ResourceUse>& uses = uses_;
+    uses = {freshAtlas ? gpu::discard(atlas, gpu::Usage::DepthTarget) : gpu::use(atlas, gpu::Usage::DepthTarget),
+            gpu::use(scene_.indexBuffer(), gpu::Usage::IndexBuffer)};
     scene_.addSceneReads(uses, gpu::Usage::GraphicsRead);
     culling.addDrawUses(uses);
     commands.pass(passName, uses);
@@ -48,13 +48,15 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
     rendering.depth = {atlas, freshAtlas, 1.0f};
     commands.beginRendering(rendering);
     if (!freshAtlas) {
-        std::vector<gpu::Rect> rects;
+        std::vector<gpu::Rect>& rects = rects_;
+        rects.clear();
         for (uint32_t i : draw)
             rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y), tiles[i].rect.size,
                              tiles[i].rect.size});
         commands.clearDepthRects(rects, 1.0f);
     }
-    std::vector<gpu::DescriptorWrite> casterWrites = writes;
+    std::vector<gpu::DescriptorWrite>& casterWrites = writes_;
+    casterWrites.assign(writes.begin(), writes.end());
     casterWrites.push_back({gpu_data::kCasterBindingVisibleInstances, culling.visibleInstances(), {}, {}});
     for (uint32_t kind = 0; kind < 2 && !draw.empty(); ++kind) {
         commands.bindPipeline(kind ? alphaTested_ : depthOnly_);

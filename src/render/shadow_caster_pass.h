@@ -37,6 +37,10 @@ private:
     const GpuScene& scene_;
     gpu::PipelineHandle depthOnly_;    // shadows "on"
     gpu::PipelineHandle alphaTested_;  // shadows "clip" and "dither"
+    // Per-record lists, kept to reuse their storage (a steady frame allocates nothing).
+    std::vector<gpu::ResourceUse> uses_;
+    std::vector<gpu::Rect> rects_;
+    std::vector<gpu::DescriptorWrite> writes_;
 };
 
 }  // namespace penumbra

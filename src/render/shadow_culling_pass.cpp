@@ -92,7 +92,7 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
                    gpu::use(drawCounts_, Usage::ComputeWrite), gpu::use(tileStats_, Usage::ComputeWrite)});
     commands.bindPipeline(buildDraws_);
     using namespace gpu_data;
-    const std::vector<gpu::DescriptorWrite> drawWrites = {
+    const gpu::DescriptorWrite drawWrites[] = {
         {kCullBindingFrame, cullFrame},
         {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
         {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
@@ -104,10 +104,10 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
     commands.dispatch(groupsFor(scene_.meshSlotCount()), tileCount);
 }
 
-std::vector<gpu::DescriptorWrite> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
-                                                               gpu::BufferHandle pyramid) const {
+std::array<gpu::DescriptorWrite, 9> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
+                                                                 gpu::BufferHandle pyramid) const {
     using namespace gpu_data;
-    return {{kCullBindingFrame, cullFrame},
+    return {{{kCullBindingFrame, cullFrame},
             {kCullBindingInstances, scene_.cullInstanceBuffer(), {}, {}},
             {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
             {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
@@ -115,15 +115,15 @@ std::vector<gpu::DescriptorWrite> ShadowCullingPass::cullWrites(const gpu::Buffe
             {kCullBindingVisibleInstances, visible_, {}, {}},
             {kCullBindingViewHistory, viewHistory_, {}, {}},
             {kCullBindingPyramid, pyramid, {}, {}},
-            {kCullBindingTileStats, tileStats_, {}, {}}};
+            {kCullBindingTileStats, tileStats_, {}, {}}}};
 }
 
-std::vector<gpu::ResourceUse> ShadowCullingPass::cullUses(gpu::BufferHandle pyramid) const {
+std::array<gpu::ResourceUse, 8> ShadowCullingPass::cullUses(gpu::BufferHandle pyramid) const {
     using gpu::Usage;
-    return {gpu::use(scene_.cullInstanceBuffer(), Usage::ComputeRead), gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead),
+    return {{gpu::use(scene_.cullInstanceBuffer(), Usage::ComputeRead), gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead),
             gpu::use(scene_.materialBuffer(), Usage::ComputeRead),     gpu::use(pyramid, Usage::ComputeRead),
             gpu::use(listCounts_, Usage::ComputeWrite),                gpu::use(visible_, Usage::ComputeWrite),
-            gpu::use(viewHistory_, Usage::ComputeWrite),               gpu::use(tileStats_, Usage::ComputeWrite)};
+            gpu::use(viewHistory_, Usage::ComputeWrite),               gpu::use(tileStats_, Usage::ComputeWrite)}};
 }
 
 void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,

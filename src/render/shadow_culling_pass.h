@@ -5,6 +5,7 @@
 // tiles only; its caster culling (PlanOptions::cullCasters) is the reference tests compare with.
 // The same pass culls the visibility buffer's main view (cull_structs.h: the camera frustum, then
 // two-phase occlusion against a depth pyramid) into two more lists, recordView's.
+#include <array>
 #include <vector>
 
 #include "gpu/device.h"
@@ -58,8 +59,8 @@ private:
     gpu::Device& device_;
     const GpuScene& scene_;
     gpu::PipelineHandle cull_, buildDraws_;
-    std::vector<gpu::DescriptorWrite> cullWrites(const gpu::BufferSlice& cullFrame, gpu::BufferHandle pyramid) const;
-    std::vector<gpu::ResourceUse> cullUses(gpu::BufferHandle pyramid) const;  // the cull dispatch's, any phase
+    std::array<gpu::DescriptorWrite, 9> cullWrites(const gpu::BufferSlice& cullFrame, gpu::BufferHandle pyramid) const;
+    std::array<gpu::ResourceUse, 8> cullUses(gpu::BufferHandle pyramid) const;  // the cull dispatch's, any phase
     gpu::BufferHandle listCounts_, visible_, drawCommands_, drawCounts_, tileStats_;
     gpu::BufferHandle viewHistory_;  // kView* bits per instance, carried from frame to frame
 };

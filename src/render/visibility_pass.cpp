@@ -72,7 +72,7 @@ void VisibilityPass::create() {
 
 void VisibilityPass::destroyAll() {
     for (gpu::PipelineHandle p : {raster_, bin_, chunks_, args_, pyramid_}) device_.destroy(p);
-    for (auto& [key, pipeline] : resolve_) device_.destroy(pipeline);
+    for (ResolvePipeline& resolve : resolve_) device_.destroy(resolve.pipeline);
     resolve_.clear();
     for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_})
         device_.destroy(b);
@@ -83,7 +83,8 @@ void VisibilityPass::ensureSize(uint32_t width, uint32_t height) {
     for (gpu::BufferHandle b : {visibility_, color_, depth_, pyramidTexels_}) device_.destroy(b);
     const uint64_t pixels = uint64_t(width) * height;
     using gpu::MemoryKind;
-    pyramidTexels_ = device_.createBuffer(uint64_t(depthPyramidLayout(width, height).texels) * 4, gpu::kBufferStorage,
+    pyramidLayout_ = depthPyramidLayout(width, height);
+    pyramidTexels_ = device_.createBuffer(uint64_t(pyramidLayout_.texels) * 4, gpu::kBufferStorage,
                                           MemoryKind::DeviceLocal, nullptr, "main view depth pyramid");
     visibility_ = device_.createBuffer(pixels * 8, gpu::kBufferStorage | gpu::kBufferTransferDst, MemoryKind::DeviceLocal,
                                        nullptr, "visibility buffer");
@@ -97,11 +98,17 @@ void VisibilityPass::ensureSize(uint32_t width, uint32_t height) {
 
 gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecConstant>& specialization,
                                                     gpu::Format colorFormat) {
-    std::vector<std::pair<uint32_t, uint32_t>> constants;
-    for (const gpu::SpecConstant& c : specialization) constants.emplace_back(c.id, c.value);
     // The compute resolve writes buffers (one pipeline for every format); the fragment one the target.
-    gpu::PipelineHandle& pipeline = resolve_[{constants, fragmentResolve_ ? colorFormat : gpu::Format::Undefined}];
-    if (pipeline) return pipeline;
+    const gpu::Format format = fragmentResolve_ ? colorFormat : gpu::Format::Undefined;
+    const auto sameConstant = [](const gpu::SpecConstant& a, const gpu::SpecConstant& b) {
+        return a.id == b.id && a.value == b.value;
+    };
+    for (const ResolvePipeline& resolve : resolve_)
+        if (resolve.format == format && std::equal(resolve.specialization.begin(), resolve.specialization.end(),
+                                                   specialization.begin(), specialization.end(), sameConstant))
+            return resolve.pipeline;
+    resolve_.push_back({specialization, format, {}});
+    gpu::PipelineHandle& pipeline = resolve_.back().pipeline;
     const std::vector<gpu::BindingDesc> bindings =
         visibilityResolveBindings(fragmentResolve_ ? gpu::kStageFragment : gpu::kStageCompute);
     if (fragmentResolve_) {
@@ -134,7 +141,8 @@ gpu::PipelineHandle VisibilityPass::resolvePipeline(const std::vector<gpu::SpecC
 void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
                                    const gpu_data::VisibilityConstants& constants) {
     using gpu::Usage;
-    std::vector<gpu::DescriptorWrite> resolveWrites = inputs.writes;
+    std::vector<gpu::DescriptorWrite>& resolveWrites = resolveWrites_;
+    resolveWrites.assign(inputs.writes.begin(), inputs.writes.end());
     resolveWrites.push_back({gpu_data::kResolveBindingVisibility, visibility_, {}, {}});
     resolveWrites.push_back({gpu_data::kResolveBindingIndices, scene_.indexBuffer(), {}, {}});
     resolveWrites.push_back({gpu_data::kResolveBindingMeshes, scene_.cullMeshBuffer(), {}, {}});
@@ -146,8 +154,9 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInp
         commands.pushConstants(&constants, sizeof(constants));
     };
     const Usage read = fragmentResolve_ ? Usage::GraphicsRead : Usage::ComputeRead;
-    std::vector<gpu::ResourceUse> uses = {gpu::use(visibility_, read), gpu::use(scene_.indexBuffer(), read),
-                                          gpu::use(scene_.cullMeshBuffer(), read), gpu::use(scene_.cullInstanceBuffer(), read)};
+    std::vector<gpu::ResourceUse>& uses = resolveUses_;
+    uses = {gpu::use(visibility_, read), gpu::use(scene_.indexBuffer(), read), gpu::use(scene_.cullMeshBuffer(), read),
+            gpu::use(scene_.cullInstanceBuffer(), read)};
     addShadingReads(uses, scene_, inputs, !fragmentResolve_);
     if (fragmentResolve_) {  // every pixel is written
         uses.push_back(gpu::discard(target.color, Usage::ColorTarget));
@@ -159,7 +168,7 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInp
         gpu::ColorAttachment color;
         color.texture = target.color;
         color.clear = false;  // every pixel is written
-        rendering.colors = {color};
+        rendering.colors = std::span(&color, 1);
         rendering.depth = {target.depth, false, 0.0f};
         commands.beginRendering(rendering);
         bind();
@@ -177,7 +186,7 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInp
     commands.dispatch((target.width + group - 1) / group, (target.height + group - 1) / group);
 }
 
-void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::string& name,
+void VisibilityPass::recordRaster(gpu::CommandList& commands, std::string_view name,
                                   const std::vector<gpu::DescriptorWrite>& writes, const std::vector<gpu::ResourceUse>& reads,
                                   gpu_data::VisibilityConstants constants, uint32_t list, bool meshletCulling) {
     using gpu::Usage;
@@ -190,30 +199,30 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::string&
         commands.bindTextureTable(scene_.textureTable());
         commands.pushConstants(&constants, sizeof(constants));
     };
-    auto pass = [&](const std::string& passName, std::initializer_list<gpu::ResourceUse> more) {
-        std::vector<gpu::ResourceUse> uses = reads;
-        uses.insert(uses.end(), more);
-        commands.pass(passName, uses);
+    // Pass names and uses joined in the command list's scratch (no allocation once warm).
+    auto pass = [&](std::string_view step, std::initializer_list<gpu::ResourceUse> more) {
+        commands.pass(commands.joinName(name, step), commands.joinUses(reads, more));
     };
     auto sizeDispatch = [&](const char* step, uint32_t queue) {
-        recordRasterDispatchSize(commands, name + step, args_, counters_, queue, kLargeCapacity, kChunkCapacity);
+        recordRasterDispatchSize(commands, commands.joinName(name, step), args_, counters_, queue, kLargeCapacity,
+                                 kChunkCapacity);
     };
     // The queues' counters; the meshlet counts add up over both phases of the frame.
-    commands.pass(name + "/clear", {gpu::use(counters_, Usage::TransferWrite)});
+    commands.pass(commands.joinName(name, "/clear"), {gpu::use(counters_, Usage::TransferWrite)});
     commands.fillBuffer(gpu::BufferSlice{counters_, 0, offsetof(gpu_data::RasterCounters, meshletsOutside)}, 0);
     const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
-    pass(name, {gpu::use(visibility_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
+    pass("", {gpu::use(visibility_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                 gpu::use(large_, Usage::ComputeWrite)});
     bind(raster_);
     commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
                       (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
     sizeDispatch("/bin size", gpu_data::kRasterArgsLarge);
-    pass(name + "/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
+    pass("/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
                          gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
     bind(bin_);
     commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
     sizeDispatch("/chunks size", gpu_data::kRasterArgsChunks);
-    pass(name + "/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
+    pass("/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
                             gpu::use(counters_, Usage::IndirectArguments), gpu::use(counters_, Usage::ComputeRead),
                             gpu::use(visibility_, Usage::ComputeWrite)});
     bind(chunks_);
@@ -221,9 +230,9 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, const std::string&
 }
 
 void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
-    const DepthPyramidLayout layout = depthPyramidLayout(width_, height_);
+    const DepthPyramidLayout& layout = pyramidLayout_;
     commands.bindPipeline(pyramid_);
-    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kPyramidBindingVisibility, visibility_, {}, {}},
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kPyramidBindingVisibility, visibility_, {}, {}},
                                                       {gpu_data::kPyramidBindingTexels, pyramidTexels_, {}, {}}};
     commands.pushDescriptors(writes);
     for (size_t level = 0; level < layout.sizes.size(); ++level) {
@@ -263,14 +272,15 @@ void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& in
     constants.background = packRgba8(target.clearColor, false);
     constants.meshSlots = scene_.meshSlotCount();
     using namespace gpu_data;
-    std::vector<gpu::DescriptorWrite> rasterWrites;  // the scene's (not the lit pass's: 8 is the visibility buffer here)
+    std::vector<gpu::DescriptorWrite>& rasterWrites = rasterWrites_;  // the scene's (not the lit pass's: 8 is the visibility buffer here)
+    rasterWrites.clear();
     for (const gpu::DescriptorWrite& w : inputs.writes)
         for (uint32_t scene : {kSceneBindingFrame, kSceneBindingVertices, kSceneBindingInstances, kSceneBindingMaterials})
             if (w.binding == scene) rasterWrites.push_back(w);
     rasterWrites.push_back({kVisibilityRasterBindingVisibility, visibility_, {}, {}});
     appendRasterMeshWrites(rasterWrites, scene_, culling, {counters_, large_, chunkList_});
 
-    std::vector<gpu::ResourceUse> reads;
+    std::vector<gpu::ResourceUse>& reads = reads_;
     rasterReads(scene_, culling, reads);
     commands.beginTimer("main/cull");
     commands.pass("main/clear", {gpu::use(visibility_, gpu::Usage::TransferWrite), gpu::use(counters_, gpu::Usage::TransferWrite)});

@@ -16,6 +16,7 @@
 // same code in a fragment shader). GPUs run the compute resolve.
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cull_structs.h"
@@ -24,6 +25,7 @@
 #include "render/gpu_scene.h"
 #include "render/main_pass.h"
 #include "render/shadow_culling_pass.h"
+#include "shadows/cull_packing.h"
 #include "visibility_structs.h"
 
 namespace penumbra {
@@ -73,7 +75,7 @@ private:
     gpu::PipelineHandle resolvePipeline(const std::vector<gpu::SpecConstant>& specialization, gpu::Format colorFormat);
     // One phase's rasterization (frame graph passes `name`, name/bin, name/chunks and the sizes);
     // `reads`: rasterReads().
-    void recordRaster(gpu::CommandList& commands, const std::string& name, const std::vector<gpu::DescriptorWrite>& writes,
+    void recordRaster(gpu::CommandList& commands, std::string_view name, const std::vector<gpu::DescriptorWrite>& writes,
                       const std::vector<gpu::ResourceUse>& reads, gpu_data::VisibilityConstants constants, uint32_t list,
                       bool meshletCulling);
     void recordPyramid(gpu::CommandList& commands);
@@ -83,7 +85,18 @@ private:
     gpu::Device& device_;
     const GpuScene& scene_;
     gpu::PipelineHandle raster_, bin_, chunks_, args_, pyramid_;
-    std::map<std::pair<std::vector<std::pair<uint32_t, uint32_t>>, gpu::Format>, gpu::PipelineHandle> resolve_;
+    // The resolve pipelines, one per lit-pass specialization (and colour format for the fragment
+    // resolve): a handful, found by a linear search that builds no key.
+    struct ResolvePipeline {
+        std::vector<gpu::SpecConstant> specialization;
+        gpu::Format format = gpu::Format::Undefined;
+        gpu::PipelineHandle pipeline;
+    };
+    std::vector<ResolvePipeline> resolve_;
+    DepthPyramidLayout pyramidLayout_;  // of width_ x height_
+    // Per-record lists, kept to reuse their storage (a steady frame allocates nothing).
+    std::vector<gpu::DescriptorWrite> resolveWrites_, rasterWrites_;
+    std::vector<gpu::ResourceUse> resolveUses_, reads_;
     bool fragmentResolve_ = false;
     gpu::BufferHandle counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_;
     uint32_t width_ = 0, height_ = 0;

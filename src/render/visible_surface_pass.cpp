@@ -60,7 +60,8 @@ VisibleSurfaces VisibleSurfacePass::now(const Scene& scene, const CameraView& vi
     const gpu_data::FrameData frame = cameraFrameData(view);
     device_.writeBuffer(frame_, &frame, sizeof(frame));
     MainPassInputs inputs;
-    inputs.writes = sceneDescriptorWrites(gpuScene_, gpu::BufferSlice{frame_, 0, sizeof(frame)}, {});  // no lights: the prepass reads none
+    const SceneWrites writes = sceneDescriptorWrites(gpuScene_, gpu::BufferSlice{frame_, 0, sizeof(frame)}, {});  // no lights: the prepass reads none
+    inputs.writes.assign(writes.begin(), writes.end());
     MainPass::Target target;
     target.color = normals_;
     target.depth = depth_;
@@ -86,7 +87,7 @@ uint64_t VisibleSurfacePass::recordSubsample(gpu::CommandList& commands, gpu::Te
     commands.pass("visibleSurfaces/subsample",
                   {gpu::use(depth, gpu::Usage::ComputeSampled), gpu::use(depths_, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(subsample_);
-    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kSubsampleBindingDepth, {}, depth, pointSampler_},
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kSubsampleBindingDepth, {}, depth, pointSampler_},
                                                       {gpu_data::kSubsampleBindingDepths, depths_, {}, {}}};
     commands.pushDescriptors(writes);
     const gpu_data::SubsampleConstants constants{size.x, size.y, kStride};
@@ -100,11 +101,9 @@ uint64_t VisibleSurfacePass::readbackBytes(const CameraView& view) {
     return uint64_t(size.x) * size.y * 4;
 }
 
-VisibleSurfaces VisibleSurfacePass::fromReadback(const uint8_t* bytes, const CameraView& view) {
+void VisibleSurfacePass::fromReadback(const uint8_t* bytes, const CameraView& view, VisibleSurfaces& visible) {
     const glm::uvec2 size = subsampleSize(view);
-    Image depth(size.x, size.y, 4);
-    std::memcpy(depth.pixels.data(), bytes, depth.pixels.size());
-    return visibleSurfacesFromDepth(depth, view, kStride);
+    visibleSurfacesFromDepths(bytes, size.x, size.y, view, kStride, visible);
 }
 
 }  // namespace penumbra

@@ -30,7 +30,8 @@ public:
     // `depth`: the frame's main depth target, in DepthTarget state (left there). Returns where the
     // subsample starts in the frame's readback.
     uint64_t recordSubsample(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view);
-    static VisibleSurfaces fromReadback(const uint8_t* bytes, const CameraView& view);
+    // Reduces the subsample into `visible` (replaced; its storage reused).
+    static void fromReadback(const uint8_t* bytes, const CameraView& view, VisibleSurfaces& visible);
     static uint64_t readbackBytes(const CameraView& view);
 
 private:

@@ -12,21 +12,6 @@ float shadowDistance(const CameraView& camera, float maxDistance) {
     return std::max(std::min(maxDistance, zFar), camera.zNear);
 }
 
-std::vector<float> cascadeSplitDistances(const CameraView& camera, float distance, uint32_t cascadeCount,
-                                         const std::array<float, 3>& ratios) {
-    PENUMBRA_ASSERT(cascadeCount >= 1 && cascadeCount <= 4);
-    std::vector<float> splits(cascadeCount);
-    float previous = camera.zNear;
-    for (uint32_t i = 0; i + 1 < cascadeCount; ++i) {
-        // Settings validation refuses decreasing ratios; the clamp also keeps every split within
-        // [zNear, distance] when the near plane lies beyond the first ratio's distance.
-        splits[i] = std::clamp(ratios[i] * distance, previous, distance);
-        previous = splits[i];
-    }
-    splits[cascadeCount - 1] = distance;
-    return splits;
-}
-
 CascadeSphere frustumSliceSphere(const CameraView& camera, float vsNear, float vsFar) {
     const float tanHalfY = std::tan(0.5f * camera.yfov);
     const float tanHalfX = tanHalfY * camera.aspect;
@@ -42,42 +27,85 @@ CascadeSphere frustumSliceSphere(const CameraView& camera, float vsNear, float v
     return sphere;
 }
 
-std::vector<float> cascadeSplitDistances(const CameraView& camera, float vsNear, float vsFar,
-                                         const DirectionalShadowSettings& settings, float shadowDistance) {
-    if (settings.cascadeSplits == CascadeSplitMode::Manual) {
-        std::vector<float> splits =
-            cascadeSplitDistances(camera, shadowDistance, settings.cascadeCount, settings.cascadeRatios);
-        splits.back() = std::max(std::min(vsFar, shadowDistance), camera.zNear);
-        for (float& split : splits) split = std::min(split, splits.back());
-        return splits;
+namespace {
+
+// At most 4 cascades (validateShadowSettings): the splits fit in an array, no heap.
+struct CascadeSplits {
+    std::array<float, 4> vsFar{};
+    uint32_t count = 0;
+};
+
+CascadeSplits ratioSplits(const CameraView& camera, float distance, uint32_t cascadeCount,
+                          const std::array<float, 3>& ratios) {
+    PENUMBRA_ASSERT(cascadeCount >= 1 && cascadeCount <= 4);
+    CascadeSplits splits;
+    splits.count = cascadeCount;
+    float previous = camera.zNear;
+    for (uint32_t i = 0; i + 1 < cascadeCount; ++i) {
+        // Settings validation refuses decreasing ratios; the clamp also keeps every split within
+        // [zNear, distance] when the near plane lies beyond the first ratio's distance.
+        splits.vsFar[i] = std::clamp(ratios[i] * distance, previous, distance);
+        previous = splits.vsFar[i];
     }
+    splits.vsFar[cascadeCount - 1] = distance;
+    return splits;
+}
+
+CascadeSplits splitsOf(const CameraView& camera, float vsNear, float vsFar, const DirectionalShadowSettings& settings,
+                       float shadowDistance) {
     const uint32_t count = settings.cascadeCount;
     PENUMBRA_ASSERT(count >= 1 && count <= 4);
+    if (settings.cascadeSplits == CascadeSplitMode::Manual) {
+        CascadeSplits splits = ratioSplits(camera, shadowDistance, count, settings.cascadeRatios);
+        const float last = std::max(std::min(vsFar, shadowDistance), camera.zNear);
+        splits.vsFar[count - 1] = last;
+        for (uint32_t i = 0; i < count; ++i) splits.vsFar[i] = std::min(splits.vsFar[i], last);
+        return splits;
+    }
+    CascadeSplits splits;
+    splits.count = count;
     const float n = std::max(vsNear, camera.zNear), f = std::max(vsFar, n * 1.0001f);
     const float lambda = settings.cascadeSplits == CascadeSplitMode::Log ? 1.0f : settings.splitLambda;
-    std::vector<float> splits(count);
     for (uint32_t i = 1; i <= count; ++i) {
         const float t = float(i) / float(count);
         const float logSplit = n * std::pow(f / n, t);
         const float uniformSplit = n + (f - n) * t;
-        splits[i - 1] = lambda * logSplit + (1.0f - lambda) * uniformSplit;
+        splits.vsFar[i - 1] = lambda * logSplit + (1.0f - lambda) * uniformSplit;
     }
-    splits.back() = f;
+    splits.vsFar[count - 1] = f;
     return splits;
+}
+
+}  // namespace
+
+std::vector<float> cascadeSplitDistances(const CameraView& camera, float distance, uint32_t cascadeCount,
+                                         const std::array<float, 3>& ratios) {
+    const CascadeSplits splits = ratioSplits(camera, distance, cascadeCount, ratios);
+    return std::vector<float>(splits.vsFar.begin(), splits.vsFar.begin() + splits.count);
+}
+
+std::vector<float> cascadeSplitDistances(const CameraView& camera, float vsNear, float vsFar,
+                                         const DirectionalShadowSettings& settings, float shadowDistance) {
+    const CascadeSplits splits = splitsOf(camera, vsNear, vsFar, settings, shadowDistance);
+    return std::vector<float>(splits.vsFar.begin(), splits.vsFar.begin() + splits.count);
+}
+
+void computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings, float vsNear, float vsFar,
+                           std::vector<CascadeSphere>& spheres) {
+    const float distance = shadowDistance(camera, settings.maxDistance);
+    const CascadeSplits splits = splitsOf(camera, vsNear, std::min(vsFar, distance), settings.directional, distance);
+    spheres.clear();
+    float sliceNear = camera.zNear;
+    for (uint32_t i = 0; i < splits.count; ++i) {
+        spheres.push_back(frustumSliceSphere(camera, sliceNear, splits.vsFar[i]));
+        sliceNear = splits.vsFar[i];
+    }
 }
 
 std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings,
                                                  float vsNear, float vsFar) {
-    const float distance = shadowDistance(camera, settings.maxDistance);
-    const std::vector<float> splits = cascadeSplitDistances(camera, vsNear, std::min(vsFar, distance),
-                                                            settings.directional, distance);
     std::vector<CascadeSphere> spheres;
-    spheres.reserve(splits.size());
-    float sliceNear = camera.zNear;
-    for (float sliceFar : splits) {
-        spheres.push_back(frustumSliceSphere(camera, sliceNear, sliceFar));
-        sliceNear = sliceFar;
-    }
+    computeCascadeSpheres(camera, settings, vsNear, vsFar, spheres);
     return spheres;
 }
 

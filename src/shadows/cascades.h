@@ -53,6 +53,9 @@ std::vector<float> cascadeSplitDistances(const CameraView& camera, float vsNear,
 std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings,
                                                  float vsNear, float vsFar);
 std::vector<CascadeSphere> computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings);
+// The same into `spheres` (replaced; its storage reused: no allocation once it holds 4).
+void computeCascadeSpheres(const CameraView& camera, const ShadowSettings& settings, float vsNear, float vsFar,
+                           std::vector<CascadeSphere>& spheres);
 
 // World -> light view rotation for a light travelling along wsDirection (no translation).
 glm::mat4 lightRotationFromWorld(const glm::vec3& wsDirection);

@@ -18,12 +18,17 @@ bool isShadowCaster(const Scene& scene, const Instance& instance) {
     return true;
 }
 
-std::vector<uint32_t> shadowCasterInstances(const Scene& scene) {
-    std::vector<uint32_t> casters;
-    casters.reserve(scene.instances.size());
+void shadowCasterInstances(const Scene& scene, std::vector<uint32_t>& casters) {
+    casters.clear();
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         if (isShadowCaster(scene, scene.instances[i])) casters.push_back(i);
     }
+}
+
+std::vector<uint32_t> shadowCasterInstances(const Scene& scene) {
+    std::vector<uint32_t> casters;
+    casters.reserve(scene.instances.size());
+    shadowCasterInstances(scene, casters);
     return casters;
 }
 
@@ -63,14 +68,23 @@ bool insideScaledSphere(const Aabb& wsBounds, const CascadeSphere& sphere, float
     return glm::dot(farthest, farthest) <= radius * radius;
 }
 
+bool isShadowReceiver(const Scene& scene, const Instance& instance) {
+    if (!instance.wsBounds.valid() || instance.meshIndex >= scene.meshes.size()) return false;
+    const uint32_t material = scene.meshes[instance.meshIndex].materialIndex;
+    return material >= scene.materials.size() || scene.materials[material].receiveShadows;
+}
+
 std::vector<Aabb> shadowReceiverBounds(const Scene& scene) {
     std::vector<Aabb> bounds;
-    for (const Instance& instance : scene.instances) {
-        if (!instance.wsBounds.valid() || instance.meshIndex >= scene.meshes.size()) continue;
-        const uint32_t material = scene.meshes[instance.meshIndex].materialIndex;
-        if (material < scene.materials.size() && !scene.materials[material].receiveShadows) continue;
-        bounds.push_back(instance.wsBounds);
-    }
+    for (const Instance& instance : scene.instances)
+        if (isShadowReceiver(scene, instance)) bounds.push_back(instance.wsBounds);
+    return bounds;
+}
+
+Aabb shadowReceiverUnion(const Scene& scene) {
+    Aabb bounds;
+    for (const Instance& instance : scene.instances)
+        if (isShadowReceiver(scene, instance)) bounds.extend(instance.wsBounds);
     return bounds;
 }
 

@@ -17,6 +17,7 @@ namespace penumbra {
 bool isShadowCaster(const Scene& scene, const Instance& instance);
 // Indices (into Scene::instances) of every shadow caster, in scene order.
 std::vector<uint32_t> shadowCasterInstances(const Scene& scene);
+void shadowCasterInstances(const Scene& scene, std::vector<uint32_t>& casters);  // replaced, storage reused
 
 // Bounds of each listed caster after a rotation (the light's rotation-only view), in list order.
 std::vector<Aabb> rotatedCasterBounds(const Scene& scene, const std::vector<uint32_t>& casters,
@@ -37,8 +38,12 @@ float cascadeBlendCullingFactor(float cascadeFade);
 // Whether wsBounds lies wholly inside the sphere with its radius scaled by factor.
 bool insideScaledSphere(const Aabb& wsBounds, const CascadeSphere& sphere, float factor);
 
+// Whether an instance receives shadows: it has bounds and a mesh, and its material receives shadows.
+bool isShadowReceiver(const Scene& scene, const Instance& instance);
 // Bounds of every instance whose material receives shadows, in scene order: where shadows can land.
 std::vector<Aabb> shadowReceiverBounds(const Scene& scene);
+// Their union (invalid when there is none).
+Aabb shadowReceiverUnion(const Scene& scene);
 
 // The part of a receiver's bounds that a caster's shadow can reach: the caster's bounds swept along
 // the light (wsLightDirection, the way it travels) over the stretch where the sweep overlaps the

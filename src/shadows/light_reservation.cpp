@@ -1,6 +1,9 @@
 #include "shadows/light_reservation.h"
 
+#include <array>
 #include <cmath>
+
+#include "core/error.h"
 
 #include "shadows/caster_culling.h"
 
@@ -10,9 +13,9 @@ namespace {
 
 bool anyCasterInShadowVolume(const Scene& scene, const std::vector<CascadeSphere>& spheres,
                              const std::vector<uint32_t>& casters, const glm::mat4& lightRotation) {
-    std::vector<glm::vec3> rsCenters;
-    rsCenters.reserve(spheres.size());
-    for (const CascadeSphere& sphere : spheres) rsCenters.push_back(glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f)));
+    std::array<glm::vec3, 4> rsCenters;  // at most 4 cascades
+    PENUMBRA_ASSERT(spheres.size() <= rsCenters.size());
+    for (size_t i = 0; i < spheres.size(); ++i) rsCenters[i] = glm::vec3(lightRotation * glm::vec4(spheres[i].wsCenter, 1.0f));
     const glm::mat3 rotation(lightRotation);
     const glm::mat3 absRotation(glm::abs(rotation[0]), glm::abs(rotation[1]), glm::abs(rotation[2]));
     for (uint32_t casterIndex : casters) {
@@ -29,11 +32,10 @@ bool anyCasterInShadowVolume(const Scene& scene, const std::vector<CascadeSphere
 
 }  // namespace
 
-std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& scene,
-                                                                const std::vector<CascadeSphere>& spheres,
-                                                                const std::vector<uint32_t>& casters,
-                                                                uint32_t cascadeCount) {
-    std::vector<ReservedDirectionalLight> reserved;
+void reserveDirectionalShadows(const Scene& scene, const std::vector<CascadeSphere>& spheres,
+                               const std::vector<uint32_t>& casters, uint32_t cascadeCount,
+                               std::vector<ReservedDirectionalLight>& reserved) {
+    reserved.clear();
     for (uint32_t i = 0; i < scene.lights.size() && reserved.size() < gpu_data::kMaxShadowedDirectionalLights; ++i) {
         const Light& light = scene.lights[i];
         if (light.type != LightType::Directional) continue;
@@ -54,6 +56,14 @@ std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& sce
         entry.wsDirection = glm::normalize(light.wsDirection);
         reserved.push_back(entry);
     }
+}
+
+std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& scene,
+                                                                const std::vector<CascadeSphere>& spheres,
+                                                                const std::vector<uint32_t>& casters,
+                                                                uint32_t cascadeCount) {
+    std::vector<ReservedDirectionalLight> reserved;
+    reserveDirectionalShadows(scene, spheres, casters, cascadeCount, reserved);
     return reserved;
 }
 

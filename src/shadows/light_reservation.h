@@ -31,5 +31,9 @@ std::vector<ReservedDirectionalLight> reserveDirectionalShadows(const Scene& sce
                                                                 const std::vector<CascadeSphere>& spheres,
                                                                 const std::vector<uint32_t>& casters,
                                                                 uint32_t cascadeCount);
+// The same into `reserved` (replaced; its storage reused).
+void reserveDirectionalShadows(const Scene& scene, const std::vector<CascadeSphere>& spheres,
+                               const std::vector<uint32_t>& casters, uint32_t cascadeCount,
+                               std::vector<ReservedDirectionalLight>& reserved);
 
 }  // namespace penumbra

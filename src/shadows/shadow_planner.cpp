@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/reuse.h"
 #include "core/stopwatch.h"
 #include "shadows/caster_culling.h"
 #include "shadows/shadow_gpu_packing.h"
@@ -88,22 +89,23 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
 
 }  // namespace
 
-ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
-                                const VisibleSurfaces* visible, const PlanOptions& options) {
-    ShadowFrame frame;
+namespace {
+
+// The directional plan's lights, cascades and tiles (the spot and point lights are planOtherShadows').
+void planDirectional(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                     const VisibleSurfaces* visible, const PlanOptions& options, ShadowFrame& frame,
+                     ShadowPlanWorkspace& workspace) {
     DirectionalShadowPlan& directional = frame.directional;
     const DirectionalShadowSettings& config = settings.directional;
-    const float distance = shadowDistance(camera, settings.maxDistance);
-
     // The tight fit needs the frame's visible surfaces; without them (or with none) it is the sphere fit.
     const bool tight = config.fit == CascadeFit::Tight && visible && !visible->empty();
     directional.tight = tight;
     // The last split just beyond the farthest visible point (cascades select by depth < split).
-    directional.cascades = tight ? computeCascadeSpheres(camera, settings, visible->vsMinDepth,
-                                                         visible->vsMaxDepth * 1.001f + 1e-3f)
-                                 : computeCascadeSpheres(camera, settings);
-    const std::vector<uint32_t> casters = shadowCasterInstances(scene);
-    directional.lights = reserveDirectionalShadows(scene, directional.cascades, casters, config.cascadeCount);
+    computeCascadeSpheres(camera, settings, tight ? visible->vsMinDepth : camera.zNear,
+                          tight ? visible->vsMaxDepth * 1.001f + 1e-3f : shadowDistance(camera, settings.maxDistance),
+                          directional.cascades);
+    const std::vector<uint32_t>& casters = workspace.casters;
+    reserveDirectionalShadows(scene, directional.cascades, casters, config.cascadeCount, directional.lights);
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
     directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
 
@@ -111,36 +113,57 @@ ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, co
     // box, so the same rule costs O(1) per caster on the CPU and in the GPU culling pass). It reasons
     // about culling spheres; the tight fit selects cascades by view depth, so it draws every caster that
     // meets a cascade's box.
-    for (const Aabb& receiver : shadowReceiverBounds(scene)) directional.wsReceiverBounds.extend(receiver);
+    directional.wsReceiverBounds = shadowReceiverUnion(scene);
     directional.blendCullingFactor = tight ? 0.0f : cascadeBlendCullingFactor(config.cascadeFade);
-    const std::vector<Aabb> receivers = {directional.wsReceiverBounds};
+    workspace.receivers.assign(1, directional.wsReceiverBounds);
     const BlendCulling blendCulling{directional.blendCullingFactor,
-                                    directional.wsReceiverBounds.valid() ? &receivers : nullptr};
+                                    directional.wsReceiverBounds.valid() ? &workspace.receivers : nullptr};
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
-        const std::vector<Aabb> rsBounds =
-            options.cullCasters ? rotatedCasterBounds(scene, casters, rotation) : std::vector<Aabb>{};
-        const TileInputs inputs{scene,         casters, rsBounds, directional.cascades, directional.atlas, blendCulling,
-                                config.filter, tight ? visible : nullptr, config.cascadeFade, options.cullCasters};
-        for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade) {
-            directional.tiles.push_back(
-                planTile(inputs, light, rotation, slot, cascade, frame.stats));
-        }
+        workspace.rsCasterBounds.clear();
+        if (options.cullCasters) workspace.rsCasterBounds = rotatedCasterBounds(scene, casters, rotation);
+        const TileInputs inputs{scene,         casters, workspace.rsCasterBounds, directional.cascades, directional.atlas,
+                                blendCulling,  config.filter, tight ? visible : nullptr, config.cascadeFade,
+                                options.cullCasters};
+        for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade)
+            directional.tiles.push_back(planTile(inputs, light, rotation, slot, cascade, frame.stats));
     }
+}
+
+}  // namespace
+
+void ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                         const VisibleSurfaces* visible, const PlanOptions& options, ShadowFrame& frame,
+                         ShadowPlanWorkspace& workspace) {
+    resetKeepingStorage(frame.directional, &DirectionalShadowPlan::lights, &DirectionalShadowPlan::cascades,
+                        &DirectionalShadowPlan::tiles, &DirectionalShadowPlan::slotOfSceneLight);
+    resetKeepingStorage(frame.stats, &ShadowStats::castersPerTile);
+    shadowCasterInstances(scene, workspace.casters);
+    planDirectional(scene, camera, settings, visible, options, frame, workspace);
 
     ShadowStats& stats = frame.stats;
+    const DirectionalShadowPlan& directional = frame.directional;
     for (const Light& light : scene.lights) stats.directionalLightsConsidered += light.type == LightType::Directional;
     stats.directionalLightsReserved = uint32_t(directional.lights.size());
-    stats.shadowCasters = uint32_t(casters.size());
+    stats.shadowCasters = uint32_t(workspace.casters.size());
     for (const ShadowTile& tile : directional.tiles) {
         stats.castersPerTile.push_back(uint32_t(tile.casterInstances.size()));
         stats.casterDraws += uint32_t(tile.casterInstances.size());
     }
-    directional.gpu = packDirectionalShadowData(directional, settings, distance);
-    frame.other = planOtherShadows(scene, camera, settings, casters, distance, options.cullCasters);
+    const float distance = shadowDistance(camera, settings.maxDistance);
+    frame.directional.gpu = packDirectionalShadowData(directional, settings, distance);
+    planOtherShadows(scene, camera, settings, workspace.casters, distance, options.cullCasters, frame.other,
+                     workspace.reservation);
     stats.cullingMilliseconds += frame.other.cullingMilliseconds;
+}
+
+ShadowFrame ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                                const VisibleSurfaces* visible, const PlanOptions& options) {
+    ShadowFrame frame;
+    ShadowPlanWorkspace workspace;
+    plan(scene, camera, settings, visible, options, frame, workspace);
     return frame;
 }
 

@@ -107,12 +107,26 @@ struct PlanOptions {
     bool cullCasters = true;
 };
 
+// Working storage of ShadowPlanner::plan, kept by a caller that plans every frame.
+struct ShadowPlanWorkspace {
+    std::vector<uint32_t> casters;      // shadowCasterInstances
+    std::vector<Aabb> receivers;        // the receivers' union, as blend culling reads it
+    std::vector<Aabb> rsCasterBounds;   // one light's rotated caster bounds (PlanOptions::cullCasters)
+    OtherLightReservation reservation;  // the spot and point lights' reservation
+};
+
 class ShadowPlanner {
 public:
     // Settings must be valid (validateShadowSettings); scene and camera are read only. `visible` (the
     // frame's depth reduction) serves shadows.directional.fit = tight; without it the fit is the sphere.
     static ShadowFrame plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                             const VisibleSurfaces* visible = nullptr, const PlanOptions& options = {});
+    // The same into `frame` (replaced): a frame planned into the ShadowFrame and workspace of the
+    // frame before allocates nothing once the two have grown to the scene's size (with
+    // PlanOptions::cullCasters off, as the renderer plans: the per-tile caster lists are the GPU's).
+    static void plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                     const VisibleSurfaces* visible, const PlanOptions& options, ShadowFrame& frame,
+                     ShadowPlanWorkspace& workspace);
 };
 
 }  // namespace penumbra

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/reuse.h"
+
 #include "shadows/spot_atlas_layout.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
@@ -68,16 +70,20 @@ bool anyCasterInShadowFrustum(const Scene& scene, const std::vector<uint32_t>& c
     return anyFrustumCaster(scene, casters, clipFromWorld, light.wsPosition);
 }
 
+constexpr uint32_t kNotKept = ~0u;  // a candidate's firstTile until the tile budget keeps it
+
 std::string lightName(const Scene& scene, uint32_t index) {
     return "light " + std::to_string(index) + " '" + scene.lights[index].name + "'";
 }
 
 }  // namespace
 
-OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& camera,
-                                          const std::vector<uint32_t>& casters) {
-    OtherLightReservation result;
-    std::vector<ReservedOtherLight> candidates;
+void reserveOtherShadows(const Scene& scene, const CameraView& camera, const std::vector<uint32_t>& casters,
+                         OtherLightReservation& result) {
+    resetKeepingStorage(result, &OtherLightReservation::lights, &OtherLightReservation::droppedLights,
+                        &OtherLightReservation::warnings, &OtherLightReservation::candidates,
+                        &OtherLightReservation::order);
+    std::vector<ReservedOtherLight>& candidates = result.candidates;
     for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = scene.lights[i];
         if (light.type == LightType::Directional) continue;
@@ -96,34 +102,43 @@ OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& 
         if (!anyCasterInShadowFrustum(scene, casters, light, entry.nearDistance, entry.farDistance)) continue;
         entry.influence = screenInfluence(light.wsPosition, entry.farDistance, camera);
         if (entry.influence <= 0.0f) continue;  // lights nothing in view
+        entry.firstTile = kNotKept;
         candidates.push_back(entry);
     }
 
-    std::vector<size_t> order(candidates.size());
-    std::iota(order.begin(), order.end(), size_t(0));
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return candidates[a].influence > candidates[b].influence; });
-    std::vector<bool> kept(candidates.size(), false);
-    for (size_t index : order) {
+    // Highest influence first, scene order among equals (a stable order without stable_sort's buffer).
+    std::vector<uint32_t>& order = result.order;
+    for (uint32_t i = 0; i < candidates.size(); ++i) order.push_back(i);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        if (candidates[a].influence != candidates[b].influence) return candidates[a].influence > candidates[b].influence;
+        return a < b;
+    });
+    for (uint32_t index : order) {
         const uint32_t tiles = candidates[index].tileCount();
         if (result.tilesUsed + tiles > kMaxOtherShadowTiles) continue;
         result.tilesUsed += tiles;
-        kept[index] = true;
+        candidates[index].firstTile = 0;  // kept; its tile is assigned below, in scene order
     }
     uint32_t nextTile = 0;
-    for (size_t i = 0; i < candidates.size(); ++i) {
-        if (!kept[i]) {
-            const uint32_t index = candidates[i].sceneLightIndex;
+    for (ReservedOtherLight& candidate : candidates) {
+        if (candidate.firstTile == kNotKept) {
+            const uint32_t index = candidate.sceneLightIndex;
             result.droppedLights.push_back(index);
             result.warnings.push_back(lightName(scene, index) + " casts no shadow: more than " +
                                       std::to_string(kMaxOtherShadowTiles) +
                                       " spot/point shadow tiles wanted (a spot light takes 1, a point light 6)");
             continue;
         }
-        candidates[i].firstTile = nextTile;
-        nextTile += candidates[i].tileCount();
-        result.lights.push_back(candidates[i]);
+        candidate.firstTile = nextTile;
+        nextTile += candidate.tileCount();
+        result.lights.push_back(candidate);
     }
+}
+
+OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& camera,
+                                          const std::vector<uint32_t>& casters) {
+    OtherLightReservation result;
+    reserveOtherShadows(scene, camera, casters, result);
     return result;
 }
 

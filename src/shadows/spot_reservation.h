@@ -42,6 +42,10 @@ struct OtherLightReservation {
     std::vector<std::string> warnings;       // one line per dropped light
     uint32_t considered = 0;                 // spot and point lights in the scene
     uint32_t tilesUsed = 0;
+    // Working storage of reserveOtherShadows (the qualifying lights and their priority order), kept
+    // so that reserving into the same object again allocates nothing.
+    std::vector<ReservedOtherLight> candidates;
+    std::vector<uint32_t> order;
 };
 
 inline constexpr float kMinOtherNearPlane = 0.01f;
@@ -57,5 +61,8 @@ float screenInfluence(const glm::vec3& wsCenter, float radius, const CameraView&
 
 OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& camera,
                                           const std::vector<uint32_t>& casters);
+// The same into `result` (replaced; its storage reused).
+void reserveOtherShadows(const Scene& scene, const CameraView& camera, const std::vector<uint32_t>& casters,
+                         OtherLightReservation& result);
 
 }  // namespace penumbra

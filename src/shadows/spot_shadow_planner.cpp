@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/reuse.h"
 #include "core/stopwatch.h"
 #include "shadows/shadow_fade.h"
 #include "shadows/spot_culling.h"
@@ -84,13 +85,15 @@ void packLight(gpu_data::OtherShadowData& data, const Light& light, const Reserv
 
 }  // namespace
 
-OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
-                                 const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters) {
-    OtherShadowPlan plan;
-    OtherLightReservation reservation = reserveOtherShadows(scene, camera, casters);
-    plan.lights = std::move(reservation.lights);
-    plan.droppedLights = std::move(reservation.droppedLights);
-    plan.warnings = std::move(reservation.warnings);
+void planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                      const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters, OtherShadowPlan& plan,
+                      OtherLightReservation& reservation) {
+    resetKeepingStorage(plan, &OtherShadowPlan::lights, &OtherShadowPlan::tiles, &OtherShadowPlan::slotOfSceneLight,
+                        &OtherShadowPlan::droppedLights, &OtherShadowPlan::warnings);
+    reserveOtherShadows(scene, camera, casters, reservation);
+    plan.lights.assign(reservation.lights.begin(), reservation.lights.end());
+    plan.droppedLights.assign(reservation.droppedLights.begin(), reservation.droppedLights.end());
+    plan.warnings.assign(reservation.warnings.begin(), reservation.warnings.end());
     plan.lightsConsidered = reservation.considered;
     plan.slotOfSceneLight.assign(scene.lights.size(), -1);
     plan.atlas = makeSpotAtlasLayout(settings.spot.atlasSize, reservation.tilesUsed);
@@ -130,6 +133,13 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
     data.invAtlasSize = 1.0f / atlasSize;
     data.tileSize = tileSize;
     data.invTileSize = 1.0f / tileSize;
+}
+
+OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                                 const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters) {
+    OtherShadowPlan plan;
+    OtherLightReservation reservation;
+    planOtherShadows(scene, camera, settings, casters, shadowDistance, cullCasters, plan, reservation);
     return plan;
 }
 

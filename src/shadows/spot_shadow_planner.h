@@ -17,5 +17,10 @@ float otherShadowFilterReach(bool soft, ShadowFilter filter);
 // lights.
 OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                                  const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters = true);
+// The same into `plan` (replaced), with `reservation` as working storage: both keep their storage, so
+// planning again into the same two allocates nothing once they are warm.
+void planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
+                      const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters, OtherShadowPlan& plan,
+                      OtherLightReservation& reservation);
 
 }  // namespace penumbra

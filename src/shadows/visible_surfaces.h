@@ -26,6 +26,16 @@ struct VisibleSurfaces {
 // of it in x and y (ceil(width / stride) x ceil(height / stride), pixel (x, y) = view pixel
 // (x * stride, y * stride)), as the real-time path reads it back.
 VisibleSurfaces visibleSurfacesFromDepth(const Image& depth, const CameraView& view, uint32_t stride = 1);
+// The same from such depths as raw bytes (width x height floats, rows top to bottom) into `visible`
+// (replaced; its storage reused: no allocation once it has held as many points).
+void visibleSurfacesFromDepths(const uint8_t* depths, uint32_t width, uint32_t height, const CameraView& view,
+                               uint32_t stride, VisibleSurfaces& visible);
+
+// The depth of pixel (x, y) of such an image (4 bytes of float per pixel).
+float depthAt(const Image& depth, uint32_t x, uint32_t y);
+// The world position seen at pixel position (px, py) of the view (pixel centres at half-integers) at
+// reversed-Z depth `depth`; worldFromClip = inverse(view.clipFromWorld), computed once by the caller.
+glm::vec3 wsPositionFromDepth(const glm::mat4& worldFromClip, const CameraView& view, float px, float py, float depth);
 
 // Bounds in the light's rotation-only space (lightRotationFromWorld) of the visible points whose view
 // depth lies in [vsNear, vsFar]; invalid when there are none.
