@@ -20,6 +20,11 @@ layout(set = kPassSet, binding = kCullBindingVisibleInstances, std430) writeonly
 layout(set = kPassSet, binding = kCullBindingViewHistory, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
 layout(set = kPassSet, binding = kCullBindingPyramid, std430) readonly buffer PyramidBlock { float pyramid[]; };
 layout(set = kPassSet, binding = kCullBindingTileStats, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
+// The tiles (CPU- or GPU-written, cull_structs.h); the shadow dispatch is tileList.cullDispatch.
+layout(set = kPassSet, binding = kCullBindingTiles, std430) readonly buffer CullTileBlock {
+    CullTileListHeader tileList;
+    CullTile tiles[];
+};
 layout(push_constant) uniform CullConstantsBlock { CullConstants constants; };
 
 // Cascade blend culling (caster_culling.cpp insideScaledSphere): the box wholly inside the scaled sphere.
@@ -205,12 +210,12 @@ void main() {
     uint instance = gl_GlobalInvocationID.x;
     uint tileIndex = gl_WorkGroupID.y;
     uint instanceCount = cull.instanceCount, meshCount = cull.meshCount;
-    if (instance >= instanceCount || tileIndex >= cull.tileCount) return;
+    if (instance >= instanceCount || tileIndex >= tileList.count) return;
     CullInstance caster = cullInstances[instance];
     if ((caster.flags & kCullInstanceCasts) == 0u) return;
     CullMesh mesh = cullMeshes[caster.meshSlot];
     if (materials[mesh.materialIndex].shadowMode == kShadowModeOff) return;
-    CullTile tile = cull.tiles[tileIndex];
+    CullTile tile = tiles[tileIndex];
     bool keep = tile.kind == kCullTileDirectional ? directionalKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz)
                                                                : perspectiveKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz);
     if (!keep) return;

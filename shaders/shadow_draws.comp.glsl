@@ -18,12 +18,15 @@ layout(set = kPassSet, binding = kCullBindingListCounts, std430) readonly buffer
 layout(set = kPassSet, binding = kDrawsBindingDrawCommands, std430) writeonly buffer DrawBlock { uint drawCommands[]; };
 layout(set = kPassSet, binding = kDrawsBindingDrawCounts, std430) buffer DrawCountBlock { uint drawCounts[]; };  // [tile * kCasterKinds + kind]
 layout(set = kPassSet, binding = kDrawsBindingTileStats, std430) buffer StatsBlock { CullTileStats tileStats[]; };
+layout(set = kPassSet, binding = kCullBindingTiles, std430) readonly buffer CullTileBlock {
+    CullTileListHeader tileList;  // its count; the dispatch is tileList.drawsDispatch
+};
 
 void main() {
     uint meshIndex = gl_GlobalInvocationID.x;
     uint tile = gl_WorkGroupID.y;
     uint meshCount = cull.meshCount;
-    if (meshIndex >= meshCount || tile >= cull.tileCount) return;
+    if (meshIndex >= meshCount || tile >= tileList.count) return;
     uint count = listCounts[tile * meshCount + meshIndex];
     if (count == 0u) return;
     CullMesh mesh = cullMeshes[meshIndex];

@@ -30,7 +30,8 @@ void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
 
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    uint tileIndex = rasterTile(raster.firstRasterTile + gl_WorkGroupID.z);
+    uint tileIndex;
+    if (!rasterTile(gl_WorkGroupID.z, tileIndex)) return;  // z: the raster list's entry (instanceDispatch)
     uint instanceCount = cull.instanceCount, meshCount = cull.meshCount;
     uint meshSlot = meshOfWorkItem(item, meshCount);
     CullMesh mesh = cullMeshes[meshSlot];
@@ -40,7 +41,7 @@ void main() {
     if (instanceInMesh >= listCounts[tileIndex * meshCount + meshSlot]) return;  // culled slot
     uint instance = visibleInstances[tileIndex * instanceCount + mesh.firstListSlot + instanceInMesh];
     Meshlet meshlet = meshlets[mesh.firstMeshlet + local % mesh.meshletCount];
-    CullTile tile = cull.tiles[tileIndex];
+    CullTile tile = tiles[tileIndex];
     float slopeBias = tile.slopeBias;
     if (gl_LocalInvocationID.x == 0u) {
         clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;

@@ -20,11 +20,22 @@
 #include "raster_mesh.glsl"
 
 layout(set = kPassSet, binding = kShadowRasterBindingCullFrame, std140) uniform CullFrameBlock { CullFrame cull; };
-layout(set = kPassSet, binding = kShadowRasterBindingAtlasDepth, std430) buffer DepthBlock { uint atlasDepth[]; };  // atlasSize^2 float bits
+layout(set = kPassSet, binding = kShadowRasterBindingAtlasDepth, std430) buffer DepthBlock { uint atlasDepth[]; };  // depthSide^2 float bits
+// The culling pass's tiles and the entries this pass draws (cull_structs.h: CPU- or GPU-written lists).
+layout(set = kPassSet, binding = kShadowRasterBindingTiles, std430) readonly buffer CullTileBlock {
+    CullTileListHeader tileList;
+    CullTile tiles[];
+};
+layout(set = kPassSet, binding = kShadowRasterBindingRasterList, std430) readonly buffer RasterTileBlock {
+    RasterTileListHeader rasterList;
+    uint rasterEntries[];  // culling tile of each entry
+};
 
-
-// Culling tile drawn by entry `i` of the frame's raster tile list.
-uint rasterTile(uint i) { return cull.rasterTiles[i / 4u][i % 4u]; }
+// Culling tile drawn by entry `i` of the raster list; false past its count (the dispatch's z is the count).
+bool rasterTile(uint i, out uint tile) {
+    tile = i < rasterList.count ? rasterEntries[i] : 0u;
+    return i < rasterList.count && tile < tileList.count;
+}
 
 // The shadow modes as shadow_caster.frag: clip below the cutoff, dither by interleaved gradient noise.
 bool alphaKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
@@ -44,7 +55,7 @@ void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
     z = clamp(z, 0.0, 1.0);
     // A plain read first: far-away casters put thousands of triangles on one texel, and most of them
     // lie behind what is there already (the early depth test of the hardware path).
-    uint texel = uint(y) * raster.atlasSize + uint(x), bits = floatBitsToUint(z);
+    uint texel = uint(y) * raster.depthSide + uint(x), bits = floatBitsToUint(z);
     if (bits < atlasDepth[texel]) atomicMin(atlasDepth[texel], bits);
 }
 

@@ -22,7 +22,9 @@
 
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
-PENUMBRA_CONST(uint, kMaxCullTiles, 32u)  // 16 directional (4 lights x 4 cascades) + 16 spot/point
+// The atlases' tiles a frame: 16 directional (4 lights x 4 cascades) + 16 spot/point. A culling pass
+// made for more (the virtual pages') has as many tile lists and records no main view.
+PENUMBRA_CONST(uint, kMaxCullTiles, 32u)
 PENUMBRA_CONST(uint, kCullListCameraEarly, 32u)  // kMaxCullTiles: the main view's lists follow the tiles'
 PENUMBRA_CONST(uint, kCullListCameraLate, 33u)
 PENUMBRA_CONST(uint, kCullListCount, 34u)
@@ -146,25 +148,54 @@ PENUMBRA_CHECK_SIZE(CullCamera, 96)
 PENUMBRA_CHECK_LAYOUT(CullCamera, width, 64)
 PENUMBRA_CHECK_LAYOUT(CullCamera, pyramidWidth, 80)
 
+// What every culling dispatch reads besides its tiles (a uniform buffer).
 struct CullFrame {
-    CullTile tiles[32];
     vec4 spheres[4];           // cascade culling spheres: xyz centre, w radius (shared by every light)
     vec4 wsReceiverMin;        // bounds of every shadow receiver (blend culling's reach of shadows)
     vec4 wsReceiverMax;
-    uint tileCount;
     uint instanceCount;
     uint meshCount;
-    uint reserved;
-    // The tiles the compute rasterizer draws this frame (the others are cached), 4 per uvec4: the
-    // directional atlas's first, then the spot/point atlas's; a raster pass reads its part.
-    uvec4 rasterTiles[8];
+    uint reserved0;
+    uint reserved1;
     CullCamera camera;
 };
-PENUMBRA_CHECK_SIZE(CullFrame, 10064)
-PENUMBRA_CHECK_LAYOUT(CullFrame, spheres, 9728)
-PENUMBRA_CHECK_LAYOUT(CullFrame, tileCount, 9824)
-PENUMBRA_CHECK_LAYOUT(CullFrame, rasterTiles, 9840)
-PENUMBRA_CHECK_LAYOUT(CullFrame, camera, 9968)
+PENUMBRA_CHECK_SIZE(CullFrame, 208)
+PENUMBRA_CHECK_LAYOUT(CullFrame, wsReceiverMin, 64)
+PENUMBRA_CHECK_LAYOUT(CullFrame, instanceCount, 96)
+PENUMBRA_CHECK_LAYOUT(CullFrame, camera, 112)
+
+// ---- Tile lists (storage buffers, std430), written by the CPU (the atlases' tiles: shadows/cull_packing.h)
+// or by the GPU (the virtual shadow map's dirty pages: render/virtual_page_draw_pass.h), so that the
+// culling and raster passes read one layout and size their per-tile loops by the list's count through
+// vkCmdDispatchIndirect, never by a CPU-known number. Both headers hold the dispatches of the passes that
+// loop over their tiles.
+//
+// The culling list: this header, then `count` CullTile records (culling tile i = record i).
+struct CullTileListHeader {
+    uvec4 cullDispatch;   // shadow_cull.comp: (ceil(instances / kCullWorkgroupSize), count, 1)
+    uvec4 drawsDispatch;  // shadow_draws.comp: (ceil(meshes / kCullWorkgroupSize), count, 1)
+    uint count;           // tiles in the list
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
+};
+PENUMBRA_CHECK_SIZE(CullTileListHeader, 48)
+PENUMBRA_CHECK_LAYOUT(CullTileListHeader, count, 32)
+
+// The raster list of one compute-raster pass: this header, then `count` culling tile indices (the tiles
+// it draws into its depth buffer, each at its CullTile's viewport). The clear and pass-1 dispatches
+// loop over the entries in z.
+PENUMBRA_CONST(uint, kRasterClearGroup, 16u)  // shadow_raster_clear.comp's workgroup side, in texels
+struct RasterTileListHeader {
+    uvec4 clearDispatch;     // shadow_raster_clear.comp: (ceil(largest side / kRasterClearGroup) x 2, count)
+    uvec4 instanceDispatch;  // shadow_raster.comp: (min(items, kRasterDispatchWidth), rows of items, count)
+    uint count;              // entries in the list
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
+};
+PENUMBRA_CHECK_SIZE(RasterTileListHeader, 48)
+PENUMBRA_CHECK_LAYOUT(RasterTileListHeader, count, 32)
 
 // Push constants of the culling pass.
 struct CullConstants {
@@ -228,16 +259,15 @@ PENUMBRA_CHECK_SIZE(RasterCounters, 64)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, largeDispatch, 16)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, meshletsOutside, 48)
 
-// Push constants of the shadow rasterizer's passes (shadow_raster*.comp).
+// Push constants of the shadow rasterizer's passes (shadow_raster*.comp); the tiles come from the
+// raster list (RasterTileListHeader).
 struct ShadowRasterConstants {
-    uint firstRasterTile;  // first entry of CullFrame::rasterTiles for this atlas
-    uint tileCount;        // its tiles drawn this pass
-    uint atlasSize;        // in texels
+    uint depthSide;        // texels along a row of the depth buffer (the atlas's or the page pool's side)
     uint meshletCulling;   // 1: skip meshlets outside the tile (render.meshletCulling)
     uint largeCapacity;    // large pieces the queue holds
     uint chunkCapacity;    // chunks the queue holds
 };
-PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 24)
+PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 16)
 
 // Push constants of shadow_raster_args.comp, which sizes both rasterizers' indirect dispatches.
 PENUMBRA_CONST(uint, kRasterArgsLarge, 0u)   // the large-piece pass (2)

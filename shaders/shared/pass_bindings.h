@@ -61,6 +61,7 @@ PENUMBRA_CONST(uint, kCullBindingVisibleInstances, 5u)  // the lists
 PENUMBRA_CONST(uint, kCullBindingViewHistory, 9u)       // kView* bits per instance
 PENUMBRA_CONST(uint, kCullBindingPyramid, 10u)          // the main view's depth pyramid
 PENUMBRA_CONST(uint, kCullBindingTileStats, 11u)        // CullTileStats[]
+PENUMBRA_CONST(uint, kCullBindingTiles, 12u)            // CullTileListHeader + CullTile[] (also shadow_draws.comp)
 // The draw lists (shadow_draws.comp): the culling pass's numbers where they hold the same buffer.
 PENUMBRA_CONST(uint, kDrawsBindingDrawCommands, 6u)  // VkDrawIndexedIndirectCommand[]
 PENUMBRA_CONST(uint, kDrawsBindingDrawCounts, 7u)    // per (tile, caster kind)
@@ -76,8 +77,10 @@ PENUMBRA_CONST(uint, kRasterBindingListCounts, 12u)       // the culling pass's 
 PENUMBRA_CONST(uint, kRasterBindingVisibleInstances, 13u) // and lists
 PENUMBRA_CONST(uint, kRasterBindingMeshlets, 14u)         // Meshlet[]
 // The shadow rasterizer (shadow_raster.glsl).
-PENUMBRA_CONST(uint, kShadowRasterBindingCullFrame, 5u)   // uniform CullFrame (its tiles)
-PENUMBRA_CONST(uint, kShadowRasterBindingAtlasDepth, 8u)  // atlasSize^2 float bits
+PENUMBRA_CONST(uint, kShadowRasterBindingCullFrame, 5u)   // uniform CullFrame (instance and mesh counts)
+PENUMBRA_CONST(uint, kShadowRasterBindingAtlasDepth, 8u)  // depthSide^2 float bits
+PENUMBRA_CONST(uint, kShadowRasterBindingTiles, 15u)      // the culling pass's CullTileListHeader + CullTile[]
+PENUMBRA_CONST(uint, kShadowRasterBindingRasterList, 16u) // RasterTileListHeader + the tiles this pass draws
 // The visibility rasterizer (visibility_raster.glsl).
 PENUMBRA_CONST(uint, kVisibilityRasterBindingVisibility, 8u)  // uint64 per pixel
 
@@ -96,6 +99,38 @@ PENUMBRA_CONST(uint, kPyramidBindingTexels, 1u)
 // The visible-surface depth subsample (depth_subsample.comp).
 PENUMBRA_CONST(uint, kSubsampleBindingDepth, 0u)   // sampler2D, the prepass's depth
 PENUMBRA_CONST(uint, kSubsampleBindingDepths, 1u)  // float per output texel
+
+// Virtual shadow map page marking (virtual_page_mark.comp).
+PENUMBRA_CONST(uint, kPageMarkBindingFrame, 0u)     // uniform VirtualPageMarkData
+PENUMBRA_CONST(uint, kPageMarkBindingDepth, 1u)     // sampler2D, the main view's depth
+PENUMBRA_CONST(uint, kPageMarkBindingRequests, 2u)  // the request bits (virtual_page_structs.h)
+
+// The virtual page table and physical page allocator (virtual_page_table.glsl, virtual_page_*.comp);
+// each of its shaders reads a subset (render/pass_layouts.cpp virtualPageTableBindings).
+PENUMBRA_CONST(uint, kPageTableBindingFrame, 0u)          // uniform VirtualPageTableData
+PENUMBRA_CONST(uint, kPageTableBindingRequests, 1u)       // the marking pass's request bits
+PENUMBRA_CONST(uint, kPageTableBindingEntries, 2u)        // VirtualPageEntry per (level, slot)
+PENUMBRA_CONST(uint, kPageTableBindingOwners, 3u)         // per physical page: its entry or kVirtualPageNone
+PENUMBRA_CONST(uint, kPageTableBindingPool, 4u)           // VirtualPagePoolHeader + the free pages
+PENUMBRA_CONST(uint, kPageTableBindingCounters, 5u)       // VirtualPageCounters of the update
+PENUMBRA_CONST(uint, kPageTableBindingCandidates, 6u)     // the eviction order: entries, oldest first
+PENUMBRA_CONST(uint, kPageTableBindingDrawList, 7u)       // VirtualPageDrawHeader + VirtualPageDraw[]
+PENUMBRA_CONST(uint, kPageTableBindingInvalidations, 8u)  // VirtualPageInvalidation[]
+
+// Virtual page drawing (virtual_page_tiles.comp, virtual_page_copy.comp; render/virtual_page_draw_pass.h).
+PENUMBRA_CONST(uint, kPageDrawBindingDrawList, 0u)     // VirtualPageDrawHeader + VirtualPageDraw[]
+PENUMBRA_CONST(uint, kPageDrawBindingTiles, 1u)        // CullTileListHeader + CullTile[] (written)
+PENUMBRA_CONST(uint, kPageDrawBindingRasterList, 2u)   // RasterTileListHeader + entries (written)
+PENUMBRA_CONST(uint, kPageDrawBindingPoolDepth, 3u)    // the pool's depth buffer, float bits per texel
+PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's R32F image (storage), sampled later
+
+// The virtual shadow map lookup's test probe (virtual_shadow_probe.comp, driven by
+// tests/render/virtual_shadow_lookup_test.cpp).
+PENUMBRA_CONST(uint, kShadowProbeBindingLookup, 0u)   // uniform VirtualShadowLookupData
+PENUMBRA_CONST(uint, kShadowProbeBindingEntries, 1u)  // VirtualPageEntry per (level, slot)
+PENUMBRA_CONST(uint, kShadowProbeBindingPool, 2u)     // sampler2D, the pool's R32F image (texelFetch)
+PENUMBRA_CONST(uint, kShadowProbeBindingPoints, 3u)   // VirtualShadowProbePoint[]
+PENUMBRA_CONST(uint, kShadowProbeBindingResults, 4u)  // VirtualShadowProbeResult[] (written)
 
 // Push constants of the passes whose data has no header of its own.
 struct CasterConstants {  // shadow_caster.vert

@@ -86,10 +86,14 @@ void Device::Impl::createFrames(uint32_t count) {
     }
 }
 
+// The ring holds uniforms, storage data, copy sources and the frame's readbacks, and indirect dispatch
+// sizes that the CPU writes (the atlases' culling and raster tile lists, cull_structs.h).
+constexpr uint32_t kUploadRingUsage = kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst | kBufferIndirect;
+
 void Device::Impl::createUploadRings(Device& owner) {
     for (FrameContext& frame : frames) {
         frame.uploadBuffer = owner.createBuffer(kInitialUploadBytes,
-                                                kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst,
+                                                kUploadRingUsage,
                                                 MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = kInitialUploadBytes;
     }
@@ -220,7 +224,7 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
             frame.garbage.buffers.push_back(d.buffers.remove(frame.uploadBuffer.id));
         }
         if (!frame.readbackRanges.empty()) throw Error("internal: the upload ring grew after a frame readback");
-        frame.uploadBuffer = createBuffer(capacity, kBufferUniform | kBufferStorage | kBufferTransferSrc | kBufferTransferDst,
+        frame.uploadBuffer = createBuffer(capacity, kUploadRingUsage,
                                           MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = capacity;
         offset = 0;

@@ -1,6 +1,7 @@
 #include "render/compute_raster_pass.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "cull_structs.h"
 #include "pass_bindings.h"
@@ -109,10 +110,76 @@ void ComputeRasterPass::destroyAll() {
     for (gpu::BufferHandle b : {counters_, large_, chunkList_}) device_.destroy(b);
 }
 
+void ComputeRasterPass::prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
+                                const ShadowCullingPass& culling, gpu::BufferHandle depth, uint32_t depthSide,
+                                bool meshletCulling) {
+    using namespace gpu_data;
+    lists_ = lists;
+    writes_.assign(writes.begin(), writes.end());
+    writes_.push_back({kShadowRasterBindingCullFrame, lists.cullFrame});
+    writes_.push_back({kShadowRasterBindingAtlasDepth, gpu::BufferSlice{depth, 0, uint64_t(depthSide) * depthSide * 4}});
+    writes_.push_back({kShadowRasterBindingTiles, lists.tiles});
+    writes_.push_back({kShadowRasterBindingRasterList, lists.rasterList});
+    appendRasterMeshWrites(writes_, scene_, culling, {counters_, large_, chunkList_});
+    constants_ = {depthSide, meshletCulling ? 1u : 0u, largeCapacity_, chunkCapacity_};
+    rasterReads(scene_, culling, reads_);
+}
+
+void ComputeRasterPass::bind(gpu::CommandList& commands, gpu::PipelineHandle pipeline) {
+    commands.bindPipeline(pipeline);
+    commands.pushDescriptors(writes_);
+    commands.bindTextureTable(scene_.textureTable());
+    commands.pushConstants(&constants_, sizeof(constants_));
+}
+
+// Pass 0: the listed tiles' viewports to far, one dispatch over the list (its clearDispatch).
+void ComputeRasterPass::recordClearTiles(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth) {
+    using gpu::Usage;
+    const gpu::BufferSlice& list = lists_.rasterList;
+    commands.pass(commands.joinName(timerPrefix, "/clear tiles"),
+                  {gpu::use(depth, Usage::ComputeWrite), gpu::use(list.buffer, Usage::IndirectArguments),
+                   gpu::use(list.buffer, Usage::ComputeRead), gpu::use(lists_.tiles.buffer, Usage::ComputeRead)});
+    bind(commands, clear_);
+    commands.dispatchIndirect(list.buffer, list.offset + offsetof(gpu_data::RasterTileListHeader, clearDispatch));
+}
+
+// Passes 1-3: per (work item, listed tile), then the queued large pieces and their chunks.
+void ComputeRasterPass::recordDraw(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth) {
+    using gpu::Usage;
+    auto stepName = [&](std::string_view step) { return commands.joinName(timerPrefix, step); };
+    auto pass = [&](const char* step, std::initializer_list<gpu::ResourceUse> more) {
+        commands.pass(stepName(step), commands.joinUses(reads_, more));
+    };
+    auto sizeDispatch = [&](const char* step, uint32_t queue) {
+        recordRasterDispatchSize(commands, stepName(step), args_, counters_, queue, largeCapacity_, chunkCapacity_);
+    };
+    const gpu::BufferSlice& list = lists_.rasterList;
+    commands.beginTimer(stepName("/instances"));
+    pass("/instances", {gpu::use(depth, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
+                        gpu::use(large_, Usage::ComputeWrite), gpu::use(list.buffer, Usage::IndirectArguments),
+                        gpu::use(list.buffer, Usage::ComputeRead), gpu::use(lists_.tiles.buffer, Usage::ComputeRead)});
+    bind(commands, small_);
+    commands.dispatchIndirect(list.buffer, list.offset + offsetof(gpu_data::RasterTileListHeader, instanceDispatch));
+    commands.endTimer();
+    commands.beginTimer(stepName("/chunks"));
+    sizeDispatch("/bin size", gpu_data::kRasterArgsLarge);
+    pass("/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
+                  gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
+    bind(commands, bin_);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
+    sizeDispatch("/chunks size", gpu_data::kRasterArgsChunks);
+    pass("/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
+                     gpu::use(counters_, Usage::IndirectArguments), gpu::use(counters_, Usage::ComputeRead),
+                     gpu::use(depth, Usage::ComputeWrite)});
+    bind(commands, chunks_);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
+    commands.endTimer();
+}
+
 void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                               const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling,
-                               const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
-                               gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix) {
+                               const RasterTileLists& lists, const ShadowCullingPass& culling, const AtlasTiles& tiles,
+                               gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling,
+                               std::string_view timerPrefix) {
     using gpu::Usage;
     // Step names: timerPrefix + step in the command list's scratch (a timer keeps its own copy).
     auto stepName = [&](std::string_view step) { return commands.joinName(timerPrefix, step); };
@@ -121,73 +188,37 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
         return;
     }
-    const uint32_t tileCount = uint32_t(tiles.rects.size());
-    std::vector<gpu::DescriptorWrite>& rasterWrites = writes_;
-    rasterWrites.assign(writes.begin(), writes.end());
-    using namespace gpu_data;
-    rasterWrites.push_back({kShadowRasterBindingCullFrame, cullFrame});
-    rasterWrites.push_back({kShadowRasterBindingAtlasDepth, gpu::BufferSlice{depth, 0, uint64_t(atlasSize) * atlasSize * 4}});
-    appendRasterMeshWrites(rasterWrites, scene_, culling, {counters_, large_, chunkList_});
-    const ShadowRasterConstants constants{tiles.listOffset, tileCount, atlasSize, meshletCulling ? 1u : 0u,
-                                          largeCapacity_, chunkCapacity_};
-    auto bind = [&](gpu::PipelineHandle pipeline) {
-        commands.bindPipeline(pipeline);
-        commands.pushDescriptors(rasterWrites);
-        commands.bindTextureTable(scene_.textureTable());
-        commands.pushConstants(&constants, sizeof(constants));
-    };
-
+    prepare(writes, lists, culling, depth, atlasSize, meshletCulling);
     commands.beginTimer(stepName("/clear"));
     const gpu::ResourceUse clears[2] = {gpu::use(counters_, Usage::TransferWrite), gpu::use(depth, Usage::TransferWrite)};
     commands.pass(stepName("/clear"), std::span(clears, tiles.freshAtlas ? 2 : 1));
     if (tiles.freshAtlas) commands.fillBuffer(depth, kFarDepthBits);
     commands.fillBuffer(counters_, 0);
-    if (!tiles.freshAtlas && tileCount > 0) {
-        uint32_t largest = 0;
-        for (const gpu::Rect& r : tiles.rects) largest = std::max({largest, r.width, r.height});
-        commands.pass(stepName("/clear tiles"), {gpu::use(depth, Usage::ComputeWrite)});
-        bind(clear_);
-        commands.dispatch((largest + 15) / 16, (largest + 15) / 16, tileCount);
-    }
+    // The CPU wrote the list: it knows when there is nothing to draw (a fresh atlas of cached tiles).
+    if (!tiles.freshAtlas && !tiles.rects.empty()) recordClearTiles(commands, timerPrefix, depth);
     commands.endTimer();
-    if (tileCount > 0) {
-        rasterReads(scene_, culling, reads_);
-        auto pass = [&](const char* step, std::initializer_list<gpu::ResourceUse> more) {
-            commands.pass(stepName(step), commands.joinUses(reads_, more));
-        };
-        auto sizeDispatch = [&](const char* step, uint32_t queue) {
-            recordRasterDispatchSize(commands, stepName(step), args_, counters_, queue, largeCapacity_, chunkCapacity_);
-        };
-        const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
-        commands.beginTimer(stepName("/instances"));
-        pass("/instances", {gpu::use(depth, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
-                            gpu::use(large_, Usage::ComputeWrite)});
-        bind(small_);
-        commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
-                          (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth, tileCount);
-        commands.endTimer();
-        commands.beginTimer(stepName("/chunks"));
-        sizeDispatch("/bin size", kRasterArgsLarge);
-        pass("/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
-                      gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});
-        bind(bin_);
-        commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, largeDispatch));
-        sizeDispatch("/chunks size", kRasterArgsChunks);
-        pass("/chunks", {gpu::use(large_, Usage::ComputeRead), gpu::use(chunkList_, Usage::ComputeRead),
-                         gpu::use(counters_, Usage::IndirectArguments), gpu::use(counters_, Usage::ComputeRead),
-                         gpu::use(depth, Usage::ComputeWrite)});
-        bind(chunks_);
-        commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, chunkDispatch));
-        commands.endTimer();
-    }
+    if (!tiles.rects.empty()) recordDraw(commands, timerPrefix, depth);
     commands.beginTimer(stepName("/copy"));
     // A fresh atlas is copied whole; else only the drawn tiles (the cached ones keep their depth).
     commands.pass(stepName("/copy"), {gpu::use(depth, Usage::TransferRead),
-                                          tiles.freshAtlas ? gpu::discard(atlas, Usage::TransferWrite)
-                                                           : gpu::use(atlas, Usage::TransferWrite)});
+                                      tiles.freshAtlas ? gpu::discard(atlas, Usage::TransferWrite)
+                                                       : gpu::use(atlas, Usage::TransferWrite)});
     if (tiles.freshAtlas) commands.copyBufferToTexture(depth, atlas);
     else commands.copyBufferToTextureRects(depth, atlas, tiles.rects);
     commands.endTimer();
+}
+
+void ComputeRasterPass::recordTiles(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
+                                    const RasterTileLists& lists, const ShadowCullingPass& culling, gpu::BufferHandle depth,
+                                    uint32_t depthSide, bool meshletCulling, std::string_view timerPrefix) {
+    prepare(writes, lists, culling, depth, depthSide, meshletCulling);
+    const std::string_view clearName = commands.joinName(timerPrefix, "/clear");
+    commands.beginTimer(clearName);
+    commands.pass(clearName, {gpu::use(counters_, gpu::Usage::TransferWrite)});
+    commands.fillBuffer(counters_, 0);
+    recordClearTiles(commands, timerPrefix, depth);
+    commands.endTimer();
+    recordDraw(commands, timerPrefix, depth);
 }
 
 }  // namespace penumbra

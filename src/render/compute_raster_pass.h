@@ -1,9 +1,12 @@
 #pragma once
-// The compute rasterizer of the shadow atlases (shaders/shadow_raster.glsl): the tiles of
-// an atlas drawn by compute shaders from the GPU culling pass's visible lists into a buffer of depth
-// by atomic min, then copied into the atlas's depth image, which the lit pass samples as always.
-// Three passes: per visible instance (small triangles rasterized at once, large ones queued), per
-// large triangle (split into chunks), per chunk.
+// The compute rasterizer of the shadow atlases and of the virtual shadow map's pages
+// (shaders/shadow_raster.glsl): the tiles of a raster tile list (cull_structs.h: CPU-written for an
+// atlas, GPU-written for the dirty pages) drawn by compute shaders from the GPU culling pass's visible
+// lists into a buffer of depth by atomic min; an atlas's is then copied into its depth image, which the
+// lit pass samples as always. Three passes: per visible instance and tile (small triangles rasterized at
+// once, large ones queued), per large triangle (split into chunks), per chunk: a triangle reaches only
+// the tiles whose culling list holds its instance and, within a tile, only the chunks it overlaps.
+// Every per-tile loop is an indirect dispatch sized by its list's header.
 #include <string>
 
 #include "cull_structs.h"
@@ -28,6 +31,13 @@ struct RasterQueues {
 void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const GpuScene& gpuScene,
                             const ShadowCullingPass& culling, const RasterQueues& queues);
 
+// The lists one raster pass reads (cull_structs.h), in the upload ring or GPU-written buffers.
+struct RasterTileLists {
+    gpu::BufferSlice cullFrame;   // CullFrame: the instance and mesh counts
+    gpu::BufferSlice tiles;       // the culling pass's CullTileListHeader + CullTile[]
+    gpu::BufferSlice rasterList;  // RasterTileListHeader + the culling tiles to draw
+};
+
 class ComputeRasterPass {
 public:
     // largeQueue, chunkQueue: the queues' first capacities (0 = kRasterInitialLarge / Chunks).
@@ -36,10 +46,9 @@ public:
     ComputeRasterPass(const ComputeRasterPass&) = delete;
     ComputeRasterPass& operator=(const ComputeRasterPass&) = delete;
 
-    // What one atlas pass draws: entries [listOffset, listOffset + rects.size()) of the cull frame's
-    // raster tile list, whose viewports are `rects`; the atlas's other tiles are cached.
+    // What one atlas pass draws: the tiles of its raster list (packRasterTiles), whose viewports are
+    // `rects` (the copy's); the atlas's other tiles are cached.
     struct AtlasTiles {
-        uint32_t listOffset = 0;
         std::vector<gpu::Rect> rects;
         bool freshAtlas = false;  // the atlas and its depth hold nothing yet: clear and copy all of it
     };
@@ -47,10 +56,15 @@ public:
     // copies them into `atlas` (D32, left in ShaderRead). `writes`: the scene bindings 0-4.
     // meshletCulling: skip the meshlets whose box lies outside their tile (render.meshletCulling). Its
     // steps are timed as PREFIX/clear, /instances, /chunks, /copy.
-    void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
-                const gpu::BufferSlice& cullFrame, const ShadowCullingPass& culling, const AtlasTiles& tiles,
-                gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling,
-                std::string_view timerPrefix);
+    void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
+                const ShadowCullingPass& culling, const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
+                gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix);
+    // Clears the raster list's tiles (their viewports) in `depth` (depthSide^2 uints) to far and draws
+    // them, nothing known to the CPU but the lists' buffers (the virtual pages' GPU-written lists). Timed
+    // as PREFIX/clear, /instances, /chunks.
+    void recordTiles(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
+                     const ShadowCullingPass& culling, gpu::BufferHandle depth, uint32_t depthSide, bool meshletCulling,
+                     std::string_view timerPrefix);
     // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles and
     // skipped meshlets.
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
@@ -61,6 +75,12 @@ public:
 private:
     void create(uint32_t largeQueue, uint32_t chunkQueue);
     void destroyAll();
+    // The pieces both records share: the writes and constants, the list's clear, passes 1-3.
+    void prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists, const ShadowCullingPass& culling,
+                 gpu::BufferHandle depth, uint32_t depthSide, bool meshletCulling);
+    void bind(gpu::CommandList& commands, gpu::PipelineHandle pipeline);
+    void recordClearTiles(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth);
+    void recordDraw(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth);
     gpu::Device& device_;
     const GpuScene& scene_;
     gpu::PipelineHandle clear_, small_, bin_, chunks_, args_;
@@ -69,6 +89,8 @@ private:
     // Per-record scratch, kept so that a steady frame allocates nothing.
     std::vector<gpu::DescriptorWrite> writes_;
     std::vector<gpu::ResourceUse> reads_;
+    RasterTileLists lists_;
+    gpu_data::ShadowRasterConstants constants_{};
 };
 
 }  // namespace penumbra

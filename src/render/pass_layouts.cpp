@@ -90,7 +90,8 @@ std::vector<BindingDesc> shadowCullBindings() {
             {"VisibleBlock", kCullBindingVisibleInstances, kStorage, kC},
             {"ViewHistoryBlock", kCullBindingViewHistory, kStorage, kC},
             {"PyramidBlock", kCullBindingPyramid, kStorage, kC},
-            {"TileStatsBlock", kCullBindingTileStats, kStorage, kC}};
+            {"TileStatsBlock", kCullBindingTileStats, kStorage, kC},
+            {"CullTileBlock", kCullBindingTiles, kStorage, kC}};
 }
 
 std::vector<BindingDesc> shadowDrawsBindings() {
@@ -100,12 +101,15 @@ std::vector<BindingDesc> shadowDrawsBindings() {
             {"ListCountBlock", kCullBindingListCounts, kStorage, kC},
             {"DrawBlock", kDrawsBindingDrawCommands, kStorage, kC},
             {"DrawCountBlock", kDrawsBindingDrawCounts, kStorage, kC},
-            {"StatsBlock", kDrawsBindingTileStats, kStorage, kC}};
+            {"StatsBlock", kDrawsBindingTileStats, kStorage, kC},
+            {"CullTileBlock", kCullBindingTiles, kStorage, kC}};
 }
 
 std::vector<BindingDesc> shadowRasterBindings() {
     std::vector<BindingDesc> bindings = {{"CullFrameBlock", kShadowRasterBindingCullFrame, kUniform, kC},
-                                         {"DepthBlock", kShadowRasterBindingAtlasDepth, kStorage, kC}};
+                                         {"DepthBlock", kShadowRasterBindingAtlasDepth, kStorage, kC},
+                                         {"CullTileBlock", kShadowRasterBindingTiles, kStorage, kC},
+                                         {"RasterTileBlock", kShadowRasterBindingRasterList, kStorage, kC}};
     appendRasterMesh(bindings);
     return bindings;
 }
@@ -151,6 +155,52 @@ std::vector<BindingDesc> lightClusterBindings() {
 std::vector<BindingDesc> depthSubsampleBindings() {
     return {{"sceneDepth", kSubsampleBindingDepth, kSampled, kC},
             {"SubsampleBlock", kSubsampleBindingDepths, kStorage, kC}};
+}
+
+std::vector<BindingDesc> virtualPageMarkBindings() {
+    return {{"PageMarkBlock", kPageMarkBindingFrame, kUniform, kC},
+            {"sceneDepth", kPageMarkBindingDepth, kSampled, kC},
+            {"PageRequestBlock", kPageMarkBindingRequests, kStorage, kC}};
+}
+
+std::vector<BindingDesc> virtualPageTableBindings(const std::string& shader) {
+    const BindingDesc table{"PageTableBlock", kPageTableBindingFrame, kUniform, kC};
+    const BindingDesc requests{"PageRequestBlock", kPageTableBindingRequests, kStorage, kC};
+    const BindingDesc entries{"PageEntryBlock", kPageTableBindingEntries, kStorage, kC};
+    const BindingDesc owners{"PageOwnerBlock", kPageTableBindingOwners, kStorage, kC};
+    const BindingDesc pool{"PagePoolBlock", kPageTableBindingPool, kStorage, kC};
+    const BindingDesc counters{"PageCounterBlock", kPageTableBindingCounters, kStorage, kC};
+    const BindingDesc candidates{"PageCandidateBlock", kPageTableBindingCandidates, kStorage, kC};
+    const BindingDesc draws{"PageDrawBlock", kPageTableBindingDrawList, kStorage, kC};
+    const BindingDesc invalidations{"PageInvalidationBlock", kPageTableBindingInvalidations, kStorage, kC};
+    if (shader == "virtual_page_reset.comp") return {table, entries, owners, pool};
+    if (shader == "virtual_page_invalidate.comp") return {table, entries, invalidations};
+    if (shader == "virtual_page_update.comp") return {table, requests, entries, owners, pool, counters, draws};
+    if (shader == "virtual_page_plan.comp") return {table, pool, counters};
+    if (shader == "virtual_page_candidates.comp") return {table, entries, counters, candidates};
+    if (shader == "virtual_page_allocate.comp") return {table, entries, owners, pool, counters, candidates, draws};
+    if (shader == "virtual_page_finish.comp") return {table, pool, counters, draws};
+    if (shader == "virtual_page_drawn.comp") return {entries, draws};
+    throw Error("internal: no virtual page table bindings for '" + shader + "'");
+}
+
+std::vector<BindingDesc> virtualPageDrawBindings(const std::string& shader) {
+    const BindingDesc draws{"PageDrawBlock", kPageDrawBindingDrawList, kStorage, kC};
+    if (shader == "virtual_page_tiles.comp")
+        return {draws, {"CullTileBlock", kPageDrawBindingTiles, kStorage, kC},
+                {"RasterTileBlock", kPageDrawBindingRasterList, kStorage, kC}};
+    if (shader == "virtual_page_copy.comp")
+        return {draws, {"PoolDepthBlock", kPageDrawBindingPoolDepth, kStorage, kC},
+                {"poolTexture", kPageDrawBindingPoolTexture, gpu::DescriptorType::StorageTexture, kC}};
+    throw Error("internal: no virtual page drawing bindings for '" + shader + "'");
+}
+
+std::vector<BindingDesc> virtualShadowProbeBindings() {
+    return {{"ShadowProbeLookupBlock", kShadowProbeBindingLookup, kUniform, kC},
+            {"ShadowProbeEntryBlock", kShadowProbeBindingEntries, kStorage, kC},
+            {"pool", kShadowProbeBindingPool, kSampled, kC},
+            {"ShadowProbePointBlock", kShadowProbeBindingPoints, kStorage, kC},
+            {"ShadowProbeResultBlock", kShadowProbeBindingResults, kStorage, kC}};
 }
 
 }  // namespace penumbra

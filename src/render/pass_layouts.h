@@ -26,5 +26,12 @@ std::vector<gpu::BindingDesc> visibilityResolveBindings(gpu::ShaderStage shading
 std::vector<gpu::BindingDesc> depthPyramidBindings();    // depth_pyramid.comp
 std::vector<gpu::BindingDesc> lightClusterBindings();    // light_cluster.comp
 std::vector<gpu::BindingDesc> depthSubsampleBindings();  // depth_subsample.comp
+std::vector<gpu::BindingDesc> virtualPageMarkBindings();  // virtual_page_mark.comp
+// The virtual page table's steps (virtual_page_{reset,invalidate,update,plan,candidates,allocate,finish,
+// drawn}.comp): each reads its own subset of virtual_page_table.glsl's blocks; throws Error for another shader.
+std::vector<gpu::BindingDesc> virtualPageTableBindings(const std::string& shader);
+// Virtual page drawing (virtual_page_tiles.comp, virtual_page_copy.comp); throws Error for another shader.
+std::vector<gpu::BindingDesc> virtualPageDrawBindings(const std::string& shader);
+std::vector<gpu::BindingDesc> virtualShadowProbeBindings();  // virtual_shadow_probe.comp (tests)
 
 }  // namespace penumbra

@@ -131,14 +131,19 @@ const TilesToDraw& Renderer::State::chooseTilesToDraw(FrameRecording& recording)
     stats.tilesRendered = uint32_t(draw.directional.size() + draw.other.size());
     stats.tilesReused = directionalCache.reused() + otherCache.reused();
 
-    // The culling pass's frame: every planned tile is culled, the drawn ones rasterized.
+    // The culling pass's frame and tile list: every planned tile is culled, the drawn ones rasterized
+    // (one raster list per atlas pass).
     const CameraView& view = recording.view;
     gpu_data::CullFrame cullFrame = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
     cullFrame.camera = packCullCamera(view.clipFromWorld, view.width, view.height, recording.settings.render.viewCulling);
-    rasterTiles.assign(draw.directional.begin(), draw.directional.end());
-    for (uint32_t i : draw.other) rasterTiles.push_back(uint32_t(plan.directional.tiles.size()) + i);
-    packRasterTiles(cullFrame, rasterTiles);
     recording.cullSlice = uploadFrameData(device, &cullFrame, sizeof(cullFrame));
+    packCullTiles(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount(), cullTileUpload);
+    recording.cullTileSlice = uploadFrameData(device, &cullTileUpload, cullTileUpload.bytes());
+    const uint32_t directionalTiles = uint32_t(plan.directional.tiles.size());
+    packRasterTiles(plan.directional.tiles, draw.directional, 0, gpuScene.rasterWorkItems(), rasterTileUploads[0]);
+    packRasterTiles(plan.other.tiles, draw.other, directionalTiles, gpuScene.rasterWorkItems(), rasterTileUploads[1]);
+    for (size_t pass = 0; pass < 2; ++pass)
+        recording.rasterListSlices[pass] = uploadFrameData(device, &rasterTileUploads[pass], rasterTileUploads[pass].bytes());
     return draw;
 }
 
@@ -150,27 +155,26 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
     const uint32_t cullTiles = directionalTiles + uint32_t(plan.other.tiles.size());
     recording.stage = "shadows.culling";
     commands.beginTimer("shadows.culling");
-    culling.record(commands, recording.cullSlice, cullTiles);
+    culling.record(commands, recording.cullSlice, recording.cullTileSlice);
     commands.endTimer();
     // Twice what a frame asked for: a moving camera rarely needs another growth (each is one allocation).
     if (frame.computeRaster) computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y);
     frame.readback.cullTiles = device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
     auto drawAtlas = [&](size_t pass, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& drawn,
-                         bool fresh, uint32_t firstTile, uint32_t listOffset, gpu::TextureHandle atlas, uint32_t size,
-                         gpu::BufferHandle rasterDepth) {
+                         bool fresh, uint32_t firstTile, gpu::TextureHandle atlas, uint32_t size, gpu::BufferHandle rasterDepth) {
         const char* name = kAtlasPassNames[pass];
         recording.stage = name;
         commands.beginTimer(name);
         if (frame.computeRaster) {
             ComputeRasterPass::AtlasTiles& atlasTiles = atlasTilesScratch;  // its rects' storage is reused
-            atlasTiles.listOffset = listOffset;
             atlasTiles.freshAtlas = fresh;
             atlasTiles.rects.clear();
             for (uint32_t i : drawn)
                 atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
                                             tiles[i].rect.size, tiles[i].rect.size});
-            computeRaster.record(commands, recording.casterWrites, recording.cullSlice, culling, atlasTiles, atlas, size,
-                                 rasterDepth, recording.settings.render.meshletCulling, name);
+            const RasterTileLists lists{recording.cullSlice, recording.cullTileSlice, recording.rasterListSlices[pass]};
+            computeRaster.record(commands, recording.casterWrites, lists, culling, atlasTiles, atlas, size, rasterDepth,
+                                 recording.settings.render.meshletCulling, name);
             frame.readback.rasterCounters[pass] = device.readBackAtFrameEnd(commands, computeRaster.counters());
         } else {
             casterPass.record(commands, tiles, drawn, fresh, firstTile, atlas, size, recording.casterWrites, culling, name);
@@ -178,10 +182,10 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
         commands.endTimer();
     };
     const FrameTargetSizes& sizes = recording.sizes;
-    drawAtlas(0, plan.directional.tiles, draw.directional, draw.freshDirectional, 0, 0, targets.directionalAtlas,
+    drawAtlas(0, plan.directional.tiles, draw.directional, draw.freshDirectional, 0, targets.directionalAtlas,
               sizes.directionalAtlas, targets.directionalRasterDepth);
-    drawAtlas(1, plan.other.tiles, draw.other, draw.freshOther, directionalTiles, uint32_t(draw.directional.size()),
-              targets.otherAtlas, sizes.otherAtlas, targets.otherRasterDepth);
+    drawAtlas(1, plan.other.tiles, draw.other, draw.freshOther, directionalTiles, targets.otherAtlas, sizes.otherAtlas,
+              targets.otherRasterDepth);
     std::vector<AtlasDrawStats>& atlases = frame.stats.atlases;  // recycled: names keep their storage
     atlases.resize(2);
     const uint32_t tilesOf[2] = {directionalTiles, cullTiles - directionalTiles};

@@ -23,6 +23,7 @@
 #include "render/tile_cache.h"
 #include "render/visibility_pass.h"
 #include "render/visible_surface_pass.h"
+#include "shadows/cull_packing.h"
 #include "shadows/shadow_planner.h"
 
 namespace penumbra {
@@ -61,6 +62,8 @@ struct FrameRecording {
     const char* stage = "scene updates";  // the part being recorded, named by a failure
     // Upload ring slices, all made before the frame's first readback (Device::allocateFrameData).
     gpu::BufferSlice frameSlice, lightSlice, clusterSlice, directionalSlice, otherSlice, cullSlice;
+    gpu::BufferSlice cullTileSlice;        // the culling pass's tile list (CullTileUpload)
+    gpu::BufferSlice rasterListSlices[2];  // each atlas pass's raster list (RasterTileUpload)
     bool clustered = false;    // the spot/point lights go through the light clusters
     bool screenSpace = false;  // URP's screen-space resolve of the directional shadows
 };
@@ -112,7 +115,9 @@ struct Renderer::State {
     // Lists every frame refills, kept so a steady-state frame reuses their storage.
     std::vector<TileSignature> directionalSignatures, otherSignatures;
     TilesToDraw drawnTiles;
-    std::vector<uint32_t> rasterTiles;
+    // The tile lists uploaded each frame (fixed arrays: nothing allocated per frame).
+    CullTileUpload cullTileUpload;
+    RasterTileUpload rasterTileUploads[2];
 
     State(gpu::Device& d, Scene s, const RendererOptions& o);
     ~State();

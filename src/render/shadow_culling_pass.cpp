@@ -1,6 +1,7 @@
 #include "render/shadow_culling_pass.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 #include "core/error.h"
@@ -20,7 +21,9 @@ uint32_t groupsFor(uint32_t count) { return (count + gpu_data::kCullWorkgroupSiz
 
 }  // namespace
 
-ShadowCullingPass::ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene) : device_(device), scene_(gpuScene) {
+ShadowCullingPass::ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t tileCapacity)
+    : device_(device), scene_(gpuScene), tileCapacity_(std::max(tileCapacity, 1u)),
+      listCount_(std::max(tileCapacity_, gpu_data::kMaxCullTiles) + gpu_data::kCullListCount - gpu_data::kMaxCullTiles) {
     try {
         create();
     } catch (...) {
@@ -44,7 +47,7 @@ void ShadowCullingPass::create() {
     desc.debugName = "shadow draw lists";
     buildDraws_ = device.createComputePipeline(desc);
 
-    const uint64_t tiles = gpu_data::kCullListCount, meshes = gpuScene.meshSlotCount();
+    const uint64_t tiles = listCount_, meshes = gpuScene.meshSlotCount();
     const uint64_t instances = std::max(gpuScene.instanceCount(), 1u);
     using gpu::MemoryKind;
     listCounts_ = device.createBuffer(tiles * meshes * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
@@ -72,24 +75,27 @@ void ShadowCullingPass::destroyAll() {
         device_.destroy(b);
 }
 
-void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount) {
+void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
+                               std::string_view passName) {
     using gpu::Usage;
-    commands.pass("shadows.culling/clear", {gpu::use(listCounts_, Usage::TransferWrite), gpu::use(drawCounts_, Usage::TransferWrite),
+    commands.pass(commands.joinName(passName, "/clear"), {gpu::use(listCounts_, Usage::TransferWrite), gpu::use(drawCounts_, Usage::TransferWrite),
                                             gpu::use(tileStats_, Usage::TransferWrite)});
     commands.clearBuffer(listCounts_, 0);
     commands.clearBuffer(drawCounts_, 0);
     commands.clearBuffer(tileStats_, 0);
-    if (tileCount == 0) return;
-    commands.pass("shadows.culling", cullUses(viewHistory_));
+    // The tile count is the list's (a GPU-written list's is known to the GPU only): both dispatches
+    // are sized by its header.
+    const gpu::ResourceUse tileArgs = gpu::use(tiles.buffer, Usage::IndirectArguments), tileReads = gpu::use(tiles.buffer, Usage::ComputeRead);
+    commands.pass(passName, commands.joinUses(cullUses(viewHistory_), {tileArgs, tileReads}));
     commands.bindPipeline(cull_);
-    commands.pushDescriptors(cullWrites(cullFrame, viewHistory_));  // no pyramid read: any buffer
+    commands.pushDescriptors(cullWrites(cullFrame, tiles, viewHistory_));  // no pyramid read: any buffer
     const gpu_data::CullConstants constants{gpu_data::kCullPassShadows};
     commands.pushConstants(&constants, sizeof(constants));
-    commands.dispatch(groupsFor(scene_.instanceCount()), tileCount);
-    commands.pass("shadows.culling/draws",
+    commands.dispatchIndirect(tiles.buffer, tiles.offset + offsetof(gpu_data::CullTileListHeader, cullDispatch));
+    commands.pass(commands.joinName(passName, "/draws"),
                   {gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead), gpu::use(scene_.materialBuffer(), Usage::ComputeRead),
                    gpu::use(listCounts_, Usage::ComputeRead), gpu::use(drawCommands_, Usage::ComputeWrite),
-                   gpu::use(drawCounts_, Usage::ComputeWrite), gpu::use(tileStats_, Usage::ComputeWrite)});
+                   gpu::use(drawCounts_, Usage::ComputeWrite), gpu::use(tileStats_, Usage::ComputeWrite), tileArgs, tileReads});
     commands.bindPipeline(buildDraws_);
     using namespace gpu_data;
     const gpu::DescriptorWrite drawWrites[] = {
@@ -99,15 +105,17 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
         {kCullBindingListCounts, listCounts_, {}, {}},
         {kDrawsBindingDrawCommands, drawCommands_, {}, {}},
         {kDrawsBindingDrawCounts, drawCounts_, {}, {}},
-        {kDrawsBindingTileStats, tileStats_, {}, {}}};
+        {kDrawsBindingTileStats, tileStats_, {}, {}},
+        {kCullBindingTiles, tiles}};
     commands.pushDescriptors(drawWrites);
-    commands.dispatch(groupsFor(scene_.meshSlotCount()), tileCount);
+    commands.dispatchIndirect(tiles.buffer, tiles.offset + offsetof(gpu_data::CullTileListHeader, drawsDispatch));
 }
 
-std::array<gpu::DescriptorWrite, 9> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
-                                                                 gpu::BufferHandle pyramid) const {
+std::array<gpu::DescriptorWrite, 10> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
+                                                                  gpu::BufferHandle pyramid) const {
     using namespace gpu_data;
     return {{{kCullBindingFrame, cullFrame},
+            {kCullBindingTiles, tiles},
             {kCullBindingInstances, scene_.cullInstanceBuffer(), {}, {}},
             {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
             {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
@@ -129,9 +137,11 @@ std::array<gpu::ResourceUse, 8> ShadowCullingPass::cullUses(gpu::BufferHandle py
 void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,
                                    gpu::BufferHandle pyramid) {
     PENUMBRA_ASSERT(phase == gpu_data::kCullPassCameraEarly || phase == gpu_data::kCullPassCameraLate);
+    PENUMBRA_ASSERT(tileCapacity_ <= gpu_data::kMaxCullTiles);  // else the camera's lists are tiles' lists
     commands.pass(phase == gpu_data::kCullPassCameraEarly ? "main/cull" : "main/cull late", cullUses(pyramid));
     commands.bindPipeline(cull_);
-    commands.pushDescriptors(cullWrites(cullFrame, pyramid));
+    // The main view reads no tile: its list binding is any buffer (the culling frame itself).
+    commands.pushDescriptors(cullWrites(cullFrame, {viewHistory_, 0, 0}, pyramid));
     const gpu_data::CullConstants constants{phase};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), 1);

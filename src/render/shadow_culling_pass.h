@@ -6,8 +6,10 @@
 // The same pass culls the visibility buffer's main view (cull_structs.h: the camera frustum, then
 // two-phase occlusion against a depth pyramid) into two more lists, recordView's.
 #include <array>
+#include <string_view>
 #include <vector>
 
+#include "cull_structs.h"
 #include "gpu/device.h"
 #include "render/gpu_scene.h"
 #include "shadows/shadow_planner.h"
@@ -16,14 +18,19 @@ namespace penumbra {
 
 class ShadowCullingPass {
 public:
-    ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene);
+    // Lists for tileCapacity tiles: kMaxCullTiles for the atlases (and the main view's two lists), or
+    // more for the virtual pages (render/virtual_page_draw_pass.h: such a pass records no main view).
+    ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t tileCapacity = gpu_data::kMaxCullTiles);
     ~ShadowCullingPass();
     ShadowCullingPass(const ShadowCullingPass&) = delete;
     ShadowCullingPass& operator=(const ShadowCullingPass&) = delete;
 
-    // Culls for every tile of `plan` (directional tiles first, then spot/point) and leaves the draw
-    // lists for drawTile; `cullFrame` is packCullFrame(plan) in this frame's upload ring.
-    void record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t tileCount);
+    // Culls for every tile of the tile list `tiles` (CullTileListHeader + CullTile[], at most tileCapacity:
+    // CPU-written by packCullTiles, or GPU-written) by indirect dispatches of its header, and leaves
+    // the draw lists for drawList; `cullFrame` is packCullFrame(plan) (its counts and spheres). Its frame
+    // graph passes are passName, passName/clear and passName/draws.
+    void record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
+                std::string_view passName = "shadows.culling");
 
     // A main-view phase (kCullPassCameraEarly / Late) into list kCullListCameraEarly / Late;
     // `pyramid` is the depth pyramid the late phase tests against (the early phase binds it unread).
@@ -58,8 +65,10 @@ private:
     void destroyAll();
     gpu::Device& device_;
     const GpuScene& scene_;
+    uint32_t tileCapacity_ = 0, listCount_ = 0;
     gpu::PipelineHandle cull_, buildDraws_;
-    std::array<gpu::DescriptorWrite, 9> cullWrites(const gpu::BufferSlice& cullFrame, gpu::BufferHandle pyramid) const;
+    std::array<gpu::DescriptorWrite, 10> cullWrites(const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
+                                                    gpu::BufferHandle pyramid) const;
     std::array<gpu::ResourceUse, 8> cullUses(gpu::BufferHandle pyramid) const;  // the cull dispatch's, any phase
     gpu::BufferHandle listCounts_, visible_, drawCommands_, drawCounts_, tileStats_;
     gpu::BufferHandle viewHistory_;  // kView* bits per instance, carried from frame to frame

@@ -1,5 +1,8 @@
 #include "shadows/cull_packing.h"
 
+#include <algorithm>
+#include <cstddef>
+
 #include "core/error.h"
 #include "shadows/spot_culling.h"
 
@@ -49,29 +52,61 @@ gpu_data::CullTile perspectiveTile(const ShadowTile& tile) {
 gpu_data::CullFrame packCullFrame(const ShadowFrame& frame, uint32_t instanceCount, uint32_t meshCount) {
     gpu_data::CullFrame packed{};
     const auto& directional = frame.directional;
-    const size_t tileCount = directional.tiles.size() + frame.other.tiles.size();
-    if (tileCount > gpu_data::kMaxCullTiles)
-        throw Error("internal: " + std::to_string(tileCount) + " shadow tiles exceed the culling pass's " +
-                    std::to_string(gpu_data::kMaxCullTiles));
-    // No receiver: nothing to blend-cull for (as cullTileCasters: factor 0 culls nothing).
     const bool receivers = directional.wsReceiverBounds.valid();
-    const float blendCullingFactor = receivers ? directional.blendCullingFactor : 0.0f;
-    uint32_t t = 0;
-    for (const ShadowTile& tile : directional.tiles) packed.tiles[t++] = directionalTile(tile, blendCullingFactor);
-    for (const ShadowTile& tile : frame.other.tiles) packed.tiles[t++] = perspectiveTile(tile);
     for (size_t i = 0; i < directional.cascades.size() && i < 4; ++i)
         packed.spheres[i] = glm::vec4(directional.cascades[i].wsCenter, directional.cascades[i].radius);
     packed.wsReceiverMin = glm::vec4(receivers ? directional.wsReceiverBounds.min : glm::vec3(0.0f), 0.0f);
     packed.wsReceiverMax = glm::vec4(receivers ? directional.wsReceiverBounds.max : glm::vec3(0.0f), 0.0f);
-    packed.tileCount = uint32_t(tileCount);
     packed.instanceCount = instanceCount;
     packed.meshCount = meshCount;
     return packed;
 }
 
-void packRasterTiles(gpu_data::CullFrame& frame, const std::vector<uint32_t>& tiles) {
-    PENUMBRA_ASSERT(tiles.size() <= gpu_data::kMaxCullTiles);
-    for (size_t i = 0; i < tiles.size() && i < gpu_data::kMaxCullTiles; ++i) frame.rasterTiles[i / 4][i % 4] = tiles[i];
+size_t CullTileUpload::bytes() const {
+    return sizeof(header) + std::max<size_t>(header.count, 1) * sizeof(gpu_data::CullTile);
+}
+
+size_t RasterTileUpload::bytes() const { return sizeof(header) + std::max<size_t>(header.count, 1) * sizeof(uint32_t); }
+
+void packCullTiles(const ShadowFrame& frame, uint32_t instanceCount, uint32_t meshCount, CullTileUpload& out) {
+    static_assert(offsetof(CullTileUpload, tiles) == sizeof(gpu_data::CullTileListHeader), "the records follow the header");
+    const auto& directional = frame.directional;
+    const size_t tileCount = directional.tiles.size() + frame.other.tiles.size();
+    if (tileCount > gpu_data::kMaxCullTiles)
+        throw Error("internal: " + std::to_string(tileCount) + " shadow tiles exceed the culling pass's " +
+                    std::to_string(gpu_data::kMaxCullTiles));
+    // No receiver: nothing to blend-cull for (as cullTileCasters: factor 0 culls nothing).
+    const float blendCullingFactor = directional.wsReceiverBounds.valid() ? directional.blendCullingFactor : 0.0f;
+    uint32_t t = 0;
+    for (const ShadowTile& tile : directional.tiles) out.tiles[t++] = directionalTile(tile, blendCullingFactor);
+    for (const ShadowTile& tile : frame.other.tiles) out.tiles[t++] = perspectiveTile(tile);
+    const uint32_t count = uint32_t(tileCount), group = gpu_data::kCullWorkgroupSize;
+    out.header = {};
+    out.header.cullDispatch = glm::uvec4((instanceCount + group - 1) / group, count, 1, 0);
+    out.header.drawsDispatch = glm::uvec4((meshCount + group - 1) / group, count, 1, 0);
+    out.header.count = count;
+}
+
+glm::uvec4 rasterInstanceDispatch(uint32_t items, uint32_t tiles) {
+    const uint32_t width = gpu_data::kRasterDispatchWidth, work = std::max(items, 1u);
+    return glm::uvec4(std::min(work, width), (work + width - 1) / width, tiles, 0);
+}
+
+void packRasterTiles(const std::vector<ShadowTile>& tiles, std::span<const uint32_t> drawn, uint32_t firstCullTile,
+                     uint32_t rasterItems, RasterTileUpload& out) {
+    PENUMBRA_ASSERT(drawn.size() <= gpu_data::kMaxCullTiles);
+    static_assert(offsetof(RasterTileUpload, entries) == sizeof(gpu_data::RasterTileListHeader), "the entries follow the header");
+    uint32_t largest = 0, count = 0;
+    for (uint32_t i : drawn) {
+        if (count == gpu_data::kMaxCullTiles) break;
+        out.entries[count++] = firstCullTile + i;
+        largest = std::max(largest, tiles[i].rect.size);
+    }
+    const uint32_t groups = (largest + gpu_data::kRasterClearGroup - 1) / gpu_data::kRasterClearGroup;
+    out.header = {};
+    out.header.clearDispatch = glm::uvec4(groups, groups, count, 0);
+    out.header.instanceDispatch = rasterInstanceDispatch(rasterItems, count);
+    out.header.count = count;
 }
 
 DepthPyramidLayout depthPyramidLayout(uint32_t width, uint32_t height) {

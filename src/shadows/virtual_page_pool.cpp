@@ -1,6 +1,7 @@
 #include "shadows/virtual_page_pool.h"
 
 #include <unordered_set>
+#include <utility>
 
 #include "core/error.h"
 
@@ -22,8 +23,9 @@ VirtualPagePool::VirtualPagePool(uint32_t capacity, uint32_t keepFrames) : capac
 VirtualPageFrame VirtualPagePool::update(std::span<const VirtualPageKey> requests) {
     ++frame_;
     VirtualPageFrame frame;
-    freeIdlePages(frame);
-    // Resident requests first, so that no page this frame requests is taken for another.
+    frame.evicted = std::exchange(releasedSinceUpdate_, 0u);
+    // Resident requests first, so that no page this frame requests is taken for another, nor freed
+    // as idle: a page requested again after exactly keepFrames idle frames stays cached.
     std::vector<VirtualPageKey> missing;
     std::unordered_set<VirtualPageKey, VirtualPageKeyHash> seen;
     for (const VirtualPageKey& key : requests) {
@@ -38,6 +40,7 @@ VirtualPageFrame VirtualPagePool::update(std::span<const VirtualPageKey> request
         ++frame.cached;
         frame.toDraw += found->second.dirty ? 1u : 0u;
     }
+    freeIdlePages(frame);
     for (const VirtualPageKey& key : missing) {
         if (allocate(key, frame)) {
             ++frame.allocated;
@@ -46,7 +49,30 @@ VirtualPageFrame VirtualPagePool::update(std::span<const VirtualPageKey> request
             ++frame.overflowed;
         }
     }
+    frame.resident = residentCount();
     return frame;
+}
+
+uint32_t VirtualPagePool::releaseOutside(uint32_t map, const PageRect& window) {
+    uint32_t released = 0;
+    for (auto it = pages_.begin(); it != pages_.end();) {
+        if (it->first.map == map && !window.contains({it->first.page, it->first.page})) {
+            free_.push_back(it->second.physical);
+            it = pages_.erase(it);
+            ++released;
+        } else {
+            ++it;
+        }
+    }
+    releasedSinceUpdate_ += released;
+    return released;
+}
+
+std::vector<VirtualPageKey> VirtualPagePool::residentPages() const {
+    std::vector<VirtualPageKey> keys;
+    keys.reserve(pages_.size());
+    for (const auto& [key, entry] : pages_) keys.push_back(key);
+    return keys;
 }
 
 // A free physical page, or the one of the least recently requested page not requested this frame.

@@ -13,6 +13,13 @@
 //
 // Dirty pages: newly allocated ones, and those invalidated since they were drawn (a light that
 // changed invalidates its maps, a caster that moved the pages its old and new bounds touch).
+//
+// Clipmaps (virtual_clipmap.h): a page that leaves its level's window gives up its page-table slot to
+// the page entering there, so releaseOutside frees it before the frame's update, whether requested or
+// not. The GPU page table (render/virtual_page_table_pass.h) follows these rules with one difference
+// its tests allow for: among pages requested equally long ago (a tie for least recently requested),
+// and among a level's requests when the pool runs out part-way through that level, which ones win
+// depends on the order of atomic operations there, and is arbitrary here too.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -47,14 +54,19 @@ struct VirtualPageFrame {
     uint32_t evicted = 0;     // resident pages given to another page or freed after keepFrames
     uint32_t overflowed = 0;  // requested pages that found no physical page
     uint32_t toDraw = 0;      // requested pages that are dirty (allocated or invalidated)
+    uint32_t resident = 0;    // resident pages after the update
 };
 
 class VirtualPagePool {
 public:
     VirtualPagePool(uint32_t capacity, uint32_t keepFrames);
 
-    // Starts a new frame with these requests (duplicates count once).
+    // Starts a new frame with these requests (duplicates count once). Its `evicted` includes the pages
+    // releaseOutside freed since the last update.
     VirtualPageFrame update(std::span<const VirtualPageKey> requests);
+    // Frees the resident pages of `map` outside `window` (they left their clipmap level's window, whose
+    // slot now belongs to another page); returns how many. Call before the frame's update.
+    uint32_t releaseOutside(uint32_t map, const PageRect& window);
 
     std::optional<uint32_t> physicalPage(const VirtualPageKey& key) const;
     bool resident(const VirtualPageKey& key) const { return pages_.contains(key); }
@@ -69,6 +81,7 @@ public:
 
     uint32_t capacity() const { return capacity_; }
     uint32_t residentCount() const { return uint32_t(pages_.size()); }
+    std::vector<VirtualPageKey> residentPages() const;  // in no particular order
 
 private:
     struct Entry {
@@ -84,6 +97,7 @@ private:
     uint64_t frame_ = 0;
     std::unordered_map<VirtualPageKey, Entry, VirtualPageKeyHash> pages_;
     std::vector<uint32_t> free_;  // physical pages, popped from the back
+    uint32_t releasedSinceUpdate_ = 0;  // by releaseOutside, counted in the next update's evicted
 };
 
 }  // namespace penumbra

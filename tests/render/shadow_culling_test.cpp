@@ -30,9 +30,13 @@ protected:
         const gpu_data::CullFrame packed = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
         const gpu::BufferHandle frame = gpu.createBuffer(sizeof(packed), gpu::kBufferUniform, gpu::MemoryKind::HostVisible,
                                                          &packed, "test cull frame");
+        CullTileUpload tileList;
+        packCullTiles(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount(), tileList);
+        const gpu::BufferHandle tileBuffer = gpu.createBuffer(tileList.bytes(), gpu::kBufferStorage | gpu::kBufferIndirect,
+                                                              gpu::MemoryKind::HostVisible, &tileList, "test cull tiles");
         const uint32_t tiles = uint32_t(plan.directional.tiles.size() + plan.other.tiles.size());
         gpu::CommandList commands = gpu.beginCommands();
-        culling.record(commands, {frame, 0, sizeof(packed)}, tiles);
+        culling.record(commands, {frame, 0, sizeof(packed)}, {tileBuffer, 0, tileList.bytes()});
         gpu.submitAndWait(commands);
         Lists lists;
         lists.gpu = culling.readVisibleLists(tiles);
@@ -43,6 +47,7 @@ protected:
                 lists.cpu.push_back(instances);
             }
         gpu.destroy(frame);
+        gpu.destroy(tileBuffer);
         return lists;
     }
 

@@ -11,6 +11,8 @@
 #include "gpu/shader_interface.h"
 #include "pass_bindings.h"
 #include "render/pass_layouts.h"
+#include "virtual_page_draw_structs.h"
+#include "virtual_shadow_structs.h"
 #include "visibility_structs.h"
 
 namespace penumbra {
@@ -54,7 +56,18 @@ std::vector<PassCase> everyPass() {
         {"pyramid", {compute("depth_pyramid.comp")}, depthPyramidBindings(), sizeof(PyramidConstants)},
         {"clusters", {compute("light_cluster.comp")}, lightClusterBindings()},
         {"subsample", {compute("depth_subsample.comp")}, depthSubsampleBindings(), sizeof(SubsampleConstants)},
+        {"virtual page mark", {compute("virtual_page_mark.comp")}, virtualPageMarkBindings()},
     };
+    for (const char* shader : {"virtual_page_reset.comp", "virtual_page_invalidate.comp", "virtual_page_update.comp",
+                               "virtual_page_plan.comp", "virtual_page_candidates.comp", "virtual_page_allocate.comp",
+                               "virtual_page_finish.comp", "virtual_page_drawn.comp"})
+        cases.push_back({shader, {compute(shader)}, virtualPageTableBindings(shader)});
+    cases.push_back({"virtual page tiles", {compute("virtual_page_tiles.comp")}, virtualPageDrawBindings("virtual_page_tiles.comp"),
+                     sizeof(VirtualPageTilesConstants)});
+    cases.push_back({"virtual page copy", {compute("virtual_page_copy.comp")}, virtualPageDrawBindings("virtual_page_copy.comp"),
+                     sizeof(VirtualPageCopyConstants)});
+    cases.push_back({"virtual shadow probe", {compute("virtual_shadow_probe.comp")}, virtualShadowProbeBindings(),
+                     sizeof(VirtualShadowProbeConstants)});
     for (const char* shader : {"shadow_raster_clear.comp", "shadow_raster.comp", "shadow_raster_bin.comp", "shadow_raster_chunks.comp"})
         cases.push_back({shader, {compute(shader)}, shadowRasterBindings(), sizeof(ShadowRasterConstants), true});
     for (const char* shader : {"visibility_raster.comp", "visibility_raster_bin.comp", "visibility_raster_chunks.comp"})

@@ -59,6 +59,17 @@ TEST(VirtualPagePool, UnrequestedPagesAreKeptForKeepFramesThenFreed) {
     EXPECT_EQ(again.allocated, 1u) << "a freed page is drawn again when it is requested again";
 }
 
+TEST(VirtualPagePool, APageRequestedAgainAfterExactlyKeepFramesIdleFramesIsStillCached) {
+    VirtualPagePool pool(4, 2);
+    frameWith(pool, {page(1)});
+    frameWith(pool, {});
+    frameWith(pool, {});
+    const VirtualPageFrame again = frameWith(pool, {page(1)});
+    EXPECT_EQ(again.cached, 1u);
+    EXPECT_EQ(again.evicted, 0u);
+    EXPECT_EQ(again.toDraw, 0u);
+}
+
 TEST(VirtualPagePool, AFullPoolGivesTheLeastRecentlyRequestedPageToANewOne) {
     VirtualPagePool pool(2, 10);
     frameWith(pool, {page(1)});
@@ -120,6 +131,45 @@ TEST(VirtualPagePool, AMovedCasterRedrawsOnlyThePagesItsBoundsTouch) {
     for (const VirtualPageKey& key : grid)
         if (pool.needsDraw(key)) dirty.insert({key.page.x, key.page.y});
     EXPECT_EQ(dirty, (std::set<std::pair<int32_t, int32_t>>{{1, 1}, {2, 1}, {0, 2}}));
+}
+
+TEST(VirtualPagePool, ReleaseOutsideFreesOnlyThatMapsPagesOutsideTheWindow) {
+    VirtualPagePool pool(8, 10);
+    frameWith(pool, {page(0, 0, 0), page(3, 0, 0), page(4, 1, 0), page(4, 1, 1)});
+    EXPECT_EQ(pool.releaseOutside(0, PageRect{{1, 0}, {4, 3}}), 1u);
+    EXPECT_FALSE(pool.resident(page(0, 0, 0)));
+    EXPECT_TRUE(pool.resident(page(3, 0, 0)));
+    EXPECT_TRUE(pool.resident(page(4, 1, 0)));
+    EXPECT_TRUE(pool.resident(page(4, 1, 1))) << "another map's page";
+}
+
+TEST(VirtualPagePool, PagesReleasedOutsideTheWindowCountAsEvictedInTheNextUpdate) {
+    VirtualPagePool pool(8, 10);
+    frameWith(pool, {page(0), page(1), page(2)});
+    pool.releaseOutside(0, PageRect{{2, 0}, {5, 0}});
+    const VirtualPageFrame frame = frameWith(pool, {page(2)});
+    EXPECT_EQ(frame.evicted, 2u);
+    EXPECT_EQ(frameWith(pool, {page(2)}).evicted, 0u) << "counted once";
+}
+
+TEST(VirtualPagePool, ReleasedPhysicalPagesServeNewRequestsWithoutEviction) {
+    VirtualPagePool pool(2, 10);
+    frameWith(pool, {page(0), page(1)});
+    pool.releaseOutside(0, PageRect{{1, 0}, {2, 0}});
+    const VirtualPageFrame frame = frameWith(pool, {page(1), page(2)});
+    EXPECT_EQ(frame.allocated, 1u);
+    EXPECT_EQ(frame.overflowed, 0u);
+    EXPECT_EQ(frame.evicted, 1u) << "page 0, released; page 1 is kept";
+    EXPECT_TRUE(pool.resident(page(1)));
+}
+
+TEST(VirtualPagePool, TheFrameReportsTheResidentPagesAfterIt) {
+    VirtualPagePool pool(4, 0);
+    EXPECT_EQ(frameWith(pool, {page(0), page(1), page(2)}).resident, 3u);
+    EXPECT_EQ(frameWith(pool, {page(1)}).resident, 1u) << "keepFrames 0 frees the unrequested ones at once";
+    std::vector<VirtualPageKey> resident = pool.residentPages();
+    ASSERT_EQ(resident.size(), 1u);
+    EXPECT_EQ(resident[0], page(1));
 }
 
 }  // namespace

@@ -1,0 +1,177 @@
+// Virtual shadow map page marking, shared by C++ (shadows/virtual_page_marking.h, the CPU reference,
+// and render/virtual_page_mark_pass) and GLSL (virtual_page_mark.comp, virtual_clipmap.glsl); and the
+// GPU page table and physical page allocator (render/virtual_page_table_pass.h, virtual_page_*.comp,
+// virtual_page_table.glsl), whose CPU reference is shadows/virtual_page_pool.h.
+//
+// Request bits: one bit per page-table slot of every level of a directional light's clipmap
+// (shadows/virtual_clipmap.h), level after level, and within a level by wrap-around slot
+// y * pagesPerSide + x. Bit b lives in word b / 32 at bit b % 32.
+#ifndef PENUMBRA_VIRTUAL_PAGE_STRUCTS_H
+#define PENUMBRA_VIRTUAL_PAGE_STRUCTS_H
+#include "gpu_shared.h"
+
+PENUMBRA_GPU_NAMESPACE_BEGIN
+
+// The request bit of slot (slotX, slotY) of `level`.
+PENUMBRA_INLINE uint virtualPageBit(uint level, uint pagesPerSide, uint slotX, uint slotY) {
+    return (level * pagesPerSide + slotY) * pagesPerSide + slotX;
+}
+
+// What the marking pass needs of the camera, the light and the clipmap (a uniform buffer).
+struct VirtualPageMarkData {
+    mat4 worldFromClip;   // inverse of the camera's clipFromWorld: pixels back to world space
+    mat4 viewFromWorld;   // the camera's: view depth of a pixel
+    mat4 lightFromWorld;  // the light's rotation (lightRotationFromWorld): the clipmap's space
+    vec2 lsCamera;              // (lightFromWorld * camera position).xy: where the levels are centred
+    float marginTexels;         // the filter's reach around a receiver, in texels of its level
+    float wsFootprintPerDepth;  // a pixel's world footprint per metre of view depth
+    uint width;                 // the depth texture's size
+    uint height;
+    uint pagesPerSide;          // VirtualClipmapConfig: resolution / pageSize
+    uint levelCount;
+    float firstLevelSize;       // metres along level 0's side
+    uint resolution;            // virtual texels along a level's side
+    uint requestWordCount;      // words of the request bits
+    uint reserved;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageMarkData, 240)
+PENUMBRA_CHECK_LAYOUT(VirtualPageMarkData, lsCamera, 192)
+PENUMBRA_CHECK_LAYOUT(VirtualPageMarkData, marginTexels, 200)
+PENUMBRA_CHECK_LAYOUT(VirtualPageMarkData, width, 208)
+PENUMBRA_CHECK_LAYOUT(VirtualPageMarkData, firstLevelSize, 224)
+PENUMBRA_CHECK_LAYOUT(VirtualPageMarkData, reserved, 236)
+
+// ---- The page table and the physical page allocator of one directional light's clipmap.
+// Entries: one per (level, wrap-around slot), indexed like the request bits (virtualPageBit). A slot
+// holds whichever global page of the level's window maps to it this frame; when the window moves, the
+// slot's old page is freed and the slot serves the new one (Timberdoodle's wrap-around page tables,
+// GPU Zen 3 "Virtual Shadow Maps"). Storage buffers (std430) only, except VirtualPageTableData.
+PENUMBRA_CONST(uint, kVirtualPageMaxLevels, 16u)      // levels of a clipmap the table holds
+PENUMBRA_CONST(uint, kVirtualPageMaxKeepFrames, 32u)  // keepFrames limit: one eviction age bucket per frame
+PENUMBRA_CONST(uint, kVirtualPageNone, 0xFFFFFFFFu)   // no physical page, no owner entry
+PENUMBRA_CONST(uint, kVirtualPageGroupSize, 64u)      // local_size_x of the passes over entries and lists
+// VirtualPageEntry::flags.
+PENUMBRA_CONST(uint, kVirtualPageResident, 1u)   // physicalPage holds the page (pageX, pageY)
+PENUMBRA_CONST(uint, kVirtualPageDirty, 2u)      // resident, its contents must be drawn before sampling
+PENUMBRA_CONST(uint, kVirtualPageRequested, 4u)  // requested this frame (the marking pass's bit)
+
+struct VirtualPageEntry {
+    uint physicalPage;   // kVirtualPageNone when not resident
+    uint flags;          // kVirtualPage* bits
+    int pageX;           // the global page (level's page coordinates) the slot holds or was requested for
+    int pageY;
+    uint lastRequested;  // the frame (VirtualPageTableData::frame) that last requested it
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageEntry, 32)
+PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, pageX, 8)
+PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, lastRequested, 16)
+
+// A level's window this frame (ClipmapLevel::window): its first page and that page's slot.
+struct VirtualPageLevelWindow {
+    int minPageX;
+    int minPageY;
+    uint minSlotX;
+    uint minSlotY;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageLevelWindow, 16)
+
+// One update of the table (a uniform buffer): the clipmap's windows, the pool's rules, invalidations.
+struct VirtualPageTableData {
+    uint frame;              // increases by one per update; ages are frame - lastRequested
+    uint levelCount;
+    uint pagesPerSide;
+    uint keepFrames;         // unrequested resident pages live this many frames, <= kVirtualPageMaxKeepFrames
+    uint capacity;           // physical pages in the pool
+    uint invalidateAll;      // 1: every resident page becomes dirty (the light changed)
+    uint invalidationCount;  // VirtualPageInvalidation rectangles this update
+    uint entryCount;         // levelCount * pagesPerSide^2
+    VirtualPageLevelWindow levels[kVirtualPageMaxLevels];
+};
+PENUMBRA_CHECK_SIZE(VirtualPageTableData, 288)
+PENUMBRA_CHECK_LAYOUT(VirtualPageTableData, capacity, 16)
+PENUMBRA_CHECK_LAYOUT(VirtualPageTableData, levels, 32)
+
+// The resident pages of a level inside a rectangle of global pages (min and max inclusive) become
+// dirty: a caster's old or new bounds (pagesTouchedByBounds).
+struct VirtualPageInvalidation {
+    int minPageX;
+    int minPageY;
+    int maxPageX;
+    int maxPageY;
+    uint level;
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageInvalidation, 32)
+
+// What one update did: shadows/virtual_page_pool.h's VirtualPageFrame, field for field.
+struct VirtualPageStats {
+    uint requested;   // pages requested
+    uint cached;      // requested and already resident
+    uint allocated;   // requested, not resident, given a physical page
+    uint evicted;     // resident pages freed (left the window, idle past keepFrames) or given to another
+    uint overflowed;  // requested pages that found no physical page (a coarser level serves them)
+    uint toDraw;      // requested pages that are dirty: the draw list's length
+    uint resident;    // resident pages after the update
+    uint reserved;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageStats, 32)
+
+// The counters of one update, zeroed before it. Per level (coarsest first) and per eviction age
+// (oldest first): how many, a cursor, and where their run starts in the allocation / eviction order.
+struct VirtualPageCounters {
+    VirtualPageStats stats;
+    uint missing;    // requested pages not resident (every level)
+    uint evictable;  // resident pages not requested this frame, after freeing
+    uint freeAtAllocation;  // free pages when the allocation starts (after the frees of this update)
+    uint reserved;
+    uint levelMissing[kVirtualPageMaxLevels];
+    uint levelCursor[kVirtualPageMaxLevels];
+    uint levelFirst[kVirtualPageMaxLevels];
+    uint ageCount[kVirtualPageMaxKeepFrames];  // by age - 1
+    uint ageCursor[kVirtualPageMaxKeepFrames];
+    uint ageFirst[kVirtualPageMaxKeepFrames];
+};
+PENUMBRA_CHECK_SIZE(VirtualPageCounters, 48 + 3 * 64 + 3 * 128)
+PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, missing, 32)
+PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, levelMissing, 48)
+PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, ageCount, 240)
+
+// The free list's header; the free physical pages follow it (a stack: the last one is taken first).
+struct VirtualPagePoolHeader {
+    uint freeCount;
+    uint capacity;
+    uint reserved0;
+    uint reserved1;
+};
+PENUMBRA_CHECK_SIZE(VirtualPagePoolHeader, 16)
+
+// A page to draw this update: its entry (level = entry / pagesPerSide^2), physical page and global page.
+struct VirtualPageDraw {
+    uint entry;
+    uint physicalPage;
+    int pageX;
+    int pageY;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageDraw, 16)
+
+// The draw list's header; capacity VirtualPageDraws follow it. pageDispatch: one workgroup per page
+// (the page-drawing pass's vkCmdDispatchIndirect); listDispatch: kVirtualPageGroupSize pages a group.
+struct VirtualPageDrawHeader {
+    uvec4 pageDispatch;  // x = count, y = z = 1
+    uvec4 listDispatch;  // x = ceil(count / kVirtualPageGroupSize), y = z = 1
+    uint count;
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
+};
+PENUMBRA_CHECK_SIZE(VirtualPageDrawHeader, 48)
+PENUMBRA_CHECK_LAYOUT(VirtualPageDrawHeader, listDispatch, 16)
+PENUMBRA_CHECK_LAYOUT(VirtualPageDrawHeader, count, 32)
+
+PENUMBRA_GPU_NAMESPACE_END
+#endif

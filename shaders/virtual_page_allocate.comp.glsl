@@ -1,0 +1,36 @@
+#version 460
+// Virtual page table, step 4 of an update (render/virtual_page_table_pass.h): every requested page
+// that is not resident takes its place in step 2's order (its level's run, coarsest level first) and
+// the physical page at that place: the top of the free list, else the candidate of step 3 at that
+// place (the least recently requested page not requested this frame, which loses its page), else
+// none (overflow, counted by step 5). A new page is dirty and goes on the draw list.
+// shadows/virtual_page_pool.h allocate is the CPU rule.
+#include "virtual_page_table.glsl"
+layout(local_size_x = kVirtualPageGroupSize) in;
+
+void main() {
+    const uint entry = gl_GlobalInvocationID.x;
+    if (entry >= table.entryCount) return;
+    VirtualPageEntry page = entries[entry];
+    if ((page.flags & (kVirtualPageResident | kVirtualPageRequested)) != kVirtualPageRequested) return;
+    const uint level = entry / pagesPerLevel();
+    const uint order = counters.levelFirst[level] + atomicAdd(counters.levelCursor[level], 1u);
+    const uint freeCount = counters.freeAtAllocation;
+    uint physical;
+    if (order < freeCount) {
+        physical = freePages[freeCount - 1u - order];
+    } else if (order - freeCount < counters.evictable) {
+        const uint victim = candidates[order - freeCount];  // not requested: no invocation writes it
+        physical = entries[victim].physicalPage;
+        entries[victim].flags = 0u;
+        entries[victim].physicalPage = kVirtualPageNone;
+    } else {
+        return;  // overflow
+    }
+    owners[physical] = entry;
+    page.physicalPage = physical;
+    page.flags = kVirtualPageResident | kVirtualPageDirty | kVirtualPageRequested;
+    page.lastRequested = table.frame;
+    entries[entry] = page;
+    appendDraw(entry, page);
+}

@@ -1,0 +1,171 @@
+#include "render/virtual_page_draw_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "cull_structs.h"
+#include "pass_bindings.h"
+#include "render/pass_layouts.h"
+#include "shadows/cascades.h"
+#include "shadows/cull_packing.h"
+
+namespace penumbra {
+
+namespace {
+
+using gpu::Usage;
+
+constexpr uint32_t kFarDepthBits = 0x3f800000u;  // floatBitsToUint(1.0): nothing cast
+constexpr const char* kPassName = "virtualPages";
+
+uint32_t groupsOf(uint32_t count, uint32_t group) { return (count + group - 1) / group; }
+
+}  // namespace
+
+VirtualPageDrawSpace makeVirtualPageDrawSpace(const VirtualClipmapConfig& clipmap, const glm::vec3& wsLightDirection,
+                                              const Aabb& wsSceneBounds) {
+    VirtualPageDrawSpace space;
+    space.clipmap = clipmap;
+    space.lightRotationFromWorld = lightRotationFromWorld(wsLightDirection);
+    const Aabb lsBounds = wsSceneBounds.valid() ? wsSceneBounds.transformed(space.lightRotationFromWorld) : Aabb{};
+    const float zMin = lsBounds.valid() ? lsBounds.min.z : -1.0f, zMax = lsBounds.valid() ? lsBounds.max.z : 1.0f;
+    const float margin = 0.01f * (zMax - zMin) + 0.01f;
+    space.lsDepthNear = zMax + margin;  // the light travels along -z: the largest z is nearest to it
+    space.lsDepthFar = zMin - margin;
+    return space;
+}
+
+glm::mat4 virtualPageClipFromWorld(const VirtualPageDrawSpace& space, uint32_t level, const glm::ivec2& page) {
+    // Operation for operation as virtual_page_tiles.comp pageTile.
+    const uint32_t pagesPerSide = penumbra::pagesPerSide(space.clipmap);
+    const float lsPage = space.clipmap.firstLevelSize * std::exp2(float(level)) / float(pagesPerSide);
+    const float near = space.lsDepthNear, far = space.lsDepthFar;
+    glm::mat4 clipFromLight(1.0f);
+    clipFromLight[0] = glm::vec4(2.0f / lsPage, 0.0f, 0.0f, 0.0f);
+    clipFromLight[1] = glm::vec4(0.0f, 2.0f / lsPage, 0.0f, 0.0f);
+    clipFromLight[2] = glm::vec4(0.0f, 0.0f, -1.0f / (near - far), 0.0f);
+    clipFromLight[3] = glm::vec4(-2.0f * glm::vec2(page) - 1.0f, near / (near - far), 1.0f);
+    return clipFromLight * space.lightRotationFromWorld;
+}
+
+gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, uint32_t pageSize) {
+    return {int32_t(physicalPage % poolPagesPerSide * pageSize), int32_t(physicalPage / poolPagesPerSide * pageSize), pageSize,
+            pageSize};
+}
+
+VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
+                                         const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide)
+    : device_(device), scene_(gpuScene), raster_(raster), poolPagesPerSide_(poolPagesPerSide), pageSize_(clipmap.pageSize),
+      pagesPerLevelSide_(pagesPerSide(clipmap)), culling_(device, gpuScene, std::max(poolPagesPerSide * poolPagesPerSide, 1u)) {
+    if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
+        throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
+                    std::to_string(pageSize_) + " texels does not fit an image");
+    try {
+        create();
+    } catch (...) {
+        release();  // a failed allocation half-way: the destructor does not run
+        throw;
+    }
+}
+
+VirtualPageDrawPass::~VirtualPageDrawPass() { release(); }
+
+void VirtualPageDrawPass::release() {
+    for (gpu::PipelineHandle p : {tilesPipeline_, copyPipeline_}) device_.destroy(p);
+    for (gpu::BufferHandle b : {cullFrame_, tiles_, rasterList_, poolDepth_}) device_.destroy(b);
+    device_.destroy(poolTexture_);
+}
+
+void VirtualPageDrawPass::create() {
+    gpu::ComputePipelineDesc desc;
+    desc.shader = desc.debugName = "virtual_page_tiles.comp";
+    desc.bindings = virtualPageDrawBindings(desc.shader);
+    desc.pushConstantSize = sizeof(gpu_data::VirtualPageTilesConstants);
+    tilesPipeline_ = device_.createComputePipeline(desc);
+    desc.shader = desc.debugName = "virtual_page_copy.comp";
+    desc.bindings = virtualPageDrawBindings(desc.shader);
+    desc.pushConstantSize = sizeof(gpu_data::VirtualPageCopyConstants);
+    copyPipeline_ = device_.createComputePipeline(desc);
+
+    // The pages' culling frame: the counts; no cascade spheres (pages do no blend culling).
+    gpu_data::CullFrame frame{};
+    frame.instanceCount = scene_.instanceCount();
+    frame.meshCount = scene_.meshSlotCount();
+    using gpu::MemoryKind;
+    cullFrame_ = device_.createBuffer(sizeof(frame), gpu::kBufferUniform, MemoryKind::DeviceLocal, &frame,
+                                      "virtual page culling frame");
+    const uint64_t pages = capacity();
+    tiles_ = device_.createBuffer(sizeof(gpu_data::CullTileListHeader) + pages * sizeof(gpu_data::CullTile),
+                                  gpu::kBufferStorage | gpu::kBufferIndirect, MemoryKind::DeviceLocal, nullptr,
+                                  "virtual page cull tiles");
+    rasterList_ = device_.createBuffer(sizeof(gpu_data::RasterTileListHeader) + pages * 4,
+                                       gpu::kBufferStorage | gpu::kBufferIndirect, MemoryKind::DeviceLocal, nullptr,
+                                       "virtual page raster list");
+    const uint32_t side = poolSide();
+    const std::vector<uint32_t> far(size_t(side) * side, kFarDepthBits);  // once, at creation
+    poolDepth_ = device_.createBuffer(far.size() * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
+                                      far.data(), "virtual page pool depth");
+    gpu::TextureDesc texture;
+    texture.width = texture.height = side;
+    texture.format = gpu::Format::R32Float;
+    texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst;
+    texture.debugName = "virtual page pool";
+    poolTexture_ = device_.createTexture(texture);
+    gpu::CommandList commands = device_.beginCommands();  // the image starts far too
+    commands.pass("virtualPages/init", {gpu::use(poolDepth_, Usage::TransferRead), gpu::discard(poolTexture_, Usage::TransferWrite)});
+    commands.copyBufferToTexture(poolDepth_, poolTexture_);
+    device_.submitAndWait(commands);
+}
+
+void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs) {
+    PENUMBRA_ASSERT(inputs.space && inputs.sceneWrites && inputs.drawList);
+    const VirtualPageDrawSpace& space = *inputs.space;
+    PENUMBRA_ASSERT(space.clipmap.pageSize == pageSize_ && pagesPerSide(space.clipmap) == pagesPerLevelSide_);
+    using namespace gpu_data;
+    const uint64_t tileBytes = device_.bufferSize(tiles_), listBytes = device_.bufferSize(rasterList_);
+    // 1. The draw list -> tile lists (one thread per page the lists can hold: the count is the GPU's).
+    commands.pass("virtualPages.tiles", {gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(tiles_, Usage::ComputeWrite),
+                                         gpu::use(rasterList_, Usage::ComputeWrite)});
+    commands.bindPipeline(tilesPipeline_);
+    const gpu::DescriptorWrite tileWrites[] = {{kPageDrawBindingDrawList, inputs.drawList, {}, {}},
+                                               {kPageDrawBindingTiles, tiles_, {}, {}},
+                                               {kPageDrawBindingRasterList, rasterList_, {}, {}}};
+    commands.pushDescriptors(tileWrites);
+    VirtualPageTilesConstants constants{};
+    constants.lightRotationFromWorld = space.lightRotationFromWorld;
+    constants.lsDepthNear = space.lsDepthNear;
+    constants.lsDepthFar = space.lsDepthFar;
+    constants.firstLevelSize = space.clipmap.firstLevelSize;
+    constants.slopeBias = space.slopeBias;
+    constants.pagesPerSide = pagesPerLevelSide_;
+    constants.pageSize = pageSize_;
+    constants.poolPagesPerSide = poolPagesPerSide_;
+    constants.capacity = capacity();
+    constants.instanceGroups = groupsOf(scene_.instanceCount(), kCullWorkgroupSize);
+    constants.meshGroups = groupsOf(scene_.meshSlotCount(), kCullWorkgroupSize);
+    constants.rasterItems = scene_.rasterWorkItems();
+    commands.pushConstants(&constants, sizeof(constants));
+    commands.dispatch(groupsOf(capacity(), kVirtualPageGroupSize), 1);
+    // 2. Culling per page, 3. clear and raster per page (both sized by the lists' headers).
+    culling_.record(commands, {cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, "virtualPages.culling");
+    const RasterTileLists lists{{cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, {rasterList_, 0, listBytes}};
+    raster_.recordTiles(commands, *inputs.sceneWrites, lists, culling_, poolDepth_, poolSide(), inputs.meshletCulling, kPassName);
+    // 4. The listed pages into the sampled image, one workgroup per page (the list's pageDispatch).
+    commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
+                                        gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(poolDepth_, Usage::ComputeRead),
+                                        gpu::use(poolTexture_, Usage::ComputeWrite)});
+    commands.bindPipeline(copyPipeline_);
+    const gpu::DescriptorWrite copyWrites[] = {{kPageDrawBindingDrawList, inputs.drawList, {}, {}},
+                                               {kPageDrawBindingPoolDepth, poolDepth_, {}, {}},
+                                               {kPageDrawBindingPoolTexture, {}, poolTexture_, {}}};
+    commands.pushDescriptors(copyWrites);
+    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, capacity(), 0};
+    commands.pushConstants(&copy, sizeof(copy));
+    commands.dispatchIndirect(inputs.drawList, offsetof(VirtualPageDrawHeader, pageDispatch));
+}
+
+}  // namespace penumbra

@@ -1,0 +1,98 @@
+#pragma once
+// Draws the dirty pages of a directional light's virtual shadow map with the compute rasterizer the
+// atlases use (render/compute_raster_pass.h), from the page table's draw list (render/
+// virtual_page_table_pass.h: VirtualPageDrawHeader + VirtualPageDraw[]) that exists only on the GPU: no
+// readback, every loop over the pages an indirect dispatch or a dispatch over the pool's capacity.
+//
+// Per record: virtual_page_tiles.comp turns the list into the rasterizer's tile lists (one tile per page:
+// the page's orthographic projection, its square, its physical page's viewport; shaders/shared/
+// virtual_page_draw_structs.h has the rules); the culling pass keeps, per page, the instances whose bounds
+// overlap its square; the rasterizer clears each page's texels of the pool's depth buffer to far and
+// draws them (a triangle reaches only the pages whose lists hold its instance and, within a page, the
+// 16 x 16 chunks it overlaps); virtual_page_copy.comp copies the listed pages into the pool's R32F image.
+// Pages not in the list keep their depth and texels. Not yet used by frames (sampling comes next).
+//
+// The design follows the published virtual shadow maps: Timberdoodle's GPU-driven page drawing (GPU Zen 3,
+// "Virtual Shadow Maps") and Unreal Engine's ("Virtual Shadow Maps" documentation: one depth range for
+// the whole clipmap, cached pages redrawn only when invalidated).
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "gpu/device.h"
+#include "render/compute_raster_pass.h"
+#include "render/gpu_scene.h"
+#include "render/shadow_culling_pass.h"
+#include "shadows/virtual_clipmap.h"
+#include "virtual_page_draw_structs.h"
+#include "virtual_page_structs.h"
+
+namespace penumbra {
+
+// Where a light's pages are drawn: the clipmap, the light's rotation and the depth range that every page
+// shares (virtual_page_draw_structs.h).
+struct VirtualPageDrawSpace {
+    VirtualClipmapConfig clipmap;
+    glm::mat4 lightRotationFromWorld{1.0f};  // shadows/cascades.h lightRotationFromWorld
+    float lsDepthNear = 1.0f;                // light-space z of depth 0
+    float lsDepthFar = -1.0f;                // light-space z of depth 1
+    float slopeBias = 0.0f;                  // slope-scale depth bias of every page
+};
+
+// The space of a light travelling along wsLightDirection over a scene within wsSceneBounds: the depth range
+// is the bounds' light-space z range, widened by 1% of it (and 1 cm) on each side so that no caster lies
+// on a plane. Fixed while the scene's bounds and the light stay: the pages stay comparable and cached.
+VirtualPageDrawSpace makeVirtualPageDrawSpace(const VirtualClipmapConfig& clipmap, const glm::vec3& wsLightDirection,
+                                              const Aabb& wsSceneBounds);
+// The projection of global page `page` of `level` (what virtual_page_tiles.comp computes): its square to
+// clip x, y in [-1, 1] (rows with light-space y), the depth range to z in [0, 1], w = 1.
+glm::mat4 virtualPageClipFromWorld(const VirtualPageDrawSpace& space, uint32_t level, const glm::ivec2& page);
+// The pool texel rectangle of physical page `physicalPage`.
+gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, uint32_t pageSize);
+
+struct VirtualPageDrawInputs {
+    gpu::BufferHandle drawList;  // VirtualPageDrawHeader + VirtualPageDraw[] (the table pass's drawList())
+    const VirtualPageDrawSpace* space = nullptr;
+    const std::vector<gpu::DescriptorWrite>* sceneWrites = nullptr;  // the scene bindings 0-4
+    bool meshletCulling = true;                                      // render.meshletCulling
+};
+
+class VirtualPageDrawPass {
+public:
+    // A pool of poolPagesPerSide^2 physical pages of clipmap pageSize texels (its depth buffer and image
+    // start far), tile lists for as many pages; draws with `raster`, which the atlases may share.
+    VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
+                        const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide);
+    ~VirtualPageDrawPass();
+    VirtualPageDrawPass(const VirtualPageDrawPass&) = delete;
+    VirtualPageDrawPass& operator=(const VirtualPageDrawPass&) = delete;
+
+    // Draws the pages of inputs.drawList (its count is read on the GPU, at most capacity()); its steps are
+    // the frame graph passes virtualPages.tiles, virtualPages.culling*, virtualPages/clear ... /chunks,
+    // virtualPages/copy. Allocates nothing.
+    void record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs);
+
+    gpu::TextureHandle poolTexture() const { return poolTexture_; }  // R32F, left in General after a record
+    gpu::BufferHandle poolDepth() const { return poolDepth_; }      // float bits per texel
+    uint32_t poolSide() const { return poolPagesPerSide_ * pageSize_; }  // texels along the pool's side
+    uint32_t capacity() const { return poolPagesPerSide_ * poolPagesPerSide_; }
+    // The last record's GPU-written lists (tests, debugging).
+    gpu::BufferHandle tileList() const { return tiles_; }
+    gpu::BufferHandle rasterList() const { return rasterList_; }
+    const ShadowCullingPass& culling() const { return culling_; }
+
+private:
+    void create();
+    void release();
+    gpu::Device& device_;
+    const GpuScene& scene_;
+    ComputeRasterPass& raster_;
+    uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
+    ShadowCullingPass culling_;
+    gpu::PipelineHandle tilesPipeline_, copyPipeline_;
+    gpu::BufferHandle cullFrame_, tiles_, rasterList_, poolDepth_;
+    gpu::TextureHandle poolTexture_;
+};
+
+}  // namespace penumbra

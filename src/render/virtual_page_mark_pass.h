@@ -1,0 +1,58 @@
+#pragma once
+// Virtual shadow map page marking on the GPU (shaders/virtual_page_mark.comp.glsl): from the main
+// view's depth, the request bit of every clipmap page of a directional light that the view's shadow
+// lookups will read. shadows/virtual_page_marking.h is the CPU reference and defines the rules and
+// the bit layout (shaders/shared/virtual_page_structs.h). Not yet used by frames: the page table,
+// allocation and page drawing that consume the requests come next.
+// - record(): inside a frame (or any command list), after the pass that wrote the depth; the requests
+//   stay in requestWords() for the passes that follow (or Device::readBackAtFrameEnd + fromReadback);
+// - markNow(): records, submits, waits and reads back (tests, debugging).
+#include <cstdint>
+#include <vector>
+
+#include "gpu/device.h"
+#include "shadows/virtual_page_marking.h"
+#include "virtual_page_structs.h"
+
+namespace penumbra {
+
+// The uniform data of one marking: camera, light rotation (lightRotationFromWorld), clipmap and the
+// filter's margin in texels.
+gpu_data::VirtualPageMarkData packVirtualPageMark(const VirtualClipmapConfig& config, const glm::mat4& lightRotation,
+                                                  const CameraView& view, float marginTexels);
+
+class VirtualPageMarkPass {
+public:
+    explicit VirtualPageMarkPass(gpu::Device& device);
+    ~VirtualPageMarkPass();
+    VirtualPageMarkPass(const VirtualPageMarkPass&) = delete;
+    VirtualPageMarkPass& operator=(const VirtualPageMarkPass&) = delete;
+
+    // Clears the request bits and marks them from `depth` (the view's D32 depth, view.width x
+    // view.height, sampled by the pass) with `mark` (a VirtualPageMarkData from packVirtualPageMark,
+    // e.g. in the frame's upload ring) for `config`, the clipmap `mark` was packed for.
+    void record(gpu::CommandList& commands, gpu::TextureHandle depth, const gpu::BufferSlice& mark,
+                const VirtualClipmapConfig& config);
+    // The request bits of the last record (virtualPageRequestWords(config) words), GPU-written.
+    gpu::BufferSlice requestWords() const;
+    static VirtualPageRequests fromReadback(const uint8_t* bytes, const VirtualClipmapConfig& config);
+
+    // Marks from a depth texture (any state; left sampled) or from a CPU depth image as
+    // visibleSurfacesFromDepth reads it (uploaded first), and waits for the requests.
+    VirtualPageRequests markNow(gpu::TextureHandle depth, const CameraView& view, const glm::mat4& lightRotation,
+                                const VirtualClipmapConfig& config, float marginTexels);
+    VirtualPageRequests markNow(const Image& depth, const CameraView& view, const glm::mat4& lightRotation,
+                                const VirtualClipmapConfig& config, float marginTexels);
+
+private:
+    void ensureRequests(const VirtualClipmapConfig& config);
+
+    gpu::Device& device_;
+    gpu::PipelineHandle pipeline_;
+    gpu::SamplerHandle pointSampler_;
+    gpu::BufferHandle requests_, readback_;  // readback_: markNow's host copy of requests_
+    gpu::BufferHandle markNowData_;          // markNow's VirtualPageMarkData
+    uint64_t requestBytes_ = 0;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,62 @@
+#pragma once
+// The shadow lookup into a directional light's virtual shadow map, on the CPU: the reference of
+// shaders/virtual_shadow_lookup.glsl, function for function with the same float and integer operations
+// (the render tests compare the two on the same page table and pool). Change both together.
+//
+// Given a receiver's world position (the caller's biases applied) and its pixel's world footprint:
+// - the level: levelForFootprint (shadows/virtual_clipmap.h), or the first coarser level whose page
+//   holding the receiver is ready (resident, drawn: not dirty, and its slot holds that very page): a coarser
+//   level serves, never a hole;
+// - the shadow term: the 2 x 2 virtual texels around the receiver at that level, each compared with the
+//   receiver's depth (lit when depth <= stored, the cascades' LESS_OR_EQUAL) and weighted bilinearly, as
+//   hardware 2 x 2 PCF does; each texel looks up its own page, so the four may lie in different pages, and
+//   a texel whose page is not ready reads the first coarser ready level's texel holding its centre;
+// - conventions: a texel no level holds has nothing cast (lit); a receiver whose page no level holds (it
+//   is outside every window, or no page of its levels is ready) is lit, level kVirtualShadowNoLevel.
+// The spaces are shaders/shared/virtual_shadow_structs.h's (and virtual_page_draw_structs.h's, which
+// draws the pages). The design follows the published virtual shadow maps: Unreal Engine's ("Virtual
+// Shadow Maps" documentation: clipmap levels chosen by the pixel's footprint, a coarser resident page
+// where a fine one is missing) and Timberdoodle's (GPU Zen 3, "Virtual Shadow Maps": wrap-around page
+// tables read per texel).
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "shadows/virtual_clipmap.h"
+#include "virtual_page_structs.h"
+#include "virtual_shadow_structs.h"
+
+namespace penumbra {
+
+// A CPU copy of what the lookup reads: the page table's entries and the pool's texels.
+struct VirtualShadowPages {
+    std::span<const gpu_data::VirtualPageEntry> entries;  // levelCount * pagesPerSide^2, by (level, slot)
+    std::span<const float> poolTexels;  // (poolPagesPerSide * pageSize)^2 stored depths, row by row
+};
+
+struct VirtualShadowSample {
+    float lit = 1.0f;                                 // 1 lit, 0 shadowed, bilinear in between
+    int32_t level = gpu_data::kVirtualShadowNoLevel;  // the level that served the receiver
+};
+
+// The lookup's uniform data: the clipmap `config` with its windows around lsCamera (the same windows as
+// packVirtualPageTable), the light's rotation, the pages' depth range and the pool's side in pages.
+gpu_data::VirtualShadowLookupData packVirtualShadowLookup(const VirtualClipmapConfig& config,
+                                                          const glm::mat4& lightRotationFromWorld, float lsDepthNear,
+                                                          float lsDepthFar, const glm::vec2& lsCamera,
+                                                          uint32_t poolPagesPerSide);
+
+// The entry of global page `page` of `level`, or -1 when the page is outside the level's window.
+int32_t virtualShadowEntryIndex(const gpu_data::VirtualShadowLookupData& data, uint32_t level, const glm::ivec2& page);
+// The physical page holding page `page` of `level` ready to sample, or -1.
+int32_t virtualShadowReadyPage(const gpu_data::VirtualShadowLookupData& data, const VirtualShadowPages& pages,
+                               uint32_t level, const glm::ivec2& page);
+// The global page holding virtual texel `texel` (floor division by pageSize, negative texels too).
+glm::ivec2 virtualShadowPageOfTexel(const gpu_data::VirtualShadowLookupData& data, const glm::ivec2& texel);
+
+// The lookup at receiver wsPosition whose pixel covers wsFootprint metres.
+VirtualShadowSample sampleVirtualShadow(const gpu_data::VirtualShadowLookupData& data, const VirtualShadowPages& pages,
+                                        const glm::vec3& wsPosition, float wsFootprint);
+
+}  // namespace penumbra

@@ -1,0 +1,378 @@
+// The virtual shadow map lookup on the GPU (shaders/virtual_shadow_lookup.glsl, through the tests' probe
+// virtual_shadow_probe.comp) against its CPU reference (src/shadows/virtual_shadow_lookup.h) on the same
+// page table and pool, and, on the demo scene drawn into pages by the page drawing pass, against the
+// ray-traced reference (reference/embree_scene.h) at ground points that are clearly lit or clearly shadowed.
+//
+// Tolerance against the CPU: the shadow term within 1e-4 and the same serving level, except at points
+// whose virtual texel coordinate (at any level from the footprint's to the one that served) lies within
+// 1e-3 texel of a texel edge, or whose footprint lies within 1e-5 (relative) of a level boundary: there
+// the float rounding of the light-space transform or of log2 may pick the neighbouring texel or level.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <random>
+#include <tuple>
+#include <vector>
+
+#include "pass_bindings.h"
+#include "penumbra/scene_loading.h"
+#include "reference/embree_scene.h"
+#include "render/compute_raster_pass.h"
+#include "render/gpu_scene.h"
+#include "render/pass_layouts.h"
+#include "render/virtual_page_draw_pass.h"
+#include "render_test_support.h"
+#include "shadows/cascades.h"
+#include "shadows/virtual_shadow_lookup.h"
+
+namespace penumbra::test {
+namespace {
+
+using gpu_data::VirtualPageEntry;
+using gpu_data::VirtualShadowLookupData;
+using gpu_data::VirtualShadowProbePoint;
+using gpu_data::VirtualShadowProbeResult;
+
+const VirtualPageEntry kNoPage{gpu_data::kVirtualPageNone, 0, 0, 0, 0, 0, 0, 0};
+
+// Runs virtual_shadow_probe.comp over points, with a table and a pool texture.
+class ShadowProbe {
+public:
+    explicit ShadowProbe(gpu::Device& gpu) : gpu_(gpu) {
+        gpu::ComputePipelineDesc desc;
+        desc.shader = desc.debugName = "virtual_shadow_probe.comp";
+        desc.bindings = virtualShadowProbeBindings();
+        desc.pushConstantSize = sizeof(gpu_data::VirtualShadowProbeConstants);
+        pipeline_ = gpu.createComputePipeline(desc);
+        gpu::SamplerDesc nearest;
+        nearest.filter = gpu::Filter::Nearest;
+        nearest.addressMode = gpu::AddressMode::ClampToEdge;
+        sampler_ = gpu.createSampler(nearest);
+    }
+    ~ShadowProbe() {
+        gpu_.destroy(pipeline_);
+        gpu_.destroy(sampler_);
+    }
+
+    std::vector<VirtualShadowProbeResult> run(const VirtualShadowLookupData& data, const std::vector<VirtualPageEntry>& entries,
+                                              gpu::TextureHandle pool, const std::vector<VirtualShadowProbePoint>& points) {
+        using gpu::Usage;
+        const auto hostBuffer = [&](uint32_t usage, const void* bytes, size_t size, const char* name) {
+            return gpu_.createBuffer(size, usage, gpu::MemoryKind::HostVisible, bytes, name);
+        };
+        const gpu::BufferHandle lookup = hostBuffer(gpu::kBufferUniform, &data, sizeof(data), "probe lookup");
+        const gpu::BufferHandle table = hostBuffer(gpu::kBufferStorage, entries.data(), entries.size() * sizeof(entries[0]), "probe entries");
+        const gpu::BufferHandle input = hostBuffer(gpu::kBufferStorage, points.data(), points.size() * sizeof(points[0]), "probe points");
+        const gpu::BufferHandle output =
+            hostBuffer(gpu::kBufferStorage, nullptr, points.size() * sizeof(VirtualShadowProbeResult), "probe results");
+        gpu::CommandList commands = gpu_.beginCommands();
+        commands.pass("test/probe", {gpu::use(pool, Usage::ComputeSampled), gpu::use(table, Usage::ComputeRead),
+                                     gpu::use(input, Usage::ComputeRead), gpu::use(output, Usage::ComputeWrite)});
+        commands.bindPipeline(pipeline_);
+        using namespace gpu_data;
+        const gpu::DescriptorWrite writes[] = {{kShadowProbeBindingLookup, {lookup, 0, sizeof(data)}},
+                                               {kShadowProbeBindingEntries, table, {}, {}},
+                                               {kShadowProbeBindingPool, {}, pool, sampler_},
+                                               {kShadowProbeBindingPoints, input, {}, {}},
+                                               {kShadowProbeBindingResults, output, {}, {}}};
+        commands.pushDescriptors(writes);
+        const VirtualShadowProbeConstants constants{uint32_t(points.size()), uint32_t(entries.size()), 0, 0};
+        commands.pushConstants(&constants, sizeof(constants));
+        commands.dispatch((uint32_t(points.size()) + kVirtualShadowProbeGroup - 1) / kVirtualShadowProbeGroup, 1);
+        commands.pass("test/host", {gpu::use(output, Usage::HostRead)});
+        gpu_.submitAndWait(commands);
+        std::vector<VirtualShadowProbeResult> results(points.size());
+        std::memcpy(results.data(), gpu_.mappedPointer(output), results.size() * sizeof(results[0]));
+        for (gpu::BufferHandle b : {lookup, table, input, output}) gpu_.destroy(b);
+        return results;
+    }
+
+    // An R32F texture of side x side texels, row by row.
+    gpu::TextureHandle uploadPool(const std::vector<float>& texels, uint32_t side) {
+        const gpu::BufferHandle staging = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
+                                                            texels.data(), "probe pool upload");
+        const gpu::TextureHandle texture = gpu_.createTexture(
+            {side, side, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
+        gpu::CommandList commands = gpu_.beginCommands();
+        commands.pass("test/upload", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});
+        commands.copyBufferToTexture(staging, texture);
+        gpu_.submitAndWait(commands);
+        gpu_.destroy(staging);
+        return texture;
+    }
+
+    // The pool texture's texels, through a buffer that Device::readBuffer reads back.
+    std::vector<float> readPool(gpu::TextureHandle texture, uint32_t side) {
+        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(side) * side * 4, gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
+                                                         gpu::MemoryKind::DeviceLocal, nullptr, "probe pool copy");
+        gpu::CommandList commands = gpu_.beginCommands();
+        commands.pass("test/pool", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(copy, gpu::Usage::TransferWrite)});
+        commands.copyTextureToBuffer(texture, copy);
+        gpu_.submitAndWait(commands);
+        const std::vector<uint8_t> bytes = gpu_.readBuffer(copy);
+        gpu_.destroy(copy);
+        std::vector<float> texels(bytes.size() / 4);
+        std::memcpy(texels.data(), bytes.data(), texels.size() * 4);
+        return texels;
+    }
+
+private:
+    gpu::Device& gpu_;
+    gpu::PipelineHandle pipeline_;
+    gpu::SamplerHandle sampler_;
+};
+
+// Whether the CPU's and the GPU's float rounding may legitimately pick another texel or level at a point.
+bool nearAnEdge(const VirtualShadowLookupData& data, const glm::vec3& wsPosition, float footprint, int servedLevel) {
+    const glm::vec2 texel0 = glm::vec2(data.lightRotationFromWorld * glm::vec4(wsPosition, 1.0f)) * data.texelsPerMetre;
+    const int first = int(levelForFootprint({data.resolution, data.pageSize, data.levelCount, data.firstLevelSize}, footprint));
+    const int last = servedLevel < 0 ? int(data.levelCount) - 1 : servedLevel;
+    for (int level = first; level <= last; ++level)
+        for (int axis = 0; axis < 2; ++axis) {
+            const float t = std::ldexp(texel0[axis], -level);
+            if (std::abs(t - std::round(t)) < 1e-3f) return true;
+        }
+    const double ratio = std::log2(double(footprint) * data.resolution / data.firstLevelSize);
+    return std::abs(ratio - std::round(ratio)) < 2e-5;
+}
+
+// What a comparison of the GPU with the CPU found.
+struct Agreement {
+    size_t differ = 0, nearEdges = 0, fractional = 0, fellBack = 0, unserved = 0;
+    std::vector<size_t> perLevel = std::vector<size_t>(gpu_data::kVirtualPageMaxLevels, 0);
+};
+
+Agreement compareWithCpu(const VirtualShadowLookupData& data, const VirtualShadowPages& pages,
+                         const std::vector<VirtualShadowProbePoint>& points, const std::vector<VirtualShadowProbeResult>& gpu) {
+    Agreement a;
+    const VirtualClipmapConfig config{data.resolution, data.pageSize, data.levelCount, data.firstLevelSize};
+    for (size_t i = 0; i < points.size(); ++i) {
+        const VirtualShadowSample cpu = sampleVirtualShadow(data, pages, points[i].wsPosition, points[i].wsFootprint);
+        const bool agree = std::abs(cpu.lit - gpu[i].lit) <= 1e-4f && cpu.level == gpu[i].level;
+        const bool edge = nearAnEdge(data, points[i].wsPosition, points[i].wsFootprint, cpu.level);
+        a.nearEdges += edge;
+        if (!agree && !edge) {
+            if (a.differ < 10)
+                ADD_FAILURE() << "point " << i << ": GPU " << gpu[i].lit << " at level " << gpu[i].level << ", CPU " << cpu.lit
+                              << " at level " << cpu.level;
+            ++a.differ;
+        }
+        a.fractional += cpu.lit > 0.0f && cpu.lit < 1.0f;
+        if (cpu.level < 0) {
+            ++a.unserved;
+            continue;
+        }
+        ++a.perLevel[size_t(cpu.level)];
+        a.fellBack += uint32_t(cpu.level) > levelForFootprint(config, points[i].wsFootprint);
+    }
+    return a;
+}
+
+class VirtualShadowLookupTest : public RenderTest {
+protected:
+    gpu::Device& gpu() { return gpu::backend(device()); }
+};
+
+// Integer hash (a fixed mix of multiplications and shifts) for the table's made-up states.
+uint32_t mixBits(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    return x ^ (x >> 16);
+}
+
+// A table of every state: per window page of every level, ready (60 %), dirty, missing or stale (the slot
+// holds another page), ready pages spread over 16 physical pages of random depths in [0.3, 0.7].
+TEST_F(VirtualShadowLookupTest, TheGpuLookupMatchesTheCpuReferenceOnTheSameTable) {
+    // 16 pages of 16 texels a side; levels of 16, 32, 64 and 128 m: texels of 1/16 to 1/2 m.
+    const VirtualClipmapConfig config{.resolution = 16 * 16, .pageSize = 16, .levelCount = 4, .firstLevelSize = 16.0f};
+    constexpr uint32_t kPool = 4, kSide = kPool * 16;
+    const glm::vec2 lsCamera(-3.3f, 2.7f);
+    const glm::mat4 rotation = lightRotationFromWorld(glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)));
+    const VirtualShadowLookupData data = packVirtualShadowLookup(config, rotation, 30.0f, -30.0f, lsCamera, kPool);
+    std::vector<VirtualPageEntry> entries(size_t(config.levelCount) * 256, kNoPage);
+    for (uint32_t level = 0; level < config.levelCount; ++level) {
+        const ClipmapLevel placed = placeClipmapLevel(config, level, lsCamera);
+        for (int y = placed.window.min.y; y <= placed.window.max.y; ++y)
+            for (int x = placed.window.min.x; x <= placed.window.max.x; ++x) {
+                const uint32_t h = mixBits(uint32_t(x * 73856093) ^ uint32_t(y * 19349663) ^ (level * 83492791u));
+                const uint32_t state = h % 10, flags = state == 6 ? 3u : state == 7 ? 0u : 1u;  // 3: resident | dirty
+                VirtualPageEntry& e = entries[size_t(virtualShadowEntryIndex(data, level, {x, y}))];
+                e = {flags ? (h >> 8) % (kPool * kPool) : gpu_data::kVirtualPageNone, flags, x + (state == 8 ? 16 : 0), y, 0, 0, 0, 0};
+            }
+    }
+    std::vector<float> pool(size_t(kSide) * kSide);
+    for (size_t i = 0; i < pool.size(); ++i) pool[i] = 0.3f + 0.4f * float(mixBits(uint32_t(i) + 12345u) % 4096u) / 4096.0f;
+
+    std::mt19937 random(20261205u);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<VirtualShadowProbePoint> points;
+    const glm::mat4 worldFromLight = glm::inverse(rotation);
+    for (int i = 0; i < 6000; ++i) {
+        const float reach = i % 4 == 0 ? 80.0f : i % 4 == 1 ? 30.0f : 7.0f;  // beyond every window, level 1's, level 0's
+        const glm::vec3 ls(lsCamera.x + reach * (2.0f * unit(random) - 1.0f), lsCamera.y + reach * (2.0f * unit(random) - 1.0f),
+                           30.0f - 60.0f * unit(random));
+        const float footprint = 0.01f * std::exp2(7.0f * unit(random));  // 1 cm to 1.3 m: every level
+        points.push_back({glm::vec3(worldFromLight * glm::vec4(ls, 1.0f)), footprint});
+    }
+    ShadowProbe probe(gpu());
+    const gpu::TextureHandle texture = probe.uploadPool(pool, kSide);
+    const std::vector<VirtualShadowProbeResult> results = probe.run(data, entries, texture, points);
+    gpu().destroy(texture);
+    const Agreement a = compareWithCpu(data, {entries, pool}, points, results);
+    EXPECT_EQ(a.differ, 0u);
+    EXPECT_LT(a.nearEdges, points.size() / 50) << "few points are excused";
+    for (uint32_t level = 0; level < config.levelCount; ++level) EXPECT_GT(a.perLevel[level], 100u) << "level " << level << " served";
+    EXPECT_GT(a.fellBack, 200u) << "lookups served by a coarser level than the footprint's";
+    EXPECT_GT(a.fractional, 500u) << "2 x 2 compares that blend lit and shadowed texels";
+    EXPECT_GT(a.unserved, 200u) << "receivers outside every window";
+    std::printf("%zu points: %zu near an edge, %zu fractional, %zu fell back, %zu outside; per level %zu %zu %zu %zu\n",
+                points.size(), a.nearEdges, a.fractional, a.fellBack, a.unserved, a.perLevel[0], a.perLevel[1], a.perLevel[2],
+                a.perLevel[3]);
+}
+
+// ---- The demo scene drawn into pages around the world's origin (its near casters stand within 6 m of it):
+// level 3 (4 m pages) 4 x 4 pages, level 2 (2 m) 3 x 3.
+constexpr uint32_t kScenePool = 5;  // 25 physical pages of 128 texels
+
+// Pages of 0.5, 1, 2 and 4 m; level 2's texels are 1.6 cm, level 3's 3.1 cm.
+VirtualClipmapConfig sceneClipmap() { return {.resolution = 128 * 16, .pageSize = 128, .levelCount = 4, .firstLevelSize = 8.0f}; }
+
+// A page to draw: global page `page` of `level` into physical page `physical`.
+struct ScenePage {
+    uint32_t level = 0;
+    glm::ivec2 page{0};
+    uint32_t physical = 0;
+};
+
+// The draw list (VirtualPageDrawHeader + VirtualPageDraw[]) of the pages, as the page table would write it.
+std::vector<uint8_t> drawListBytes(const VirtualShadowLookupData& data, const std::vector<ScenePage>& pages) {
+    gpu_data::VirtualPageDrawHeader header{};
+    const uint32_t count = uint32_t(pages.size());
+    header.pageDispatch = glm::uvec4(count, 1, 1, 0);
+    header.listDispatch = glm::uvec4((count + gpu_data::kVirtualPageGroupSize - 1) / gpu_data::kVirtualPageGroupSize, 1, 1, 0);
+    header.count = count;
+    std::vector<uint8_t> bytes(sizeof(header) + pages.size() * sizeof(gpu_data::VirtualPageDraw));
+    std::memcpy(bytes.data(), &header, sizeof(header));
+    for (size_t i = 0; i < pages.size(); ++i) {
+        const gpu_data::VirtualPageDraw draw{uint32_t(virtualShadowEntryIndex(data, pages[i].level, pages[i].page)),
+                                             pages[i].physical, pages[i].page.x, pages[i].page.y};
+        std::memcpy(bytes.data() + sizeof(header) + i * sizeof(draw), &draw, sizeof(draw));
+    }
+    return bytes;
+}
+
+// The light-space bounds of the demo's casters whose material does not cast opaque shadows (alpha-clipped,
+// dithered: the ray tracer and the rasterizer cut them differently).
+Aabb notOpaqueCasterBounds(const Scene& scene, const glm::mat4& rotation) {
+    Aabb bounds;
+    for (const Instance& instance : scene.instances) {
+        const Material& material = scene.materials[scene.meshes[instance.meshIndex].materialIndex];
+        if (instance.castShadows && instance.wsBounds.valid() && material.shadows != MaterialShadowMode::On)
+            bounds.extend(instance.wsBounds.transformed(rotation));
+    }
+    return bounds;
+}
+
+bool insideXy(const Aabb& box, const glm::vec2& p, float margin) {
+    return box.valid() && p.x >= box.min.x - margin && p.x <= box.max.x + margin && p.y >= box.min.y - margin &&
+           p.y <= box.max.y + margin;
+}
+
+// Draws the pages of a draw list with the page drawing pass.
+void drawPages(gpu::Device& gpu, const GpuScene& gpuScene, VirtualPageDrawPass& drawPass, const VirtualPageDrawSpace& space,
+               const std::vector<uint8_t>& list) {
+    const std::vector<gpu::DescriptorWrite> sceneWrites = {{gpu_data::kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
+                                                           {gpu_data::kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
+                                                           {gpu_data::kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}};
+    const gpu::BufferHandle drawList = gpu.createBuffer(list.size(), gpu::kBufferStorage | gpu::kBufferIndirect,
+                                                        gpu::MemoryKind::HostVisible, list.data(), "test page draw list");
+    gpu::CommandList commands = gpu.beginCommands();
+    drawPass.record(commands, {drawList, &space, &sceneWrites, true});
+    gpu.submitAndWait(commands);
+    gpu.destroy(drawList);
+}
+
+// Ground points of the demo (what a camera from above sees of the ground) whose light-space xy lies in
+// lsDrawn, lifted 3 cm along the normal (the caller's normal bias), with the ray tracer's answer where it
+// is clear: shadowed when the ray toward the light is blocked there and 10 cm around, lit when blocked
+// nowhere there; points near alpha-clipped or dithered casters are left out.
+void clearGroundPoints(const Scene& scene, const VirtualPageDrawSpace& space, const glm::vec3& wsLight, const Aabb& lsDrawn,
+                       std::vector<VirtualShadowProbePoint>& points, std::vector<bool>& shadowed) {
+    const EmbreeScene tracer(scene);
+    const Aabb notOpaque = notOpaqueCasterBounds(scene, space.lightRotationFromWorld);
+    const float step = 0.173f, half = 12.0f;
+    for (float z = -half; z <= half; z += step)
+        for (float x = -half; x <= half; x += step) {
+            const std::optional<SurfaceHit> hit = tracer.intersectCamera({x, scene.wsBounds.max.y + 1.0f, z}, {0, -1, 0}, 0.0f, 1e4f);
+            if (!hit || scene.instances[hit->instanceIndex].nodeName != "ground") continue;
+            const glm::vec3 receiver = hit->wsPosition + 0.03f * hit->wsGeometricNormal;
+            const glm::vec2 ls(space.lightRotationFromWorld * glm::vec4(receiver, 1.0f));
+            if (!insideXy(lsDrawn, ls, -0.1f) || insideXy(notOpaque, ls, 0.2f)) continue;
+            int blocked = 0;
+            for (const glm::vec2 d : {glm::vec2(0), glm::vec2(0.1f, 0), glm::vec2(-0.1f, 0), glm::vec2(0, 0.1f), glm::vec2(0, -0.1f)})
+                blocked += tracer.occluded(hit->wsPosition + 0.001f * hit->wsGeometricNormal + glm::vec3(d.x, 0.0f, d.y), -wsLight,
+                                           0.0f, 1e4f);
+            if (blocked != 0 && blocked != 5) continue;
+            points.push_back({receiver, 0.02f});  // level 2's footprint: level 3 serves beyond its 3 x 3 pages
+            shadowed.push_back(blocked == 5);
+        }
+}
+
+TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSaysSo) {
+    const Scene scene = makeDemoScene();
+    glm::vec3 wsLight = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    for (const Light& light : scene.lights)
+        if (light.type == LightType::Directional) {
+            wsLight = light.wsDirection;
+            break;
+        }
+    const VirtualClipmapConfig config = sceneClipmap();
+    const VirtualPageDrawSpace space = makeVirtualPageDrawSpace(config, wsLight, scene.wsBounds);
+    const glm::vec2 lsCentre(space.lightRotationFromWorld * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));  // the near casters' middle
+    const VirtualShadowLookupData data = packVirtualShadowLookup(config, space.lightRotationFromWorld, space.lsDepthNear,
+                                                                 space.lsDepthFar, lsCentre, kScenePool);
+    std::vector<ScenePage> pages;
+    for (const auto& [level, from, to] : {std::tuple{3u, -2, 1}, std::tuple{2u, -1, 1}}) {
+        const glm::ivec2 centre = glm::ivec2(glm::floor(lsCentre / (config.firstLevelSize * std::exp2(float(level)) / 16.0f)));
+        for (int y = from; y <= to; ++y)
+            for (int x = from; x <= to; ++x) pages.push_back({level, centre + glm::ivec2(x, y), uint32_t(pages.size())});
+    }
+    std::vector<VirtualPageEntry> entries(size_t(config.levelCount) * 256, kNoPage);
+    for (const ScenePage& p : pages)
+        entries[size_t(virtualShadowEntryIndex(data, p.level, p.page))] = {p.physical, gpu_data::kVirtualPageResident, p.page.x,
+                                                                            p.page.y, 0, 0, 0, 0};
+    GpuScene gpuScene(gpu(), scene);
+    ComputeRasterPass raster(gpu(), gpuScene);
+    VirtualPageDrawPass drawPass(gpu(), gpuScene, raster, config, kScenePool);
+    drawPages(gpu(), gpuScene, drawPass, space, drawListBytes(data, pages));
+    const glm::vec2 drawnMin = glm::vec2(pages.front().page) * 4.0f;  // level 3's 4 x 4 pages, 4 m each
+    const Aabb drawn{glm::vec3(drawnMin, 0.0f), glm::vec3(drawnMin + 16.0f, 0.0f)};
+    std::vector<VirtualShadowProbePoint> points;
+    std::vector<bool> shadowed;
+    clearGroundPoints(scene, space, wsLight, drawn, points, shadowed);
+    ShadowProbe probe(gpu());
+    const std::vector<VirtualShadowProbeResult> results = probe.run(data, entries, drawPass.poolTexture(), points);
+    const std::vector<float> pool = probe.readPool(drawPass.poolTexture(), drawPass.poolSide());
+    size_t wrong = 0, inShadow = 0, served[2] = {0, 0};
+    for (size_t i = 0; i < points.size(); ++i) {
+        ASSERT_GE(results[i].level, 2) << "every ground point lies in a drawn page";
+        ++served[results[i].level - 2];
+        inShadow += shadowed[i];
+        wrong += shadowed[i] ? results[i].lit > 0.5f : results[i].lit < 0.5f;
+    }
+    std::printf("%zu ground points (%zu shadowed), %zu disagree with the ray tracer; served by level 2: %zu, level 3: %zu\n",
+                points.size(), inShadow, wrong, served[0], served[1]);
+    EXPECT_GT(inShadow, 100u);
+    EXPECT_GT(points.size() - inShadow, 1000u);
+    EXPECT_GT(served[0], 300u);
+    EXPECT_GT(served[1], 500u);
+    EXPECT_LE(wrong, points.size() / 200) << "at most 0.5 % disagree (acne, or edges the rays and the pages cut differently)";
+    const Agreement a = compareWithCpu(data, {entries, pool}, points, results);
+    EXPECT_EQ(a.differ, 0u) << "the GPU lookup equals the CPU reference on the drawn pool";
+}
+
+}  // namespace
+}  // namespace penumbra::test
