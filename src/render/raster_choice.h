@@ -1,7 +1,8 @@
 #pragma once
 // shadows.raster = auto: which shadow-map rasterizer a device runs faster, by measurement.
-// The first frames alternate: kWarmup + kSamples frames with the hardware path, as many with the
-// compute path; the shadow passes' GPU time (timestamps) decides, and later frames use the faster.
+// The first frames that draw shadow tiles alternate: kWarmup + kSamples frames with the hardware path,
+// as many with the compute path; the shadow passes' GPU time (timestamps) decides, and later frames use
+// the faster. Frames whose tiles are all cached measure nothing (the renderer does not report them).
 // Without timestamps a table decides: compute on
 // datacenter NVIDIA GPUs (H100, H200, A100, GH200, B200: few SMs run graphics, measured 7-100x
 // slower raster there, docs/performance.md), the hardware path elsewhere. No GPU here: unit-tested.

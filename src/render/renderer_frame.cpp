@@ -428,7 +428,9 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
         stats.gpuTimings[i].name.assign(done.timings[i].name);
         stats.gpuTimings[i].milliseconds = done.timings[i].milliseconds;
     }
-    if (finished.autoRaster)
+    // Only frames that drew shadow tiles measure the rasterizers: a frame whose tiles were all cached
+    // (a still camera) times two almost empty passes, which would make any path look fastest.
+    if (finished.autoRaster && stats.tilesRendered > 0)
         rasterChoice.measured(finished.computeRaster, timedMilliseconds(stats, {kAtlasPassNames[0], kAtlasPassNames[1]}));
     if (finished.autoMainView) mainViewChoice.measured(finished.visibilityView, timedMilliseconds(stats, {"main"}));
     // Assigned piece by piece into the recycled strings (no temporary string, no allocation once warm).

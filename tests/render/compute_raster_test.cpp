@@ -87,9 +87,10 @@ TEST_F(ComputeRasterTest, BuiltInFieldMatchesTheHardwarePath) {
     }
 }
 
-TEST_F(ComputeRasterTest, AutoMeasuresBothPathsThenKeepsTheFaster) {
-    Renderer renderer(device(), makeDemoScene());
-    const CameraView view = resolveCameraView(renderer.scene(), 64, 36);
+// Frames of the demo scene with shadows.raster = auto, the camera moved by `step` metres per frame.
+std::vector<FrameStats> autoRasterFrames(Device& device, float step, int count) {
+    Renderer renderer(device, makeDemoScene());
+    const CameraView still = resolveCameraView(renderer.scene(), 64, 36);
     RenderRequest request;
     request.width = 64;
     request.height = 36;
@@ -97,11 +98,16 @@ TEST_F(ComputeRasterTest, AutoMeasuresBothPathsThenKeepsTheFaster) {
     settings.shadows.directional.atlasSize = 256;
     settings.shadows.spot.atlasSize = 256;
     std::vector<FrameStats> frames;
-    for (int i = 0; i < 16; ++i) {
-        renderer.submitFrame(request, settings, view);
+    for (int i = 0; i < count; ++i) {
+        renderer.submitFrame(request, settings, translatedCameraView(still, float(i) * step * wsCameraRight(still)));
         renderer.waitIdle();
         for (FrameStats& f : renderer.takeCompletedFrames()) frames.push_back(std::move(f));
     }
+    return frames;
+}
+
+TEST_F(ComputeRasterTest, AutoMeasuresBothPathsThenKeepsTheFaster) {
+    const std::vector<FrameStats> frames = autoRasterFrames(device(), 0.05f, 16);  // a moving camera: tiles drawn
     ASSERT_EQ(frames.size(), 16u);
     EXPECT_EQ(frames[0].shadowRaster, "hw");
     bool sawCompute = false;
@@ -110,6 +116,14 @@ TEST_F(ComputeRasterTest, AutoMeasuresBothPathsThenKeepsTheFaster) {
     const std::string choice = frames.back().shadowRasterChoice;
     EXPECT_NE(choice.find("measured"), std::string::npos) << choice;
     EXPECT_EQ(choice.rfind("auto: " + frames.back().shadowRaster, 0), 0u) << "the last frame uses the choice: " << choice;
+}
+
+TEST_F(ComputeRasterTest, AutoDoesNotMeasureFramesWhoseTilesWereCached) {
+    const std::vector<FrameStats> frames = autoRasterFrames(device(), 0.0f, 16);  // a still camera
+    ASSERT_EQ(frames.size(), 16u);
+    EXPECT_GT(frames.back().tilesReused, 0u);
+    EXPECT_EQ(frames.back().tilesRendered, 0u);
+    EXPECT_EQ(frames.back().shadowRasterChoice, "auto: measuring") << "only the first frame drew tiles";
 }
 
 // A horizontal quad whose corners land exactly on texel centres of cascade 0: both rasterizers must
