@@ -17,6 +17,7 @@
 #include <penumbra/renderer.h>
 #include <penumbra/scene.h>
 #include <penumbra/scene_builder.h>
+#include <penumbra/scene_limits.h>
 #include <penumbra/scene_loading.h>
 #include <penumbra/settings.h>
 #include <penumbra/settings_keys.h>

@@ -5,6 +5,7 @@
 #include <string>
 
 #include <penumbra/scene.h>
+#include <penumbra/scene_limits.h>
 
 namespace penumbra {
 
@@ -13,10 +14,22 @@ namespace penumbra {
 inline constexpr const char* kDefaultFieldModel =
     "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 
+// How a glTF file is read (docs/security.md). Its external buffers and images are named by URIs:
+// `data:` URIs, or paths relative to the scene file's folder that must resolve (percent-decoded, the
+// symlinks followed) to a regular file inside `assetRoot`. An absolute path, another URI scheme
+// (`file:`, `http:`, ...), a path that leaves the root, or a directory, device, FIFO or socket is
+// refused with one penumbra::Error line naming the reference and the rule.
+struct GltfLoadOptions {
+    std::string assetRoot;  // "" = the scene file's folder; a caller who trusts the input may widen it
+    SceneLimits limits;     // the budgets of penumbra/scene_limits.h
+};
+
 struct SceneSourceOptions {
     std::string model = kDefaultFieldModel;  // the glTF that gen:field copies
     bool addDefaultSun = true;               // a scene without lights gets a sun (and a warning)
     bool addGround = false;                  // addGroundPlane (the CLI's and the viewer's --ground)
+    std::string assetRoot;                   // GltfLoadOptions::assetRoot of the scene file (and of `model`)
+    SceneLimits limits;                      // GltfLoadOptions::limits of the scene file (and of `model`)
 };
 
 // `source`: "" = the built-in demo scene; "gen:field:N[:S]" = N copies of the model on a square grid
@@ -36,7 +49,8 @@ Scene loadScene(const std::string& source, const SceneSourceOptions& options = {
 // them, so it is seen as it was. Throws penumbra::Error for a scene without geometry.
 void addGroundPlane(Scene& scene);
 
-Scene loadGltfScene(const std::string& path);
+// A .gltf or .glb file; see GltfLoadOptions for what it may read and cost.
+Scene loadGltfScene(const std::string& path, const GltfLoadOptions& options = {});
 Scene makeDemoScene();
 
 }  // namespace penumbra

@@ -25,12 +25,23 @@ void printError(const std::string& prefix, const char* message) {
 
 constexpr const char* kGroundHelp = "add a grey ground plane under the scene (4x its width, at its lowest point)";
 
+// Options every command that loads a scene shares: where its files may come from, what it may cost
+// (docs/security.md).
+void addSceneFileOptions(CLI::App& command, RenderOptions& options) {
+    command.add_option("--asset-root", options.assetRoot,
+                       "folder the scene's external buffers and images may come from (default: the scene file's folder)");
+    command.add_option("--limit", options.limits,
+                       "raise or lower a scene budget, NAME=VALUE with an optional K/M/G: fileBytes, imageBytes, "
+                       "textureBytes, vertices, indices, nodes, nodeDepth, lights, jsonDepth (docs/security.md)");
+}
+
 // Options every command that renders shares.
 void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("scene", options.scenePath,
                        "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S[:P]] or gen:boxes:N[:P]; the built-in demo scene if omitted");
     command.add_option("--model", options.model, "the glTF that gen:field copies (default: assimp's 2CylinderEngine)");
     command.add_flag("--ground", options.ground, kGroundHelp);
+    addSceneFileOptions(command, options);
     command.add_option("--width", options.width, "output width in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--height", options.height, "output height in pixels")->check(CLI::Range(1u, 16384u));
     command.add_option("--settings", options.settingsPath, "settings JSON file (docs/settings.md lists the keys)");
@@ -99,6 +110,7 @@ int runCli(int argc, char** argv) {
     exporter->add_option("scene", exportOptions.scenePath, "scene to write; the built-in demo scene if omitted");
     exporter->add_option("--model", exportOptions.model, "the glTF that gen:field copies");
     exporter->add_flag("--ground", exportOptions.ground, kGroundHelp);
+    addSceneFileOptions(*exporter, exportOptions);
     exporter->add_option("-o,--output", exportOptions.outputPath, "output .gltf or .glb")->required();
 
     RenderOptions graphOptions;

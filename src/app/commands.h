@@ -18,6 +18,8 @@ struct RenderOptions {
     std::string scenePath;  // empty: built-in demo scene; gen:field:N[:S[:P]], gen:boxes:N[:P]: built-in scale scenes
     std::string model;      // the glTF gen:field copies (empty: the default engine model)
     bool ground = false;    // --ground: addGroundPlane under the scene
+    std::string assetRoot;  // --asset-root: the folder a scene's external files may come from ("" = the scene's folder)
+    std::vector<std::string> limits;  // --limit NAME=VALUE: the scene budgets (penumbra/scene_limits.h)
     uint32_t width = 1280;
     uint32_t height = 720;
     std::string settingsPath;

@@ -17,6 +17,8 @@ Scene loadSceneFor(const RenderOptions& options) {
     SceneSourceOptions source;
     if (!options.model.empty()) source.model = options.model;
     source.addGround = options.ground;
+    source.assetRoot = options.assetRoot;
+    for (const std::string& limit : options.limits) setSceneLimit(source.limits, limit);
     Scene scene = loadScene(options.scenePath, source);
     for (const std::string& warning : scene.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     return scene;

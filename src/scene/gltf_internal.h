@@ -14,13 +14,25 @@
 #include <tiny_gltf.h>
 
 #include "penumbra/scene.h"
+#include "scene/load_budget.h"
+
+namespace penumbra {
+class AssetAccess;
+}
 
 namespace penumbra::gltf {
+
+// ---- parsing (gltf_parse.cpp): the GLB header and the JSON's nesting checked first, then tinygltf,
+// every external file read through `access` (nullptr: none is read, a reference is an Error) and every
+// image decoded within the budgets. `warnings`: tinygltf's, on one line.
+tinygltf::Model parseGltf(const uint8_t* data, size_t size, const AssetAccess* access, LoadBudget& budget,
+                          std::string& warnings);
 
 struct LoadContext {
     std::string path;
     const tinygltf::Model& model;
     Scene& scene;
+    LoadBudget& budget;  // vertices and indices are charged as the primitives are converted
 
     // Throws penumbra::Error("<path>: <what>").
     [[noreturn]] void fail(const std::string& what) const;

@@ -10,9 +10,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
-#include "penumbra/files.h"
-#include "core/image_decode.h"
-#include "penumbra/image.h"
+#include "scene/asset_access.h"
 #include "scene/gltf_internal.h"
 #include "scene/mesh_utils.h"
 #include "scene/scene_validation.h"
@@ -35,109 +33,6 @@ std::string describe(const char* kind, size_t index, const std::string& name) {
 namespace {
 
 using gltf::LoadContext;
-
-// tinygltf's messages span several lines; ours are one line.
-std::string oneLine(const std::string& text) {
-    std::string line;
-    for (char c : text) {
-        if (c == '\n' || c == '\r') {
-            if (!line.empty() && line.back() != ' ') line += "; ";
-        } else {
-            line += c;
-        }
-    }
-    while (!line.empty() && (line.back() == ' ' || line.back() == ';')) line.pop_back();
-    return line;
-}
-
-// nlohmann's "[json.exception.parse_error.101] parse error at ..." without the tag.
-std::string withoutJsonTags(std::string text) {
-    for (size_t at = text.find("[json.exception."); at != std::string::npos; at = text.find("[json.exception.", at)) {
-        const size_t end = text.find("] ", at);
-        if (end == std::string::npos) break;
-        text.erase(at, end + 2 - at);
-    }
-    return text;
-}
-
-// Decodes every image to RGBA8 with our own decoder so that a bad image is a clean error, and a
-// problem the decoder recovered from is a warning.
-bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* err, std::string* warn, int, int,
-                 const unsigned char* bytes, int size, void*) {
-    try {
-        std::vector<std::string> warnings;
-        Image rgba = decodePngOrJpeg(bytes, size_t(std::max(size, 0)), 4, "image " + std::to_string(imageIndex), &warnings);
-        for (const std::string& warning : warnings)
-            if (warn) *warn += warning + "\n";
-        image->width = int(rgba.width);
-        image->height = int(rgba.height);
-        image->component = 4;
-        image->bits = 8;
-        image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-        image->image = std::move(rgba.pixels);
-        return true;
-    } catch (const Error& e) {
-        if (err) *err += std::string(e.what()) + "\n";
-        return false;
-    }
-}
-
-// External files (buffers and images named by URI): regular files only, so a URI naming a directory,
-// a device or a FIFO is an error rather than a hang or a huge allocation. Without a base folder (a
-// glTF held in memory, the fuzzer) no file is read at all.
-bool externalFileExists(const std::string& path, void* baseDir) {
-    std::error_code error;
-    // Held in memory, or not a regular file: "exists", so that readExternalFile says why it is not read.
-    return baseDir == nullptr || std::filesystem::exists(path, error);
-}
-
-std::string expandNothing(const std::string& path, void*) { return path; }
-
-bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* baseDir) {
-    if (!baseDir) {
-        if (err) *err += "external file " + path + " is not read (the glTF is held in memory)\n";
-        return false;
-    }
-    try {
-        *out = readFileBytes(path);
-        return true;
-    } catch (const Error& e) {
-        if (err) *err += std::string(e.what()) + "\n";
-        return false;
-    }
-}
-
-bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-    if (err) *err += "writing is not supported\n";
-    return false;
-}
-
-tinygltf::Model parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string* baseDir,
-                          std::string& warnings) {
-    // tinygltf takes 32-bit sizes.
-    if (size > 0xFFFFFFFFu) throw Error(name + ": the file is larger than 4 GiB, which glTF loading does not support");
-    const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-    tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(decodeImage, nullptr);
-    parser.SetFsCallbacks({externalFileExists, expandNothing, readExternalFile, writeNothing,
-                           const_cast<std::string*>(baseDir)});
-    tinygltf::Model model;
-    std::string err, warn;
-    bool ok = false;
-    const std::string folder = baseDir ? *baseDir : std::string();
-    try {
-        ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(size), folder)
-                    : parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data), unsigned(size),
-                                                 folder);
-    } catch (const std::bad_alloc&) {
-        throw Error(name + ": invalid glTF (out of memory while parsing)");
-    } catch (const std::exception& e) {
-        throw Error(name + ": invalid glTF (" + e.what() + ")");
-    }
-    if (!ok) throw Error(name + ": invalid glTF: " + (err.empty() ? std::string("unknown error") : withoutJsonTags(oneLine(err))));
-    warnings = oneLine(warn);
-    return model;
-}
 
 // glTF quaternions are (x, y, z, w) and must be unit length: a zero (or non-finite) one is an error,
 // one off by more than rounding is normalized with a warning.
@@ -203,18 +98,22 @@ public:
           visited_(ctx.model.nodes.size(), false), lightPlaced_(ctx.scene.lights.size(), false) {}
 
     void flatten() {
-        struct Pending { int nodeIndex; glm::mat4 worldFromParent; };
+        struct Pending { int nodeIndex; glm::mat4 worldFromParent; uint64_t depth; };
         std::vector<Pending> stack;
         const std::vector<int> roots = rootNodes(ctx_);
-        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f), 1});
         while (!stack.empty()) {
             const Pending pending = stack.back();
             stack.pop_back();
             const size_t nodeIndex = checkedNode(pending.nodeIndex);
+            if (pending.depth > ctx_.budget.limits().maxNodeDepth)
+                ctx_.budget.check(pending.depth, &SceneLimits::maxNodeDepth,
+                                  gltf::describe("node", nodeIndex, ctx_.model.nodes[nodeIndex].name) + "'s depth");
             const glm::mat4 worldFromNode = pending.worldFromParent * localFromNode(ctx_, nodeIndex);
             visitNode(nodeIndex, worldFromNode);
             const std::vector<int>& children = ctx_.model.nodes[nodeIndex].children;
-            for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, worldFromNode});
+            for (auto it = children.rbegin(); it != children.rend(); ++it)
+                stack.push_back({*it, worldFromNode, pending.depth + 1});
         }
         chooseCamera();
     }
@@ -349,11 +248,19 @@ private:
 
 namespace {
 
-Scene convertModel(const tinygltf::Model& model, const std::string& path, const std::string& parserWarnings) {
+// The counts the file states, against their budgets, before anything is converted.
+void checkCounts(const tinygltf::Model& model, const LoadBudget& budget) {
+    budget.check(model.nodes.size(), &SceneLimits::maxNodes, "the node count");
+    budget.check(model.lights.size(), &SceneLimits::maxLights, "the light count");
+}
+
+Scene convertModel(const tinygltf::Model& model, const std::string& path, const std::string& parserWarnings,
+                   LoadBudget& budget) {
+    checkCounts(model, budget);
     Scene scene;
     scene.sourcePath = path;
     if (!parserWarnings.empty()) scene.warnings.push_back(path + ": " + parserWarnings);
-    const LoadContext ctx{path, model, scene};
+    const LoadContext ctx{path, model, scene, budget};
     gltf::convertTextures(ctx);
     gltf::convertMaterials(ctx);
     gltf::convertLights(ctx);
@@ -373,20 +280,35 @@ Scene convertModel(const tinygltf::Model& model, const std::string& path, const 
     return scene;
 }
 
-}  // namespace
-
-Scene loadGltfScene(const std::string& path) {
-    const std::vector<uint8_t> bytes = readFileBytes(path);
-    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+Scene loadBytes(const uint8_t* data, size_t size, const std::string& name, const AssetAccess* access,
+                const SceneLimits& limits) {
+    LoadBudget budget(name, limits);
     std::string parserWarnings;
-    const tinygltf::Model model = parseGltf(bytes.data(), bytes.size(), path, &baseDir, parserWarnings);
-    return convertModel(model, path, parserWarnings);
+    const tinygltf::Model model = gltf::parseGltf(data, size, access, budget, parserWarnings);
+    return convertModel(model, name, parserWarnings, budget);
 }
 
-Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name) {
-    std::string parserWarnings;
-    const tinygltf::Model model = parseGltf(data, size, name, nullptr, parserWarnings);
-    return convertModel(model, name, parserWarnings);
+std::string folderOf(const std::string& path) {
+    const std::string folder = std::filesystem::path(path).parent_path().string();
+    return folder.empty() ? std::string(".") : folder;
+}
+
+}  // namespace
+
+Scene loadGltfScene(const std::string& path, const GltfLoadOptions& options) {
+    const std::vector<uint8_t> bytes = readRegularFile(path, path, options.limits.maxFileBytes, options.limits);
+    const AssetAccess access(folderOf(path), options.assetRoot, options.limits);
+    return loadBytes(bytes.data(), bytes.size(), path, &access, options.limits);
+}
+
+Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name, const SceneLimits& limits) {
+    return loadBytes(data, size, name, nullptr, limits);
+}
+
+Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& folder,
+                              const GltfLoadOptions& options) {
+    const AssetAccess access(folder, options.assetRoot, options.limits);
+    return loadBytes(data, size, name, &access, options.limits);
 }
 
 }  // namespace penumbra

@@ -22,11 +22,16 @@
 
 namespace penumbra {
 
-// loadGltfScene(path) is declared in penumbra/scene_loading.h; external buffers and images are read
-// relative to the file's folder, regular files only.
+// loadGltfScene(path, options) is declared in penumbra/scene_loading.h; external buffers and images
+// are read through AssetAccess (scene/asset_access.h): inside the asset root, regular files only.
 
 // A .gltf (JSON) or .glb (by its magic) held in memory, named `name` in messages. Only data: URIs
-// and the GLB's own chunk are read: a URI naming an external file is an error (the fuzzer's entry).
-Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name);
+// and the GLB's own chunk are read: a URI naming an external file is an error.
+Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name, const SceneLimits& limits = {});
+
+// The same, its external files read as those of a file in `folder` would be (the fuzzer's entry, in a
+// folder fixture with files beside and outside it).
+Scene loadGltfSceneFromMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& folder,
+                              const GltfLoadOptions& options);
 
 }  // namespace penumbra

@@ -15,6 +15,14 @@ int findAttribute(const tinygltf::Primitive& primitive, const char* name) {
     return it == primitive.attributes.end() ? -1 : it->second;
 }
 
+// The element count an accessor states, before it is read (0 for one that reading refuses anyway, with
+// a better reason than a budget: a bad index, no bufferView).
+uint64_t statedCount(const LoadContext& ctx, int accessorIndex) {
+    if (accessorIndex < 0 || size_t(accessorIndex) >= ctx.model.accessors.size()) return 0;
+    const tinygltf::Accessor& accessor = ctx.model.accessors[size_t(accessorIndex)];
+    return accessor.bufferView < 0 ? 0 : accessor.count;
+}
+
 }  // namespace
 
 std::optional<Mesh> convertPrimitive(const LoadContext& ctx, size_t meshIndex, size_t primitiveIndex,
@@ -31,6 +39,10 @@ std::optional<Mesh> convertPrimitive(const LoadContext& ctx, size_t meshIndex, s
         ctx.warn(what + ": no POSITION attribute, skipped");
         return std::nullopt;
     }
+    // The budgets first, from the counts the accessors state: nothing is allocated for a refused mesh.
+    const uint64_t vertexCount = statedCount(ctx, positionAccessor);
+    ctx.budget.charge(vertexCount, &SceneLimits::maxVertices, what);
+    ctx.budget.charge(primitive.indices >= 0 ? statedCount(ctx, primitive.indices) : vertexCount, &SceneLimits::maxIndices, what);
     Mesh mesh;
     mesh.name = source.primitives.size() > 1 ? source.name + "#" + std::to_string(primitiveIndex) : source.name;
     const std::vector<glm::vec3> positions = readVec3(ctx, positionAccessor, what + " POSITION");

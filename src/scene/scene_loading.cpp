@@ -7,12 +7,13 @@
 namespace penumbra {
 
 Scene loadScene(const std::string& source, const SceneSourceOptions& options) {
+    const GltfLoadOptions files{options.assetRoot, options.limits};
     Scene scene;
     if (source.empty()) {
         scene = makeDemoScene();
     } else if (const auto spec = parseGeneratedSceneSpec(source)) {
         if (spec->kind == GeneratedSceneSpec::Kind::Field) {
-            const Scene model = loadGltfScene(options.model);
+            const Scene model = loadGltfScene(options.model, files);
             scene = makeFieldScene(model, spec->count, spec->spotLights, spec->pointLights);
             for (const std::string& warning : model.warnings) scene.warnings.push_back(options.model + ": " + warning);
         } else {
@@ -20,7 +21,7 @@ Scene loadScene(const std::string& source, const SceneSourceOptions& options) {
         }
         scene.sourcePath = source;
     } else {
-        scene = loadGltfScene(source);
+        scene = loadGltfScene(source, files);
     }
     if (options.addDefaultSun && addDefaultSunIfUnlit(scene))
         scene.warnings.push_back((source.empty() ? std::string("the scene") : source) +

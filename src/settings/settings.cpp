@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/json_depth.h"
 #include "penumbra/files.h"
 
 namespace penumbra {
@@ -20,6 +21,15 @@ namespace {
 using nlohmann::json;
 
 [[noreturn]] void fail(const std::string& message) { throw Error("settings: " + message); }
+
+// Settings nest 3 levels at most; a deeper text is refused before anything recursive (a message's
+// dump of the value) walks it: "[[[[..." a few hundred kilobytes deep would overflow the stack.
+constexpr size_t kMaxJsonDepth = 16;
+
+void checkDepth(const std::string& text, const std::string& origin) {
+    if (jsonNestingDepth(text, kMaxJsonDepth) > kMaxJsonDepth)
+        fail(origin + " nests arrays and objects more than " + std::to_string(kMaxJsonDepth) + " levels deep");
+}
 
 // A value as JSON text for messages; bytes that are not UTF-8 (a --set value is any text) become
 // U+FFFD instead of an exception.
@@ -118,6 +128,7 @@ std::string trim(const std::string& text) {
 // nlohmann's parse error, e.g. "syntax error while parsing object - unexpected end of input; expected
 // string literal" at "byte 12", made one line.
 json parseJson(const std::string& jsonText, const std::string& origin) {
+    checkDepth(jsonText, origin);
     try {
         return json::parse(jsonText);
     } catch (const json::parse_error& error) {
@@ -165,6 +176,7 @@ void applySettingOverride(Settings& settings, const std::string& assignment) {
     if (equals == std::string::npos) fail("a setting override expects key=value, got '" + showText(assignment) + "'");
     const std::string key = trim(assignment.substr(0, equals));
     const std::string valueText = trim(assignment.substr(equals + 1));
+    checkDepth(valueText, "the --set value");
     // JSON when it parses (numbers, true, [0.1,0.2,0.3], "quoted"), else the raw text as a string (PCF5x5).
     json value = json::parse(valueText, nullptr, /*allow_exceptions=*/false);
     if (value.is_discarded()) value = valueText;

@@ -93,7 +93,8 @@ OutputMode outputOf(ViewMode view) {
 }  // namespace
 
 ViewerApp::ViewerApp(const ViewerOptions& options)
-    : options_(options), document_(options.scenePath, options.watchPollMs, SceneSourceOptions{.addGround = options.ground}) {
+    : options_(options), document_(options.scenePath, options.watchPollMs,
+                SceneSourceOptions{.addGround = options.ground, .assetRoot = options.assetRoot, .limits = options.limits}) {
     // Bad input first, so it is one line before any window opens.
     userSettings_ = loadUserSettings(options);
     compareSettings_ = loadCompareSettings(options);

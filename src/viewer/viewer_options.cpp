@@ -52,6 +52,13 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
                    "glTF 2.0 scene (.gltf or .glb), gen:field:N[:S[:P]] or gen:boxes:N[:P]; the built-in demo scene if omitted");
     app.add_flag("--ground", options.ground,
                  "add a grey ground plane under every scene opened (4x its width, at its lowest point)");
+    app.add_option("--asset-root", options.assetRoot,
+                   "folder the external buffers and images of every scene opened may come from (default: the scene "
+                   "file's own folder)");
+    std::vector<std::string> limits;
+    app.add_option("--limit", limits,
+                   "raise or lower a budget of every scene opened, NAME=VALUE with an optional K/M/G: fileBytes, "
+                   "imageBytes, textureBytes, vertices, indices, nodes, nodeDepth, lights, jsonDepth (docs/security.md)");
     app.add_option("--settings", options.settingsPath, "settings JSON file (the same as penumbra render --settings)");
     app.add_option("--set", options.overrides, "override one setting, e.g. shadows.directional.cascadeCount=2");
     app.add_option("--device", options.device, "Vulkan device: auto | gpu | cpu | N")->default_val("auto");
@@ -88,6 +95,7 @@ std::optional<ViewerOptions> parseViewerOptions(int argc, char** argv) {
         throw Error(std::string(e.what()) + " (see penumbra-viewer --help)");
     }
     options.view = *parseViewMode(view);
+    for (const std::string& limit : limits) setSceneLimit(options.limits, limit);
     return options;
 }
 

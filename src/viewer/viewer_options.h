@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/scene_limits.h"
+
 namespace penumbra::viewer {
 
 // Frusta: the cascades of the camera at the moment the view is entered, seen from an outside camera.
@@ -19,6 +21,8 @@ std::optional<ViewMode> parseViewMode(const std::string& name);
 struct ViewerOptions {
     std::string scenePath;  // file, gen:..., or "" for the built-in demo scene
     bool ground = false;    // --ground: every scene opened gets addGroundPlane
+    std::string assetRoot;  // --asset-root: where every scene opened may read external files ("" = its own folder)
+    SceneLimits limits;     // --limit NAME=VALUE: the budgets of every scene opened
     std::string settingsPath;
     std::vector<std::string> overrides;  // --set key=value
     std::string device = "auto";

@@ -1,11 +1,13 @@
 // Every user error on the CLI is one line on stderr and exit code 1, and a command
 // that fails writes no output file, not even an empty or half-written one: out of GPU
-// memory and device loss are injected with PENUMBRA_FAULT_INJECTION.
+// memory and device loss are injected with PENUMBRA_FAULT_INJECTION. A scene that reaches outside
+// its folder, or past a budget, is such an error in every command that loads one (docs/security.md).
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli_process.h"
 #include "penumbra/image.h"
@@ -33,6 +35,21 @@ size_t fileCount(const fs::path& folder) {
 }
 
 const std::string kSmall = " --width 64 --height 48 --device cpu";
+
+// <tmp>/<name>/scene/cube.gltf: the canonical cube with one image, "../secret.png", which lies in
+// <tmp>/<name>/, outside the scene's folder (docs/security.md). Returns the scene's path.
+fs::path escapingScene(const std::string& name) {
+    const fs::path root = freshFolder(name);
+    fs::create_directories(root / "scene");
+    std::ifstream in(std::string(PENUMBRA_TEST_DATA_DIR) + "/scenes/cube.gltf");
+    nlohmann::json doc = nlohmann::json::parse(in);
+    doc["images"] = {{{"uri", "../secret.png"}}};
+    std::ofstream(root / "scene" / "cube.gltf") << doc.dump();
+    Image secret(2, 2, 4);
+    secret.pixels.assign(16, 255);
+    writePng(secret, (root / "secret.png").string());
+    return root / "scene" / "cube.gltf";
+}
 
 }  // namespace
 
@@ -167,4 +184,46 @@ TEST(CliErrors, MillimetreModelGetsShadowsAndAWarningWithoutAMaxDistance) {
     size_t shadowed = 0;
     for (uint8_t value : aov.pixels) shadowed += value < 128;
     EXPECT_GT(shadowed, 20u);  // at the default maxDistance of 100 (mm) there is none
+}
+
+TEST(CliErrors, RenderOfASceneReachingOutsideItsFolderIsOneLineAndWritesNothing) {
+    const fs::path scene = escapingScene("render");
+    const fs::path output = scene.parent_path() / "out.png";
+    const CliRun run = runPenumbra("render " + scene.string() + " -o " + output.string() + kSmall);
+    expectOneLineError(run, "external file '../secret.png' resolves to");
+    EXPECT_NE(run.err.find("outside the asset root"), std::string::npos) << run.err;
+    EXPECT_FALSE(fs::exists(output));
+}
+
+TEST(CliErrors, EveryCommandThatLoadsASceneRefusesOneReachingOutsideItsFolder) {
+    const fs::path scene = escapingScene("commands");
+    const std::string out = (scene.parent_path() / "out").string();
+    for (const std::string& command :
+         {"reference " + scene.string() + " -o " + out + ".png" + kSmall, "compare " + scene.string() + kSmall,
+          "bench " + scene.string() + " --frames 1 --warmup 0" + kSmall, "export " + scene.string() + " -o " + out + ".gltf",
+          "graph " + scene.string() + kSmall}) {
+        SCOPED_TRACE(command);
+        expectOneLineError(runPenumbra(command), "outside the asset root");
+    }
+}
+
+TEST(CliRender, AssetRootWideningRendersTheScene) {
+    const fs::path scene = escapingScene("widened");
+    const fs::path output = scene.parent_path() / "out.png";
+    const CliRun run = runPenumbra("render " + scene.string() + " --asset-root " + scene.parent_path().parent_path().string() +
+                                   " -o " + output.string() + kSmall);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_TRUE(fs::exists(output));
+}
+
+TEST(CliErrors, SceneOverABudgetNamesTheLimitThatRaisesIt) {
+    const fs::path scene = escapingScene("budget");
+    const CliRun run = runPenumbra("export " + scene.string() + " --asset-root " + scene.parent_path().parent_path().string() +
+                                   " --limit imageBytes=15 -o " + (scene.parent_path() / "out.gltf").string());
+    expectOneLineError(run, "over the imageBytes budget of 15 (raise it with --limit imageBytes=N");
+}
+
+TEST(CliErrors, UnknownLimitNameIsOneLine) {
+    const fs::path dir = freshFolder("limit_name");
+    expectOneLineError(runPenumbra("export --limit size=1 -o " + (dir / "x.gltf").string()), "--limit size=1: unknown budget 'size'");
 }

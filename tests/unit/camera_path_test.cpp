@@ -111,3 +111,8 @@ TEST(CameraPath, BadInputIsOneLineNamingTheField) {
     for (const std::string& message : {errorOf("{"), errorOf(R"({"keyframes": 3})")})
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
+
+TEST(CameraPath, JsonNestingHundredsOfThousandsDeepIsAnErrorNotAStackOverflow) {
+    const std::string deep = "{\"keyframes\":[" + std::string(200000, '[') + std::string(200000, ']') + "]}";
+    EXPECT_THROW(parseCameraPath(deep, "deep.json"), Error);
+}

@@ -167,3 +167,13 @@ TEST(GltfBadInput, SpotOuterConeBeyondNinetyDegrees) {
     gltf.addLight({{"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}});
     expectLoadError(gltf.write(dir, "cone"), "outerConeAngle must be in (0, pi/2]");
 }
+
+TEST(GltfBadInput, ImageInABufferViewPastItsBufferIsAnErrorNotAnOutOfBoundsRead) {
+    // A fuzz finding: tinygltf hands the image decoder a pointer at the view's offset without a check.
+    TempDir dir;
+    TestGltf gltf;
+    gltf.addNode({{"mesh", gltf.addTriangleMesh()}});
+    gltf.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 1 << 20}, {"byteLength", 64}});
+    gltf.doc["images"] = {{{"bufferView", gltf.doc["bufferViews"].size() - 1}, {"mimeType", "image/png"}}};
+    expectLoadError(gltf.write(dir, "image_view"), "image 0: bufferView 2 ends at byte 1048640, past the end of its buffer");
+}

@@ -11,6 +11,7 @@
 
 #include "gltf_test_files.h"
 #include "penumbra/error.h"
+#include "penumbra/image.h"
 #include "penumbra/scene_loading.h"
 #include "viewer/scene_document.h"
 
@@ -207,7 +208,9 @@ TEST(SceneDocument, LoadingOptionsApplyToEverySceneOpened) {
     TempDir dir;
     const std::string cube = OpenDocument::copyScene(dir, "cube.gltf");
     const std::string spots = OpenDocument::copyScene(dir, "spot_lights.gltf");
-    SceneDocument document(cube, 0, SceneSourceOptions{.addGround = true});
+    SceneSourceOptions grounded;
+    grounded.addGround = true;
+    SceneDocument document(cube, 0, grounded);
     FakeRenderer renderer;
     renderer.scene = document.loadFirst();
     EXPECT_EQ(renderer.scene.instances.size(), loadScene(cube).instances.size() + 1);
@@ -219,4 +222,51 @@ TEST(SceneDocument, LoadingOptionsApplyToEverySceneOpened) {
         EXPECT_EQ(renderer.scene.instances.back().nodeName, "ground");
     }
     EXPECT_EQ(renderer.installs, 2);
+}
+
+// A copy of cube.gltf in DIR/scene/ with one image, "../outside.png", which lies in DIR.
+std::string sceneReachingOut(const TempDir& dir) {
+    fs::create_directories(dir.file("scene"));
+    nlohmann::json doc = nlohmann::json::parse(penumbra::testing::readFile(kScenes + "cube.gltf"));
+    doc["images"] = {{{"uri", "../outside.png"}}};
+    Image outside(2, 2, 4);
+    outside.pixels.assign(16, 255);
+    writePng(outside, dir.file("outside.png"));
+    const std::string path = dir.file("scene/cube.gltf");
+    penumbra::testing::writeFile(path, doc.dump());
+    return path;
+}
+
+TEST(SceneDocument, OpeningASceneThatReachesOutsideItsFolderKeepsTheOldOne) {
+    OpenDocument open("cube.gltf");
+    const std::string outside = sceneReachingOut(open.dir);
+    open.document.requestOpen(outside);  // File > Open and a dropped file
+    const std::optional<SceneEvent> event = open.update();
+    ASSERT_TRUE(event);
+    EXPECT_FALSE(event->opened);
+    EXPECT_NE(open.document.error().find("outside the asset root"), std::string::npos) << open.document.error();
+    EXPECT_EQ(open.document.source(), open.path);
+}
+
+TEST(SceneDocument, AssetRootOfTheLoadingOptionsAppliesToEverySceneOpened) {
+    TempDir dir;
+    const std::string outside = sceneReachingOut(dir);
+    SceneSourceOptions widened;
+    widened.assetRoot = dir.file("");
+    SceneDocument document("", 0, widened);
+    FakeRenderer renderer;
+    renderer.scene = document.loadFirst();
+    EXPECT_TRUE(document.open(outside, renderer.install()).opened) << document.error();
+    EXPECT_TRUE(document.open(outside, renderer.install()).opened) << document.error();  // R: a reload
+}
+
+TEST(SceneDocument, LimitsOfTheLoadingOptionsApplyToEverySceneOpened) {
+    OpenDocument open("cube.gltf");
+    SceneSourceOptions tight;
+    tight.limits.maxVertices = 3;
+    SceneDocument document("", 0, tight);
+    FakeRenderer renderer;
+    const SceneEvent event = document.open(open.path, renderer.install());
+    EXPECT_FALSE(event.opened);
+    EXPECT_NE(event.message.find("over the vertices budget of 3"), std::string::npos) << event.message;
 }

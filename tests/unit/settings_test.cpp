@@ -318,3 +318,13 @@ TEST(SettingsFile, ADirectoryIsAnErrorSayingSo) {
         EXPECT_NE(std::string(error.what()).find("cannot open file (it is a directory)"), std::string::npos) << error.what();
     }
 }
+
+TEST(SettingsJson, NestingHundredsOfThousandsDeepIsRefusedNotAStackOverflow) {
+    const std::string deep = "{\"shadows\":" + std::string(200000, '[') + std::string(200000, ']') + "}";
+    EXPECT_EQ(parseError(deep), "settings: test.json nests arrays and objects more than 16 levels deep");
+}
+
+TEST(SettingsOverride, ValueNestingHundredsOfThousandsDeepIsRefusedNotAStackOverflow) {
+    EXPECT_EQ(overrideError("shadows.maxDistance=" + std::string(200000, '[') + std::string(200000, ']')),
+              "settings: the --set value nests arrays and objects more than 16 levels deep");
+}
