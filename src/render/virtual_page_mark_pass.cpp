@@ -67,9 +67,9 @@ void VirtualPageMarkPass::record(gpu::CommandList& commands, gpu::TextureHandle 
     commands.pass("virtualPages/mark",
                   {gpu::use(depth, gpu::Usage::ComputeSampled), gpu::use(requests_, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(pipeline_);
-    const std::vector<gpu::DescriptorWrite> writes = {{gpu_data::kPageMarkBindingFrame, mark},
-                                                      {gpu_data::kPageMarkBindingDepth, {}, depth, pointSampler_},
-                                                      {gpu_data::kPageMarkBindingRequests, requests_, {}, {}}};
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kPageMarkBindingFrame, mark},  // no heap allocation per frame
+                                           {gpu_data::kPageMarkBindingDepth, {}, depth, pointSampler_},
+                                           {gpu_data::kPageMarkBindingRequests, requests_, {}, {}}};
     commands.pushDescriptors(writes);
     const gpu::TextureDesc& size = device_.textureDesc(depth);
     commands.dispatch((size.width + 7) / 8, (size.height + 7) / 8);

@@ -28,8 +28,10 @@
 #include "render/raster_choice.h"
 #include "render/shadow_stats_json.h"
 #include "render/tile_cache.h"
+#include "render/virtual_shadow_map.h"
 #include "render_test_support.h"
 #include "shadows/shadow_planner.h"
+#include "virtual_shadow_test_support.h"
 
 namespace {
 
@@ -223,6 +225,40 @@ TEST_F(FrameAllocationTest, SteadyFrameOfTheHardwareShadowRasterizerAllocatesNot
 TEST_F(FrameAllocationTest, SteadyVisibilityBufferFrameAllocatesNothing) {
     if (!gpu::backend(deviceWithoutValidation()).hasBufferInt64Atomics()) GTEST_SKIP() << "no 64-bit buffer atomics";
     EXPECT_EQ(steadyFrameAllocations(visibilitySettings(), true), 0u);
+}
+
+// A frame of a directional light's virtual shadow map (render/virtual_shadow_map.h): the whole chain with
+// moved casters' rectangles (so pages are drawn every frame), its stats read back, the frame submitted
+// and its readback taken, after frames that used every upload slot.
+TEST_F(FrameAllocationTest, SteadyVirtualShadowMapFrameAllocatesNothing) {
+    gpu::Device& gpu = gpu::backend(deviceWithoutValidation());
+    const Scene scene = makeDemoScene();
+    const CameraView view = resolveCameraView(scene, 96, 54);
+    SceneDepth depth = renderSceneDepth(gpu, scene, view);
+    GpuScene gpuScene(gpu, scene);
+    ComputeRasterPass raster(gpu, gpuScene);
+    VirtualShadowMapConfig config;
+    config.clipmap = {.resolution = 4096, .pageSize = 32, .levelCount = 10, .firstLevelSize = 64.0f};
+    VirtualShadowMap map(gpu, gpuScene, raster, config);
+    glm::vec3 light(0.0f, -1.0f, 0.0f);
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Directional) light = l.wsDirection;
+    std::array<gpu_data::VirtualPageInvalidation, 4> moved{};  // the pages around the origin, levels 0 to 3
+    for (uint32_t level = 0; level < moved.size(); ++level) moved[level] = virtualPageInvalidation(level, {{-4, -4}, {4, 4}});
+    uint32_t drawn = 0;
+    const auto frame = [&] {
+        gpu::CommandList commands = gpu.beginFrame();
+        map.record(commands, depth.texture, view, light, scene.wsBounds, 2.0f, moved);
+        const uint64_t at = gpu.readBackAtFrameEnd(commands, map.stats());
+        gpu.waitFrame(gpu.submitFrame(commands));
+        for (const gpu::CompletedFrame& done : gpu.completedFrames())
+            drawn = VirtualShadowMap::statsFromReadback(done.readback.data() + at).toDraw;
+        gpu.releaseCompletedFrames();
+    };
+    for (uint32_t i = 0; i < 2 * gpu.framesInFlight() + 4; ++i) frame();
+    EXPECT_EQ(allocationsOf(frame), 0u);
+    EXPECT_GT(drawn, 0u) << "the invalidated pages are drawn again every frame";
+    gpu.destroy(depth.texture);
 }
 
 }  // namespace

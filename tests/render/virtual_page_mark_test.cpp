@@ -22,18 +22,12 @@
 #include "render/screen_space_shadow_pass.h"
 #include "render/virtual_page_mark_pass.h"
 #include "render_test_support.h"
+#include "virtual_shadow_test_support.h"
 #include "scene/canonical_scenes.h"
 #include "shadows/cascades.h"
 
 namespace penumbra::test {
 namespace {
-
-// The view's depth, rendered by the main pass's depth prepass (as the visible-surface reduction
-// draws it) and read back; `texture` keeps it for marking on the GPU.
-struct SceneDepth {
-    Image image;
-    gpu::TextureHandle texture;
-};
 
 // Global page coordinates of a requested slot of a level placed around lsCamera.
 glm::ivec2 globalPage(const ClipmapLevel& level, const glm::uvec2& slot) {
@@ -85,41 +79,6 @@ Disagreement compareRequests(const VirtualPageRequests& gpu, const VirtualPageRe
             }
     }
     return result;
-}
-
-SceneDepth renderSceneDepth(gpu::Device& gpu, const Scene& scene, const CameraView& view) {
-    GpuScene gpuScene(gpu, scene);
-    MainPass mainPass(gpu, gpuScene, PipelineWarmup::OnDemand);
-    const gpu_data::FrameData frame = cameraFrameData(view);
-    const gpu::BufferHandle frameBuffer = gpu.createBuffer(sizeof(frame), gpu::kBufferUniform,
-                                                             gpu::MemoryKind::HostVisible, &frame, "test frame");
-    SceneDepth depth{Image(view.width, view.height, 4), {}};
-    depth.texture = gpu.createTexture({view.width, view.height, gpu::Format::D32Float,
-                                         gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, "test depth"});
-    const gpu::TextureHandle normals = gpu.createTexture(
-        {view.width, view.height, gpu::Format::RGBA16Float, gpu::kTextureColorTarget, 1, "test normals"});
-    const gpu::BufferHandle readback = gpu.createBuffer(depth.image.pixels.size(), gpu::kBufferTransferDst,
-                                                          gpu::MemoryKind::HostVisible, nullptr, "test depth readback");
-    MainPassInputs inputs;
-    const auto writes = sceneDescriptorWrites(gpuScene, {frameBuffer, 0, sizeof(frame)}, {});
-    inputs.writes.assign(writes.begin(), writes.end());
-    MainPass::Target target;
-    target.color = normals;
-    target.depth = depth.texture;
-    target.variant = ScreenSpaceShadowPass::prepassVariant();
-    target.width = view.width;
-    target.height = view.height;
-    gpu::CommandList commands = gpu.beginCommands();
-    mainPass.record(commands, scene, view, inputs, target);
-    commands.pass("test/depth", {gpu::use(depth.texture, gpu::Usage::TransferRead),
-                                 gpu::use(readback, gpu::Usage::TransferWrite)});
-    commands.copyTextureToBuffer(depth.texture, readback);
-    commands.pass("test/host", {gpu::use(readback, gpu::Usage::HostRead)});
-    gpu.submitAndWait(commands);
-    std::memcpy(depth.image.pixels.data(), gpu.mappedPointer(readback), depth.image.pixels.size());
-    for (gpu::BufferHandle b : {frameBuffer, readback}) gpu.destroy(b);
-    gpu.destroy(normals);
-    return depth;
 }
 
 class VirtualPageMarkTest : public RenderTest {

@@ -23,6 +23,7 @@
 #include "render/pass_layouts.h"
 #include "render/virtual_page_draw_pass.h"
 #include "render_test_support.h"
+#include "virtual_shadow_test_support.h"
 #include "shadows/cascades.h"
 #include "shadows/virtual_shadow_lookup.h"
 
@@ -35,93 +36,6 @@ using gpu_data::VirtualShadowProbePoint;
 using gpu_data::VirtualShadowProbeResult;
 
 const VirtualPageEntry kNoPage{gpu_data::kVirtualPageNone, 0, 0, 0, 0, 0, 0, 0};
-
-// Runs virtual_shadow_probe.comp over points, with a table and a pool texture.
-class ShadowProbe {
-public:
-    explicit ShadowProbe(gpu::Device& gpu) : gpu_(gpu) {
-        gpu::ComputePipelineDesc desc;
-        desc.shader = desc.debugName = "virtual_shadow_probe.comp";
-        desc.bindings = virtualShadowProbeBindings();
-        desc.pushConstantSize = sizeof(gpu_data::VirtualShadowProbeConstants);
-        pipeline_ = gpu.createComputePipeline(desc);
-        gpu::SamplerDesc nearest;
-        nearest.filter = gpu::Filter::Nearest;
-        nearest.addressMode = gpu::AddressMode::ClampToEdge;
-        sampler_ = gpu.createSampler(nearest);
-    }
-    ~ShadowProbe() {
-        gpu_.destroy(pipeline_);
-        gpu_.destroy(sampler_);
-    }
-
-    std::vector<VirtualShadowProbeResult> run(const VirtualShadowLookupData& data, const std::vector<VirtualPageEntry>& entries,
-                                              gpu::TextureHandle pool, const std::vector<VirtualShadowProbePoint>& points) {
-        using gpu::Usage;
-        const auto hostBuffer = [&](uint32_t usage, const void* bytes, size_t size, const char* name) {
-            return gpu_.createBuffer(size, usage, gpu::MemoryKind::HostVisible, bytes, name);
-        };
-        const gpu::BufferHandle lookup = hostBuffer(gpu::kBufferUniform, &data, sizeof(data), "probe lookup");
-        const gpu::BufferHandle table = hostBuffer(gpu::kBufferStorage, entries.data(), entries.size() * sizeof(entries[0]), "probe entries");
-        const gpu::BufferHandle input = hostBuffer(gpu::kBufferStorage, points.data(), points.size() * sizeof(points[0]), "probe points");
-        const gpu::BufferHandle output =
-            hostBuffer(gpu::kBufferStorage, nullptr, points.size() * sizeof(VirtualShadowProbeResult), "probe results");
-        gpu::CommandList commands = gpu_.beginCommands();
-        commands.pass("test/probe", {gpu::use(pool, Usage::ComputeSampled), gpu::use(table, Usage::ComputeRead),
-                                     gpu::use(input, Usage::ComputeRead), gpu::use(output, Usage::ComputeWrite)});
-        commands.bindPipeline(pipeline_);
-        using namespace gpu_data;
-        const gpu::DescriptorWrite writes[] = {{kShadowProbeBindingLookup, {lookup, 0, sizeof(data)}},
-                                               {kShadowProbeBindingEntries, table, {}, {}},
-                                               {kShadowProbeBindingPool, {}, pool, sampler_},
-                                               {kShadowProbeBindingPoints, input, {}, {}},
-                                               {kShadowProbeBindingResults, output, {}, {}}};
-        commands.pushDescriptors(writes);
-        const VirtualShadowProbeConstants constants{uint32_t(points.size()), uint32_t(entries.size()), 0, 0};
-        commands.pushConstants(&constants, sizeof(constants));
-        commands.dispatch((uint32_t(points.size()) + kVirtualShadowProbeGroup - 1) / kVirtualShadowProbeGroup, 1);
-        commands.pass("test/host", {gpu::use(output, Usage::HostRead)});
-        gpu_.submitAndWait(commands);
-        std::vector<VirtualShadowProbeResult> results(points.size());
-        std::memcpy(results.data(), gpu_.mappedPointer(output), results.size() * sizeof(results[0]));
-        for (gpu::BufferHandle b : {lookup, table, input, output}) gpu_.destroy(b);
-        return results;
-    }
-
-    // An R32F texture of side x side texels, row by row.
-    gpu::TextureHandle uploadPool(const std::vector<float>& texels, uint32_t side) {
-        const gpu::BufferHandle staging = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
-                                                            texels.data(), "probe pool upload");
-        const gpu::TextureHandle texture = gpu_.createTexture(
-            {side, side, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
-        gpu::CommandList commands = gpu_.beginCommands();
-        commands.pass("test/upload", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});
-        commands.copyBufferToTexture(staging, texture);
-        gpu_.submitAndWait(commands);
-        gpu_.destroy(staging);
-        return texture;
-    }
-
-    // The pool texture's texels, through a buffer that Device::readBuffer reads back.
-    std::vector<float> readPool(gpu::TextureHandle texture, uint32_t side) {
-        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(side) * side * 4, gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
-                                                         gpu::MemoryKind::DeviceLocal, nullptr, "probe pool copy");
-        gpu::CommandList commands = gpu_.beginCommands();
-        commands.pass("test/pool", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(copy, gpu::Usage::TransferWrite)});
-        commands.copyTextureToBuffer(texture, copy);
-        gpu_.submitAndWait(commands);
-        const std::vector<uint8_t> bytes = gpu_.readBuffer(copy);
-        gpu_.destroy(copy);
-        std::vector<float> texels(bytes.size() / 4);
-        std::memcpy(texels.data(), bytes.data(), texels.size() * 4);
-        return texels;
-    }
-
-private:
-    gpu::Device& gpu_;
-    gpu::PipelineHandle pipeline_;
-    gpu::SamplerHandle sampler_;
-};
 
 // Whether the CPU's and the GPU's float rounding may legitimately pick another texel or level at a point.
 bool nearAnEdge(const VirtualShadowLookupData& data, const glm::vec3& wsPosition, float footprint, int servedLevel) {
@@ -264,23 +178,6 @@ std::vector<uint8_t> drawListBytes(const VirtualShadowLookupData& data, const st
     return bytes;
 }
 
-// The light-space bounds of the demo's casters whose material does not cast opaque shadows (alpha-clipped,
-// dithered: the ray tracer and the rasterizer cut them differently).
-Aabb notOpaqueCasterBounds(const Scene& scene, const glm::mat4& rotation) {
-    Aabb bounds;
-    for (const Instance& instance : scene.instances) {
-        const Material& material = scene.materials[scene.meshes[instance.meshIndex].materialIndex];
-        if (instance.castShadows && instance.wsBounds.valid() && material.shadows != MaterialShadowMode::On)
-            bounds.extend(instance.wsBounds.transformed(rotation));
-    }
-    return bounds;
-}
-
-bool insideXy(const Aabb& box, const glm::vec2& p, float margin) {
-    return box.valid() && p.x >= box.min.x - margin && p.x <= box.max.x + margin && p.y >= box.min.y - margin &&
-           p.y <= box.max.y + margin;
-}
-
 // Draws the pages of a draw list with the page drawing pass.
 void drawPages(gpu::Device& gpu, const GpuScene& gpuScene, VirtualPageDrawPass& drawPass, const VirtualPageDrawSpace& space,
                const std::vector<uint8_t>& list) {
@@ -293,32 +190,6 @@ void drawPages(gpu::Device& gpu, const GpuScene& gpuScene, VirtualPageDrawPass& 
     drawPass.record(commands, {drawList, &space, &sceneWrites, true});
     gpu.submitAndWait(commands);
     gpu.destroy(drawList);
-}
-
-// Ground points of the demo (what a camera from above sees of the ground) whose light-space xy lies in
-// lsDrawn, lifted 3 cm along the normal (the caller's normal bias), with the ray tracer's answer where it
-// is clear: shadowed when the ray toward the light is blocked there and 10 cm around, lit when blocked
-// nowhere there; points near alpha-clipped or dithered casters are left out.
-void clearGroundPoints(const Scene& scene, const VirtualPageDrawSpace& space, const glm::vec3& wsLight, const Aabb& lsDrawn,
-                       std::vector<VirtualShadowProbePoint>& points, std::vector<bool>& shadowed) {
-    const EmbreeScene tracer(scene);
-    const Aabb notOpaque = notOpaqueCasterBounds(scene, space.lightRotationFromWorld);
-    const float step = 0.173f, half = 12.0f;
-    for (float z = -half; z <= half; z += step)
-        for (float x = -half; x <= half; x += step) {
-            const std::optional<SurfaceHit> hit = tracer.intersectCamera({x, scene.wsBounds.max.y + 1.0f, z}, {0, -1, 0}, 0.0f, 1e4f);
-            if (!hit || scene.instances[hit->instanceIndex].nodeName != "ground") continue;
-            const glm::vec3 receiver = hit->wsPosition + 0.03f * hit->wsGeometricNormal;
-            const glm::vec2 ls(space.lightRotationFromWorld * glm::vec4(receiver, 1.0f));
-            if (!insideXy(lsDrawn, ls, -0.1f) || insideXy(notOpaque, ls, 0.2f)) continue;
-            int blocked = 0;
-            for (const glm::vec2 d : {glm::vec2(0), glm::vec2(0.1f, 0), glm::vec2(-0.1f, 0), glm::vec2(0, 0.1f), glm::vec2(0, -0.1f)})
-                blocked += tracer.occluded(hit->wsPosition + 0.001f * hit->wsGeometricNormal + glm::vec3(d.x, 0.0f, d.y), -wsLight,
-                                           0.0f, 1e4f);
-            if (blocked != 0 && blocked != 5) continue;
-            points.push_back({receiver, 0.02f});  // level 2's footprint: level 3 serves beyond its 3 x 3 pages
-            shadowed.push_back(blocked == 5);
-        }
 }
 
 TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSaysSo) {
@@ -352,7 +223,8 @@ TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSays
     const Aabb drawn{glm::vec3(drawnMin, 0.0f), glm::vec3(drawnMin + 16.0f, 0.0f)};
     std::vector<VirtualShadowProbePoint> points;
     std::vector<bool> shadowed;
-    clearGroundPoints(scene, space, wsLight, drawn, points, shadowed);
+    // Their footprint, 2 cm, is level 2's: level 3 serves beyond level 2's 3 x 3 pages.
+    clearGroundPoints(scene, space.lightRotationFromWorld, wsLight, drawn, points, shadowed);
     ShadowProbe probe(gpu());
     const std::vector<VirtualShadowProbeResult> results = probe.run(data, entries, drawPass.poolTexture(), points);
     const std::vector<float> pool = probe.readPool(drawPass.poolTexture(), drawPass.poolSide());
