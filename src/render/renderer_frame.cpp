@@ -71,6 +71,7 @@ void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings,
                                   const std::optional<VisibleSurfaces>& visibleNow) {
     PlanOptions planOptions;
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
+    planOptions.sceneVersion = sceneVersion + 1;  // the casters and receivers change only with it (never 0)
     const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
     const VisibleSurfaces* planVisible = !tight ? nullptr : visibleNow ? &*visibleNow : &*latestVisible;
     ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions, frame.plan, planWorkspace);

@@ -113,7 +113,7 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
     // box, so the same rule costs O(1) per caster on the CPU and in the GPU culling pass). It reasons
     // about culling spheres; the tight fit selects cascades by view depth, so it draws every caster that
     // meets a cascade's box.
-    directional.wsReceiverBounds = shadowReceiverUnion(scene);
+    directional.wsReceiverBounds = workspace.wsReceiverBounds;
     directional.blendCullingFactor = tight ? 0.0f : cascadeBlendCullingFactor(config.cascadeFade);
     workspace.receivers.assign(1, directional.wsReceiverBounds);
     const BlendCulling blendCulling{directional.blendCullingFactor,
@@ -140,7 +140,11 @@ void ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const Sha
     resetKeepingStorage(frame.directional, &DirectionalShadowPlan::lights, &DirectionalShadowPlan::cascades,
                         &DirectionalShadowPlan::tiles, &DirectionalShadowPlan::slotOfSceneLight);
     resetKeepingStorage(frame.stats, &ShadowStats::castersPerTile);
-    shadowCasterInstances(scene, workspace.casters);
+    if (options.sceneVersion == 0 || options.sceneVersion != workspace.sceneVersion) {  // else still valid
+        shadowCasterInstances(scene, workspace.casters);
+        workspace.wsReceiverBounds = shadowReceiverUnion(scene);
+        workspace.sceneVersion = options.sceneVersion;
+    }
     planDirectional(scene, camera, settings, visible, options, frame, workspace);
 
     ShadowStats& stats = frame.stats;

@@ -105,11 +105,18 @@ struct PlanOptions {
     // renderer culls on the GPU (render/shadow_culling_pass) and turns this off; tests keep it as the
     // reference the GPU lists are compared with.
     bool cullCasters = true;
+    // The scene's version when the caller keeps one, bumped by every change to its instances or
+    // materials (the renderer's edits do): the workspace then keeps the caster list and the receivers'
+    // bounds of the last plan of the same version instead of walking every instance again. 0: unknown,
+    // walk them every time.
+    uint64_t sceneVersion = 0;
 };
 
 // Working storage of ShadowPlanner::plan, kept by a caller that plans every frame.
 struct ShadowPlanWorkspace {
+    uint64_t sceneVersion = 0;          // PlanOptions::sceneVersion of casters and wsReceiverBounds (0: none)
     std::vector<uint32_t> casters;      // shadowCasterInstances
+    Aabb wsReceiverBounds;              // shadowReceiverUnion
     std::vector<Aabb> receivers;        // the receivers' union, as blend culling reads it
     std::vector<Aabb> rsCasterBounds;   // one light's rotated caster bounds (PlanOptions::cullCasters)
     OtherLightReservation reservation;  // the spot and point lights' reservation

@@ -108,3 +108,41 @@ TEST(ShadowPlanReuse, DroppedLightWarningsOfAnEarlierFrameDoNotStay) {
     EXPECT_TRUE(frame.other.warnings.empty());
     EXPECT_TRUE(frame.other.droppedLights.empty());
 }
+
+// The first instance of `scene` that casts shadows stops casting.
+void stopFirstCaster(Scene& scene) {
+    for (Instance& instance : scene.instances)
+        if (instance.castShadows) {
+            instance.castShadows = false;
+            return;
+        }
+}
+
+TEST(ShadowPlanReuse, AWorkspaceKeepsTheCasterListOfTheSameSceneVersion) {
+    Scene scene = smallScene();
+    const CameraView camera = resolveCameraView(scene, 96, 54);
+    ShadowFrame frame;
+    ShadowPlanWorkspace workspace;
+    PlanOptions options;
+    options.sceneVersion = 7;
+    ShadowPlanner::plan(scene, camera, settingsOf(2), nullptr, options, frame, workspace);
+    const uint32_t casters = frame.stats.shadowCasters;
+    stopFirstCaster(scene);  // without a new version: the caller promised the scene did not change
+    ShadowPlanner::plan(scene, camera, settingsOf(2), nullptr, options, frame, workspace);
+    EXPECT_EQ(frame.stats.shadowCasters, casters) << "the kept list: no walk over the instances";
+    options.sceneVersion = 8;
+    ShadowPlanner::plan(scene, camera, settingsOf(2), nullptr, options, frame, workspace);
+    EXPECT_EQ(frame.stats.shadowCasters, casters - 1) << "a new version walks them again";
+}
+
+TEST(ShadowPlanReuse, WithoutASceneVersionEveryPlanWalksTheInstances) {
+    Scene scene = smallScene();
+    const CameraView camera = resolveCameraView(scene, 96, 54);
+    ShadowFrame frame;
+    ShadowPlanWorkspace workspace;
+    ShadowPlanner::plan(scene, camera, settingsOf(2), nullptr, {}, frame, workspace);
+    const uint32_t casters = frame.stats.shadowCasters;
+    stopFirstCaster(scene);
+    ShadowPlanner::plan(scene, camera, settingsOf(2), nullptr, {}, frame, workspace);
+    EXPECT_EQ(frame.stats.shadowCasters, casters - 1);
+}
