@@ -44,11 +44,7 @@ gpu_data::VirtualPageTableData packVirtualPageTable(const VirtualClipmapConfig& 
     data.keepFrames = keepFrames;
     data.capacity = capacity;
     data.entryCount = config.levelCount * data.pagesPerSide * data.pagesPerSide;
-    for (uint32_t level = 0; level < config.levelCount; ++level) {
-        const ClipmapLevel placed = placeClipmapLevel(config, level, lsCamera);
-        const glm::uvec2 slot = pageTableSlot(placed, placed.window.min);
-        data.levels[level] = {placed.window.min.x, placed.window.min.y, slot.x, slot.y};
-    }
+    packClipmapWindows(config, lsCamera, data.levels);
     return data;
 }
 

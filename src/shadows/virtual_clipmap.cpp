@@ -87,4 +87,14 @@ PageRect pagesTouchedByBounds(const ClipmapLevel& level, const Aabb& lsBounds) {
     return clipped.empty() ? PageRect{} : clipped;
 }
 
+void packClipmapWindows(const VirtualClipmapConfig& config, const glm::vec2& lsCamera,
+                        gpu_data::VirtualPageLevelWindow* levels) {
+    PENUMBRA_ASSERT(config.levelCount <= gpu_data::kVirtualPageMaxLevels);
+    for (uint32_t level = 0; level < config.levelCount; ++level) {
+        const ClipmapLevel placed = placeClipmapLevel(config, level, lsCamera);
+        const glm::uvec2 slot = pageTableSlot(placed, placed.window.min);
+        levels[level] = {placed.window.min.x, placed.window.min.y, slot.x, slot.y};
+    }
+}
+
 }  // namespace penumbra

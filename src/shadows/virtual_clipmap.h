@@ -21,6 +21,7 @@
 #include <glm/glm.hpp>
 
 #include "penumbra/scene.h"
+#include "virtual_page_structs.h"
 
 namespace penumbra {
 
@@ -81,5 +82,10 @@ std::optional<uint32_t> levelForReceiver(const VirtualClipmapConfig& config, con
 // The window's pages that light-space bounds (a caster's, x and y) touch: the pages to draw again
 // when that caster moves. Empty when the bounds miss the window.
 PageRect pagesTouchedByBounds(const ClipmapLevel& level, const Aabb& lsBounds);
+
+// Every level's window around lsCamera as the GPU reads it (the page table's and the lookup's data):
+// its first page and that page's slot, into levels[0 .. config.levelCount).
+void packClipmapWindows(const VirtualClipmapConfig& config, const glm::vec2& lsCamera,
+                        gpu_data::VirtualPageLevelWindow* levels);
 
 }  // namespace penumbra

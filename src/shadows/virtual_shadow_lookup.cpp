@@ -71,11 +71,7 @@ gpu_data::VirtualShadowLookupData packVirtualShadowLookup(const VirtualClipmapCo
     data.levelCount = config.levelCount;
     data.poolPagesPerSide = poolPagesPerSide;
     data.texelsPerMetre = float(config.resolution) / config.firstLevelSize;
-    for (uint32_t level = 0; level < config.levelCount; ++level) {
-        const ClipmapLevel placed = placeClipmapLevel(config, level, lsCamera);
-        const glm::uvec2 slot = pageTableSlot(placed, placed.window.min);
-        data.levels[level] = {placed.window.min.x, placed.window.min.y, slot.x, slot.y};
-    }
+    packClipmapWindows(config, lsCamera, data.levels);
     return data;
 }
 
