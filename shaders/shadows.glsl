@@ -11,6 +11,7 @@
 #include "shadow_bias.glsl"
 #include "shadow_pcss.glsl"
 #include "shadow_tent.glsl"
+#include "virtual_shadows.glsl"
 
 layout(set = kPassSet, binding = kLitBindingDirectionalShadows, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
 layout(set = kPassSet, binding = kLitBindingDirectionalAtlas) uniform sampler2DShadow directionalShadowAtlas;
@@ -131,6 +132,14 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
                                      directionalShadows.invDistanceFade, directionalShadows.squaredFadeScale,
                                      directionalShadows.squaredFadeBias);
     float strength = distanceFadeStrength(wsPosition, viewDepth, fade);
+    if (virtualShadows.enabled != 0u) {  // shadows.directional.mode = virtual: the light's virtual map, no cascades
+        DirectionalShadowLight light = directionalShadows.lights[shadowSlot];
+        strength *= light.strength;
+        if (strength <= 0.0) return ShadowSample(1.0, -1);
+        int level;
+        float shadow = sampleDirectionalVirtual(shadowSlot, light, directionalShadows.biasMode, receiver, viewDepth, level);
+        return ShadowSample(mix(1.0, shadow, strength), -1);
+    }
     CascadeChoice choice = selectDirectionalCascade(wsPosition, viewDepth);
     if (choice.cascade < 0) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
     int cascade = choice.cascade;

@@ -2,6 +2,7 @@
 // Copies the pages of the draw list from the pool's depth buffer (float bits, the compute rasterizer's
 // atomic-min target) into the pool's R32F image that later passes sample: one workgroup per listed page
 // (VirtualPageDrawHeader::pageDispatch), its physical page's texels only, so the other pages keep theirs.
+// The image may hold several maps' pools (render/virtual_page_storage.h): this one starts at row poolOriginY.
 #include "pass_bindings.h"
 #include "virtual_page_structs.h"
 #include "virtual_page_draw_structs.h"
@@ -24,7 +25,8 @@ void main() {
     uint side = constants.poolPagesPerSide * size;
     for (uint y = gl_LocalInvocationID.y; y < size; y += kVirtualPageCopyGroup)
         for (uint x = gl_LocalInvocationID.x; x < size; x += kVirtualPageCopyGroup) {
-            uvec2 texel = origin + uvec2(x, y);
-            imageStore(poolTexture, ivec2(texel), vec4(uintBitsToFloat(poolDepth[texel.y * side + texel.x])));
+            uvec2 texel = origin + uvec2(x, y);  // pool depth buffer texels
+            ivec2 target = ivec2(texel + uvec2(0u, constants.poolOriginY));  // pool texture texels
+            imageStore(poolTexture, target, vec4(uintBitsToFloat(poolDepth[texel.y * side + texel.x])));
         }
 }

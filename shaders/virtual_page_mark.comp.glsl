@@ -1,46 +1,14 @@
 #version 460
-// Virtual shadow map page marking (render/virtual_page_mark_pass.h): one invocation per pixel of the
-// main view's depth sets the request bit of every clipmap page its shadow lookup will read: the level
-// of its footprint (or the first coarser one whose window holds it) and the pages within the filter's
-// margin. The CPU reference, shadows/virtual_page_marking.cpp, does the same per pixel; the float
-// operations here follow it one for one. As in the published virtual shadow maps (Unreal Engine's
-// "Virtual Shadow Maps" documentation; Timberdoodle's, GPU Zen 3), the bits are set with atomic ORs
-// into a buffer the pass cleared first.
-#include "pass_bindings.h"
-#include "virtual_page_structs.h"
-#include "virtual_clipmap.glsl"
+// Virtual shadow map page marking (render/virtual_page_mark_pass.h) from the main view's depth texture:
+// one invocation per pixel sets the request bit of every clipmap page its shadow lookup will read
+// (virtual_page_mark.glsl).
+#include "virtual_page_mark.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = kPassSet, binding = kPageMarkBindingFrame, std140) uniform PageMarkBlock { VirtualPageMarkData mark; };
 layout(set = kPassSet, binding = kPageMarkBindingDepth) uniform sampler2D sceneDepth;
-layout(set = kPassSet, binding = kPageMarkBindingRequests, std430) buffer PageRequestBlock { uint requestWords[]; };
-
-void requestPage(uint level, uvec2 slot) {
-    const uint bit = virtualPageBit(level, mark.pagesPerSide, slot.x, slot.y);
-    const uint word = bit / 32u, mask = 1u << (bit % 32u);
-    if (word >= mark.requestWordCount || (requestWords[word] & mask) != 0u) return;  // most pixels find it set
-    atomicOr(requestWords[word], mask);
-}
 
 void main() {
     const uvec2 p = gl_GlobalInvocationID.xy;
     if (p.x >= mark.width || p.y >= mark.height) return;
-    const float depth = texelFetch(sceneDepth, ivec2(p), 0).r;
-    if (!(depth > 0.0)) return;  // reversed Z: 0 = nothing drawn
-    // Pixel centres, Vulkan NDC (y down): shadows/visible_surfaces.h's wsPositionFromDepth.
-    const float px = float(p.x) + 0.5, py = float(p.y) + 0.5;
-    const vec4 clip = vec4(2.0 * px / float(mark.width) - 1.0, 2.0 * py / float(mark.height) - 1.0, depth, 1.0);
-    const vec4 h = mark.worldFromClip * clip;
-    const vec3 wsPosition = h.xyz / h.w;
-    const float vsDepth = -(mark.viewFromWorld * vec4(wsPosition, 1.0)).z;
-    const vec2 lsPosition = (mark.lightFromWorld * vec4(wsPosition, 1.0)).xy;
-    const float wsFootprint = vsDepth * mark.wsFootprintPerDepth;
-
-    const ClipmapConfig config = ClipmapConfig(mark.resolution, mark.pagesPerSide, mark.levelCount, mark.firstLevelSize);
-    const int level = levelForReceiver(config, mark.lsCamera, lsPosition, wsFootprint, mark.marginTexels);
-    if (level < 0) return;  // outside the clipmap
-    const ClipmapLevel placed = placeClipmapLevel(config, uint(level), mark.lsCamera);
-    const PageRect pages = receiverPages(placed, lsPosition, mark.marginTexels);
-    for (int y = pages.minPage.y; y <= pages.maxPage.y; ++y)
-        for (int x = pages.minPage.x; x <= pages.maxPage.x; ++x) requestPage(uint(level), pageTableSlot(config, ivec2(x, y)));
+    markPixel(p, texelFetch(sceneDepth, ivec2(p), 0).r);
 }

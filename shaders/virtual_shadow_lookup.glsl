@@ -3,8 +3,11 @@
 // float and integer operations, so the GPU agrees with its CPU reference. Change both together.
 //
 // The includer supplies, before the include, its two reads of the page table and the pool:
-//   VirtualPageEntry virtualShadowEntry(uint entry);  // entry = (level * pagesPerSide + slotY) * pagesPerSide + slotX
-//   float virtualShadowPoolTexel(ivec2 poolTexel);    // the pool's stored depth (R32F, texelFetch)
+//   VirtualPageEntry virtualShadowEntry(uint record);  // record of the bound entry buffer: data.firstEntry +
+//                                                      // (level * pagesPerSide + slotY) * pagesPerSide + slotX
+//   float virtualShadowPoolTexel(ivec2 poolTexel);     // the pool texture's stored depth (R32F, texelFetch)
+// Several maps may share the entry buffer and the pool texture (render/virtual_page_storage.h): a map's
+// entries start at record data.firstEntry, its pool at pool texture texel (0, data.poolOriginY).
 //
 // The rules (shaders/shared/virtual_shadow_structs.h has the spaces):
 // - the level: levelForFootprint of the pixel's footprint, or the first coarser level whose page holding
@@ -55,7 +58,7 @@ int virtualShadowEntryIndex(VirtualShadowLookupData data, uint level, ivec2 page
 int virtualShadowReadyPage(VirtualShadowLookupData data, uint level, ivec2 page) {
     const int index = virtualShadowEntryIndex(data, level, page);
     if (index < 0) return -1;
-    const VirtualPageEntry entry = virtualShadowEntry(uint(index));
+    const VirtualPageEntry entry = virtualShadowEntry(data.firstEntry + uint(index));
     const bool ready = (entry.flags & (kVirtualPageResident | kVirtualPageDirty)) == kVirtualPageResident &&
                        entry.pageX == page.x && entry.pageY == page.y &&
                        entry.physicalPage < data.poolPagesPerSide * data.poolPagesPerSide;
@@ -71,8 +74,9 @@ bool virtualShadowTexelDepth(VirtualShadowLookupData data, uint level, ivec2 tex
         const ivec2 page = virtualShadowPageOfTexel(data, t);
         const int physical = virtualShadowReadyPage(data, coarser, page);
         if (physical < 0) continue;
-        const ivec2 origin = ivec2(physical % int(data.poolPagesPerSide), physical / int(data.poolPagesPerSide)) * int(data.pageSize);
-        depth = virtualShadowPoolTexel(origin + t - page * int(data.pageSize));
+        const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
+        const ivec2 origin = ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY));  // pool texture texels
+        depth = virtualShadowPoolTexel(origin + t - page * size);
         return true;
     }
     return false;

@@ -17,8 +17,9 @@ layout(set = kPassSet, binding = kShadowProbeBindingResults, std430) writeonly b
 };
 layout(push_constant) uniform ShadowProbeBlock { VirtualShadowProbeConstants constants; };
 
-VirtualPageEntry virtualShadowEntry(uint entry) {
-    if (entry < constants.entryCount) return entries[entry];
+// `record` counts from the bound buffer's start (the lookup adds its firstEntry): entryCount bounds it.
+VirtualPageEntry virtualShadowEntry(uint record) {
+    if (record < constants.entryCount) return entries[record];
     return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
 }
 

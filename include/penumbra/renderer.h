@@ -55,6 +55,20 @@ struct AtlasDrawStats {
     uint64_t triangles = 0;
 };
 
+// Virtual shadow map pages of one frame (shadows.directional.mode = virtual), summed over the
+// directional lights' maps; all 0 with cascades.
+struct VirtualPageCounts {
+    uint32_t maps = 0;        // directional lights with a virtual map
+    uint32_t requested = 0;   // pages the view's lookups read (the marking pass)
+    uint32_t cached = 0;      // requested pages already resident
+    uint32_t allocated = 0;   // requested pages given a physical page this frame
+    uint32_t drawn = 0;       // pages drawn this frame (new, or invalidated by a light or a caster)
+    uint32_t evicted = 0;     // resident pages freed (left the window, idle too long, or taken for another)
+    uint32_t overflowed = 0;  // requested pages that found no physical page: a coarser level served them
+    uint32_t resident = 0;    // resident pages after the frame
+    uint32_t poolPages = 0;   // physical pages of all the maps' pools
+};
+
 struct FrameStats {
     uint64_t frameIndex = 0;
     std::vector<PassTiming> gpuTimings;  // per pass, from timestamps (empty where the device has none)
@@ -87,6 +101,7 @@ struct FrameStats {
     double lightsPerClusterMean = 0.0;
     uint32_t lightsPerClusterMax = 0;
     std::vector<AtlasDrawStats> atlases;
+    VirtualPageCounts virtualPages;
     std::vector<std::string> warnings;
     // The shadow plan (lights reserved, tiles, casters and triangles per tile) as plain data; toJson()
     // writes it as --stats prints it.

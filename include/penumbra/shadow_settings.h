@@ -26,7 +26,12 @@ enum class CascadeSplitMode { Manual, Log, Practical };
 // Unity URP's, linear in the squared camera distance over the same band.
 enum class ShadowFadeMode { Linear, Squared };
 
+// How directional lights are shadowed: cascaded shadow maps in the atlas (Unity's system), or a
+// virtual shadow map per light (a clipmap of pages drawn on demand and cached across frames).
+enum class DirectionalShadowMode { Cascades, Virtual };
+
 struct DirectionalShadowSettings {
+    DirectionalShadowMode mode = DirectionalShadowMode::Cascades;
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF2x2;
     uint32_t cascadeCount = 4;
@@ -56,6 +61,20 @@ struct SpotShadowSettings {
     float depthBias = 0.0f;
 };
 
+// The virtual shadow maps (shadows.directional.mode = virtual): each directional light's clipmap of
+// `levelCount` levels of `resolution` virtual texels a side, level i firstLevelSize * 2^i metres wide, cut
+// into pages of pageSize texels; a pool of poolPages physical pages per light.
+struct VirtualShadowSettings {
+    uint32_t pageSize = 128;
+    uint32_t resolution = 16384;
+    uint32_t poolPages = 2048;  // rounded down to a square: 45^2 = 2025 pages
+    uint32_t levelCount = 16;
+    float firstLevelSize = 2.0f;  // scene units (metres) along level 0's side
+    float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint
+    bool cache = true;            // pages stay drawn across frames until invalidated
+    uint32_t keepFrames = 8;      // frames an unrequested page stays resident
+};
+
 struct ShadowSettings {
     ShadowBiasMode bias = ShadowBiasMode::ReceiverPlane;  // measured best (docs/fidelity.md)
     ShadowFadeMode fadeMode = ShadowFadeMode::Linear;
@@ -68,6 +87,7 @@ struct ShadowSettings {
     bool cacheTiles = true;
     DirectionalShadowSettings directional;
     SpotShadowSettings spot;
+    VirtualShadowSettings virtualMaps;  // the "shadows.virtual" keys
 };
 
 // Filter footprint in texels beyond the centre tap: PCF2x2 -> 0 ... PCF7x7 -> 3.
@@ -87,6 +107,7 @@ std::optional<CascadeSplitMode> parseCascadeSplitMode(const std::string& name);
 std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
 std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
 const char* shadowRasterName(ShadowRaster raster);
+const char* directionalShadowModeName(DirectionalShadowMode mode);
 std::optional<ShadowRaster> parseShadowRaster(const std::string& name);
 
 // Checks the ranges of settings_keys.h; throws Error naming the first bad key with its allowed range, e.g.

@@ -40,6 +40,10 @@ PENUMBRA_CONST(uint, kLitBindingDirectionalDepth, 12u)     // the directional at
 PENUMBRA_CONST(uint, kLitBindingOtherDepth, 13u)           // the spot/point atlas as raw depth (PCSS)
 PENUMBRA_CONST(uint, kLitBindingLightClusters, 14u)        // uniform LightClusterData (also the cluster pass)
 PENUMBRA_CONST(uint, kLitBindingClusterMasks, 15u)         // the mask words (also the cluster pass)
+// The directional lights' virtual shadow maps (virtual_shadows.glsl; shadows.directional.mode = virtual).
+PENUMBRA_CONST(uint, kLitBindingVirtualShadows, 22u)       // uniform VirtualDirectionalShadowData
+PENUMBRA_CONST(uint, kLitBindingVirtualPool, 23u)          // sampler2D, the lights' pools (R32F depth)
+PENUMBRA_CONST(uint, kLitBindingVirtualPages, 24u)         // VirtualPageEntry[], the lights' page tables
 
 // The light cluster pass (light_cluster.comp), beyond the lights (4) and clusters (14, 15) above.
 PENUMBRA_CONST(uint, kClusterBindingStats, 16u)  // LightClusterStats
@@ -104,6 +108,7 @@ PENUMBRA_CONST(uint, kSubsampleBindingDepths, 1u)  // float per output texel
 PENUMBRA_CONST(uint, kPageMarkBindingFrame, 0u)     // uniform VirtualPageMarkData
 PENUMBRA_CONST(uint, kPageMarkBindingDepth, 1u)     // sampler2D, the main view's depth
 PENUMBRA_CONST(uint, kPageMarkBindingRequests, 2u)  // the request bits (virtual_page_structs.h)
+PENUMBRA_CONST(uint, kPageMarkBindingVisibility, 3u)  // virtual_page_mark_visibility.comp: the visibility buffer
 
 // The virtual page table and physical page allocator (virtual_page_table.glsl, virtual_page_*.comp);
 // each of its shaders reads a subset (render/pass_layouts.cpp virtualPageTableBindings).

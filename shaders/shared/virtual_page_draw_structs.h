@@ -11,7 +11,8 @@
 //   every frame, so depths compare across pages and a cached page stays valid; casters nearer the light
 //   than lsDepthNear clamp to 0 (pancaking, as the cascades);
 // - its place: physical page p is the pageSize^2 texels at ((p % poolPagesPerSide), (p / poolPagesPerSide))
-//   * pageSize of the pool.
+//   * pageSize of the pool's depth buffer, and at that plus (0, poolOriginY) of the pool texture, which
+//   several maps may share (render/virtual_page_storage.h: each map's pool a square at its own rows).
 #ifndef PENUMBRA_VIRTUAL_PAGE_DRAW_STRUCTS_H
 #define PENUMBRA_VIRTUAL_PAGE_DRAW_STRUCTS_H
 #include "gpu_shared.h"
@@ -45,8 +46,8 @@ PENUMBRA_CHECK_LAYOUT(VirtualPageTilesConstants, instanceGroups, 96)
 struct VirtualPageCopyConstants {
     uint pageSize;
     uint poolPagesPerSide;
-    uint capacity;  // pages a draw list may hold here
-    uint reserved;
+    uint capacity;     // pages a draw list may hold here
+    uint poolOriginY;  // pool texture texels: the pool's page 0 lies at (0, poolOriginY) (a shared texture)
 };
 PENUMBRA_CHECK_SIZE(VirtualPageCopyConstants, 16)
 

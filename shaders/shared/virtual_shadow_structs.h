@@ -30,8 +30,8 @@ struct VirtualShadowLookupData {
     uint levelCount;
     uint poolPagesPerSide;        // physical page p lies at (p % poolPagesPerSide, p / poolPagesPerSide) * pageSize
     float texelsPerMetre;         // level 0's virtual texels per light-space metre: resolution / firstLevelSize
-    uint reserved0;
-    uint reserved1;
+    uint poolOriginY;             // pool texture texels: this map's pool starts at row poolOriginY, column 0
+    uint firstEntry;              // this map's entry e is record firstEntry + e of the bound entry buffer
     uint reserved2;
     VirtualPageLevelWindow levels[kVirtualPageMaxLevels];
 };
@@ -39,6 +39,8 @@ PENUMBRA_CHECK_SIZE(VirtualShadowLookupData, 112 + 16 * 16)
 PENUMBRA_CHECK_LAYOUT(VirtualShadowLookupData, lsDepthNear, 64)
 PENUMBRA_CHECK_LAYOUT(VirtualShadowLookupData, pagesPerSide, 80)
 PENUMBRA_CHECK_LAYOUT(VirtualShadowLookupData, texelsPerMetre, 96)
+PENUMBRA_CHECK_LAYOUT(VirtualShadowLookupData, poolOriginY, 100)
+PENUMBRA_CHECK_LAYOUT(VirtualShadowLookupData, firstEntry, 104)
 PENUMBRA_CHECK_LAYOUT(VirtualShadowLookupData, levels, 112)
 
 // A point virtual_shadow_probe.comp evaluates: a receiver (its biases applied) and its pixel footprint.
@@ -60,7 +62,7 @@ PENUMBRA_CHECK_SIZE(VirtualShadowProbeResult, 16)
 // Push constants of virtual_shadow_probe.comp.
 struct VirtualShadowProbeConstants {
     uint pointCount;
-    uint entryCount;  // VirtualPageEntry records bound (levelCount * pagesPerSide^2)
+    uint entryCount;  // VirtualPageEntry records bound (at least the lookup's firstEntry + levelCount * pagesPerSide^2)
     uint reserved0;
     uint reserved1;
 };

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/bench_motion.h"
 #include "app/bench_variations.h"
 #include "app/commands.h"
 #include "penumbra/files.h"
@@ -46,11 +47,11 @@ double hostRssMegabytes() {
     return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
-// --camera orbit: the scene's camera turned about the vertical axis through the scene's centre, a
-// quarter degree more every frame, so the shadow plan (cascade spheres, culling) changes every frame.
-CameraView benchCamera(const Scene& scene, const CameraView& start, const std::string& mode, uint64_t frame) {
+// --camera orbit: the scene's camera turned about the vertical axis through `pivot`, the scene's
+// centre (taken once: --move-objects widens the scene's bounds), a quarter degree more every frame,
+// so the shadow plan (cascade spheres, culling) changes every frame.
+CameraView benchCamera(const glm::vec3& pivot, const CameraView& start, const std::string& mode, uint64_t frame) {
     if (mode != "orbit") return start;
-    const glm::vec3 pivot = scene.wsBounds.valid() ? scene.wsBounds.center() : glm::vec3(0.0f);
     const glm::mat4 turn = glm::translate(glm::mat4(1.0f), pivot) *
                            glm::rotate(glm::mat4(1.0f), glm::radians(0.25f * float(frame)), glm::vec3(0, 1, 0)) *
                            glm::translate(glm::mat4(1.0f), -pivot);
@@ -114,6 +115,9 @@ struct Measurements {
     Series shadowMeshletsOutside, viewMeshletsOutside, viewMeshletsFacingAway;  // render.meshletCulling
     uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
+    // Virtual shadow map pages per frame (shadows.directional.mode = virtual).
+    Series pagesRequested, pagesCached, pagesAllocated, pagesDrawn, pagesEvicted, pagesOverflowed, pagesResident;
+    uint32_t virtualMaps = 0, poolPages = 0;  // of the last timed frame
     double lightsPerClusterMean = 0.0;  // of the last timed frame
     uint32_t lightsPerClusterMax = 0;
     void add(const FrameStats& stats) {
@@ -129,6 +133,16 @@ struct Measurements {
         atlases = stats.atlases;
         tilesRendered.values.push_back(stats.tilesRendered);
         tilesReused.values.push_back(stats.tilesReused);
+        const VirtualPageCounts& pages = stats.virtualPages;
+        pagesRequested.values.push_back(pages.requested);
+        pagesCached.values.push_back(pages.cached);
+        pagesAllocated.values.push_back(pages.allocated);
+        pagesDrawn.values.push_back(pages.drawn);
+        pagesEvicted.values.push_back(pages.evicted);
+        pagesOverflowed.values.push_back(pages.overflowed);
+        pagesResident.values.push_back(pages.resident);
+        virtualMaps = pages.maps;
+        poolPages = pages.poolPages;
         raster = stats.shadowRaster;
         rasterLarge = stats.rasterLargeTriangles;
         rasterChunks = stats.rasterChunks;
@@ -161,17 +175,36 @@ struct TimedRun {
     std::vector<MemorySample> samples;  // --vary-settings: one per period
     DeviceObjectCounts before, after;
     double rssFirst = 0.0, rssLast = 0.0, deviceFirst = 0.0, deviceLast = 0.0;
+    uint32_t turnedLights = 0, movedInstances = 0;  // --light-motion, --move-objects: every frame
 };
 
+// The frame loops' fixed inputs.
+struct FrameLoop {
+    const RenderRequest& request;
+    const CameraView& start;
+    glm::vec3 pivot{0.0f};  // of --camera orbit
+    BenchMotion& motion;
+};
+
+// Submits frame `frame` (counted from the first warm-up frame): the lights and instances of
+// --light-motion and --move-objects set first, then the camera of --camera.
+void submitBenchFrame(Renderer& renderer, const BenchOptions& bench, const FrameLoop& loop, const Settings& settings,
+                      uint64_t frame) {
+    loop.motion.apply(renderer, frame);
+    renderer.submitFrame(loop.request, settings, benchCamera(loop.pivot, loop.start, bench.camera, frame), nullptr);
+}
+
 // The timed frames; with --vary-settings the settings and shadowed lights change every period.
-TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& bench, const RenderRequest& request,
-                        const Settings& settings, const CameraView& start, uint64_t& frame) {
+TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& bench, const FrameLoop& loop,
+                        const Settings& settings, uint64_t& frame) {
     const Scene& scene = renderer.scene();
     const std::vector<Light> originalLights = scene.lights;
     TimedRun run;
     run.before = device.liveObjects();
     run.rssFirst = hostRssMegabytes();
     run.deviceFirst = deviceMegabytes(device);
+    run.turnedLights = loop.motion.turnedLights();
+    run.movedInstances = loop.motion.movedInstances();
     Settings current = settings;
     uint32_t step = 0, shadowedLights = 0;
     ProgressBar progress(bench.frames);
@@ -182,7 +215,7 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
             current = variedSettings(settings, benchVariations()[step]);
             shadowedLights = applyShadowedLights(renderer, originalLights, benchVariations()[step].shadowedLightShare);
         }
-        renderer.submitFrame(request, current, benchCamera(scene, start, bench.camera, frame++), nullptr);
+        submitBenchFrame(renderer, bench, loop, current, frame++);
         renderer.takeCompletedFrames(finished);  // exchanges elements with the renderer: no allocation once warm
         for (const FrameStats& stats : finished) {
             run.measured.add(stats);
@@ -211,6 +244,8 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     json["frames"] = bench.frames;
     json["warmup"] = bench.warmup;
     json["camera"] = bench.camera;
+    json["lightMotion"] = {{"degreesPerFrame", bench.lightMotion}, {"lights", run.turnedLights}};
+    json["moveObjects"] = {{"fraction", bench.moveObjects}, {"moved", run.movedInstances}};
     json["scene"] = {{"source", options.scenePath.empty() ? "demo" : options.scenePath},
                      {"triangles", sceneTotals(scene).triangles},
                      {"instances", scene.instances.size()},
@@ -232,7 +267,19 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     json["allocationsAfterWarmup"] = {{"gpuObjects", run.after.objectsCreated - run.before.objectsCreated},
                                       {"vkAllocateMemory", run.after.memoryAllocations - run.before.memoryAllocations}};
     json["validationMessages"] = device.validationMessageCount();
-    json["tiles"] = {{"rendered", measured.tilesRendered.median()}, {"reused", measured.tilesReused.median()}};
+    json["tiles"] = {{"rendered", measured.tilesRendered.median()},
+                     {"reused", measured.tilesReused.median()},
+                     {"renderedMin", measured.tilesRendered.minimum()}};
+    json["virtualPages"] = {{"maps", measured.virtualMaps},
+                            {"poolPages", measured.poolPages},
+                            {"requested", measured.pagesRequested.median()},
+                            {"cached", measured.pagesCached.median()},
+                            {"allocated", measured.pagesAllocated.median()},
+                            {"drawn", measured.pagesDrawn.median()},
+                            {"drawnMax", measured.pagesDrawn.percentile(1.0)},
+                            {"evicted", measured.pagesEvicted.median()},
+                            {"overflowed", measured.pagesOverflowed.percentile(1.0)},
+                            {"resident", measured.pagesResident.median()}};
     json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice},
                             {"largePieces", measured.rasterLarge}, {"chunks", measured.rasterChunks},
                             {"dropped", measured.rasterDropped}};
@@ -254,10 +301,17 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                  const RenderRequest& request, const Scene& scene, const TimedRun& run) {
     const Measurements& measured = run.measured;
     std::printf("device: %s (%s)\n", device.info().name.c_str(), device.info().driver.c_str());
-    std::printf("scene: %s, %llu triangles, %zu instances, %zu lights; %ux%u, %u frames after %u warm-up, camera %s\n",
+    std::printf("scene: %s, %llu triangles, %zu instances, %zu lights; %ux%u, %u frames after %u warm-up, camera %s",
                 options.scenePath.empty() ? "demo" : options.scenePath.c_str(),
                 (unsigned long long)sceneTotals(scene).triangles, scene.instances.size(), scene.lights.size(),
                 request.width, request.height, bench.frames, bench.warmup, bench.camera.c_str());
+    if (bench.lightMotion > 0.0)
+        std::printf(", light motion %g deg/frame (%u directional light%s)", bench.lightMotion, run.turnedLights,
+                    run.turnedLights == 1 ? "" : "s");
+    if (bench.moveObjects > 0.0)
+        std::printf(", move objects %g (%u of %zu instances per frame)", bench.moveObjects, run.movedInstances,
+                    scene.instances.size());
+    std::printf("\n");
     std::printf("%-28s %10s %10s %10s\n", "", "median ms", "p95 ms", "min ms");
     double gpuTotal = 0.0;
     for (const auto& [name, series] : measured.passes) {
@@ -286,6 +340,12 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                 measured.viewMeshletsFacingAway.median());
     std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
                 measured.tilesReused.median());
+    if (measured.virtualMaps > 0)
+        std::printf("virtual pages per frame (median, %u maps, pool %u pages): %.0f requested, %.0f cached, %.0f allocated, "
+                    "%.0f drawn (most %.0f), %.0f evicted, %.0f resident; overflowed at most %.0f\n",
+                    measured.virtualMaps, measured.poolPages, measured.pagesRequested.median(), measured.pagesCached.median(),
+                    measured.pagesAllocated.median(), measured.pagesDrawn.median(), measured.pagesDrawn.percentile(1.0),
+                    measured.pagesEvicted.median(), measured.pagesResident.median(), measured.pagesOverflowed.percentile(1.0));
     std::printf("spot/point lights per cluster: %.2f mean, %u most\n", measured.lightsPerClusterMean,
                 measured.lightsPerClusterMax);
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,
@@ -323,14 +383,15 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     request.readback = false;
     const CameraView start = resolveCameraView(scene, request.width, request.height);
     const Settings settings = withSceneDefaults(userSettings, scene, start);
+    BenchMotion motion(scene, bench.lightMotion, bench.moveObjects);
+    const FrameLoop loop{request, start, scene.wsBounds.valid() ? scene.wsBounds.center() : glm::vec3(0.0f), motion};
 
     uint64_t frame = 0;
-    for (uint32_t i = 0; i < bench.warmup; ++i)
-        renderer.submitFrame(request, settings, benchCamera(scene, start, bench.camera, frame++), nullptr);
+    for (uint32_t i = 0; i < bench.warmup; ++i) submitBenchFrame(renderer, bench, loop, settings, frame++);
     if (varies) renderer.buildAllPipelines();  // the timed frames use the specialized variants
     renderer.waitIdle();
     renderer.takeCompletedFrames();
-    const TimedRun run = runTimedFrames(device, renderer, bench, request, settings, start, frame);
+    const TimedRun run = runTimedFrames(device, renderer, bench, loop, settings, frame);
     for (const std::string& warning : run.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());
     printReport(device, options, bench, request, scene, run);
     if (!bench.jsonPath.empty()) {

@@ -1,8 +1,11 @@
 #include "app/cli.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -56,6 +59,22 @@ void addRenderOptions(CLI::App& command, RenderOptions& options) {
     command.add_option("--light", options.light, "light index (in the KHR_lights_punctual array) for AOVs and comparisons");
 }
 
+// A number from `low` to `high`, both included; CLI::Range lets "nan" through, this does not.
+CLI::Validator numberIn(double low, double high) {
+    char range[64];
+    std::snprintf(range, sizeof range, "%g to %g", low, high);
+    return CLI::Validator(
+        [low, high, limits = std::string(range)](std::string& input) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(input.c_str(), &end);
+            if (!input.empty() && end == input.c_str() + input.size() && std::isfinite(value) && value >= low &&
+                value <= high)
+                return {};
+            return input + " is not a number from " + limits;
+        },
+        std::string("NUMBER in ") + range);
+}
+
 }  // namespace
 
 int runCli(int argc, char** argv) {
@@ -104,6 +123,12 @@ int runCli(int argc, char** argv) {
                     "long run: change atlas sizes, cascades, filters and the shadowed lights every --vary-every frames");
     bench->add_option("--vary-every", benchSettings.varyEvery, "frames between changes of --vary-settings (default 100)")
         ->check(CLI::Range(1u, 1000000u));
+    bench->add_option("--light-motion", benchSettings.lightMotion,
+                      "turn every directional light by DEGREES per frame about +Y, 0..180 (default 0: still)")
+        ->check(numberIn(0.0, 180.0));
+    bench->add_option("--move-objects", benchSettings.moveObjects,
+                      "move this fraction of the instances every frame, 0..1 (default 0: none)")
+        ->check(numberIn(0.0, 1.0));
 
     RenderOptions exportOptions;
     CLI::App* exporter = app.add_subcommand("export", "write a scene (file, demo or gen:) as glTF 2.0 (.gltf or .glb)");

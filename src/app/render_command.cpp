@@ -108,6 +108,10 @@ std::string statsJson(const RenderResult& result, const Device& device, const Re
                                 {"viewFacingAway", result.stats.viewMeshletsFacingAway}};
     stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
     stats["lightsPerCluster"] = {{"mean", result.stats.lightsPerClusterMean}, {"max", result.stats.lightsPerClusterMax}};
+    const VirtualPageCounts& pages = result.stats.virtualPages;
+    stats["virtualPages"] = {{"maps", pages.maps},           {"requested", pages.requested}, {"cached", pages.cached},
+                             {"allocated", pages.allocated}, {"drawn", pages.drawn},         {"evicted", pages.evicted},
+                             {"overflowed", pages.overflowed}, {"resident", pages.resident}, {"poolPages", pages.poolPages}};
     return stats.dump(2);
 }
 

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "cull_structs.h"
 #include "light_cluster_structs.h"
+#include "virtual_page_structs.h"
 #include "render/shadow_stats_json.h"
 
 namespace penumbra {
@@ -87,6 +88,26 @@ void applyLightClusters(FrameStats& stats, const FrameReadbackLayout& layout, co
     stats.lightsPerClusterMax = counts.mostLightsInACluster;
 }
 
+// The maps' page counts, summed; maps and poolPages were set when the frame was recorded.
+void applyVirtualPages(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback) {
+    VirtualPageCounts& pages = stats.virtualPages;
+    for (uint64_t offset : layout.virtualPages) {
+        gpu_data::VirtualPageStats counts{};
+        if (!readPiece(readback, offset, &counts)) continue;
+        pages.requested += counts.requested;
+        pages.cached += counts.cached;
+        pages.allocated += counts.allocated;
+        pages.drawn += counts.toDraw;
+        pages.evicted += counts.evicted;
+        pages.overflowed += counts.overflowed;
+        pages.resident += counts.resident;
+    }
+    if (pages.overflowed > 0)
+        stats.warnings.push_back("virtual shadow maps: " + std::to_string(pages.overflowed) +
+                                 " requested pages found no free physical page (raise shadows.virtual.poolPages); a "
+                                 "coarser level served them");
+}
+
 }  // namespace
 
 void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
@@ -95,6 +116,7 @@ void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameR
     applyRasterCounters(stats, layout, readback, rasterNeeded);
     applyViewCulling(stats, layout, readback);
     applyLightClusters(stats, layout, readback);
+    applyVirtualPages(stats, layout, readback);
 }
 
 double timedMilliseconds(const FrameStats& stats, std::initializer_list<const char*> names) {

@@ -22,6 +22,7 @@ struct FrameReadbackLayout {
     uint64_t viewLists = kAbsent;                       // 2 CullTileStats: the main view's early and late lists
     uint64_t viewMeshlets = kAbsent;                    // uvec4: visibility-buffer meshlets outside, facing away
     uint64_t lightClusters = kAbsent;                   // LightClusterStats
+    uint64_t virtualPages[4] = {kAbsent, kAbsent, kAbsent, kAbsent};  // VirtualPageStats per directional map
 };
 
 // The `bytes` bytes at `offset` in a frame's readback; null where the piece is absent. A piece beyond
@@ -30,7 +31,8 @@ const uint8_t* readbackPiece(const std::vector<uint8_t>& readback, uint64_t offs
 
 // Fills `stats` from the pieces `layout` names: casters and triangles per atlas and the shadow stats JSON
 // (from the plan, with the GPU's counts where they came back), the compute rasterizer's counters (and a
-// warning when its queues overflowed), the main view's culling and the light clusters' counts.
+// warning when its queues overflowed), the main view's culling, the light clusters' counts and the
+// virtual shadow maps' pages (a warning when a pool overflowed).
 // `rasterNeeded` grows to the most large pieces (x) and chunks (y) one atlas pass asked for.
 void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
                         const std::vector<uint8_t>& readback, glm::uvec2& rasterNeeded);

@@ -23,8 +23,8 @@ void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene,
     scene.addSceneReads(uses, compute ? Usage::ComputeRead : Usage::GraphicsRead);
     for (gpu::TextureHandle texture : inputs.sampled)
         uses.push_back(gpu::use(texture, compute ? Usage::ComputeSampled : Usage::FragmentSampled));
-    if (inputs.clusterMasks)
-        uses.push_back(gpu::use(inputs.clusterMasks, compute ? Usage::ComputeRead : Usage::GraphicsRead));
+    for (gpu::BufferHandle buffer : {inputs.clusterMasks, inputs.virtualPages})
+        if (buffer) uses.push_back(gpu::use(buffer, compute ? Usage::ComputeRead : Usage::GraphicsRead));
 }
 
 MainPass::~MainPass() {

@@ -17,6 +17,14 @@ constexpr gpu::DescriptorType kStorage = gpu::DescriptorType::StorageBuffer;
 constexpr gpu::DescriptorType kSampled = gpu::DescriptorType::SampledTexture;
 constexpr uint32_t kV = gpu::kStageVertex, kF = gpu::kStageFragment, kC = gpu::kStageCompute;
 
+// The directional lights' virtual shadow maps (virtual_shadows.glsl), read wherever shadows.glsl's
+// directionalShadow is.
+void appendVirtualShadows(std::vector<BindingDesc>& bindings, uint32_t stage) {
+    bindings.insert(bindings.end(), {{"VirtualShadowBlock", kLitBindingVirtualShadows, kUniform, stage},
+                                     {"virtualShadowPool", kLitBindingVirtualPool, kSampled, stage},
+                                     {"VirtualPageBlock", kLitBindingVirtualPages, kStorage, stage}});
+}
+
 // What shade_surface.glsl reads beyond the scene: lights, shadows, clusters (all in one stage).
 void appendLighting(std::vector<BindingDesc>& bindings, uint32_t stage) {
     bindings.insert(bindings.end(), {{"LightBlock", kSceneBindingLights, kStorage, stage},
@@ -29,6 +37,7 @@ void appendLighting(std::vector<BindingDesc>& bindings, uint32_t stage) {
                                      {"otherShadowDepth", kLitBindingOtherDepth, kSampled, stage},
                                      {"LightClusterBlock", kLitBindingLightClusters, kUniform, stage},
                                      {"ClusterMaskBlock", kLitBindingClusterMasks, kStorage, stage}});
+    appendVirtualShadows(bindings, stage);
 }
 
 // raster_mesh.glsl's buffers, shared by both compute rasterizers.
@@ -73,12 +82,14 @@ std::vector<BindingDesc> shadowCasterBindings() {
 }
 
 std::vector<BindingDesc> screenSpaceShadowBindings() {
-    return {{"FrameBlock", kSceneBindingFrame, kUniform, kF},
+    std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, kF},
             {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, kF},
             {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, kF},
             {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, kF},
             {"sceneDepth", kScreenShadowBindingSceneDepth, kSampled, kF},
             {"sceneNormals", kScreenShadowBindingSceneNormals, kSampled, kF}};
+    appendVirtualShadows(bindings, kF);
+    return bindings;
 }
 
 std::vector<BindingDesc> shadowCullBindings() {
@@ -160,6 +171,12 @@ std::vector<BindingDesc> depthSubsampleBindings() {
 std::vector<BindingDesc> virtualPageMarkBindings() {
     return {{"PageMarkBlock", kPageMarkBindingFrame, kUniform, kC},
             {"sceneDepth", kPageMarkBindingDepth, kSampled, kC},
+            {"PageRequestBlock", kPageMarkBindingRequests, kStorage, kC}};
+}
+
+std::vector<BindingDesc> virtualPageMarkVisibilityBindings() {
+    return {{"PageMarkBlock", kPageMarkBindingFrame, kUniform, kC},
+            {"PageMarkVisibilityBlock", kPageMarkBindingVisibility, kStorage, kC},
             {"PageRequestBlock", kPageMarkBindingRequests, kStorage, kC}};
 }
 

@@ -16,7 +16,8 @@ Renderer::State::State(gpu::Device& d, Scene s, const RendererOptions& o)
     : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
       mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
       visiblePass(d, gpuScene, mainPass),
-      computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name),
+      computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), virtualShadows(d, gpuScene, computeRaster),
+      lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name),
       mainViewChoice(d.hasTimestamps(), d.info().name, {"forward", "visibility", "main view"}), targets(d) {
     try {
         // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
@@ -110,7 +111,10 @@ Renderer::~Renderer() {
 const Scene& Renderer::scene() const { return state_->scene; }
 
 void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
+    const bool exists = instance < state_->scene.instances.size();
+    if (exists) state_->virtualShadows.casterChanged(state_->scene.instances[instance].wsBounds);  // where it was
     setInstanceWorldTransform(state_->scene, instance, worldFromObject);
+    state_->virtualShadows.casterChanged(state_->scene.instances[instance].wsBounds);  // and is now
     ++state_->sceneVersion;
     state_->gpuScene.instanceChanged(instance);
 }
@@ -120,6 +124,7 @@ void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
         throw Error("instance " + std::to_string(instance) + " does not exist (the scene has " +
                     std::to_string(state_->scene.instances.size()) + ")");
     state_->scene.instances[instance].castShadows = castShadows;
+    state_->virtualShadows.casterChanged(state_->scene.instances[instance].wsBounds);
     state_->gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
     ++state_->sceneVersion;
 }
@@ -129,6 +134,7 @@ void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state
 void Renderer::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(state_->scene, material, value);
     state_->gpuScene.materialChanged(material);
+    state_->virtualShadows.invalidateAll();  // its casters' cut-outs or cast flag may differ
     ++state_->sceneVersion;
 }
 

@@ -62,7 +62,7 @@ std::optional<VisibleSurfaces> Renderer::State::tightFitSurfacesNow(const Settin
                                                                    bool oneShot) {
     // The tight cascade fit's depth reduction (fit = tight): this view's, waited for, when the
     // caller waits anyway or nothing earlier matches; else the latest finished frame's (none here).
-    if (settings.shadows.directional.fit != CascadeFit::Tight) return std::nullopt;
+    if (settings.shadows.directional.fit != CascadeFit::Tight || virtualDirectional(settings)) return std::nullopt;
     if (!oneShot && latestVisible && latestVisibleSize == glm::uvec2(view.width, view.height)) return std::nullopt;
     return visiblePass.now(scene, view);
 }
@@ -72,7 +72,8 @@ void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings,
     PlanOptions planOptions;
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
     planOptions.sceneVersion = sceneVersion + 1;  // the casters and receivers change only with it (never 0)
-    const bool tight = settings.shadows.directional.fit == CascadeFit::Tight;
+    // Virtual shadow maps fit no cascades: they plan with no visible surfaces.
+    const bool tight = settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(settings);
     const VisibleSurfaces* planVisible = !tight ? nullptr : visibleNow ? &*visibleNow : &*latestVisible;
     ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions, frame.plan, planWorkspace);
 }
@@ -97,6 +98,10 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     const ShadowFrame& plan = recording.frame.plan;
     recording.stage = "frame data upload";
     recording.screenSpace = settings.shadows.screenSpace && !plan.directional.lights.empty();
+    // Shadow AOV: 1 (lit) where no geometry is; cascades: black; colour: black under the background.
+    const float clear = request.output == OutputMode::ShadowAov ? 1.0f : 0.0f;
+    std::fill(recording.clearColor, recording.clearColor + 3, clear);
+    recording.clearColor[3] = 1.0f;
     const gpu_data::FrameData frameData = makeFrameData(recording.view, lights, request, settings, recording.screenSpace);
     recording.frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
     recording.lightSlice =
@@ -217,15 +222,11 @@ MainPassInputs& Renderer::State::recordLightingInputs(FrameRecording& recording)
     // The same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
     inputs.writes.push_back({kLitBindingDirectionalDepth, {}, targets.directionalAtlas, pointSampler});
     inputs.writes.push_back({kLitBindingOtherDepth, {}, targets.otherAtlas, pointSampler});
+    inputs.sampled = {targets.directionalAtlas, targets.otherAtlas, noScreenShadows};
+    virtualShadows.appendLitInputs(inputs, pointSampler);  // its pool goes before noScreenShadows
     inputs.writes.push_back({kLitBindingScreenSpaceShadows, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
     // noScreenShadows is never written: shaders read its binding only with shadows.screenSpace on.
-    inputs.sampled = {targets.directionalAtlas, targets.otherAtlas, noScreenShadows};
     inputs.clusterMasks = lightClusters.masks();
-    recording.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
-    if (recording.screenSpace) {
-        inputs.writes.back().texture = screenSpacePass.record(commands, scene, recording.view, inputs, 0);
-        inputs.sampled.back() = inputs.writes.back().texture;
-    }
     return inputs;
 }
 
@@ -245,25 +246,16 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     main.height = view.height;
     main.variant = litPass;
     main.genericSpecialization = genericLitSpecialization();
-    // Shadow AOV: 1 (lit) where no geometry is; cascades: black; colour: black under the background.
-    const float clear = request.output == OutputMode::ShadowAov ? 1.0f : 0.0f;
-    std::fill(main.clearColor, main.clearColor + 3, clear);
-    main.clearColor[3] = 1.0f;
+    std::copy(recording.clearColor, recording.clearColor + 4, main.clearColor);
     main.background = request.output == OutputMode::Color && render.background == Background::Gradient;
     main.opaqueDone = false;
     main.passName = MainPass::Target{}.passName;
     if (frame.visibilityView) {
-        VisibilityPass::Target& opaque = opaqueTarget;
-        opaque.color = targets.color;
-        opaque.depth = targets.depth;
-        opaque.colorFormat = recording.sizes.colorFormat;
-        opaque.width = view.width;
-        opaque.height = view.height;
-        opaque.specialization = main.variant.specialization;
-        std::copy(main.clearColor, main.clearColor + 4, opaque.clearColor);
+        const VisibilityPass::Target& opaque = opaqueTargetFor(recording, litPass);
         // Leaves both targets in their target states.
-        visibility->record(commands, inputs, opaque, culling, recording.cullSlice, render.viewCulling,
-                           render.meshletCulling);
+        if (recording.viewGeometryDone) visibility->recordShading(commands, inputs, opaque);
+        else visibility->record(commands, inputs, opaque, culling, recording.cullSlice, render.viewCulling,
+                                render.meshletCulling);
         main.opaqueDone = true;
         frame.stats.viewInstances = gpuScene.viewInstanceCount(scene);
         frame.readback.viewLists = device.readBackAtFrameEnd(commands, culling.viewStats());
@@ -271,7 +263,8 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     }
     mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
-    if (recording.settings.shadows.directional.fit == CascadeFit::Tight && !oneShot) {
+    if (recording.settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(recording.settings) &&
+        !oneShot) {
         frame.readback.visibleSurfaces = visiblePass.recordSubsample(commands, targets.depth, view);
         frame.view = view;
     }
@@ -354,6 +347,10 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
 
+    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), settings.render.meshletCulling,
+                              view, stats.warnings);
+    stats.virtualPages.maps = virtualShadows.active() ? std::min(virtualShadows.mapCount(), uint32_t(plan.directional.lights.size())) : 0u;
+    stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
     const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
     try {
         targets.ensure(sizes);
@@ -386,6 +383,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
         phase.restart();
         recordShadowAtlases(recording, draw);
         MainPassInputs& inputs = recordLightingInputs(recording);
+        recordDirectionalInputs(recording, inputs, *litPass);
         recordMainView(recording, request, inputs, *litPass, oneShot);
         gpu::ExternalTarget sync = recordOutputs(recording, target, readback, captureAtlas);
         stats.cpu.record = phase.milliseconds();

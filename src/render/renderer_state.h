@@ -21,6 +21,7 @@
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_culling_pass.h"
 #include "render/tile_cache.h"
+#include "render/virtual_shadows.h"
 #include "render/visibility_pass.h"
 #include "render/visible_surface_pass.h"
 #include "shadows/cull_packing.h"
@@ -66,7 +67,15 @@ struct FrameRecording {
     gpu::BufferSlice rasterListSlices[2];  // each atlas pass's raster list (RasterTileUpload)
     bool clustered = false;    // the spot/point lights go through the light clusters
     bool screenSpace = false;  // URP's screen-space resolve of the directional shadows
+    bool viewGeometryDone = false;  // the visibility buffer's geometry is recorded: the main view only shades
+    gpu::TextureHandle prepassDepth;  // the depth prepass's depth, when this frame recorded one
+    float clearColor[4] = {0, 0, 0, 1};  // the main view's: 1 (lit) for the shadow AOV, else black
 };
+
+// Whether directional lights use virtual shadow maps (shadows.directional.mode = virtual).
+inline bool virtualDirectional(const Settings& settings) {
+    return settings.shadows.directional.mode == DirectionalShadowMode::Virtual;
+}
 
 // The shadow tiles a frame draws (indices into the plan's tiles of each atlas), the rest cached.
 struct TilesToDraw {
@@ -85,6 +94,7 @@ struct Renderer::State {
     ScreenSpaceShadowPass screenSpacePass;
     VisibleSurfacePass visiblePass;
     ComputeRasterPass computeRaster;
+    VirtualShadows virtualShadows;  // shadows.directional.mode = virtual (draws with computeRaster)
     ComputeRasterPass::AtlasTiles atlasTilesScratch;  // recordShadowAtlases: the tiles an atlas pass draws
     LightClusterPass lightClusters;
     RasterChoice rasterChoice;
@@ -152,6 +162,12 @@ private:
     const TilesToDraw& chooseTilesToDraw(FrameRecording& recording);
     void recordShadowAtlases(FrameRecording& recording, const TilesToDraw& draw);
     MainPassInputs& recordLightingInputs(FrameRecording& recording);
+    // The view's depth before anything shades, the virtual shadow maps' pages from it (virtual mode),
+    // then the screen-space resolve (shadows.screenSpace). renderer_virtual.cpp.
+    void recordDirectionalInputs(FrameRecording& recording, MainPassInputs& inputs, const MainPassVariant& litPass);
+    void recordScreenSpaceShadows(FrameRecording& recording, MainPassInputs& inputs);
+    // The visibility buffer's targets and constants for this frame (opaqueTarget, refilled).
+    const VisibilityPass::Target& opaqueTargetFor(const FrameRecording& recording, const MainPassVariant& litPass);
     void recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,
                         const MainPassVariant& litPass, bool oneShot);
     gpu::ExternalTarget recordOutputs(FrameRecording& recording, const ExternalImage* target, bool readback,

@@ -1,5 +1,6 @@
 #include "render/screen_space_shadow_pass.h"
 
+#include "core/error.h"
 #include "pass_bindings.h"
 #include "render/pass_layouts.h"
 
@@ -18,6 +19,8 @@ ScreenSpaceShadowPass::ScreenSpaceShadowPass(gpu::Device& device, MainPass& main
     desc.debugName = "screen-space shadow resolve";
     resolve_ = device_.createGraphicsPipeline(desc);
     pointSampler_ = device_.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
+    prepass_.passName = "depthPrepass";
+    prepass_.variant = prepassVariant();
 }
 
 ScreenSpaceShadowPass::~ScreenSpaceShadowPass() {
@@ -55,22 +58,32 @@ void ScreenSpaceShadowPass::releaseTargets() {
 
 gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                                                  const MainPassInputs& inputs, uint32_t mainLightSlot) {
+    recordPrepass(commands, scene, view, inputs);
+    return recordResolve(commands, view, inputs, mainLightSlot);
+}
+
+gpu::TextureHandle ScreenSpaceShadowPass::recordPrepass(gpu::CommandList& commands, const Scene& scene,
+                                                        const CameraView& view, const MainPassInputs& inputs) {
     ensureTargets(view.width, view.height);
     commands.beginTimer("depthPrepass");
-    MainPass::Target prepass;
-    prepass.passName = "depthPrepass";
+    MainPass::Target& prepass = prepass_;  // made once: recording it allocates nothing
     prepass.color = normals_;
     prepass.depth = depth_;
-    prepass.variant = prepassVariant();
     prepass.width = view.width;
     prepass.height = view.height;
-    mainPass_.record(commands, scene, view, inputs, prepass);
+    mainPass_.record(commands, scene, view, inputs, prepass_);
     commands.endTimer();
+    return depth_;
+}
+
+gpu::TextureHandle ScreenSpaceShadowPass::recordResolve(gpu::CommandList& commands, const CameraView& view,
+                                                        const MainPassInputs& inputs, uint32_t mainLightSlot) {
+    PENUMBRA_ASSERT(depth_ && width_ == view.width && height_ == view.height);  // recordPrepass came first
 
     commands.beginTimer("screenSpaceShadows");
-    std::vector<gpu::ResourceUse> uses = {gpu::discard(shadows_, gpu::Usage::ColorTarget),
-                                          gpu::use(depth_, gpu::Usage::FragmentSampled),
-                                          gpu::use(normals_, gpu::Usage::FragmentSampled)};
+    std::vector<gpu::ResourceUse>& uses = uses_;  // refilled: its storage is kept
+    uses.assign({gpu::discard(shadows_, gpu::Usage::ColorTarget), gpu::use(depth_, gpu::Usage::FragmentSampled),
+                 gpu::use(normals_, gpu::Usage::FragmentSampled)});
     addShadingReads(uses, mainPass_.scene(), inputs, false);
     commands.pass("screenSpaceShadows", uses);
     gpu::RenderingDesc rendering;
@@ -80,7 +93,8 @@ gpu::TextureHandle ScreenSpaceShadowPass::record(gpu::CommandList& commands, con
     rendering.colors = std::span(&color, 1);
     commands.beginRendering(rendering);
     commands.bindPipeline(resolve_);
-    std::vector<gpu::DescriptorWrite> writes = inputs.writes;
+    std::vector<gpu::DescriptorWrite>& writes = writes_;
+    writes.assign(inputs.writes.begin(), inputs.writes.end());
     writes.push_back({gpu_data::kScreenShadowBindingSceneDepth, {}, depth_, pointSampler_});
     writes.push_back({gpu_data::kScreenShadowBindingSceneNormals, {}, normals_, pointSampler_});
     commands.pushDescriptors(writes);

@@ -20,6 +20,12 @@ public:
     // texture in ShaderRead state, owned by this pass.
     gpu::TextureHandle record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                               const MainPassInputs& inputs, uint32_t mainLightSlot);
+    // The two halves of record(): the depth + normal prepass (its D32 depth returned, also what the
+    // virtual shadow maps mark their pages from on the forward path), then the resolve after it.
+    gpu::TextureHandle recordPrepass(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
+                                     const MainPassInputs& inputs);
+    gpu::TextureHandle recordResolve(gpu::CommandList& commands, const CameraView& view, const MainPassInputs& inputs,
+                                     uint32_t mainLightSlot);
 
 private:
     void ensureTargets(uint32_t width, uint32_t height);
@@ -31,6 +37,10 @@ private:
     gpu::SamplerHandle pointSampler_;
     gpu::TextureHandle depth_, normals_, shadows_;
     uint32_t width_ = 0, height_ = 0;
+    MainPass::Target prepass_;  // the prepass's target (its variant made once)
+    // Per-record lists, kept to reuse their storage.
+    std::vector<gpu::ResourceUse> uses_;
+    std::vector<gpu::DescriptorWrite> writes_;
 };
 
 }  // namespace penumbra

@@ -58,12 +58,14 @@ gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, 
 }
 
 VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
-                                         const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide)
+                                         const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide,
+                                         const VirtualPageStorage* shared)
     : device_(device), scene_(gpuScene), raster_(raster), poolPagesPerSide_(poolPagesPerSide), pageSize_(clipmap.pageSize),
       pagesPerLevelSide_(pagesPerSide(clipmap)), culling_(device, gpuScene, std::max(poolPagesPerSide * poolPagesPerSide, 1u)) {
     if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
         throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
                     std::to_string(pageSize_) + " texels does not fit an image");
+    if (shared && shared->poolTexture) useSharedTexture(*shared);
     try {
         create();
     } catch (...) {
@@ -74,10 +76,23 @@ VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gp
 
 VirtualPageDrawPass::~VirtualPageDrawPass() { release(); }
 
+void VirtualPageDrawPass::useSharedTexture(const VirtualPageStorage& shared) {
+    const gpu::TextureDesc& desc = device_.textureDesc(shared.poolTexture);
+    const uint32_t needed = gpu::kTextureSampled | gpu::kTextureStorage;
+    if (desc.format != gpu::Format::R32Float || (desc.usage & needed) != needed || desc.width != poolSide() ||
+        uint64_t(shared.poolOriginY) + poolSide() > desc.height)
+        throw Error("internal: a shared virtual page pool texture of " + std::to_string(desc.width) + " x " +
+                    std::to_string(desc.height) + " texels holds no pool of " + std::to_string(poolSide()) +
+                    " texels at row " + std::to_string(shared.poolOriginY));
+    poolTexture_ = shared.poolTexture;
+    poolOriginY_ = shared.poolOriginY;
+    ownsTexture_ = false;
+}
+
 void VirtualPageDrawPass::release() {
     for (gpu::PipelineHandle p : {tilesPipeline_, copyPipeline_}) device_.destroy(p);
     for (gpu::BufferHandle b : {cullFrame_, tiles_, rasterList_, poolDepth_}) device_.destroy(b);
-    device_.destroy(poolTexture_);
+    if (ownsTexture_) device_.destroy(poolTexture_);  // a shared texture is its storage's
 }
 
 void VirtualPageDrawPass::create() {
@@ -109,6 +124,7 @@ void VirtualPageDrawPass::create() {
     const std::vector<uint32_t> far(size_t(side) * side, kFarDepthBits);  // once, at creation
     poolDepth_ = device_.createBuffer(far.size() * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
                                       far.data(), "virtual page pool depth");
+    if (!ownsTexture_) return;  // a shared texture starts far already (VirtualPageStorageSet)
     gpu::TextureDesc texture;
     texture.width = texture.height = side;
     texture.format = gpu::Format::R32Float;
@@ -163,7 +179,7 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
                                                {kPageDrawBindingPoolDepth, poolDepth_, {}, {}},
                                                {kPageDrawBindingPoolTexture, {}, poolTexture_, {}}};
     commands.pushDescriptors(copyWrites);
-    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, capacity(), 0};
+    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, capacity(), poolOriginY_};
     commands.pushConstants(&copy, sizeof(copy));
     commands.dispatchIndirect(inputs.drawList, offsetof(VirtualPageDrawHeader, pageDispatch));
 }

@@ -11,6 +11,8 @@
 // draws them (a triangle reaches only the pages whose lists hold its instance and, within a page, the
 // 16 x 16 chunks it overlaps); virtual_page_copy.comp copies the listed pages into the pool's R32F image.
 // Pages not in the list keep their depth and texels. Not yet used by frames (sampling comes next).
+// The image may be a pool texture that several maps share (render/virtual_page_storage.h): this pass
+// then writes only its square, the rows from poolOriginY on, and neither initializes nor destroys it.
 //
 // The design follows the published virtual shadow maps: Timberdoodle's GPU-driven page drawing (GPU Zen 3,
 // "Virtual Shadow Maps") and Unreal Engine's ("Virtual Shadow Maps" documentation: one depth range for
@@ -24,6 +26,7 @@
 #include "render/compute_raster_pass.h"
 #include "render/gpu_scene.h"
 #include "render/shadow_culling_pass.h"
+#include "render/virtual_page_storage.h"
 #include "shadows/virtual_clipmap.h"
 #include "virtual_page_draw_structs.h"
 #include "virtual_page_structs.h"
@@ -61,9 +64,13 @@ struct VirtualPageDrawInputs {
 class VirtualPageDrawPass {
 public:
     // A pool of poolPagesPerSide^2 physical pages of clipmap pageSize texels (its depth buffer and image
-    // start far), tile lists for as many pages; draws with `raster`, which the atlases may share.
+    // start far), tile lists for as many pages; draws with `raster`, which the atlases may share. With
+    // `shared` whose poolTexture is set, the image is that one (R32F, poolSide() texels wide, at least
+    // poolOriginY + poolSide() high, storage and sampled: else Error), its pool the square at
+    // (0, poolOriginY); without, an image of its own.
     VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
-                        const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide);
+                        const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide,
+                        const VirtualPageStorage* shared = nullptr);
     ~VirtualPageDrawPass();
     VirtualPageDrawPass(const VirtualPageDrawPass&) = delete;
     VirtualPageDrawPass& operator=(const VirtualPageDrawPass&) = delete;
@@ -74,6 +81,7 @@ public:
     void record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs);
 
     gpu::TextureHandle poolTexture() const { return poolTexture_; }  // R32F, left in General after a record
+    uint32_t poolOriginY() const { return poolOriginY_; }            // texels: the pool's first row in poolTexture()
     gpu::BufferHandle poolDepth() const { return poolDepth_; }      // float bits per texel
     uint32_t poolSide() const { return poolPagesPerSide_ * pageSize_; }  // texels along the pool's side
     uint32_t capacity() const { return poolPagesPerSide_ * poolPagesPerSide_; }
@@ -83,12 +91,15 @@ public:
     const ShadowCullingPass& culling() const { return culling_; }
 
 private:
+    void useSharedTexture(const VirtualPageStorage& shared);
     void create();
     void release();
     gpu::Device& device_;
     const GpuScene& scene_;
     ComputeRasterPass& raster_;
     uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
+    uint32_t poolOriginY_ = 0;  // pool texture texels
+    bool ownsTexture_ = true;
     ShadowCullingPass culling_;
     gpu::PipelineHandle tilesPipeline_, copyPipeline_;
     gpu::BufferHandle cullFrame_, tiles_, rasterList_, poolDepth_;

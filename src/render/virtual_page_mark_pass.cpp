@@ -35,9 +35,14 @@ VirtualPageMarkPass::VirtualPageMarkPass(gpu::Device& device) : device_(device) 
     desc.debugName = "virtual page marking";
     pipeline_ = device.createComputePipeline(desc);
     try {
+        desc.shader = "virtual_page_mark_visibility.comp";
+        desc.bindings = virtualPageMarkVisibilityBindings();
+        desc.debugName = "virtual page marking (visibility buffer)";
+        visibilityPipeline_ = device.createComputePipeline(desc);
         pointSampler_ = device.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
     } catch (...) {
         device.destroy(pipeline_);  // the destructor does not run
+        device.destroy(visibilityPipeline_);
         throw;
     }
 }
@@ -45,6 +50,7 @@ VirtualPageMarkPass::VirtualPageMarkPass(gpu::Device& device) : device_(device) 
 VirtualPageMarkPass::~VirtualPageMarkPass() {
     for (gpu::BufferHandle b : {requests_, readback_, markNowData_}) device_.destroy(b);
     device_.destroy(pipeline_);
+    device_.destroy(visibilityPipeline_);
     device_.destroy(pointSampler_);
 }
 
@@ -59,20 +65,34 @@ void VirtualPageMarkPass::ensureRequests(const VirtualClipmapConfig& config) {
     requestBytes_ = bytes;
 }
 
-void VirtualPageMarkPass::record(gpu::CommandList& commands, gpu::TextureHandle depth, const gpu::BufferSlice& mark,
-                                 const VirtualClipmapConfig& config) {
+void VirtualPageMarkPass::record(gpu::CommandList& commands, const VirtualPageDepthSource& source,
+                                 const gpu::BufferSlice& mark, const VirtualClipmapConfig& config) {
     ensureRequests(config);
     commands.pass("virtualPages/clear", {gpu::use(requests_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(requestWords(), 0u);
-    commands.pass("virtualPages/mark",
-                  {gpu::use(depth, gpu::Usage::ComputeSampled), gpu::use(requests_, gpu::Usage::ComputeWrite)});
-    commands.bindPipeline(pipeline_);
-    const gpu::DescriptorWrite writes[] = {{gpu_data::kPageMarkBindingFrame, mark},  // no heap allocation per frame
-                                           {gpu_data::kPageMarkBindingDepth, {}, depth, pointSampler_},
-                                           {gpu_data::kPageMarkBindingRequests, requests_, {}, {}}};
-    commands.pushDescriptors(writes);
-    const gpu::TextureDesc& size = device_.textureDesc(depth);
-    commands.dispatch((size.width + 7) / 8, (size.height + 7) / 8);
+    const gpu::DescriptorWrite frame{gpu_data::kPageMarkBindingFrame, mark};
+    const gpu::DescriptorWrite requests{gpu_data::kPageMarkBindingRequests, requests_, {}, {}};
+    uint32_t width = source.width, height = source.height;
+    if (source.depth) {
+        commands.pass("virtualPages/mark",
+                      {gpu::use(source.depth, gpu::Usage::ComputeSampled), gpu::use(requests_, gpu::Usage::ComputeWrite)});
+        commands.bindPipeline(pipeline_);
+        const gpu::DescriptorWrite writes[] = {frame, {gpu_data::kPageMarkBindingDepth, {}, source.depth, pointSampler_},
+                                               requests};  // no heap allocation per frame
+        commands.pushDescriptors(writes);
+        const gpu::TextureDesc& size = device_.textureDesc(source.depth);
+        width = size.width;
+        height = size.height;
+    } else {
+        PENUMBRA_ASSERT(source.visibility);
+        commands.pass("virtualPages/mark", {gpu::use(source.visibility, gpu::Usage::ComputeRead),
+                                            gpu::use(requests_, gpu::Usage::ComputeWrite)});
+        commands.bindPipeline(visibilityPipeline_);
+        const gpu::DescriptorWrite writes[] = {frame, {gpu_data::kPageMarkBindingVisibility, source.visibility, {}, {}},
+                                               requests};
+        commands.pushDescriptors(writes);
+    }
+    commands.dispatch((width + 7) / 8, (height + 7) / 8);
 }
 
 gpu::BufferSlice VirtualPageMarkPass::requestWords() const { return {requests_, 0, requestBytes_}; }
@@ -95,7 +115,7 @@ VirtualPageRequests VirtualPageMarkPass::markNow(gpu::TextureHandle depth, const
                                             "virtual page marking data");
     device_.writeBuffer(markNowData_, &data, sizeof(data));  // submitAndWait below: nothing reads it meanwhile
     gpu::CommandList commands = device_.beginCommands();
-    record(commands, depth, {markNowData_, 0, sizeof(data)}, config);
+    record(commands, VirtualPageDepthSource::texture(depth), {markNowData_, 0, sizeof(data)}, config);
     commands.pass("virtualPages/readback", {gpu::use(requests_, gpu::Usage::TransferRead),
                                             gpu::use(readback_, gpu::Usage::TransferWrite)});
     commands.copyBuffer(requestWords(), readback_, 0);

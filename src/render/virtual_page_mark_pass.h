@@ -2,8 +2,9 @@
 // Virtual shadow map page marking on the GPU (shaders/virtual_page_mark.comp.glsl): from the main
 // view's depth, the request bit of every clipmap page of a directional light that the view's shadow
 // lookups will read. shadows/virtual_page_marking.h is the CPU reference and defines the rules and
-// the bit layout (shaders/shared/virtual_page_structs.h). Not yet used by frames: the page table,
-// allocation and page drawing that consume the requests come next.
+// the bit layout (shaders/shared/virtual_page_structs.h). The depth comes from the view's D32 depth
+// texture (the forward path's prepass) or from the visibility buffer before its resolve
+// (virtual_page_mark_visibility.comp).
 // - record(): inside a frame (or any command list), after the pass that wrote the depth; the requests
 //   stay in requestWords() for the passes that follow (or Device::readBackAtFrameEnd + fromReadback);
 // - markNow(): records, submits, waits and reads back (tests, debugging).
@@ -21,6 +22,19 @@ namespace penumbra {
 gpu_data::VirtualPageMarkData packVirtualPageMark(const VirtualClipmapConfig& config, const glm::mat4& lightRotation,
                                                   const CameraView& view, float marginTexels);
 
+// Where the view's depth is: a D32 depth texture (any size; sampled) or a visibility buffer of
+// width x height 64-bit words whose high halves are the depth bits (render/visibility_pass.h).
+struct VirtualPageDepthSource {
+    gpu::TextureHandle depth;
+    gpu::BufferHandle visibility;
+    uint32_t width = 0, height = 0;  // the visibility buffer's pixels (a texture's come from its desc)
+
+    static VirtualPageDepthSource texture(gpu::TextureHandle depth) { return {depth, {}, 0, 0}; }
+    static VirtualPageDepthSource visibilityBuffer(gpu::BufferHandle words, uint32_t width, uint32_t height) {
+        return {{}, words, width, height};
+    }
+};
+
 class VirtualPageMarkPass {
 public:
     explicit VirtualPageMarkPass(gpu::Device& device);
@@ -31,7 +45,7 @@ public:
     // Clears the request bits and marks them from `depth` (the view's D32 depth, view.width x
     // view.height, sampled by the pass) with `mark` (a VirtualPageMarkData from packVirtualPageMark,
     // e.g. in the frame's upload ring) for `config`, the clipmap `mark` was packed for.
-    void record(gpu::CommandList& commands, gpu::TextureHandle depth, const gpu::BufferSlice& mark,
+    void record(gpu::CommandList& commands, const VirtualPageDepthSource& source, const gpu::BufferSlice& mark,
                 const VirtualClipmapConfig& config);
     // The request bits of the last record (virtualPageRequestWords(config) words), GPU-written.
     gpu::BufferSlice requestWords() const;
@@ -48,7 +62,7 @@ private:
     void ensureRequests(const VirtualClipmapConfig& config);
 
     gpu::Device& device_;
-    gpu::PipelineHandle pipeline_;
+    gpu::PipelineHandle pipeline_, visibilityPipeline_;
     gpu::SamplerHandle pointSampler_;
     gpu::BufferHandle requests_, readback_;  // readback_: markNow's host copy of requests_
     gpu::BufferHandle markNowData_;          // markNow's VirtualPageMarkData

@@ -59,7 +59,7 @@ gpu_data::VirtualPageInvalidation virtualPageInvalidation(uint32_t level, const 
 }
 
 VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualClipmapConfig& config, uint32_t capacity,
-                                           uint32_t keepFrames)
+                                           uint32_t keepFrames, const VirtualPageStorage* shared)
     : device_(device), config_(config), capacity_(capacity), keepFrames_(keepFrames) {
     const uint32_t side = pagesPerSide(config);
     entryCount_ = config.levelCount * side * side;
@@ -73,6 +73,7 @@ VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualCli
                     std::to_string(gpu_data::kVirtualPageMaxKeepFrames) + ")");
     if (groupsFor(std::max(entryCount_, capacity)) > kMaxGroups)
         throw Error("virtual page table: " + std::to_string(entryCount_) + " page-table entries are too many");
+    if (shared && shared->entries) useSharedEntries(*shared);
     try {
         for (uint32_t step = 0; step < StepCount; ++step) {
             gpu::ComputePipelineDesc desc;
@@ -90,9 +91,22 @@ VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualCli
 
 VirtualPageTablePass::~VirtualPageTablePass() { release(); }
 
+void VirtualPageTablePass::useSharedEntries(const VirtualPageStorage& shared) {
+    const uint64_t offset = uint64_t(shared.firstEntry) * sizeof(gpu_data::VirtualPageEntry);
+    if (offset % kVirtualPageEntryAlignment != 0)
+        throw Error("internal: a shared virtual page table at entry " + std::to_string(shared.firstEntry) + " (byte " +
+                    std::to_string(offset) + ", not a multiple of 256)");
+    if (offset + entryBytes() > device_.bufferSize(shared.entries))
+        throw Error("internal: a shared virtual page table of " + std::to_string(device_.bufferSize(shared.entries)) +
+                    " bytes holds no " + std::to_string(entryCount_) + " entries from entry " + std::to_string(shared.firstEntry));
+    entries_ = shared.entries;
+    entriesOffset_ = offset;
+    ownsEntries_ = false;
+}
+
 void VirtualPageTablePass::release() {
-    for (gpu::BufferHandle b : {entries_, owners_, pool_, counters_, candidates_, drawList_, testRequests_, testTable_,
-                                testInvalidations_})
+    if (ownsEntries_) device_.destroy(entries_);  // shared entries are their storage's
+    for (gpu::BufferHandle b : {owners_, pool_, counters_, candidates_, drawList_, testRequests_, testTable_, testInvalidations_})
         device_.destroy(b);
     for (gpu::PipelineHandle p : pipelines_) device_.destroy(p);
 }
@@ -102,7 +116,7 @@ void VirtualPageTablePass::createBuffers() {
     const auto create = [&](uint64_t bytes, uint32_t usage, const char* name) {
         return device_.createBuffer(bytes, usage, gpu::MemoryKind::DeviceLocal, nullptr, name);
     };
-    entries_ = create(uint64_t(entryCount_) * sizeof(gpu_data::VirtualPageEntry), storage, "virtual page table");
+    if (ownsEntries_) entries_ = create(entryBytes(), storage, "virtual page table");
     owners_ = create(uint64_t(capacity_) * 4, storage, "virtual page owners");
     pool_ = create(sizeof(gpu_data::VirtualPagePoolHeader) + uint64_t(capacity_) * 4, storage, "virtual page free list");
     counters_ = create(sizeof(gpu_data::VirtualPageCounters), storage | gpu::kBufferTransferDst, "virtual page counters");
@@ -129,14 +143,14 @@ void VirtualPageTablePass::record(gpu::CommandList& commands, const VirtualPageT
     PENUMBRA_ASSERT(inputs.invalidationCount <= kMaxGroups);
     writes_ = {gpu::DescriptorWrite{gpu_data::kPageTableBindingFrame, inputs.tableData},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingRequests, inputs.requestWords},
-               gpu::DescriptorWrite{gpu_data::kPageTableBindingEntries, entries_, {}, {}},
+               gpu::DescriptorWrite{gpu_data::kPageTableBindingEntries, entriesSlice()},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingOwners, owners_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingPool, pool_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingCounters, counters_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingCandidates, candidates_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingDrawList, drawList_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingInvalidations, inputs.invalidations}};
-    if (needsReset_) {
+    if (needsReset_) {  // the bound range only: a shared buffer's other tables keep their entries
         commands.pass("virtualPageTable/reset", {gpu::use(entries_, Usage::ComputeWrite),
                                                  gpu::use(owners_, Usage::ComputeWrite), gpu::use(pool_, Usage::ComputeWrite)});
         dispatch(commands, Reset, groupsFor(std::max(entryCount_, capacity_)));
@@ -174,7 +188,7 @@ void VirtualPageTablePass::recordMarkDrawn(gpu::CommandList& commands) {
     commands.pass("virtualPageTable/drawn", {gpu::use(drawList_, Usage::IndirectArguments), gpu::use(drawList_, Usage::ComputeRead),
                                              gpu::use(entries_, Usage::ComputeWrite)});
     commands.bindPipeline(pipelines_[Drawn]);
-    const gpu::DescriptorWrite writes[] = {{gpu_data::kPageTableBindingEntries, entries_, {}, {}},
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kPageTableBindingEntries, entriesSlice()},
                                            {gpu_data::kPageTableBindingDrawList, drawList_, {}, {}}};
     commands.pushDescriptors(writes);
     commands.dispatchIndirect(drawList_, offsetof(gpu_data::VirtualPageDrawHeader, listDispatch));
@@ -228,7 +242,7 @@ void VirtualPageTablePass::markDrawnNow() {
 VirtualPageTableState VirtualPageTablePass::readState() {
     using namespace gpu_data;
     VirtualPageTableState state;
-    state.entries = copyOut<VirtualPageEntry>(device_.readBuffer(entries_), 0, entryCount_);
+    state.entries = copyOut<VirtualPageEntry>(device_.readBuffer(entries_), entriesOffset_, entryCount_);
     state.owners = copyOut<uint32_t>(device_.readBuffer(owners_), 0, capacity_);
     const std::vector<uint8_t> pool = device_.readBuffer(pool_);
     const VirtualPagePoolHeader header = copyOut<VirtualPagePoolHeader>(pool, 0, 1)[0];

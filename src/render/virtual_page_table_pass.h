@@ -22,12 +22,17 @@
 // freed), so the order is exactly least recently requested at the granularity of frames; between
 // pages of the same age, and between a level's requests when the pool runs out part-way through that
 // level, atomics decide (the CPU reference's choice there is arbitrary too).
+//
+// The entries may live in a buffer that several maps share (render/virtual_page_storage.h): then every
+// descriptor binds this table's range only (entriesSlice()), so the reset, the update and the rest
+// read and write no other map's entries; the owners, free list, counters and draw list stay its own.
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "gpu/device.h"
+#include "render/virtual_page_storage.h"
 #include "shadows/virtual_clipmap.h"
 #include "virtual_page_structs.h"
 
@@ -61,8 +66,12 @@ class VirtualPageTablePass {
 public:
     // A table for clipmaps of `config` (at most kVirtualPageMaxLevels levels) and a pool of `capacity`
     // physical pages (1 to 65535: one workgroup per page to draw) that keeps unrequested pages
-    // keepFrames frames (at most kVirtualPageMaxKeepFrames). Throws Error for other values.
-    VirtualPageTablePass(gpu::Device& device, const VirtualClipmapConfig& config, uint32_t capacity, uint32_t keepFrames);
+    // keepFrames frames (at most kVirtualPageMaxKeepFrames). Throws Error for other values. With `shared`
+    // whose entries are set, the entries are its records from firstEntry on (firstEntry * 32 bytes a
+    // multiple of kVirtualPageEntryAlignment, the buffer long enough: else Error), which the table neither
+    // creates nor destroys; without, a buffer of its own.
+    VirtualPageTablePass(gpu::Device& device, const VirtualClipmapConfig& config, uint32_t capacity, uint32_t keepFrames,
+                         const VirtualPageStorage* shared = nullptr);
     ~VirtualPageTablePass();
     VirtualPageTablePass(const VirtualPageTablePass&) = delete;
     VirtualPageTablePass& operator=(const VirtualPageTablePass&) = delete;
@@ -77,7 +86,10 @@ public:
     // The next record starts from an empty table (every page freed).
     void reset() { needsReset_ = true; }
 
-    gpu::BufferHandle entries() const { return entries_; }
+    gpu::BufferHandle entries() const { return entries_; }  // the whole buffer (shared or its own)
+    gpu::BufferSlice entriesSlice() const { return {entries_, entriesOffset_, entryBytes()}; }  // this table's range
+    uint32_t firstEntry() const { return uint32_t(entriesOffset_ / sizeof(gpu_data::VirtualPageEntry)); }
+    uint32_t entryCount() const { return entryCount_; }
     gpu::BufferHandle drawList() const { return drawList_; }  // VirtualPageDrawHeader + VirtualPageDraw[capacity]
     gpu::BufferSlice stats() const;                           // VirtualPageStats of the last update
     uint32_t capacity() const { return capacity_; }
@@ -91,7 +103,9 @@ public:
 
 private:
     enum Step : uint32_t { Reset, Invalidate, Update, Plan, Candidates, Allocate, Finish, Drawn, StepCount };
+    void useSharedEntries(const VirtualPageStorage& shared);
     void createBuffers();
+    uint64_t entryBytes() const { return uint64_t(entryCount_) * sizeof(gpu_data::VirtualPageEntry); }
     void release();
     void dispatch(gpu::CommandList& commands, Step step, uint32_t groups);
     void ensureTestBuffers(size_t requestBytes, size_t invalidationCount);
@@ -101,6 +115,8 @@ private:
     uint32_t capacity_ = 0, keepFrames_ = 0, entryCount_ = 0;
     uint32_t frame_ = 0;  // the last update packed
     bool needsReset_ = true;
+    bool ownsEntries_ = true;
+    uint64_t entriesOffset_ = 0;  // bytes: this table's first entry in entries_
     std::array<gpu::PipelineHandle, StepCount> pipelines_{};
     gpu::BufferHandle entries_, owners_, pool_, counters_, candidates_, drawList_;
     std::array<gpu::DescriptorWrite, 9> writes_{};  // the record's, kept: no allocation per frame

@@ -23,10 +23,10 @@ bool sameBounds(const Aabb& a, const Aabb& b) {
 }  // namespace
 
 VirtualShadowMap::VirtualShadowMap(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
-                                   const VirtualShadowMapConfig& config)
+                                   const VirtualShadowMapConfig& config, const VirtualPageStorage* storage)
     : device_(device), scene_(gpuScene), config_(config), mark_(device),
-      table_(device, config.clipmap, config.poolPagesPerSide * config.poolPagesPerSide, config.keepFrames),
-      draw_(device, gpuScene, raster, config.clipmap, config.poolPagesPerSide) {
+      table_(device, config.clipmap, config.poolPagesPerSide * config.poolPagesPerSide, config.keepFrames, storage),
+      draw_(device, gpuScene, raster, config.clipmap, config.poolPagesPerSide, storage) {
     slotCount_ = device.framesInFlight() + 1;  // a frame's slot is free again once its slot's next frame begins
     uploads_ = device.createBuffer(slotLayout().size * slotCount_, gpu::kBufferUniform | gpu::kBufferStorage,
                                    gpu::MemoryKind::HostVisible, nullptr, "virtual shadow map uploads");
@@ -65,7 +65,7 @@ bool VirtualShadowMap::updateDrawSpace(const glm::vec3& wsLightDirection, const 
     return true;
 }
 
-void VirtualShadowMap::record(gpu::CommandList& commands, gpu::TextureHandle mainDepth, const CameraView& view,
+void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepthSource& mainDepth, const CameraView& view,
                               const glm::vec3& wsLightDirection, const Aabb& wsSceneBounds, float marginTexels,
                               std::span<const gpu_data::VirtualPageInvalidation> invalidations) {
     const bool newSpace = updateDrawSpace(wsLightDirection, wsSceneBounds);
@@ -81,10 +81,11 @@ void VirtualShadowMap::record(gpu::CommandList& commands, gpu::TextureHandle mai
     nextSlot_ = (nextSlot_ + 1) % slotCount_;
     const glm::mat4& lightFromWorld = space_.lightRotationFromWorld;
     const glm::vec2 lsCamera = lsClipmapCentre(lightFromWorld, view);
-    const gpu_data::VirtualPageMarkData mark = packVirtualPageMark(config_.clipmap, lightFromWorld, view, marginTexels);
+    gpu_data::VirtualPageMarkData mark = packVirtualPageMark(config_.clipmap, lightFromWorld, view, marginTexels);
+    mark.wsFootprintPerDepth *= config_.footprintScale;
     const gpu_data::VirtualPageTableData tableData = table_.packFrame(lsCamera, invalidateAll, rectangles);
     lookup_ = packVirtualShadowLookup(config_.clipmap, lightFromWorld, space_.lsDepthNear, space_.lsDepthFar, lsCamera,
-                                      config_.poolPagesPerSide);
+                                      config_.poolPagesPerSide, draw_.poolOriginY(), table_.firstEntry());
     device_.writeBuffer(uploads_, &mark, sizeof(mark), base + layout.mark);
     device_.writeBuffer(uploads_, &tableData, sizeof(tableData), base + layout.table);
     device_.writeBuffer(uploads_, &lookup_, sizeof(lookup_), base + layout.lookup);

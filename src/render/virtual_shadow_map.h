@@ -21,6 +21,12 @@
 // documentation: cached pages redrawn only when invalidated, a light change invalidating the map) and
 // Timberdoodle's (GPU Zen 3, "Virtual Shadow Maps": marking, allocation and drawing driven by the GPU).
 //
+// Several maps may share one pool texture and one entry buffer (render/virtual_page_storage.h:
+// VirtualPageStorageSet::storageFor(i) for map i), so that a lit pass binds those once for up to four
+// lights: each map draws into its own square of the texture and updates its own range of the buffer, and
+// its lookupData() carries where they are (poolOriginY, firstEntry). Maps sharing storage may record in
+// one command list, one after the other.
+//
 // A steady record allocates nothing: the uniform data of each record goes into one of framesInFlight + 1
 // slots of a host-visible buffer the map owns, so record at most once per frame (or per one-off command
 // list that the caller waits for).
@@ -35,6 +41,7 @@
 #include "render/gpu_scene.h"
 #include "render/virtual_page_draw_pass.h"
 #include "render/virtual_page_mark_pass.h"
+#include "render/virtual_page_storage.h"
 #include "render/virtual_page_table_pass.h"
 #include "virtual_page_structs.h"
 #include "virtual_shadow_structs.h"
@@ -46,35 +53,42 @@ struct VirtualShadowMapConfig {
     uint32_t poolPagesPerSide = 16;  // the pool holds poolPagesPerSide^2 physical pages
     uint32_t keepFrames = 8;         // unrequested pages stay resident this many frames (VirtualPageTablePass)
     bool meshletCulling = true;      // render.meshletCulling for the page drawing
+    // The pixel footprint the levels are picked by is the view's times this (shadows.virtual.lodBias:
+    // 2^lodBias): 0.5 picks texels half as wide as a pixel's footprint. A lit pass must use the same.
+    float footprintScale = 1.0f;
 };
 
 class VirtualShadowMap {
 public:
     static constexpr uint32_t kMaxInvalidations = 64;  // rectangles per record; more invalidate everything
 
-    // Draws with `raster`, which the atlases may share; `gpuScene` must outlive the map.
+    // Draws with `raster`, which the atlases may share; `gpuScene` must outlive the map. With `storage`
+    // (copied; its texture and buffer must outlive the map: a VirtualPageStorageSet of config's clipmap
+    // and poolPagesPerSide), the pool and entries are there; without, the map makes its own.
     VirtualShadowMap(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
-                     const VirtualShadowMapConfig& config);
+                     const VirtualShadowMapConfig& config, const VirtualPageStorage* storage = nullptr);
     ~VirtualShadowMap();
     VirtualShadowMap(const VirtualShadowMap&) = delete;
     VirtualShadowMap& operator=(const VirtualShadowMap&) = delete;
 
-    // Records mark -> table update -> draw -> mark drawn for a view whose D32 depth `mainDepth`
-    // (view.width x view.height, written by earlier passes) is final, a light travelling along
+    // Records mark -> table update -> draw -> mark drawn for a view whose depth `mainDepth` (a D32
+    // texture or the visibility buffer, view.width x view.height, written by earlier passes) is final, a light travelling along
     // wsLightDirection and a scene within wsSceneBounds. marginTexels: the lit pass filter's reach.
     // `invalidations`: the page rectangles of casters that moved since the last record.
-    void record(gpu::CommandList& commands, gpu::TextureHandle mainDepth, const CameraView& view,
+    void record(gpu::CommandList& commands, const VirtualPageDepthSource& mainDepth, const CameraView& view,
                 const glm::vec3& wsLightDirection, const Aabb& wsSceneBounds, float marginTexels,
                 std::span<const gpu_data::VirtualPageInvalidation> invalidations = {});
     // The next record invalidates every page (the scene's geometry was replaced, say).
     void invalidateAll() { forceInvalidate_ = true; }
 
-    // What a lit pass samples after the last record (storage buffer, R32F texture in General, uniform).
+    // What a lit pass samples after the last record (storage buffer, R32F texture in General, uniform): the
+    // whole buffer and texture, shared or the map's own; lookupData() places this map's entries and pool.
     gpu::BufferHandle pageEntries() const { return table_.entries(); }
     gpu::TextureHandle poolTexture() const { return draw_.poolTexture(); }
+    VirtualPageStorage storage() const { return {poolTexture(), draw_.poolOriginY(), pageEntries(), table_.firstEntry()}; }
     const gpu_data::VirtualShadowLookupData& lookupData() const { return lookup_; }
     gpu::BufferSlice lookupDataSlice() const { return lookupSlice_; }  // the last record's copy, in its slot
-    uint32_t pageEntryCount() const;
+    uint32_t pageEntryCount() const;  // this map's entries (levelCount * pagesPerSide^2), from storage().firstEntry
 
     // The last update's VirtualPageStats on the GPU, and its bytes from a readback decoded.
     gpu::BufferSlice stats() const { return table_.stats(); }

@@ -259,9 +259,7 @@ void VisibilityPass::recordPyramid(gpu::CommandList& commands) {
     }
 }
 
-void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target, ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame,
-                            ViewCulling viewCulling, bool meshletCulling) {
-    ensureSize(target.width, target.height);
+gpu_data::VisibilityConstants VisibilityPass::constantsFor(const Target& target) const {
     gpu_data::VisibilityConstants constants{};
     constants.width = target.width;
     constants.height = target.height;
@@ -271,6 +269,21 @@ void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& in
     constants.chunkCapacity = kChunkCapacity;
     constants.background = packRgba8(target.clearColor, false);
     constants.meshSlots = scene_.meshSlotCount();
+    return constants;
+}
+
+void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
+                            ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
+                            bool meshletCulling) {
+    recordGeometry(commands, inputs, target, culling, cullFrame, viewCulling, meshletCulling);
+    recordShading(commands, inputs, target);
+}
+
+void VisibilityPass::recordGeometry(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
+                                    ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
+                                    bool meshletCulling) {
+    ensureSize(target.width, target.height);
+    const gpu_data::VisibilityConstants constants = constantsFor(target);
     using namespace gpu_data;
     std::vector<gpu::DescriptorWrite>& rasterWrites = rasterWrites_;  // the scene's (not the lit pass's: 8 is the visibility buffer here)
     rasterWrites.clear();
@@ -300,7 +313,10 @@ void VisibilityPass::record(gpu::CommandList& commands, const MainPassInputs& in
         recordRaster(commands, "main/rasterLate", rasterWrites, reads, constants, gpu_data::kCullListCameraLate, meshletCulling);
         commands.endTimer();
     }
+}
 
+void VisibilityPass::recordShading(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target) {
+    const gpu_data::VisibilityConstants constants = constantsFor(target);
     commands.beginTimer("main/resolve");
     recordResolve(commands, inputs, target, constants);
     commands.endTimer();

@@ -64,6 +64,15 @@ public:
                 bool meshletCulling);
     // The meshlets skipped in the last recorded frame (RasterCounters::meshletsOutside and
     // meshletsFacingAway, then two reserved words), for the frame-end readback.
+    // The two halves of record(), for a frame that needs the view's depth before it shades (the virtual
+    // shadow maps mark their pages from visibilityBuffer()): the culling and rasterization, then the
+    // resolve (and copy). Between them the visibility buffer holds every pixel's depth.
+    void recordGeometry(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
+                        ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
+                        bool meshletCulling);
+    void recordShading(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target);
+    // 64-bit words per pixel (width x height): reversed-Z depth bits << 32 | the triangle's ids.
+    gpu::BufferHandle visibilityBuffer() const { return visibility_; }
     gpu::BufferSlice meshletCounts() const {
         return {counters_, offsetof(gpu_data::RasterCounters, meshletsOutside), 4 * sizeof(uint32_t)};
     }
@@ -79,6 +88,7 @@ private:
                       const std::vector<gpu::ResourceUse>& reads, gpu_data::VisibilityConstants constants, uint32_t list,
                       bool meshletCulling);
     void recordPyramid(gpu::CommandList& commands);
+    gpu_data::VisibilityConstants constantsFor(const Target& target) const;
     void recordResolve(gpu::CommandList& commands, const MainPassInputs& inputs, const Target& target,
                        const gpu_data::VisibilityConstants& constants);
 

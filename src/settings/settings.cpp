@@ -89,7 +89,7 @@ void assignLeaf(Settings& settings, const SettingKey& key, const json& value) {
     }
 }
 
-const char* const kObjectKeys[] = {"shadows", "shadows.directional", "shadows.spot", "render"};
+const char* const kObjectKeys[] = {"shadows", "shadows.directional", "shadows.spot", "shadows.virtual", "render"};
 
 bool isObjectKey(const std::string& key) {
     for (const char* objectKey : kObjectKeys) {

@@ -1,6 +1,7 @@
 // The table of every settings key (penumbra/settings_keys.h) and the validation it drives.
 #include "penumbra/settings_keys.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -114,6 +115,12 @@ std::vector<SettingKey> makeTable() {
     t.push_back(flag("shadows.cacheTiles", PENUMBRA_FIELD(shadows.cacheTiles),
                        "A shadow tile whose projection, cascade spheres, casters and rasterizer did not change since the "
                        "last frame keeps its depth and is not drawn again."));
+    t.push_back(choice("shadows.directional.mode", {"cascades", "virtual"}, PENUMBRA_FIELD(shadows.directional.mode),
+                       "How directional lights are shadowed: `cascades` in the directional atlas (the keys below), or "
+                       "`virtual`: a virtual shadow map per light, a clipmap centred on the camera whose pages are "
+                       "drawn only where visible surfaces need them, at the level whose texel matches the pixel's "
+                       "footprint, and kept across frames until a light or a caster in them changes (the "
+                       "`shadows.virtual` keys)."));
     t.push_back(atlasSizeKey("shadows.directional.atlasSize", PENUMBRA_FIELD(shadows.directional.atlasSize),
                              "directional shadow atlas, shared by up to 4 shadowed directional lights times "
                              "`cascadeCount` cascades."));
@@ -151,6 +158,38 @@ std::vector<SettingKey> makeTable() {
     t.push_back(filterKey("shadows.spot.filter", PENUMBRA_FIELD(shadows.spot.filter), "spot and point lights"));
     t.push_back(ranged("shadows.spot.depthBias", SettingType::Number, 0.0, 1.0, "0..1", PENUMBRA_FIELD(shadows.spot.depthBias),
                        "An extra constant clip-space depth bias of spot and point shadow maps, on top of `shadows.bias`."));
+    t.push_back(ranged("shadows.virtual.pageSize", SettingType::PowerOfTwo, 64, 512, "a power of two in 64..512",
+                       PENUMBRA_FIELD(shadows.virtualMaps.pageSize),
+                       "Virtual shadow maps: texels along a page's side; pages are drawn, cached and evicted whole. "
+                       "`resolution / pageSize` pages a level's side must be 8..256."));
+    t.push_back(ranged("shadows.virtual.resolution", SettingType::PowerOfTwo, 1024, 32768, "a power of two in 1024..32768",
+                       PENUMBRA_FIELD(shadows.virtualMaps.resolution),
+                       "Virtual shadow maps: virtual texels along a clipmap level's side."));
+    t.push_back(ranged("shadows.virtual.poolPages", SettingType::Integer, 16, 16384, "16..16384",
+                       PENUMBRA_FIELD(shadows.virtualMaps.poolPages),
+                       "Virtual shadow maps: physical pages per directional light, rounded down to a square number, each "
+                       "pageSize^2 32-bit depths, twice (the rasterizer's target and the sampled pool): 2048 pages of 128^2 "
+                       "take 2 x 127 MiB. A 1920x1080 view needs about 700 pages per light at lodBias 0, 2000-3000 at "
+                       "-1. When the visible pages need more, a coarser level serves the rest (a warning and the stat "
+                       "`overflowed`); a pool larger than the device holds is shrunk, with a warning."));
+    t.push_back(ranged("shadows.virtual.levelCount", SettingType::Integer, 1, 16, "1..16",
+                       PENUMBRA_FIELD(shadows.virtualMaps.levelCount),
+                       "Virtual shadow maps: clipmap levels; level i is firstLevelSize x 2^i wide. Receivers beyond the "
+                       "last level's window are unshadowed."));
+    t.push_back(ranged("shadows.virtual.firstLevelSize", SettingType::Number, 0.125, 1048576.0, "0.125..1048576",
+                       PENUMBRA_FIELD(shadows.virtualMaps.firstLevelSize),
+                       "Virtual shadow maps: the finest level's side in scene units."));
+    t.push_back(ranged("shadows.virtual.lodBias", SettingType::Number, -4.0, 4.0, "-4..4",
+                       PENUMBRA_FIELD(shadows.virtualMaps.lodBias),
+                       "Virtual shadow maps: which level a pixel reads, relative to the one whose texel matches the "
+                       "pixel's footprint: -1 reads texels half as wide (four times the pages), +1 twice as wide."));
+    t.push_back(flag("shadows.virtual.cache", PENUMBRA_FIELD(shadows.virtualMaps.cache),
+                       "Virtual shadow maps: a drawn page stays valid across frames until its light, the scene's bounds "
+                       "or a caster over it changes; off, every needed page is drawn again every frame."));
+    t.push_back(ranged("shadows.virtual.keepFrames", SettingType::Integer, 0, 32, "0..32",
+                       PENUMBRA_FIELD(shadows.virtualMaps.keepFrames),
+                       "Virtual shadow maps: frames a page nobody requests stays resident (and reusable without a "
+                       "redraw) before the pool may give it to another page."));
     SettingKey exposure = ranged("render.exposure", SettingType::Number, 0.0, kHuge, "> 0", PENUMBRA_FIELD(render.exposure),
                                  "Scales linear radiance before tone mapping and sRGB encoding.");
     exposure.minExclusive = true;
@@ -246,6 +285,12 @@ void validateSettingKeys(const Settings& settings, std::string_view prefix) {
         text << "[" << ratios[0] << ", " << ratios[1] << ", " << ratios[2] << "]";
         throw Error("settings: shadows.directional.cascadeRatios = " + text.str() + " must not decrease");
     }
+    const VirtualShadowSettings& pages = settings.shadows.virtualMaps;
+    const uint32_t pagesPerSide = pages.resolution / std::max(pages.pageSize, 1u);
+    if (prefix == "shadows." && (pagesPerSide < 8 || pagesPerSide > 256))
+        throw Error("settings: shadows.virtual.resolution / shadows.virtual.pageSize = " + std::to_string(pages.resolution) +
+                    " / " + std::to_string(pages.pageSize) + " = " + std::to_string(pagesPerSide) +
+                    " pages a side is out of range (allowed 8..256)");
 }
 
 void validateShadowSettings(const ShadowSettings& shadows) {

@@ -84,6 +84,10 @@ std::optional<ShadowRaster> parseShadowRaster(const std::string& name) {
     return std::nullopt;
 }
 
+const char* directionalShadowModeName(DirectionalShadowMode mode) {
+    return mode == DirectionalShadowMode::Virtual ? "virtual" : "cascades";
+}
+
 // validateShadowSettings: src/settings/settings_keys.cpp, from the table of every key.
 
 }  // namespace penumbra

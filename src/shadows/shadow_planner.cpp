@@ -107,7 +107,10 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
     const std::vector<uint32_t>& casters = workspace.casters;
     reserveDirectionalShadows(scene, directional.cascades, casters, config.cascadeCount, directional.lights);
     directional.slotOfSceneLight.assign(scene.lights.size(), -1);
-    directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * config.cascadeCount);
+    // Virtual shadow maps (render/virtual_shadows.h) shadow the reserved lights without cascade tiles.
+    const bool virtualMaps = config.mode == DirectionalShadowMode::Virtual;
+    const uint32_t tilesPerLight = virtualMaps ? 0u : config.cascadeCount;
+    directional.atlas = makeAtlasLayout(config.atlasSize, uint32_t(directional.lights.size()) * tilesPerLight);
 
     // Blend culling asks where a caster's shadow can land: anywhere in the receivers' common bounds (one
     // box, so the same rule costs O(1) per caster on the CPU and in the GPU culling pass). It reasons
@@ -127,7 +130,7 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
         const TileInputs inputs{scene,         casters, workspace.rsCasterBounds, directional.cascades, directional.atlas,
                                 blendCulling,  config.filter, tight ? visible : nullptr, config.cascadeFade,
                                 options.cullCasters};
-        for (uint32_t cascade = 0; cascade < config.cascadeCount; ++cascade)
+        for (uint32_t cascade = 0; cascade < tilesPerLight; ++cascade)
             directional.tiles.push_back(planTile(inputs, light, rotation, slot, cascade, frame.stats));
     }
 }

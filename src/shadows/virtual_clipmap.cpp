@@ -87,6 +87,18 @@ PageRect pagesTouchedByBounds(const ClipmapLevel& level, const Aabb& lsBounds) {
     return clipped.empty() ? PageRect{} : clipped;
 }
 
+uint32_t casterPageRects(const VirtualClipmapConfig& config, const glm::mat4& lightRotation, const glm::vec2& lsCamera,
+                         const Aabb& wsBounds, LevelPageRect* out) {
+    if (!wsBounds.valid()) return 0;
+    const Aabb lsBounds = wsBounds.transformed(lightRotation);
+    uint32_t count = 0;
+    for (uint32_t level = 0; level < config.levelCount; ++level) {
+        const PageRect pages = pagesTouchedByBounds(placeClipmapLevel(config, level, lsCamera), lsBounds);
+        if (!pages.empty()) out[count++] = {level, pages};
+    }
+    return count;
+}
+
 void packClipmapWindows(const VirtualClipmapConfig& config, const glm::vec2& lsCamera,
                         gpu_data::VirtualPageLevelWindow* levels) {
     PENUMBRA_ASSERT(config.levelCount <= gpu_data::kVirtualPageMaxLevels);

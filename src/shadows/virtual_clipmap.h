@@ -83,6 +83,20 @@ std::optional<uint32_t> levelForReceiver(const VirtualClipmapConfig& config, con
 // when that caster moves. Empty when the bounds miss the window.
 PageRect pagesTouchedByBounds(const ClipmapLevel& level, const Aabb& lsBounds);
 
+// One level's rectangle of pages.
+struct LevelPageRect {
+    uint32_t level = 0;
+    PageRect pages;
+};
+
+// The pages a caster with world bounds wsBounds covers in every level's window, as seen by the light of
+// rotation lightRotation (lightRotationFromWorld) with the levels around lsCamera: its shadow can only
+// change depth there, so when a caster moves, appears or disappears these pages of its old and of its
+// new bounds are drawn again. Writes one rectangle per level the bounds touch into out[0 ..
+// config.levelCount) and returns how many.
+uint32_t casterPageRects(const VirtualClipmapConfig& config, const glm::mat4& lightRotation, const glm::vec2& lsCamera,
+                         const Aabb& wsBounds, LevelPageRect* out);
+
 // Every level's window around lsCamera as the GPU reads it (the page table's and the lookup's data):
 // its first page and that page's slot, into levels[0 .. config.levelCount).
 void packClipmapWindows(const VirtualClipmapConfig& config, const glm::vec2& lsCamera,

@@ -35,7 +35,8 @@ bool texelDepth(const VirtualShadowLookupData& data, const VirtualShadowPages& p
         const int32_t physical = virtualShadowReadyPage(data, pages, coarser, page);
         if (physical < 0) continue;
         const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
-        const glm::ivec2 poolTexel = glm::ivec2(physical % pool, physical / pool) * size + t - page * size;
+        const glm::ivec2 origin = glm::ivec2(physical % pool, physical / pool) * size + glm::ivec2(0, int(data.poolOriginY));
+        const glm::ivec2 poolTexel = origin + t - page * size;  // pool texture texels
         const size_t index = size_t(poolTexel.y) * size_t(pool * size) + size_t(poolTexel.x);
         PENUMBRA_ASSERT(index < pages.poolTexels.size());
         depth = pages.poolTexels[index];
@@ -58,7 +59,8 @@ float mixFloat(float a, float b, float t) { return a * (1.0f - t) + b * t; }  //
 gpu_data::VirtualShadowLookupData packVirtualShadowLookup(const VirtualClipmapConfig& config,
                                                           const glm::mat4& lightRotationFromWorld, float lsDepthNear,
                                                           float lsDepthFar, const glm::vec2& lsCamera,
-                                                          uint32_t poolPagesPerSide) {
+                                                          uint32_t poolPagesPerSide, uint32_t poolOriginY,
+                                                          uint32_t firstEntry) {
     PENUMBRA_ASSERT(config.levelCount <= gpu_data::kVirtualPageMaxLevels && lsDepthNear != lsDepthFar);
     VirtualShadowLookupData data{};
     data.lightRotationFromWorld = lightRotationFromWorld;
@@ -71,6 +73,8 @@ gpu_data::VirtualShadowLookupData packVirtualShadowLookup(const VirtualClipmapCo
     data.levelCount = config.levelCount;
     data.poolPagesPerSide = poolPagesPerSide;
     data.texelsPerMetre = float(config.resolution) / config.firstLevelSize;
+    data.poolOriginY = poolOriginY;
+    data.firstEntry = firstEntry;
     packClipmapWindows(config, lsCamera, data.levels);
     return data;
 }
@@ -87,8 +91,10 @@ int32_t virtualShadowEntryIndex(const VirtualShadowLookupData& data, uint32_t le
 int32_t virtualShadowReadyPage(const VirtualShadowLookupData& data, const VirtualShadowPages& pages, uint32_t level,
                                const glm::ivec2& page) {
     const int32_t index = virtualShadowEntryIndex(data, level, page);
-    if (index < 0 || size_t(index) >= pages.entries.size()) return -1;
-    const VirtualPageEntry& entry = pages.entries[size_t(index)];
+    if (index < 0) return -1;
+    const size_t record = size_t(data.firstEntry) + size_t(index);  // of the whole entry buffer
+    if (record >= pages.entries.size()) return -1;
+    const VirtualPageEntry& entry = pages.entries[record];
     const uint32_t state = entry.flags & (gpu_data::kVirtualPageResident | gpu_data::kVirtualPageDirty);
     const bool ready = state == gpu_data::kVirtualPageResident && entry.pageX == page.x && entry.pageY == page.y &&
                        entry.physicalPage < data.poolPagesPerSide * data.poolPagesPerSide;

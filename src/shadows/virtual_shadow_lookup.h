@@ -29,10 +29,14 @@
 
 namespace penumbra {
 
-// A CPU copy of what the lookup reads: the page table's entries and the pool's texels.
+// A CPU copy of what the lookup reads: the bound entry buffer and the pool texture, which may hold several
+// maps' (render/virtual_page_storage.h): the lookup data's firstEntry and poolOriginY place this map's.
 struct VirtualShadowPages {
-    std::span<const gpu_data::VirtualPageEntry> entries;  // levelCount * pagesPerSide^2, by (level, slot)
-    std::span<const float> poolTexels;  // (poolPagesPerSide * pageSize)^2 stored depths, row by row
+    // At least firstEntry + levelCount * pagesPerSide^2 records; this map's by (level, slot) from firstEntry.
+    std::span<const gpu_data::VirtualPageEntry> entries;
+    // The pool texture's stored depths, row by row, poolPagesPerSide * pageSize texels a row; this map's
+    // pool is the square of that side from row poolOriginY.
+    std::span<const float> poolTexels;
 };
 
 struct VirtualShadowSample {
@@ -41,15 +45,19 @@ struct VirtualShadowSample {
 };
 
 // The lookup's uniform data: the clipmap `config` with its windows around lsCamera (the same windows as
-// packVirtualPageTable), the light's rotation, the pages' depth range and the pool's side in pages.
+// packVirtualPageTable), the light's rotation, the pages' depth range, the pool's side in pages and where
+// the map lies in shared storage: its pool from pool texture row poolOriginY (texels), its entries from
+// record firstEntry of the entry buffer (0 and 0: a map with storage of its own).
 gpu_data::VirtualShadowLookupData packVirtualShadowLookup(const VirtualClipmapConfig& config,
                                                           const glm::mat4& lightRotationFromWorld, float lsDepthNear,
                                                           float lsDepthFar, const glm::vec2& lsCamera,
-                                                          uint32_t poolPagesPerSide);
+                                                          uint32_t poolPagesPerSide, uint32_t poolOriginY = 0,
+                                                          uint32_t firstEntry = 0);
 
 // The entry of global page `page` of `level`, or -1 when the page is outside the level's window.
 int32_t virtualShadowEntryIndex(const gpu_data::VirtualShadowLookupData& data, uint32_t level, const glm::ivec2& page);
-// The physical page holding page `page` of `level` ready to sample, or -1.
+// The physical page holding page `page` of `level` ready to sample (its entry: record data.firstEntry +
+// virtualShadowEntryIndex of pages.entries), or -1.
 int32_t virtualShadowReadyPage(const gpu_data::VirtualShadowLookupData& data, const VirtualShadowPages& pages,
                                uint32_t level, const glm::ivec2& page);
 // The global page holding virtual texel `texel` (floor division by pageSize, negative texels too).

@@ -168,6 +168,13 @@ void drawStatsPanel(PanelContext& c) {
     ImGui::Text("        record %.2f  submit %.2f", last.cpu.record, last.cpu.submit);
     ImGui::Text("frame (submit to fence) %.2f ms", last.submitToFenceMilliseconds);
     ImGui::Text("shadow raster %s; tiles drawn %u, reused %u", last.shadowRaster.c_str(), last.tilesRendered, last.tilesReused);
+    if (const VirtualPageCounts& pages = last.virtualPages; pages.maps > 0) {
+        ImGui::Text("virtual pages (%u maps): %u requested, %u cached, %u drawn", pages.maps, pages.requested,
+                    pages.cached, pages.drawn);
+        ImGui::Text("  %u allocated, %u evicted, %u of %u resident (%.0f %%), %u overflowed", pages.allocated,
+                    pages.evicted, pages.resident, pages.poolPages,
+                    pages.poolPages > 0 ? 100.0 * pages.resident / pages.poolPages : 0.0, pages.overflowed);
+    }
     for (const AtlasDrawStats& atlas : last.atlases)
         ImGui::Text("%s: %u tiles, %u draws, %llu triangles", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     static_cast<unsigned long long>(atlas.triangles));

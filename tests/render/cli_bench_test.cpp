@@ -103,6 +103,53 @@ TEST(CliBench, StillCameraReusesEveryShadowTile) {
     ASSERT_TRUE(json.is_object());
     EXPECT_EQ(json["tiles"]["rendered"], 0);
     EXPECT_EQ(json["tiles"]["reused"], 6);  // 4 cascades and 2 spot tiles
+    // Nothing moves without --light-motion and --move-objects.
+    EXPECT_EQ(json["lightMotion"]["degreesPerFrame"], 0);
+    EXPECT_EQ(json["lightMotion"]["lights"], 0);
+    EXPECT_EQ(json["moveObjects"]["fraction"], 0);
+    EXPECT_EQ(json["moveObjects"]["moved"], 0);
+}
+
+TEST(CliBench, LightMotionTurnsTheSunSoItsCascadesAreDrawnEveryFrame) {
+    const nlohmann::json json = runBenchJson("--frames 4 --warmup 1 --camera static --light-motion 5");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_EQ(json["lightMotion"]["degreesPerFrame"], 5);
+    EXPECT_EQ(json["lightMotion"]["lights"], 1);  // the demo's sun; its 2 spots stay
+    // A still camera: the turned sun's 4 cascades are drawn again in every timed frame, the spot
+    // tiles are reused (a still scene reuses all 6: StillCameraReusesEveryShadowTile).
+    EXPECT_EQ(json["tiles"]["renderedMin"], 4);
+    EXPECT_EQ(json["tiles"]["rendered"], 4);
+    EXPECT_EQ(json["tiles"]["reused"], 2);
+    EXPECT_EQ(json["validationMessages"], 0);
+}
+
+TEST(CliBench, MoveObjectsMovesThatShareOfTheInstancesEveryFrame) {
+    const nlohmann::json json = runBenchJson("--frames 4 --warmup 1 --camera static --move-objects 0.5");
+    ASSERT_TRUE(json.is_object());
+    EXPECT_EQ(json["moveObjects"]["fraction"], 0.5);
+    EXPECT_EQ(json["moveObjects"]["moved"], 7);  // ceil(0.5 x 13)
+    EXPECT_EQ(json["lightMotion"]["lights"], 0);
+    // Moved casters: every tile is drawn again in every timed frame, and no GPU object is made.
+    EXPECT_EQ(json["tiles"]["renderedMin"], 6);
+    EXPECT_EQ(json["tiles"]["reused"], 0);
+    EXPECT_EQ(json["allocationsAfterWarmup"]["gpuObjects"], 0);
+    EXPECT_EQ(json["validationMessages"], 0);
+    // 0.28 x 25 is 7.000000000000001 in binary: still 7 of 24 boxes and the ground.
+    EXPECT_EQ(runBenchJson("gen:boxes:24 --frames 1 --warmup 0 --move-objects 0.28")["moveObjects"]["moved"], 7);
+}
+
+TEST(CliBench, PrintsTheMotionInTheHeader) {
+    const CliRun run = runPenumbra(
+        "bench --frames 1 --warmup 0 --width 64 --height 48 --device cpu --light-motion 2.5 --move-objects 1");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_NE(run.out.find("camera static, light motion 2.5 deg/frame (1 directional light), move objects 1 (13 of 13 "
+                           "instances per frame)\n"),
+              std::string::npos)
+        << run.out;
+    // Without them the header line ends at the camera.
+    const CliRun still = runPenumbra("bench --frames 1 --warmup 0 --width 64 --height 48 --device cpu");
+    ASSERT_EQ(still.exitCode, 0) << still.err;
+    EXPECT_NE(still.out.find("camera static\n"), std::string::npos) << still.out;
 }
 
 TEST(CliBench, MeasuresTheBuiltInBoxesScene) {

@@ -71,6 +71,14 @@ TEST(CliErrors, MissingCommandIsOneLine) { expectOneLineError(runPenumbra(""), "
 
 TEST(CliErrors, NonNumericFrameCountIsOneLine) { expectOneLineError(runPenumbra("bench --frames many"), "--frames"); }
 
+TEST(CliErrors, BenchMotionOutsideItsRangeIsOneLine) {
+    expectOneLineError(runPenumbra("bench --move-objects 2" + kSmall), "--move-objects: 2 is not a number from 0 to 1");
+    expectOneLineError(runPenumbra("bench --move-objects -0.5" + kSmall), "--move-objects");
+    expectOneLineError(runPenumbra("bench --light-motion -1" + kSmall), "--light-motion: -1 is not a number from 0 to 180");
+    expectOneLineError(runPenumbra("bench --light-motion 181" + kSmall), "--light-motion");
+    expectOneLineError(runPenumbra("bench --light-motion nan" + kSmall), "--light-motion: nan");  // CLI::Range lets NaN in
+}
+
 TEST(CliErrors, DirectoryAsTheSceneIsOneLineSayingSo) {
     const fs::path dir = freshFolder("scene_dir");
     expectOneLineError(runPenumbra("render " + dir.string() + " -o " + (dir / "x.png").string()), "it is a directory");

@@ -28,6 +28,7 @@
 #include "render/raster_choice.h"
 #include "render/shadow_stats_json.h"
 #include "render/tile_cache.h"
+#include "render/virtual_page_storage.h"
 #include "render/virtual_shadow_map.h"
 #include "render_test_support.h"
 #include "shadows/shadow_planner.h"
@@ -227,6 +228,25 @@ TEST_F(FrameAllocationTest, SteadyVisibilityBufferFrameAllocatesNothing) {
     EXPECT_EQ(steadyFrameAllocations(visibilitySettings(), true), 0u);
 }
 
+Settings virtualSettings(MainView mainView) {
+    Settings settings;
+    settings.render.mainView = mainView;
+    settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+    settings.shadows.virtualMaps.poolPages = 256;
+    return settings;
+}
+
+// The renderer's frames with shadows.directional.mode = virtual: the depth prepass (forward) or the
+// visibility buffer's geometry, the maps' chains, their stats read back.
+TEST_F(FrameAllocationTest, SteadyForwardFrameWithVirtualShadowMapsAllocatesNothing) {
+    EXPECT_EQ(steadyFrameAllocations(virtualSettings(MainView::Forward), true), 0u);
+}
+
+TEST_F(FrameAllocationTest, SteadyVisibilityBufferFrameWithVirtualShadowMapsAllocatesNothing) {
+    if (!gpu::backend(deviceWithoutValidation()).hasBufferInt64Atomics()) GTEST_SKIP() << "no 64-bit buffer atomics";
+    EXPECT_EQ(steadyFrameAllocations(virtualSettings(MainView::Visibility), true), 0u);
+}
+
 // A frame of a directional light's virtual shadow map (render/virtual_shadow_map.h): the whole chain with
 // moved casters' rectangles (so pages are drawn every frame), its stats read back, the frame submitted
 // and its readback taken, after frames that used every upload slot.
@@ -248,7 +268,7 @@ TEST_F(FrameAllocationTest, SteadyVirtualShadowMapFrameAllocatesNothing) {
     uint32_t drawn = 0;
     const auto frame = [&] {
         gpu::CommandList commands = gpu.beginFrame();
-        map.record(commands, depth.texture, view, light, scene.wsBounds, 2.0f, moved);
+        map.record(commands, VirtualPageDepthSource::texture(depth.texture), view, light, scene.wsBounds, 2.0f, moved);
         const uint64_t at = gpu.readBackAtFrameEnd(commands, map.stats());
         gpu.waitFrame(gpu.submitFrame(commands));
         for (const gpu::CompletedFrame& done : gpu.completedFrames())
@@ -258,6 +278,36 @@ TEST_F(FrameAllocationTest, SteadyVirtualShadowMapFrameAllocatesNothing) {
     for (uint32_t i = 0; i < 2 * gpu.framesInFlight() + 4; ++i) frame();
     EXPECT_EQ(allocationsOf(frame), 0u);
     EXPECT_GT(drawn, 0u) << "the invalidated pages are drawn again every frame";
+    gpu.destroy(depth.texture);
+}
+
+// Two maps sharing one pool texture and entry buffer (render/virtual_page_storage.h), recorded in one
+// frame for two lights: their records allocate nothing either.
+TEST_F(FrameAllocationTest, SteadyFrameOfTwoVirtualShadowMapsSharingStorageAllocatesNothing) {
+    gpu::Device& gpu = gpu::backend(deviceWithoutValidation());
+    const Scene scene = makeDemoScene();
+    const CameraView view = resolveCameraView(scene, 96, 54);
+    SceneDepth depth = renderSceneDepth(gpu, scene, view);
+    GpuScene gpuScene(gpu, scene);
+    ComputeRasterPass raster(gpu, gpuScene);
+    VirtualShadowMapConfig config;
+    config.clipmap = {.resolution = 4096, .pageSize = 32, .levelCount = 10, .firstLevelSize = 64.0f};
+    VirtualPageStorageSet storage(gpu, config.clipmap, config.poolPagesPerSide, 2);
+    const VirtualPageStorage places[2] = {storage.storageFor(0), storage.storageFor(1)};
+    VirtualShadowMap first(gpu, gpuScene, raster, config, &places[0]), second(gpu, gpuScene, raster, config, &places[1]);
+    const glm::vec3 lights[2] = {glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f)), glm::normalize(glm::vec3(-0.5f, -1.0f, 0.1f))};
+    const gpu_data::VirtualPageInvalidation moved = virtualPageInvalidation(0, {{-4, -4}, {4, 4}});
+    const auto frame = [&] {
+        gpu::CommandList commands = gpu.beginFrame();
+        first.record(commands, VirtualPageDepthSource::texture(depth.texture), view, lights[0], scene.wsBounds, 2.0f,
+                     std::span(&moved, 1));
+        second.record(commands, VirtualPageDepthSource::texture(depth.texture), view, lights[1], scene.wsBounds, 2.0f,
+                      std::span(&moved, 1));
+        gpu.waitFrame(gpu.submitFrame(commands));
+        gpu.releaseCompletedFrames();
+    };
+    for (uint32_t i = 0; i < 2 * gpu.framesInFlight() + 4; ++i) frame();
+    EXPECT_EQ(allocationsOf(frame), 0u);
     gpu.destroy(depth.texture);
 }
 

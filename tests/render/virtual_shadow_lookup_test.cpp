@@ -37,52 +37,6 @@ using gpu_data::VirtualShadowProbeResult;
 
 const VirtualPageEntry kNoPage{gpu_data::kVirtualPageNone, 0, 0, 0, 0, 0, 0, 0};
 
-// Whether the CPU's and the GPU's float rounding may legitimately pick another texel or level at a point.
-bool nearAnEdge(const VirtualShadowLookupData& data, const glm::vec3& wsPosition, float footprint, int servedLevel) {
-    const glm::vec2 texel0 = glm::vec2(data.lightRotationFromWorld * glm::vec4(wsPosition, 1.0f)) * data.texelsPerMetre;
-    const int first = int(levelForFootprint({data.resolution, data.pageSize, data.levelCount, data.firstLevelSize}, footprint));
-    const int last = servedLevel < 0 ? int(data.levelCount) - 1 : servedLevel;
-    for (int level = first; level <= last; ++level)
-        for (int axis = 0; axis < 2; ++axis) {
-            const float t = std::ldexp(texel0[axis], -level);
-            if (std::abs(t - std::round(t)) < 1e-3f) return true;
-        }
-    const double ratio = std::log2(double(footprint) * data.resolution / data.firstLevelSize);
-    return std::abs(ratio - std::round(ratio)) < 2e-5;
-}
-
-// What a comparison of the GPU with the CPU found.
-struct Agreement {
-    size_t differ = 0, nearEdges = 0, fractional = 0, fellBack = 0, unserved = 0;
-    std::vector<size_t> perLevel = std::vector<size_t>(gpu_data::kVirtualPageMaxLevels, 0);
-};
-
-Agreement compareWithCpu(const VirtualShadowLookupData& data, const VirtualShadowPages& pages,
-                         const std::vector<VirtualShadowProbePoint>& points, const std::vector<VirtualShadowProbeResult>& gpu) {
-    Agreement a;
-    const VirtualClipmapConfig config{data.resolution, data.pageSize, data.levelCount, data.firstLevelSize};
-    for (size_t i = 0; i < points.size(); ++i) {
-        const VirtualShadowSample cpu = sampleVirtualShadow(data, pages, points[i].wsPosition, points[i].wsFootprint);
-        const bool agree = std::abs(cpu.lit - gpu[i].lit) <= 1e-4f && cpu.level == gpu[i].level;
-        const bool edge = nearAnEdge(data, points[i].wsPosition, points[i].wsFootprint, cpu.level);
-        a.nearEdges += edge;
-        if (!agree && !edge) {
-            if (a.differ < 10)
-                ADD_FAILURE() << "point " << i << ": GPU " << gpu[i].lit << " at level " << gpu[i].level << ", CPU " << cpu.lit
-                              << " at level " << cpu.level;
-            ++a.differ;
-        }
-        a.fractional += cpu.lit > 0.0f && cpu.lit < 1.0f;
-        if (cpu.level < 0) {
-            ++a.unserved;
-            continue;
-        }
-        ++a.perLevel[size_t(cpu.level)];
-        a.fellBack += uint32_t(cpu.level) > levelForFootprint(config, points[i].wsFootprint);
-    }
-    return a;
-}
-
 class VirtualShadowLookupTest : public RenderTest {
 protected:
     gpu::Device& gpu() { return gpu::backend(device()); }

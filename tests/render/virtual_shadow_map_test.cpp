@@ -33,34 +33,6 @@ using gpu_data::VirtualShadowProbePoint;
 using gpu_data::VirtualShadowProbeResult;
 
 constexpr float kMarginTexels = 2.0f;
-constexpr uint32_t kWidth = 320, kHeight = 180;
-
-// Pages of 32 texels, level 0 64 m wide (1.6 cm texels), as the marking tests' scene-scale clipmap; a pool
-// of 32 x 32 pages, far more than the view requests.
-VirtualShadowMapConfig mapConfig() {
-    VirtualShadowMapConfig config;
-    config.clipmap = {.resolution = 4096, .pageSize = 32, .levelCount = 10, .firstLevelSize = 64.0f};
-    config.poolPagesPerSide = 32;
-    config.keepFrames = 8;
-    return config;
-}
-
-// A camera 10 m up and 11 m back from the demo's casters, looking down at them and at the ground their
-// shadows fall on (toward -x and +z: the sun stands at +x, -z), out to the horizon at the top.
-CameraView demoView(uint32_t width = kWidth, uint32_t height = kHeight) {
-    Camera camera;
-    const glm::vec3 eye(-3.0f, 7.0f, 8.0f), target(-1.5f, 0.0f, 1.5f);
-    camera.worldFromView = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
-    camera.yfov = glm::radians(60.0f);
-    camera.zNear = 0.1f;
-    return makeCameraView(camera, width, height);
-}
-
-glm::vec3 sceneLight(const Scene& scene) {
-    for (const Light& light : scene.lights)
-        if (light.type == LightType::Directional) return light.wsDirection;
-    throw std::runtime_error("the scene has no directional light");
-}
 
 // A view of the scene, its depth, and the ground points it sees with the ray tracer's answer for a light.
 struct ViewCase {
@@ -96,7 +68,7 @@ public:
     VirtualPageStats frame(const ViewCase& c, const glm::vec3& wsLight, const Aabb& wsBounds,
                            std::span<const gpu_data::VirtualPageInvalidation> invalidations = {}) {
         gpu::CommandList commands = gpu_.beginFrame();
-        map_.record(commands, c.depth.texture, c.view, wsLight, wsBounds, kMarginTexels, invalidations);
+        map_.record(commands, VirtualPageDepthSource::texture(c.depth.texture), c.view, wsLight, wsBounds, kMarginTexels, invalidations);
         const uint64_t at = gpu_.readBackAtFrameEnd(commands, map_.stats());
         const uint64_t index = gpu_.submitFrame(commands);
         gpu_.waitFrame(index);

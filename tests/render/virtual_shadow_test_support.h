@@ -1,10 +1,16 @@
 #pragma once
-// Shared pieces of the virtual shadow map render tests: the main view's depth (rendered by the main
-// pass's depth prepass), the lookup's probe (virtual_shadow_probe.comp: the lookup at given points from
-// a page table and a pool), and ground points of a scene where the ray tracer's answer is clear.
+// Shared pieces of the virtual shadow map render tests: the demo scene's map configuration, view and light,
+// the main view's depth (rendered by the main pass's depth prepass), the lookup's probe
+// (virtual_shadow_probe.comp: the lookup at given points from a page table and a pool) and its comparison
+// with the CPU reference, and ground points of a scene where the ray tracer's answer is clear.
+#include <cmath>
 #include <cstring>
 #include <optional>
+#include <stdexcept>
 #include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
 
 #include "pass_bindings.h"
 #include "penumbra/scene.h"
@@ -14,12 +20,42 @@
 #include "render/main_pass.h"
 #include "render/pass_layouts.h"
 #include "render/screen_space_shadow_pass.h"
+#include "render/virtual_shadow_map.h"
 #include "shadows/virtual_page_marking.h"
+#include "shadows/virtual_shadow_lookup.h"
 #include "shadows/visible_surfaces.h"
 #include "virtual_page_structs.h"
 #include "virtual_shadow_structs.h"
 
 namespace penumbra::test {
+
+// Pages of 32 texels, level 0 64 m wide (1.6 cm texels), as the marking tests' scene-scale clipmap; a pool
+// of 32 x 32 pages, far more than the view requests.
+inline VirtualShadowMapConfig mapConfig() {
+    VirtualShadowMapConfig config;
+    config.clipmap = {.resolution = 4096, .pageSize = 32, .levelCount = 10, .firstLevelSize = 64.0f};
+    config.poolPagesPerSide = 32;
+    config.keepFrames = 8;
+    return config;
+}
+
+// A camera 10 m up and 11 m back from the demo's casters, looking down at them and at the ground their
+// shadows fall on (toward -x and +z: the sun stands at +x, -z), out to the horizon at the top.
+inline CameraView demoView(uint32_t width = 320, uint32_t height = 180) {
+    Camera camera;
+    const glm::vec3 eye(-3.0f, 7.0f, 8.0f), target(-1.5f, 0.0f, 1.5f);
+    camera.worldFromView = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
+    camera.yfov = glm::radians(60.0f);
+    camera.zNear = 0.1f;
+    return makeCameraView(camera, width, height);
+}
+
+// The scene's (first) directional light's direction.
+inline glm::vec3 sceneLight(const Scene& scene) {
+    for (const Light& light : scene.lights)
+        if (light.type == LightType::Directional) return light.wsDirection;
+    throw std::runtime_error("the scene has no directional light");
+}
 
 // The view's depth, rendered by the main pass's depth prepass (as the visible-surface reduction
 // draws it) and read back; `texture` keeps it for marking on the GPU.
@@ -144,9 +180,11 @@ public:
         return texture;
     }
 
-    // The pool texture's texels, through a buffer that Device::readBuffer reads back.
-    std::vector<float> readPool(gpu::TextureHandle texture, uint32_t side) {
-        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(side) * side * 4, gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
+    // The pool texture's texels (side x side, or side x height: pools several maps share), row by row, through
+    // a buffer that Device::readBuffer reads back.
+    std::vector<float> readPool(gpu::TextureHandle texture, uint32_t side, uint32_t height = 0) {
+        const size_t rows = height ? height : side;
+        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(side) * rows * 4, gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
                                                          gpu::MemoryKind::DeviceLocal, nullptr, "probe pool copy");
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/pool", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(copy, gpu::Usage::TransferWrite)});
@@ -164,6 +202,54 @@ private:
     gpu::PipelineHandle pipeline_;
     gpu::SamplerHandle sampler_;
 };
+
+// The GPU lookup against its CPU reference (tolerances: tests/render/virtual_shadow_lookup_test.cpp's header).
+// Whether the CPU's and the GPU's float rounding may legitimately pick another texel or level at a point.
+inline bool nearAnEdge(const gpu_data::VirtualShadowLookupData& data, const glm::vec3& wsPosition, float footprint, int servedLevel) {
+    const glm::vec2 texel0 = glm::vec2(data.lightRotationFromWorld * glm::vec4(wsPosition, 1.0f)) * data.texelsPerMetre;
+    const int first = int(levelForFootprint({data.resolution, data.pageSize, data.levelCount, data.firstLevelSize}, footprint));
+    const int last = servedLevel < 0 ? int(data.levelCount) - 1 : servedLevel;
+    for (int level = first; level <= last; ++level)
+        for (int axis = 0; axis < 2; ++axis) {
+            const float t = std::ldexp(texel0[axis], -level);
+            if (std::abs(t - std::round(t)) < 1e-3f) return true;
+        }
+    const double ratio = std::log2(double(footprint) * data.resolution / data.firstLevelSize);
+    return std::abs(ratio - std::round(ratio)) < 2e-5;
+}
+
+// What a comparison of the GPU with the CPU found.
+struct Agreement {
+    size_t differ = 0, nearEdges = 0, fractional = 0, fellBack = 0, unserved = 0;
+    std::vector<size_t> perLevel = std::vector<size_t>(gpu_data::kVirtualPageMaxLevels, 0);
+};
+
+inline Agreement compareWithCpu(const gpu_data::VirtualShadowLookupData& data, const VirtualShadowPages& pages,
+                                const std::vector<gpu_data::VirtualShadowProbePoint>& points,
+                                const std::vector<gpu_data::VirtualShadowProbeResult>& gpu) {
+    Agreement a;
+    const VirtualClipmapConfig config{data.resolution, data.pageSize, data.levelCount, data.firstLevelSize};
+    for (size_t i = 0; i < points.size(); ++i) {
+        const VirtualShadowSample cpu = sampleVirtualShadow(data, pages, points[i].wsPosition, points[i].wsFootprint);
+        const bool agree = std::abs(cpu.lit - gpu[i].lit) <= 1e-4f && cpu.level == gpu[i].level;
+        const bool edge = nearAnEdge(data, points[i].wsPosition, points[i].wsFootprint, cpu.level);
+        a.nearEdges += edge;
+        if (!agree && !edge) {
+            if (a.differ < 10)
+                ADD_FAILURE() << "point " << i << ": GPU " << gpu[i].lit << " at level " << gpu[i].level << ", CPU " << cpu.lit
+                              << " at level " << cpu.level;
+            ++a.differ;
+        }
+        a.fractional += cpu.lit > 0.0f && cpu.lit < 1.0f;
+        if (cpu.level < 0) {
+            ++a.unserved;
+            continue;
+        }
+        ++a.perLevel[size_t(cpu.level)];
+        a.fellBack += uint32_t(cpu.level) > levelForFootprint(config, points[i].wsFootprint);
+    }
+    return a;
+}
 
 // The light-space bounds of a scene's casters whose material does not cast opaque shadows (alpha-clipped,
 // dithered: the ray tracer and the rasterizer cut them differently).

@@ -274,6 +274,29 @@ TEST(SettingsJson, NumberTooLargeForADoubleIsAnError) {
         << parseError(R"({"shadows": {"maxDistance": 1e3900}})");
 }
 
+TEST(SettingsJson, VirtualShadowSettingsAreReadAndChecked) {
+    const Settings settings = parseSettingsJson(
+        R"({"shadows": {"directional": {"mode": "virtual"}, "virtual": {"pageSize": 64, "poolPages": 300, "lodBias": -2}}})",
+        "test.json");
+    EXPECT_EQ(settings.shadows.directional.mode, DirectionalShadowMode::Virtual);
+    EXPECT_EQ(settings.shadows.virtualMaps.pageSize, 64u);
+    EXPECT_EQ(settings.shadows.virtualMaps.poolPages, 300u);
+    EXPECT_EQ(settings.shadows.virtualMaps.lodBias, -2.0f);
+    EXPECT_NE(parseError(R"({"shadows": {"virtual": {"pageSize": 100}}})").find("shadows.virtual.pageSize = 100 is out of range"),
+              std::string::npos);
+    EXPECT_NE(parseError(R"({"shadows": {"directional": {"mode": "clipmap"}}})").find("shadows.directional.mode"),
+              std::string::npos);
+}
+
+// A level of 32768 texels in pages of 64 is 512 pages a side: more than the page table holds.
+TEST(SettingsJson, TooManyVirtualPagesASideAreAnError) {
+    EXPECT_NE(parseError(R"({"shadows": {"virtual": {"resolution": 32768, "pageSize": 64}}})")
+                  .find("shadows.virtual.resolution / shadows.virtual.pageSize = 32768 / 64 = 512 pages a side is out of "
+                        "range (allowed 8..256)"),
+              std::string::npos)
+        << parseError(R"({"shadows": {"virtual": {"resolution": 32768, "pageSize": 64}}})");
+}
+
 TEST(SettingsJson, DecreasingCascadeRatiosAreAnError) {
     EXPECT_NE(parseError(R"({"shadows": {"directional": {"cascadeRatios": [0.5, 0.25, 0.1]}}})")
                   .find("shadows.directional.cascadeRatios = [0.5, 0.25, 0.1] must not decrease"),

@@ -5,6 +5,7 @@
 // pages, and the lit convention outside every window.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -181,6 +182,52 @@ TEST(VirtualShadowLookup, OutsideEveryWindowOrWithNoReadyPageTheReceiverIsLit) {
     // Level 2's page edge at x = 4 m (texel 8 of 0.5 m texels): at texel coordinate 7.75, texel 7 (weight
     // 0.75) shadows, texel 8 (page (1, 0) of level 2, in no level) has nothing cast.
     EXPECT_NEAR(rig.at({3.875f, 1.0f, 0.0f}).lit, 0.25f, 1e-6f);
+}
+
+// The map as the second of three sharing one entry buffer and one pool texture (render/
+// virtual_page_storage.h): its entries from record firstEntry, its pool from row poolOriginY. The first
+// map holds no page and the third every page of this one; both pools shadow everything, so a lookup that
+// read their entries or rows would differ.
+TEST(VirtualShadowLookup, AMapInSharedStorageReadsItsOwnEntriesAndPoolRows) {
+    PageRig rig;
+    rig.placePlane(0, {0, 0}, 1, 0.0f);
+    rig.place(0, {1, 0}, 3, [](int tx, int ty) { return tx == 3 && ty == 5 ? 0.0f : 1.0f; });
+    rig.placePlane(1, {0, 0}, 2, -5.0f);
+    rig.placePlane(2, {-1, -1}, 0, 2.0f);
+    const size_t count = rig.entries.size(), side = kPoolPagesPerSide * 8;
+    const uint32_t firstEntry = uint32_t(count + 8), poolOriginY = uint32_t(side);  // padding after the first map
+    std::vector<gpu_data::VirtualPageEntry> entries(firstEntry, gpu_data::VirtualPageEntry{kVirtualPageNone, 0, 0, 0, 0, 0, 0, 0});
+    entries.insert(entries.end(), rig.entries.begin(), rig.entries.end());  // this map
+    entries.insert(entries.end(), rig.entries.begin(), rig.entries.end());  // the third map's
+    std::vector<float> pool(3 * side * side, 0.0f);  // pool texture texels, side a row: every depth nearest
+    std::copy(rig.pool.begin(), rig.pool.end(), pool.begin() + std::ptrdiff_t(poolOriginY * side));
+    const auto packed = [&](uint32_t originY, uint32_t first) {
+        return packVirtualShadowLookup(testClipmap(), glm::mat4(1.0f), kNear, kFar, glm::vec2(0.5f), kPoolPagesPerSide, originY,
+                                       first);
+    };
+    const gpu_data::VirtualShadowLookupData shared = packed(poolOriginY, firstEntry);
+    EXPECT_EQ(shared.poolOriginY, poolOriginY);
+    EXPECT_EQ(shared.firstEntry, firstEntry);
+    size_t points = 0, shadowed = 0, wrongRows = 0, wrongEntries = 0;
+    for (float y = -1.0f; y < 3.0f; y += 0.0937f)
+        for (float x = -1.0f; x < 3.0f; x += 0.0937f)
+            for (const float z : {-0.5f, 0.5f})
+                for (const float footprint : {kFine, 0.3f}) {
+                    const glm::vec3 p(x, y, z);
+                    const VirtualShadowSample alone = rig.at(p, footprint);
+                    const VirtualShadowSample s = sampleVirtualShadow(shared, {entries, pool}, p, footprint);
+                    ASSERT_EQ(s.lit, alone.lit) << x << ", " << y << ", " << z;
+                    ASSERT_EQ(s.level, alone.level) << x << ", " << y << ", " << z;
+                    ++points;
+                    shadowed += alone.lit < 1.0f;
+                    const VirtualShadowSample rows0 = sampleVirtualShadow(packed(0, firstEntry), {entries, pool}, p, footprint);
+                    const VirtualShadowSample entries0 = sampleVirtualShadow(packed(poolOriginY, 0), {entries, pool}, p, footprint);
+                    wrongRows += rows0.lit != alone.lit;
+                    wrongEntries += entries0.lit != alone.lit || entries0.level != alone.level;
+                }
+    EXPECT_GT(shadowed, points / 20);
+    EXPECT_GT(wrongRows, points / 10) << "the other maps' rows would shadow the lit points";
+    EXPECT_GT(wrongEntries, points / 10) << "the first map's entries hold no page";
 }
 
 }  // namespace

@@ -1,0 +1,44 @@
+// Virtual shadow map page marking's per-pixel rule, shared by virtual_page_mark.comp (the main view's
+// depth texture) and virtual_page_mark_visibility.comp (the visibility buffer's depth): the includer
+// declares its depth source, then calls markPixel with a pixel's reversed-Z depth.
+// The CPU reference, shadows/virtual_page_marking.cpp, does the same per pixel; the float operations
+// here follow it one for one. As in the published virtual shadow maps (Unreal Engine's "Virtual Shadow
+// Maps" documentation; Timberdoodle's, GPU Zen 3), the bits are set with atomic ORs into a buffer the
+// pass cleared first.
+#ifndef PENUMBRA_VIRTUAL_PAGE_MARK_GLSL
+#define PENUMBRA_VIRTUAL_PAGE_MARK_GLSL
+#include "pass_bindings.h"
+#include "virtual_page_structs.h"
+#include "virtual_clipmap.glsl"
+
+layout(set = kPassSet, binding = kPageMarkBindingFrame, std140) uniform PageMarkBlock { VirtualPageMarkData mark; };
+layout(set = kPassSet, binding = kPageMarkBindingRequests, std430) buffer PageRequestBlock { uint requestWords[]; };
+
+void requestPage(uint level, uvec2 slot) {
+    const uint bit = virtualPageBit(level, mark.pagesPerSide, slot.x, slot.y);
+    const uint word = bit / 32u, mask = 1u << (bit % 32u);
+    if (word >= mark.requestWordCount || (requestWords[word] & mask) != 0u) return;  // most pixels find it set
+    atomicOr(requestWords[word], mask);
+}
+
+// Pixel p (inside mark.width x mark.height) whose reversed-Z depth is `depth` (0: nothing drawn).
+void markPixel(uvec2 p, float depth) {
+    if (!(depth > 0.0)) return;  // reversed Z: 0 = nothing drawn
+    // Pixel centres, Vulkan NDC (y down): shadows/visible_surfaces.h's wsPositionFromDepth.
+    const float px = float(p.x) + 0.5, py = float(p.y) + 0.5;
+    const vec4 clip = vec4(2.0 * px / float(mark.width) - 1.0, 2.0 * py / float(mark.height) - 1.0, depth, 1.0);
+    const vec4 h = mark.worldFromClip * clip;
+    const vec3 wsPosition = h.xyz / h.w;
+    const float vsDepth = -(mark.viewFromWorld * vec4(wsPosition, 1.0)).z;
+    const vec2 lsPosition = (mark.lightFromWorld * vec4(wsPosition, 1.0)).xy;
+    const float wsFootprint = vsDepth * mark.wsFootprintPerDepth;
+
+    const ClipmapConfig config = ClipmapConfig(mark.resolution, mark.pagesPerSide, mark.levelCount, mark.firstLevelSize);
+    const int level = levelForReceiver(config, mark.lsCamera, lsPosition, wsFootprint, mark.marginTexels);
+    if (level < 0) return;  // outside the clipmap
+    const ClipmapLevel placed = placeClipmapLevel(config, uint(level), mark.lsCamera);
+    const PageRect pages = receiverPages(placed, lsPosition, mark.marginTexels);
+    for (int y = pages.minPage.y; y <= pages.maxPage.y; ++y)
+        for (int x = pages.minPage.x; x <= pages.maxPage.x; ++x) requestPage(uint(level), pageTableSlot(config, ivec2(x, y)));
+}
+#endif

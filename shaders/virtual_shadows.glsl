@@ -1,0 +1,139 @@
+// Directional shadows from the lights' virtual shadow maps (shadows.directional.mode = virtual), for the
+// lit pass, the visibility resolve and the screen-space resolve: the level a receiver reads, the biases
+// of shadow_bias.glsl, the tent filters of shadow_tent.glsl and PCSS (shadow_pcss.glsl), each tap a
+// compare of virtual texels through the page table (virtual_shadow_lookup.glsl), so filters read across
+// page borders and fall back to a coarser level where a page is missing, never into a hole.
+//
+// A level is treated as one shadow map whose "atlas" coordinates are its global virtual texels
+// (virtualLevelFromWorld: texel x, texel y, depth; atlas size 1), so the bias and filter code is the
+// cascades' own. The level is the one the marking pass requested for the pixel: levelForFootprint of
+// view depth x wsFootprintPerDepth, or the first coarser one whose page holding the receiver is ready
+// (Unreal Engine's "Virtual Shadow Maps" documentation: a clipmap level picked by the pixel's footprint).
+#ifndef PENUMBRA_VIRTUAL_SHADOWS_GLSL
+#define PENUMBRA_VIRTUAL_SHADOWS_GLSL
+#include "pass_bindings.h"
+#include "shadow_bias.glsl"
+#include "shadow_pcss.glsl"
+#include "shadow_tent.glsl"
+#include "virtual_lit_structs.h"
+
+layout(set = kPassSet, binding = kLitBindingVirtualShadows, std140) uniform VirtualShadowBlock {
+    VirtualDirectionalShadowData virtualShadows;
+};
+layout(set = kPassSet, binding = kLitBindingVirtualPool) uniform sampler2D virtualShadowPool;
+layout(set = kPassSet, binding = kLitBindingVirtualPages, std430) readonly buffer VirtualPageBlock {
+    VirtualPageEntry virtualPageEntries[];
+};
+
+VirtualPageEntry virtualShadowEntry(uint entry) {
+    if (entry < uint(virtualPageEntries.length())) return virtualPageEntries[entry];
+    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
+}
+
+float virtualShadowPoolTexel(ivec2 poolTexel) { return texelFetch(virtualShadowPool, poolTexel, 0).r; }
+
+#include "virtual_shadow_lookup.glsl"
+
+// The level that serves a receiver at light-space lsPosition: its footprint's level, or the first
+// coarser one whose page holding it is ready (sampleVirtualShadow's rule); -1 when none is.
+int virtualReceiverLevel(VirtualShadowLookupData data, vec3 lsPosition, float wsFootprint) {
+    vec2 texel0 = lsPosition.xy * data.texelsPerMetre;
+    ClipmapConfig config = ClipmapConfig(data.resolution, data.pagesPerSide, data.levelCount, data.firstLevelSize);
+    for (uint level = levelForFootprint(config, wsFootprint); level < data.levelCount; ++level) {
+        vec2 t = ldexp(texel0, ivec2(-int(level)));
+        if (any(greaterThan(abs(t), vec2(kVirtualShadowMaxTexel)))) continue;
+        if (virtualShadowReadyPage(data, level, virtualShadowPageOfTexel(data, ivec2(floor(t)))) >= 0) return int(level);
+    }
+    return -1;
+}
+
+// World -> (virtual texel x, texel y of `level`, depth in [0, 1]): the level as an orthographic shadow map
+// whose atlas size is 1 (its uv are texels).
+mat4 virtualLevelFromWorld(VirtualShadowLookupData data, uint level) {
+    float s = ldexp(data.texelsPerMetre, -int(level)), d = data.depthPerMetre;
+    mat4 texelsFromLight = mat4(vec4(s, 0.0, 0.0, 0.0), vec4(0.0, s, 0.0, 0.0), vec4(0.0, 0.0, -d, 0.0),
+                                vec4(0.0, 0.0, d * data.lsDepthNear, 1.0));
+    return texelsFromLight * data.lightRotationFromWorld;
+}
+
+// The bilinear-weighted depth test of the 2 x 2 texels around q (texel units), as shadow_tent.glsl's
+// penumbraCompareBilinear: against one depth, or (receiver plane) against the plane's depth at each
+// texel's centre (u: where the plane's depth is uvDepth.z, g: its gradient per texel).
+float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, vec3 uvDepth, vec2 u, vec2 g,
+                             bool perTexelPlane) {
+    vec2 first = floor(q - 0.5);
+    vec2 f = q - 0.5 - first;
+    vec4 lit;  // (0,0) (1,0) (0,1) (1,1)
+    for (int i = 0; i < 4; ++i) {
+        ivec2 offset = ivec2(i & 1, i >> 1);
+        float stored;
+        if (!virtualShadowTexelDepth(data, level, ivec2(first) + offset, stored)) {
+            lit[i] = 1.0;  // no level holds it: nothing cast
+            continue;
+        }
+        float z = perTexelPlane ? uvDepth.z + dot(g, first + vec2(offset) + 0.5 - u) : uvDepth.z;
+        lit[i] = z <= stored ? 1.0 : 0.0;
+    }
+    return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
+}
+
+// The light's filter at uvDepth (texels, depth): one bilinear block (PCF2x2) or the tent of
+// shadow_tent.glsl, whose fetch positions and weights are the cascades'.
+float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDepth, uint filterMode, vec2 g,
+                            bool perTexelPlane) {
+    vec2 u = uvDepth.xy;
+    if (filterMode == kShadowFilterPcf2x2) return virtualCompareBilinear(data, level, u, uvDepth, u, g, perTexelPlane);
+    int pairs = int(filterMode) + 1;
+    vec4 px, wx, py, wy;
+    penumbraTentFetches1D(u.x, pairs, px, wx);
+    penumbraTentFetches1D(u.y, pairs, py, wy);
+    float shadow = 0.0;
+    for (int y = 0; y < pairs; ++y)
+        for (int x = 0; x < pairs; ++x)
+            shadow += wx[x] * wy[y] * virtualCompareBilinear(data, level, vec2(px[x], py[y]), uvDepth, u, g, perTexelPlane);
+    return shadow;
+}
+
+// PCSS (shadow_pcss.glsl's pcssShadow) over a level: the blocker search and the filter disk read
+// virtual texels; metres per unit of depth = 1 / depthPerMetre.
+float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup lookup, float tanRadius, float wsTexel) {
+    vec2 u = lookup.uvDepth.xy, g = lookup.depthGradient;
+    float z = lookup.uvDepth.z;
+    PcssLight light = PcssLight(0.0, vec4(1.0 / data.depthPerMetre, tanRadius, wsTexel, 0.0));
+    float searchRadius = clamp(0.5 * pcssPenumbraTexels(light, z, 0.0), 1.0, kPcssMaxRadiusTexels);
+    float blockerSum = 0.0, blockers = 0.0;
+    for (int i = 0; i < kPcssSearchSamples; ++i) {
+        vec2 texel = floor(u + pcssDisk(i, kPcssSearchSamples) * searchRadius);
+        float stored;
+        if (!virtualShadowTexelDepth(data, level, ivec2(texel), stored)) continue;
+        float isBlocker = stored < z + dot(g, texel + 0.5 - u) ? 1.0 : 0.0;
+        blockerSum += isBlocker * stored;
+        blockers += isBlocker;
+    }
+    if (blockers == 0.0) return 1.0;
+    float radius = clamp(0.5 * pcssPenumbraTexels(light, z, blockerSum / blockers), 0.5, kPcssMaxRadiusTexels);
+    float lit = 0.0;
+    for (int i = 0; i < kPcssFilterSamples; ++i)
+        lit += virtualCompareBilinear(data, level, u + pcssDisk(i, kPcssFilterSamples) * radius, lookup.uvDepth, u, g, true);
+    return lit / float(kPcssFilterSamples);
+}
+
+// The shadow term (1 lit, 0 shadowed; before strength and fades) of directional shadow slot `slot` at
+// a receiver `viewDepth` from the camera; `level` is the level that served it (-1: none, lit).
+float sampleDirectionalVirtual(uint slot, DirectionalShadowLight light, uint biasMode, ShadowReceiver receiver,
+                               float viewDepth, out int level) {
+    VirtualShadowLookupData data = virtualShadows.maps[slot];
+    vec3 lsPosition = (data.lightRotationFromWorld * vec4(receiver.wsPosition, 1.0)).xyz;
+    level = virtualReceiverLevel(data, lsPosition, viewDepth * virtualShadows.wsFootprintPerDepth);
+    if (level < 0) return 1.0;
+    float wsTexel = ldexp(data.firstLevelSize / float(data.resolution), level);
+    ShadowBiasParams bias = ShadowBiasParams(biasMode, light.normalBias, light.slopeBias, wsTexel,
+                                             normalOffsetFootprint(light.filterMode), 0.0);
+    vec3 wsToLight = light.wsToLight.xyz;
+    vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
+    ShadowLookup lookup = shadowLookup(virtualLevelFromWorld(data, uint(level)), receiver, wsLookup, wsToLight, bias, 1.0);
+    if (light.pcssTanRadius > 0.0) return virtualShadowPcss(data, uint(level), lookup, light.pcssTanRadius, wsTexel);
+    return virtualShadowFiltered(data, uint(level), lookup.uvDepth, light.filterMode, lookup.depthGradient,
+                                 lookup.perTexelPlane);
+}
+#endif

@@ -1,0 +1,65 @@
+// Renderer::State's steps between the lighting inputs and the main view (renderer_state.h): with
+// shadows.directional.mode = virtual, the view's depth first (the visibility buffer's geometry, or the
+// forward path's depth prepass), then every directional light's virtual shadow map chain from it; then
+// the screen-space resolve (shadows.screenSpace), which samples those maps too.
+#include <algorithm>
+
+#include "render/renderer_state.h"
+
+namespace penumbra {
+
+const VisibilityPass::Target& Renderer::State::opaqueTargetFor(const FrameRecording& recording,
+                                                               const MainPassVariant& litPass) {
+    VisibilityPass::Target& opaque = opaqueTarget;  // copying into it reuses its list's storage
+    opaque.color = targets.color;
+    opaque.depth = targets.depth;
+    opaque.colorFormat = recording.sizes.colorFormat;
+    opaque.width = recording.view.width;
+    opaque.height = recording.view.height;
+    opaque.specialization = litPass.specialization;
+    std::copy(recording.clearColor, recording.clearColor + 4, opaque.clearColor);
+    return opaque;
+}
+
+void Renderer::State::recordDirectionalInputs(FrameRecording& recording, MainPassInputs& inputs,
+                                              const MainPassVariant& litPass) {
+    const DirectionalShadowPlan& directional = recording.frame.plan.directional;
+    if (virtualShadows.active() && !directional.lights.empty()) {
+        gpu::CommandList& commands = recording.commands;
+        const CameraView& view = recording.view;
+        VirtualPageDepthSource depth;
+        if (recording.frame.visibilityView) {
+            recording.stage = "main view depth (visibility buffer)";
+            const RenderSettings& render = recording.settings.render;
+            commands.beginTimer("mainDepth");
+            visibility->recordGeometry(commands, inputs, opaqueTargetFor(recording, litPass), culling,
+                                       recording.cullSlice, render.viewCulling, render.meshletCulling);
+            commands.endTimer();
+            recording.viewGeometryDone = true;
+            depth = VirtualPageDepthSource::visibilityBuffer(visibility->visibilityBuffer(), view.width, view.height);
+        } else {
+            recording.stage = "depth prepass";
+            recording.prepassDepth = screenSpacePass.recordPrepass(commands, scene, view, inputs);
+            depth = VirtualPageDepthSource::texture(recording.prepassDepth);
+        }
+        recording.stage = "shadows.virtual";
+        commands.beginTimer("shadows.virtual");
+        virtualShadows.record(commands, depth, view, directional, scene.wsBounds);
+        commands.endTimer();
+        const uint32_t maps = std::min(virtualShadows.mapCount(), uint32_t(directional.lights.size()));
+        for (uint32_t map = 0; map < maps; ++map)
+            recording.frame.readback.virtualPages[map] = device.readBackAtFrameEnd(commands, virtualShadows.stats(map));
+    }
+    recordScreenSpaceShadows(recording, inputs);
+}
+
+void Renderer::State::recordScreenSpaceShadows(FrameRecording& recording, MainPassInputs& inputs) {
+    if (!recording.screenSpace) return;
+    recording.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
+    gpu::CommandList& commands = recording.commands;
+    if (!recording.prepassDepth) recording.prepassDepth = screenSpacePass.recordPrepass(commands, scene, recording.view, inputs);
+    inputs.writes.back().texture = screenSpacePass.recordResolve(commands, recording.view, inputs, 0);
+    inputs.sampled.back() = inputs.writes.back().texture;
+}
+
+}  // namespace penumbra

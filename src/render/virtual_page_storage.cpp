@@ -1,0 +1,85 @@
+#include "render/virtual_page_storage.h"
+
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "virtual_page_structs.h"
+
+namespace penumbra {
+
+namespace {
+
+constexpr float kFarDepth = 1.0f;  // nothing cast
+
+// The records of `count` padded up to the next multiple whose bytes are kVirtualPageEntryAlignment-aligned.
+uint32_t paddedEntries(uint32_t count) {
+    constexpr uint64_t bytes = sizeof(gpu_data::VirtualPageEntry);
+    uint32_t padded = count;
+    while (padded * bytes % kVirtualPageEntryAlignment != 0) ++padded;
+    return padded;
+}
+
+}  // namespace
+
+VirtualPageStorageSet::VirtualPageStorageSet(gpu::Device& device, const VirtualClipmapConfig& clipmap,
+                                             uint32_t poolPagesPerSide, uint32_t mapCount)
+    : device_(device), mapCount_(mapCount) {
+    const uint64_t side = uint64_t(poolPagesPerSide) * clipmap.pageSize;
+    const uint32_t levelSide = pagesPerSide(clipmap);
+    entriesPerMap_ = clipmap.levelCount * levelSide * levelSide;
+    entryStride_ = paddedEntries(entriesPerMap_);
+    if (mapCount == 0 || side == 0 || entriesPerMap_ == 0)
+        throw Error("virtual page storage: " + std::to_string(mapCount) + " maps of " + std::to_string(side) +
+                    " texels and " + std::to_string(entriesPerMap_) + " entries");
+    if (side * mapCount > device.maxImageSize())
+        throw Error("virtual page storage: " + std::to_string(mapCount) + " pools of " + std::to_string(side) +
+                    " texels do not fit an image of " + std::to_string(device.maxImageSize()) + " texels");
+    const uint64_t entryBytes = uint64_t(entryStride_) * mapCount * sizeof(gpu_data::VirtualPageEntry);
+    if (entryBytes > device.maxStorageBufferRange())
+        throw Error("virtual page storage: " + std::to_string(mapCount) + " page tables of " +
+                    std::to_string(entriesPerMap_) + " entries exceed the storage buffer range");
+    poolSide_ = uint32_t(side);
+    gpu::BufferHandle staging;
+    try {
+        // Empty maps: no entry resident (as virtual_page_reset.comp leaves a table), every texel far.
+        const gpu_data::VirtualPageEntry none{gpu_data::kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u};
+        const std::vector<gpu_data::VirtualPageEntry> entries(size_t(entryStride_) * mapCount, none);
+        entries_ = device.createBuffer(entryBytes, gpu::kBufferStorage | gpu::kBufferTransferSrc, gpu::MemoryKind::DeviceLocal,
+                                       entries.data(), "virtual page tables (shared)");
+        gpu::TextureDesc texture;
+        texture.width = poolSide_;
+        texture.height = poolSide_ * mapCount;
+        texture.format = gpu::Format::R32Float;
+        texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst | gpu::kTextureTransferSrc;
+        texture.debugName = "virtual page pools (shared)";
+        poolTexture_ = device.createTexture(texture);
+        const std::vector<float> far(size_t(texture.width) * texture.height, kFarDepth);  // once, at creation
+        staging = device.createBuffer(far.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible, far.data(),
+                                      "virtual page pools upload");
+        gpu::CommandList commands = device.beginCommands();
+        commands.pass("virtualPageStorage/init",
+                      {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(poolTexture_, gpu::Usage::TransferWrite)});
+        commands.copyBufferToTexture(staging, poolTexture_);
+        device.submitAndWait(commands);
+        device.destroy(staging);
+    } catch (...) {
+        device.destroy(staging);
+        release();  // the destructor does not run
+        throw;
+    }
+}
+
+VirtualPageStorageSet::~VirtualPageStorageSet() { release(); }
+
+void VirtualPageStorageSet::release() {
+    device_.destroy(entries_);
+    device_.destroy(poolTexture_);
+}
+
+VirtualPageStorage VirtualPageStorageSet::storageFor(uint32_t map) const {
+    PENUMBRA_ASSERT(map < mapCount_);
+    return {poolTexture_, map * poolSide_, entries_, map * entryStride_};
+}
+
+}  // namespace penumbra

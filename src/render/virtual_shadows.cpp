@@ -1,0 +1,181 @@
+#include "render/virtual_shadows.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pass_bindings.h"
+#include "shadows/cascades.h"
+#include "shadows/virtual_page_marking.h"
+
+namespace penumbra {
+
+VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling) {
+    const VirtualShadowSettings& pages = settings.virtualMaps;
+    VirtualShadowMapConfig config;
+    config.clipmap.resolution = pages.resolution;
+    config.clipmap.pageSize = pages.pageSize;
+    config.clipmap.levelCount = pages.levelCount;
+    config.clipmap.firstLevelSize = pages.firstLevelSize;
+    config.poolPagesPerSide = std::max(1u, uint32_t(std::floor(std::sqrt(double(pages.poolPages)))));
+    config.keepFrames = pages.keepFrames;
+    config.meshletCulling = meshletCulling;
+    config.footprintScale = std::exp2(pages.lodBias);
+    return config;
+}
+
+float virtualLookupMarginTexels(const gpu_data::DirectionalShadowLight& light) {
+    // shadows/shadow_planner.cpp lookupReachTexels' rule for the cascades' tiles, in the level's texels.
+    const float taps = light.pcssTanRadius > 0.0f ? gpu_data::kPcssMaxRadiusTexels : float(light.filterMode);
+    return taps + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(light.filterMode);
+}
+
+namespace {
+
+bool sameConfig(const VirtualShadowMapConfig& a, const VirtualShadowMapConfig& b) {
+    return a.clipmap.resolution == b.clipmap.resolution && a.clipmap.pageSize == b.clipmap.pageSize &&
+           a.clipmap.levelCount == b.clipmap.levelCount && a.clipmap.firstLevelSize == b.clipmap.firstLevelSize &&
+           a.poolPagesPerSide == b.poolPagesPerSide && a.keepFrames == b.keepFrames && a.meshletCulling == b.meshletCulling &&
+           a.footprintScale == b.footprintScale;
+}
+
+}  // namespace
+
+VirtualShadows::VirtualShadows(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster)
+    : device_(device), scene_(gpuScene), raster_(raster) {
+    slotCount_ = device.framesInFlight() + 1;  // a slot is free again once its next frame begins
+    try {
+        blocks_ = device.createBuffer(sizeof(block_) * slotCount_, gpu::kBufferUniform, gpu::MemoryKind::HostVisible,
+                                      nullptr, "virtual shadow lit blocks");
+        placeholderPool_ = device.createTexture({1, 1, gpu::Format::R32Float, gpu::kTextureSampled, 1, "no virtual pool"});
+        placeholderPages_ = device.createBuffer(sizeof(gpu_data::VirtualPageEntry), gpu::kBufferStorage,
+                                                gpu::MemoryKind::DeviceLocal, nullptr, "no virtual page table");
+    } catch (...) {  // the destructor does not run
+        device.destroy(blocks_);
+        device.destroy(placeholderPool_);
+        throw;
+    }
+    changedBounds_.reserve(VirtualShadowMap::kMaxInvalidations);
+}
+
+VirtualShadows::~VirtualShadows() {
+    releaseMaps();
+    device_.destroy(blocks_);
+    device_.destroy(placeholderPool_);
+    device_.destroy(placeholderPages_);
+}
+
+void VirtualShadows::releaseMaps() {
+    maps_.clear();  // before the storage they draw into
+    storage_.reset();
+}
+
+uint32_t VirtualShadows::poolPages() const {
+    return uint32_t(maps_.size()) * config_.poolPagesPerSide * config_.poolPagesPerSide;
+}
+
+void VirtualShadows::configure(const VirtualShadowMapConfig& config, uint32_t lightCount) {
+    if (!maps_.empty() && sameConfig(config, config_) && maps_.size() >= lightCount) return;
+    releaseMaps();
+    config_ = config;
+    if (lightCount == 0) return;
+    storage_ = std::make_unique<VirtualPageStorageSet>(device_, config.clipmap, config.poolPagesPerSide, lightCount);
+    for (uint32_t i = 0; i < lightCount; ++i) {
+        const VirtualPageStorage storage = storage_->storageFor(i);
+        maps_.push_back(std::make_unique<VirtualShadowMap>(device_, scene_, raster_, config, &storage));
+    }
+}
+
+uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize,
+                        uint64_t maxStorageBufferRange) {
+    uint32_t side = poolPagesPerSide;
+    const auto fits = [&](uint32_t pages) {
+        const uint64_t texels = uint64_t(pages) * pageSize;
+        return texels * std::max(mapCount, 1u) <= maxImageSize && texels * texels * 4 <= maxStorageBufferRange;
+    };
+    while (side > 1 && !fits(side)) --side;
+    return side;
+}
+
+void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCount, bool meshletCulling,
+                                const CameraView& view, std::vector<std::string>& warnings) {
+    active_ = settings.directional.mode == DirectionalShadowMode::Virtual;
+    if (active_) {
+        VirtualShadowMapConfig config = virtualShadowMapConfig(settings, meshletCulling);
+        const uint32_t requested = config.poolPagesPerSide;
+        config.poolPagesPerSide = fitVirtualPool(requested, config.clipmap.pageSize, lightCount, device_.maxImageSize(),
+                                                 device_.maxStorageBufferRange());
+        if (config.poolPagesPerSide < requested)
+            warnings.push_back("shadows.virtual.poolPages = " + std::to_string(settings.virtualMaps.poolPages) + " for " +
+                               std::to_string(lightCount) + " directional lights is more than " + device_.info().name +
+                               " holds; using " + std::to_string(config.poolPagesPerSide * config.poolPagesPerSide) +
+                               " pages per light");
+        configure(config, lightCount);
+        if (!settings.virtualMaps.cache) invalidateAll_ = true;
+    } else if (!maps_.empty()) {
+        releaseMaps();  // deferred by the device until the frames using them are done
+    }
+    slot_ = (slot_ + 1) % slotCount_;
+    block_ = {};
+    block_.enabled = active_ ? 1u : 0u;
+    block_.wsFootprintPerDepth = wsFootprintPerDepth(view) * config_.footprintScale;  // the marking pass's
+    device_.writeBuffer(blocks_, &block_, sizeof(block_), uint64_t(slot_) * sizeof(block_));
+}
+
+void VirtualShadows::appendLitInputs(MainPassInputs& inputs, gpu::SamplerHandle pointSampler) const {
+    using namespace gpu_data;
+    const bool bound = active_ && storage_;
+    const gpu::TextureHandle pool = bound ? storage_->poolTexture() : placeholderPool_;
+    const gpu::BufferHandle pages = bound ? storage_->entries() : placeholderPages_;
+    inputs.writes.push_back({kLitBindingVirtualShadows, gpu::BufferSlice{blocks_, uint64_t(slot_) * sizeof(block_), sizeof(block_)}});
+    inputs.writes.push_back({kLitBindingVirtualPool, {}, pool, pointSampler});
+    inputs.writes.push_back({kLitBindingVirtualPages, pages, {}, {}});
+    // Before the last sampled texture: the screen-space resolve replaces that one.
+    inputs.sampled.insert(inputs.sampled.empty() ? inputs.sampled.end() : inputs.sampled.end() - 1, pool);
+    inputs.virtualPages = pages;
+}
+
+void VirtualShadows::casterChanged(const Aabb& wsBounds) {
+    if (!active_ || !wsBounds.valid()) return;
+    if (changedBounds_.size() >= VirtualShadowMap::kMaxInvalidations) {  // too many to track: redraw all
+        invalidateAll_ = true;
+        return;
+    }
+    changedBounds_.push_back(wsBounds);
+}
+
+bool VirtualShadows::collectInvalidations(const VirtualShadowMap& map, const CameraView& view) {
+    invalidationCount_ = 0;
+    const glm::mat4& lightRotation = map.drawSpace().lightRotationFromWorld;
+    const glm::vec2 lsCamera = lsClipmapCentre(lightRotation, view);
+    for (const Aabb& bounds : changedBounds_) {
+        const uint32_t count = casterPageRects(config_.clipmap, lightRotation, lsCamera, bounds, levelRects_.data());
+        if (invalidationCount_ + count > invalidations_.size()) return false;
+        for (uint32_t i = 0; i < count; ++i)
+            invalidations_[invalidationCount_++] = virtualPageInvalidation(levelRects_[i].level, levelRects_[i].pages);
+    }
+    return true;
+}
+
+void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
+                            const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds) {
+    if (!active_) return;
+    const uint32_t lights = std::min(uint32_t(plan.lights.size()), mapCount());
+    block_.mapCount = lights;
+    for (uint32_t slot = 0; slot < lights; ++slot) {
+        VirtualShadowMap& map = *maps_[slot];
+        const gpu_data::DirectionalShadowLight& light = plan.gpu.lights[slot];
+        // The draw space of the last record: a new light direction invalidates everything anyway.
+        if (invalidateAll_ || !collectInvalidations(map, view)) {
+            map.invalidateAll();
+            invalidationCount_ = 0;
+        }
+        map.record(commands, depth, view, plan.lights[slot].wsDirection, wsSceneBounds, virtualLookupMarginTexels(light),
+                   std::span(invalidations_.data(), invalidationCount_));
+        block_.maps[slot] = map.lookupData();
+    }
+    invalidateAll_ = false;
+    changedBounds_.clear();
+    device_.writeBuffer(blocks_, &block_, sizeof(block_), uint64_t(slot_) * sizeof(block_));
+}
+
+}  // namespace penumbra

@@ -1,0 +1,106 @@
+#pragma once
+// The renderer's virtual shadow maps (shadows.directional.mode = virtual): one VirtualShadowMap per
+// reserved directional light, all in one VirtualPageStorageSet, so that the lit pass, the visibility
+// resolve and the screen-space resolve bind three things whatever the light count
+// (shaders/virtual_shadows.glsl): the uniform VirtualDirectionalShadowData, the pools' texture and the
+// page tables' buffer. With cascades the same bindings hold a disabled block and placeholders the
+// shaders never read.
+//
+// A frame: beginFrame (maps for the settings and the light count, this frame's uniform slot), then
+// appendLitInputs (the three bindings and their frame-graph reads) before the lit writes are used, then
+// record once the view's depth is final and before anything shades (every light's mark -> page table
+// -> draw -> mark drawn; no readback), then stats() for the frame-end readback.
+//
+// Invalidation (the published virtual shadow maps' caching: Unreal Engine's "Virtual Shadow Maps"
+// documentation): a light whose direction changes or scene bounds that change redraw that light's map
+// (VirtualShadowMap's draw space); casters that moved, appeared, disappeared or changed their cast flag
+// pass their old and new world bounds (casterChanged), whose pages in every level are drawn again;
+// more rectangles than one record holds, a material edit (alpha cut-outs) or shadows.virtual.cache =
+// false redraw everything requested.
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "penumbra/shadow_settings.h"
+#include "render/main_pass.h"
+#include "render/virtual_page_storage.h"
+#include "render/virtual_shadow_map.h"
+#include "shadows/shadow_planner.h"
+#include "virtual_lit_structs.h"
+
+namespace penumbra {
+
+// The VirtualShadowMapConfig of the shadows.virtual settings (the pool rounded down to a square of pages).
+VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling);
+
+// The most pages a side (up to poolPagesPerSide) whose pools fit the device for mapCount maps: their
+// shared texture (mapCount pools stacked) within maxImageSize, one map's rasterizer target (32 bits a
+// texel) within maxStorageBufferRange.
+uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize,
+                        uint64_t maxStorageBufferRange);
+
+// The texels a lit-pass lookup reaches around a receiver in its level: the filter's taps (or the PCSS
+// search radius), the normal offset and a texel of rounding: the marking pass's margin.
+float virtualLookupMarginTexels(const gpu_data::DirectionalShadowLight& light);
+
+class VirtualShadows {
+public:
+    VirtualShadows(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster);
+    ~VirtualShadows();
+    VirtualShadows(const VirtualShadows&) = delete;
+    VirtualShadows& operator=(const VirtualShadows&) = delete;
+
+    // Before a frame is recorded: the maps for these settings and `lightCount` reserved directional
+    // lights when the mode is virtual (a changed configuration makes new ones: every page drawn again),
+    // and this frame's uniform block (enabled or not). A pool larger than the device holds is shrunk,
+    // with a warning.
+    void beginFrame(const ShadowSettings& settings, uint32_t lightCount, bool meshletCulling, const CameraView& view,
+                    std::vector<std::string>& warnings);
+    bool active() const { return active_; }
+
+    // The three lit bindings into inputs.writes, the pool among inputs.sampled (before its last entry,
+    // which the screen-space resolve replaces) and the page tables as inputs.storageRead.
+    void appendLitInputs(MainPassInputs& inputs, gpu::SamplerHandle pointSampler) const;
+
+    // A caster's world bounds before or after an edit: its pages are drawn again by the next record.
+    void casterChanged(const Aabb& wsBounds);
+    // The next record draws every requested page again (a material edit, new geometry).
+    void invalidateAll() { invalidateAll_ = true; }
+
+    // Records every reserved light's chain for the view whose depth `depth` holds; `plan` is this
+    // frame's directional plan (the lights' directions and filters), wsSceneBounds the casters' bounds.
+    void record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
+                const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds);
+
+    uint32_t mapCount() const { return uint32_t(maps_.size()); }
+    gpu::BufferSlice stats(uint32_t map) const { return maps_[map]->stats(); }
+    uint32_t poolPages() const;  // physical pages of all the maps
+
+private:
+    void configure(const VirtualShadowMapConfig& config, uint32_t lightCount);
+    void releaseMaps();
+    // The rectangles of the changed casters as `map` sees them this frame, into invalidations_; false
+    // when they do not fit one record.
+    bool collectInvalidations(const VirtualShadowMap& map, const CameraView& view);
+
+    gpu::Device& device_;
+    const GpuScene& scene_;
+    ComputeRasterPass& raster_;
+    VirtualShadowMapConfig config_;
+    std::unique_ptr<VirtualPageStorageSet> storage_;
+    std::vector<std::unique_ptr<VirtualShadowMap>> maps_;
+    bool active_ = false, invalidateAll_ = false;
+    gpu_data::VirtualDirectionalShadowData block_{};
+    gpu::BufferHandle blocks_;  // slotCount_ uniform slots of the block, one per frame in flight + 1
+    uint32_t slotCount_ = 0, slot_ = 0;
+    gpu::TextureHandle placeholderPool_;   // 1 x 1 R32F, never written: bound with cascades
+    gpu::BufferHandle placeholderPages_;   // one VirtualPageEntry, never written
+    std::vector<Aabb> changedBounds_;      // since the last record (capacity kept)
+    std::array<LevelPageRect, gpu_data::kVirtualPageMaxLevels> levelRects_{};
+    std::array<gpu_data::VirtualPageInvalidation, VirtualShadowMap::kMaxInvalidations> invalidations_{};
+    uint32_t invalidationCount_ = 0;
+};
+
+}  // namespace penumbra
