@@ -21,6 +21,16 @@ void requestPage(uint level, uvec2 slot) {
     atomicOr(requestWords[word], mask);
 }
 
+// The pages of `level` a filter around lsPosition reads, within the level's window.
+void requestReceiverPages(ClipmapConfig config, uint level, vec2 lsPosition) {
+    const ClipmapLevel placed = placeClipmapLevel(config, level, mark.lsCamera);
+    PageRect pages = receiverPages(placed, lsPosition, mark.marginTexels);
+    pages.minPage = max(pages.minPage, placed.windowMin);
+    pages.maxPage = min(pages.maxPage, placed.windowMax);
+    for (int y = pages.minPage.y; y <= pages.maxPage.y; ++y)
+        for (int x = pages.minPage.x; x <= pages.maxPage.x; ++x) requestPage(level, pageTableSlot(config, ivec2(x, y)));
+}
+
 // Pixel p (inside mark.width x mark.height) whose reversed-Z depth is `depth` (0: nothing drawn).
 void markPixel(uvec2 p, float depth) {
     if (!(depth > 0.0)) return;  // reversed Z: 0 = nothing drawn
@@ -36,9 +46,8 @@ void markPixel(uvec2 p, float depth) {
     const ClipmapConfig config = ClipmapConfig(mark.resolution, mark.pagesPerSide, mark.levelCount, mark.firstLevelSize);
     const int level = levelForReceiver(config, mark.lsCamera, lsPosition, wsFootprint, mark.marginTexels);
     if (level < 0) return;  // outside the clipmap
-    const ClipmapLevel placed = placeClipmapLevel(config, uint(level), mark.lsCamera);
-    const PageRect pages = receiverPages(placed, lsPosition, mark.marginTexels);
-    for (int y = pages.minPage.y; y <= pages.maxPage.y; ++y)
-        for (int x = pages.minPage.x; x <= pages.maxPage.x; ++x) requestPage(uint(level), pageTableSlot(config, ivec2(x, y)));
+    requestReceiverPages(config, uint(level), lsPosition);
+    const uint fallback = min(uint(level) + kVirtualPageFallbackLevels, mark.levelCount - 1u);
+    if (fallback != uint(level)) requestReceiverPages(config, fallback, lsPosition);  // what serves it on overflow
 }
 #endif

@@ -47,6 +47,10 @@ PENUMBRA_CHECK_LAYOUT(VirtualPageMarkData, reserved, 236)
 // slot's old page is freed and the slot serves the new one (Timberdoodle's wrap-around page tables,
 // GPU Zen 3 "Virtual Shadow Maps"). Storage buffers (std430) only, except VirtualPageTableData.
 PENUMBRA_CONST(uint, kVirtualPageMaxLevels, 16u)      // levels of a clipmap the table holds
+// Each receiver also requests its pages this many levels coarser (or in the last level): 1/64 more pages,
+// allocated first (coarse levels before fine ones), so a receiver whose own page overflows the pool
+// reads 8x coarser texels instead of nothing.
+PENUMBRA_CONST(uint, kVirtualPageFallbackLevels, 3u)
 PENUMBRA_CONST(uint, kVirtualPageMaxKeepFrames, 32u)  // keepFrames limit: one eviction age bucket per frame
 PENUMBRA_CONST(uint, kVirtualPageNone, 0xFFFFFFFFu)   // no physical page, no owner entry
 PENUMBRA_CONST(uint, kVirtualPageGroupSize, 64u)      // local_size_x of the passes over entries and lists

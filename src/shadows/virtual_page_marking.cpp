@@ -1,6 +1,8 @@
 #include "shadows/virtual_page_marking.h"
 
+#include <algorithm>
 #include <bit>
+#include <span>
 #include <cmath>
 
 #include "core/error.h"
@@ -16,15 +18,22 @@ uint32_t bitOf(const VirtualPageRequests& requests, uint32_t level, const glm::u
     return gpu_data::virtualPageBit(level, requests.pagesPerSide, slot.x, slot.y);
 }
 
-// Every page of the level a receiver at lsPosition samples, with its filter's reach.
+// Every page of the level a receiver at lsPosition samples, with its filter's reach, and of its fallback level.
 void markReceiver(VirtualPageRequests& requests, const VirtualClipmapConfig& config, const glm::vec2& lsCamera,
                   const glm::vec2& lsPosition, float wsFootprint, float marginTexels) {
     const std::optional<uint32_t> level = levelForReceiver(config, lsCamera, lsPosition, wsFootprint, marginTexels);
     if (!level) return;  // outside the clipmap
-    const ClipmapLevel placed = placeClipmapLevel(config, *level, lsCamera);
-    const PageRect pages = receiverPages(placed, lsPosition, marginTexels);
-    for (int32_t y = pages.min.y; y <= pages.max.y; ++y)
-        for (int32_t x = pages.min.x; x <= pages.max.x; ++x) requests.request(*level, pageTableSlot(placed, {x, y}));
+    // Its own level, and kVirtualPageFallbackLevels coarser: what serves it when its page overflows the pool.
+    const uint32_t fallback = std::min(*level + gpu_data::kVirtualPageFallbackLevels, config.levelCount - 1);
+    const uint32_t levels[2] = {*level, fallback};
+    for (uint32_t marked : std::span(levels, fallback == *level ? 1 : 2)) {
+        const ClipmapLevel placed = placeClipmapLevel(config, marked, lsCamera);
+        PageRect pages = receiverPages(placed, lsPosition, marginTexels);
+        pages.min = glm::max(pages.min, placed.window.min);  // within the level's window
+        pages.max = glm::min(pages.max, placed.window.max);
+        for (int32_t y = pages.min.y; y <= pages.max.y; ++y)
+            for (int32_t x = pages.min.x; x <= pages.max.x; ++x) requests.request(marked, pageTableSlot(placed, {x, y}));
+    }
 }
 
 }  // namespace

@@ -199,10 +199,19 @@ TEST_F(VirtualFrameTest, APoolTooSmallServesCoarserLevelsWithAWarning) {
     EXPECT_EQ(pages.poolPages, 16u);
     EXPECT_GT(pages.overflowed, 0u);
     EXPECT_TRUE(hasWarning(small.ours.stats, "virtual shadow maps")) << "a warning names the overflow";
-    // Coarser texels move edges, but no region loses its shadow: measured 0.34 %, none of it away from edges.
+    // Coarser texels move edges, but no region loses its shadow: measured 0.41 %, none of it away from edges.
     EXPECT_LE(small.metrics.misclassifiedPercent, 0.5) << toText(small.metrics);
     EXPECT_LE(small.metrics.interiorMisclassifiedPercent, 0.05) << toText(small.metrics);
     (void)scene;
+    // The far field's shadows lie far from the camera: with 32 pages its fine pages overflow and each
+    // receiver's fallback level (kVirtualPageFallbackLevels coarser, allocated first) serves it.
+    // Measured 0.52 %, interior 0.10 %; with no fallback level 1.21 % and 0.51 % (holes: lit shadows).
+    Settings far = virtualSettings("far_field");
+    far.shadows.virtualMaps.poolPages = 32;
+    const SceneComparison farField = compareCanonicalScene("far_field", 0, far);
+    EXPECT_GT(farField.ours.stats.virtualPages.overflowed, 0u);
+    EXPECT_LE(farField.metrics.misclassifiedPercent, 0.63) << toText(farField.metrics);
+    EXPECT_LE(farField.metrics.interiorMisclassifiedPercent, 0.15) << toText(farField.metrics);
 }
 
 TEST_F(VirtualFrameTest, TheScreenSpaceResolveSamplesTheVirtualMaps) {

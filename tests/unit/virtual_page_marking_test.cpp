@@ -107,8 +107,13 @@ TEST(VirtualPageMarking, ASinglePixelMarksThePagesItsFilterReadsInTheLevelOfItsF
     const ClipmapLevel placed = placeClipmapLevel(config, level, lsCamera);
     const PageRect expected = receiverPages(placed, lsPoint, marginTexels);
     ASSERT_TRUE(placed.window.contains(expected));
-    EXPECT_EQ(requests.pageCount(), expected.pageCount());
+    // And the same reach kVirtualPageFallbackLevels coarser: what serves it if its own pages overflow.
+    const uint32_t fallback = level + gpu_data::kVirtualPageFallbackLevels;
+    ASSERT_LT(fallback, config.levelCount);
+    const PageRect coarse = receiverPages(placeClipmapLevel(config, fallback, lsCamera), lsPoint, marginTexels);
+    EXPECT_EQ(requests.pageCount(), expected.pageCount() + coarse.pageCount());
     EXPECT_EQ(requests.levelPageCounts[level], expected.pageCount());
+    EXPECT_EQ(requests.levelPageCounts[fallback], coarse.pageCount());
     for (const glm::ivec2& page : requestedPages(requests, placed)) {
         EXPECT_GE(page.x, expected.min.x);
         EXPECT_LE(page.x, expected.max.x);
@@ -152,7 +157,9 @@ TEST(VirtualPageMarking, FartherGroundMarksCoarserLevels) {
     ASSERT_FALSE(nearLevels.empty());
     ASSERT_FALSE(farLevels.empty());
     EXPECT_EQ(nearLevels.front(), 0u);
-    EXPECT_LT(nearLevels.back(), farLevels.front()) << "the near ground's levels are all finer than the far ground's";
+    // Each side marks its footprints' levels and the same kVirtualPageFallbackLevels coarser.
+    EXPECT_LT(nearLevels.front(), farLevels.front()) << "the near ground's finest level is finer than the far ground's";
+    EXPECT_LT(nearLevels.back(), farLevels.back()) << "and so is its coarsest";
 }
 
 TEST(VirtualPageMarking, ReceiversBeyondTheLastLevelMarkNothing) {
@@ -187,13 +194,14 @@ TEST(VirtualPageMarking, BitsAreLaidOutByLevelThenWrapAroundSlot) {
     const glm::vec3 wsPoint = *groundPoint(view, 128, 150);
     setDepth(depth, 128, 150, depthOf(view, wsPoint));
     const VirtualPageRequests requests = markVirtualPages(config, overheadSun(), view, depth, 0.0f);
-    ASSERT_EQ(requests.pageCount(), 1u);
+    ASSERT_EQ(requests.pageCount(), 2u);  // its page and its fallback level's
 
     const float vsDepth = -(view.viewFromWorld * glm::vec4(wsPoint, 1.0f)).z;
     const uint32_t level = levelForFootprint(config, wsPixelFootprint(view, vsDepth));
     const ClipmapLevel placed = placeClipmapLevel(config, level, lsClipmapCentre(overheadSun(), view));
     const glm::ivec2 page = pageOf(placed, glm::vec2(overheadSun() * glm::vec4(wsPoint, 1.0f)));
     ASSERT_LT(page.x, 0);
+    EXPECT_EQ(requests.levelPageCounts[level], 1u);
     const glm::uvec2 slot((page.x % 16 + 16) % 16, (page.y % 16 + 16) % 16);
     const uint32_t bit = (level * 16 + slot.y) * 16 + slot.x;
     EXPECT_EQ(requests.words[bit / 32], 1u << (bit % 32));
