@@ -83,11 +83,11 @@ std::vector<BindingDesc> shadowCasterBindings() {
 
 std::vector<BindingDesc> screenSpaceShadowBindings() {
     std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, kF},
-            {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, kF},
-            {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, kF},
-            {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, kF},
-            {"sceneDepth", kScreenShadowBindingSceneDepth, kSampled, kF},
-            {"sceneNormals", kScreenShadowBindingSceneNormals, kSampled, kF}};
+                                         {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, kF},
+                                         {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, kF},
+                                         {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, kF},
+                                         {"sceneDepth", kScreenShadowBindingSceneDepth, kSampled, kF},
+                                         {"sceneNormals", kScreenShadowBindingSceneNormals, kSampled, kF}};
     appendVirtualShadows(bindings, kF);
     return bindings;
 }
