@@ -5,6 +5,7 @@
 
 #include "pass_bindings.h"
 #include "shadows/cascades.h"
+#include "shadows/shadow_gpu_packing.h"
 #include "shadows/virtual_page_marking.h"
 
 namespace penumbra {
@@ -21,12 +22,6 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bo
     config.meshletCulling = meshletCulling;
     config.footprintScale = std::exp2(pages.lodBias);
     return config;
-}
-
-float virtualLookupMarginTexels(const gpu_data::DirectionalShadowLight& light) {
-    // shadows/shadow_planner.cpp lookupReachTexels' rule for the cascades' tiles, in the level's texels.
-    const float taps = light.pcssTanRadius > 0.0f ? gpu_data::kPcssMaxRadiusTexels : float(light.filterMode);
-    return taps + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(light.filterMode);
 }
 
 namespace {
@@ -169,7 +164,10 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
             map.invalidateAll();
             invalidationCount_ = 0;
         }
-        map.record(commands, depth, view, plan.lights[slot].wsDirection, wsSceneBounds, virtualLookupMarginTexels(light),
+        // The marking's margin: the reach of the light's lookups, as the cascades' tight fit keeps it.
+        const float marginTexels =
+            lookupReachTexels(light.normalBias, light.pcssTanRadius > 0.0f, ShadowFilter(light.filterMode));
+        map.record(commands, depth, view, plan.lights[slot].wsDirection, wsSceneBounds, marginTexels,
                    std::span(invalidations_.data(), invalidationCount_));
         block_.maps[slot] = map.lookupData();
     }

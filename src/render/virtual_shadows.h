@@ -41,10 +41,6 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bo
 uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize,
                         uint64_t maxStorageBufferRange);
 
-// The texels a lit-pass lookup reaches around a receiver in its level: the filter's taps (or the PCSS
-// search radius), the normal offset and a texel of rounding: the marking pass's margin.
-float virtualLookupMarginTexels(const gpu_data::DirectionalShadowLight& light);
-
 class VirtualShadows {
 public:
     VirtualShadows(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster);

@@ -96,4 +96,9 @@ gpu_data::DirectionalShadowData packDirectionalShadowData(const DirectionalShado
     return data;
 }
 
+float lookupReachTexels(float normalBias, bool pcss, ShadowFilter filter) {
+    const float taps = pcss ? gpu_data::kPcssMaxRadiusTexels : filterSize(filter);
+    return taps + 2.0f + normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter));
+}
+
 }  // namespace penumbra

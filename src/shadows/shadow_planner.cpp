@@ -31,11 +31,6 @@ float nearPlaneMargin(const ReservedDirectionalLight& light, float wsTexelSize, 
     return wsTexelSize * (1.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter)));
 }
 
-// The texels a lookup may reach beyond a receiver: the filter's taps plus the normal offset, plus one.
-float lookupReachTexels(const ReservedDirectionalLight& light, ShadowFilter filter) {
-    const float taps = light.pcssTanRadius > 0.0f ? gpu_data::kPcssMaxRadiusTexels : filterSize(filter);
-    return taps + 2.0f + light.normalBias * gpu_data::normalOffsetFootprint(uint32_t(filter));
-}
 
 // The cascade's light view: around its culling sphere, or (tight fit) around the visible points of its
 // slice, which reaches back over the previous cascade's blend band (those points sample it too).
@@ -49,7 +44,8 @@ CascadeLightView fitLightView(const TileInputs& in, const ReservedDirectionalLig
         const glm::vec3 rsCenter = glm::vec3(lightRotation * glm::vec4(sphere.wsCenter, 1.0f));
         rsBounds = Aabb{rsCenter - 1e-3f, rsCenter + 1e-3f};
     }
-    return fitTightLightView(lightRotation, rsBounds, in.atlas.tileSize, lookupReachTexels(light, in.filter));
+    const float reachTexels = lookupReachTexels(light.normalBias, light.pcssTanRadius > 0.0f, in.filter);
+    return fitTightLightView(lightRotation, rsBounds, in.atlas.tileSize, reachTexels);
 }
 
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
