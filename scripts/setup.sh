@@ -5,6 +5,10 @@
 # libjpeg62-turbo-dev: libturbojpeg0-dev's CMake package (libjpeg-turboTargets.cmake) names
 # libjpeg.so.62, which only that package brings; a minimal Debian 12 lacks it and configure fails.
 # ccache: rebuilds (and clones of the repository on one machine) reuse compiled objects.
+# The Python package (python/, docs/python.md): pybind11 and NumPy for the module, pytest and
+# Pillow (reads the CLI's PNGs) for its tests, Dask distributed and matplotlib for its examples;
+# pip, setuptools, wheel and venv for `pip install --no-build-isolation .`; all for Debian's own
+# /usr/bin/python3.
 # Idempotent: packages already present are left alone. This is the only way dependencies arrive.
 set -euo pipefail
 
@@ -17,6 +21,8 @@ packages=(
   xvfb xauth xdotool
   clang libclang-rt-14-dev llvm
   assimp-testmodels
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-pil python3-distributed python3-matplotlib
+  python3-pip python3-setuptools python3-wheel python3-venv
 )
 
 missing=()

@@ -2,7 +2,8 @@
 # Installs the built library into a temporary prefix, checks that the generated version header came
 # with it, builds examples/embed against that copy (as a program outside the tree would, through
 # find_package(penumbra)), runs it, and checks that its image equals `penumbra render` of the same
-# scene and size. Run after scripts/build.sh.
+# scene and size; when the build has the Python package, checks that it was installed under the prefix
+# and imports from there. Run after scripts/build.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 prefix=$(mktemp -d)
@@ -23,3 +24,12 @@ import json, sys
 d = json.load(sys.stdin)
 assert d["maxAbsDifference"] == 0, "the embedded render differs from penumbra render: %s" % d
 print("embed example: installed library renders the same image as penumbra render")'
+# The Python package (docs/python.md), installed into its interpreter's site folder under the prefix.
+module=$(find "$prefix" -name '_penumbra*.so' | head -n 1)
+if [[ -n $module ]]; then
+  python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' build/CMakeCache.txt)
+  PYTHONPATH=$(dirname "$(dirname "$module")") "$python" -c '
+import penumbra, sys
+assert penumbra.__file__.startswith(sys.argv[1]) and penumbra.load_scene().triangle_count > 0
+print("python package: installed under the prefix and importable (%s)" % penumbra.__file__)' "$prefix"
+fi

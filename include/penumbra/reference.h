@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <penumbra/image.h>
 #include <penumbra/camera.h>
@@ -22,6 +23,9 @@ struct ReferenceImages {
     Image validMask;
     uint64_t validPixels = 0;
     uint64_t geometryPixels = 0;  // pixels whose camera ray hits a visible surface
+    // Per pixel (row-major, pixel (0,0) top-left): the view depth of the surface the camera ray hits
+    // (as traceViewDepth gives it), +infinity where it hits none.
+    std::vector<float> viewDepth;
 };
 
 // The shadow settings that shape the AOV beyond the light itself (maximum distance and fade). Defaults
@@ -62,5 +66,11 @@ ReferenceOptions referenceOptionsFor(const Settings& settings, const CameraView&
 // Runs on all cores (TBB); shows progress on stderr when `showProgress` and stderr is a terminal.
 ReferenceImages traceReferenceShadow(const Scene& scene, const CameraView& view, uint32_t lightIndex,
                                      bool showProgress, const ReferenceOptions& options = {});
+
+// The view depth (distance along the camera's forward axis, in scene units) of the surface that the
+// camera ray through each pixel centre hits, with the camera rays of traceReferenceShadow (the surfaces
+// the rasterizer's opaque pass draws, between the near and far planes); +infinity where no surface is
+// hit. Row-major, view.width x view.height, pixel (0,0) top-left. Runs on all cores (TBB).
+std::vector<float> traceViewDepth(const Scene& scene, const CameraView& view);
 
 }  // namespace penumbra

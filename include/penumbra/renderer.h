@@ -108,6 +108,11 @@ struct FrameStats {
     ShadowPlanStats shadows;
 };
 
+// The frame's stats as one JSON object, as `penumbra render --stats` prints them after the device and
+// the size (docs/cli.md lists the keys): gpuMs, cpuPlanMs, cpuMs, shadows, warnings, shadowRaster,
+// mainView, meshletsSkipped, tiles, lightsPerCluster, virtualPages.
+std::string toJson(const FrameStats& stats);
+
 struct RenderResult {
     Image image;  // RGB colour (sRGB) or 1-channel AOV; empty when request.readback is false
     Image atlas;  // 1-channel depth of the shadow atlases when requested

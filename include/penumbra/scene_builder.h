@@ -25,6 +25,12 @@ private:
     Scene scene_;
 };
 
+// The checks every scene passes before the renderer or the reference uses it (Renderer's constructor
+// runs them; build() does not): every index in range, every number finite and within its range.
+// Throws penumbra::Error naming the first bad object and value, e.g. "scene: mesh 3 'wheel': index 17
+// is 40, not below the vertex count 12".
+void validateScene(const Scene& scene);
+
 Mesh makeBoxMesh(glm::vec3 halfExtents, uint32_t materialIndex);  // centred, flat normals, per-face UVs
 Mesh makeSphereMesh(float radius, uint32_t materialIndex, int segments = 48, int rings = 24);
 Mesh makePlaneMesh(glm::vec2 size, uint32_t materialIndex, float uvScale = 1.0f);  // XZ plane at y=0 facing +Y

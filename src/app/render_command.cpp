@@ -83,35 +83,10 @@ ViewRender::ViewRender(const RenderOptions& options)
 namespace {
 
 std::string statsJson(const RenderResult& result, const Device& device, const RenderOptions& options) {
-    nlohmann::json stats;
+    nlohmann::json stats = nlohmann::json::parse(toJson(result.stats));
     stats["device"] = {{"name", device.info().name}, {"driver", device.info().driver}, {"cpu", device.info().isCpu}};
     stats["width"] = options.width;
     stats["height"] = options.height;
-    nlohmann::json gpuMs = nlohmann::json::object();
-    for (const auto& timing : result.stats.gpuTimings) gpuMs[timing.name] = timing.milliseconds;
-    stats["gpuMs"] = gpuMs;
-    stats["cpuPlanMs"] = result.stats.cpu.plan + result.stats.cpu.culling;
-    stats["cpuMs"] = {{"plan", result.stats.cpu.plan}, {"culling", result.stats.cpu.culling},
-                      {"upload", result.stats.cpu.upload}, {"record", result.stats.cpu.record},
-                      {"submit", result.stats.cpu.submit}};
-    stats["shadows"] = nlohmann::json::parse(toJson(result.stats.shadows));
-    stats["warnings"] = result.stats.warnings;
-    stats["shadowRaster"] = {{"used", result.stats.shadowRaster}, {"choice", result.stats.shadowRasterChoice}};
-    stats["mainView"] = {{"used", result.stats.mainView},
-                         {"choice", result.stats.mainViewChoice},
-                         {"instances", result.stats.viewInstances},
-                         {"drawnEarly", result.stats.viewInstancesEarly},
-                         {"drawnLate", result.stats.viewInstancesLate},
-                         {"triangles", result.stats.viewTriangles}};
-    stats["meshletsSkipped"] = {{"shadowOutside", result.stats.shadowMeshletsOutside},
-                                {"viewOutside", result.stats.viewMeshletsOutside},
-                                {"viewFacingAway", result.stats.viewMeshletsFacingAway}};
-    stats["tiles"] = {{"rendered", result.stats.tilesRendered}, {"reused", result.stats.tilesReused}};
-    stats["lightsPerCluster"] = {{"mean", result.stats.lightsPerClusterMean}, {"max", result.stats.lightsPerClusterMax}};
-    const VirtualPageCounts& pages = result.stats.virtualPages;
-    stats["virtualPages"] = {{"maps", pages.maps},           {"requested", pages.requested}, {"cached", pages.cached},
-                             {"allocated", pages.allocated}, {"drawn", pages.drawn},         {"evicted", pages.evicted},
-                             {"overflowed", pages.overflowed}, {"resident", pages.resident}, {"poolPages", pages.poolPages}};
     return stats.dump(2);
 }
 

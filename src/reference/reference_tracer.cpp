@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -237,7 +238,11 @@ ReferenceImages traceReferenceShadow(const Scene& scene, const CameraView& view,
             }
         }
     });
-    for (const PixelSample& s : samples) result.geometryPixels += s.hit ? 1 : 0;
+    result.viewDepth.reserve(samples.size());
+    for (const PixelSample& s : samples) {
+        result.geometryPixels += s.hit ? 1 : 0;
+        result.viewDepth.push_back(s.hit ? s.viewDepth : std::numeric_limits<float>::infinity());
+    }
     for (uint8_t v : result.validMask.pixels) result.validPixels += v != 0 ? 1 : 0;
     return result;
 }

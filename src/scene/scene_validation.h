@@ -7,14 +7,13 @@
 #include <string>
 
 #include "penumbra/scene.h"
+#include "penumbra/scene_builder.h"  // validateScene, public
 
 namespace penumbra {
 
 // World coordinates beyond this (in any unit) are refused: shadow math squares distances, and a float
 // holds no useful position that large anyway (its spacing there is over 1000 units).
 inline constexpr float kMaxWorldCoordinate = 1.0e10f;
-
-void validateScene(const Scene& scene);
 
 // One light or material, named `what` in the message ("light 2 'sun'"). validateLight wants a unit
 // wsDirection (Renderer::setLight normalizes the caller's first).
