@@ -75,5 +75,6 @@ Scene makeCube();
 Scene makeCadEngine();
 Scene makeSpotShelf();
 Scene makePcssContact();
+Scene makeRoomCorner();
 
 }  // namespace penumbra::canonical

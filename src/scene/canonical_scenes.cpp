@@ -241,6 +241,8 @@ const std::vector<Entry>& entries() {
          makeSpotShelf},
         {{"pcss_contact", "contact-hardening soft shadows: a 3° pcss sun (light 0) and a pcss spot with a 15 cm emitter"},
          makePcssContact},
+        {{"room_corner", "a point light 2.5 m up, 1 m from both walls of a room corner: shadows on five cube faces"},
+         makeRoomCorner},
     };
     return kEntries;
 }

@@ -284,3 +284,33 @@ Scene makePcssContact() {
 }
 
 }  // namespace penumbra::canonical
+
+namespace penumbra::canonical {
+
+// A point light 2.5 m above the floor, 1 m from each wall of a room corner: shadows of a box, a pole,
+// a table and a ball fall on the floor and on both walls, through five of the light's six cube faces
+// (down, the two walls', and the floor beyond 2.5 m on the open sides), so every face's bias and its
+// edges show. Shadows that start late at a contact (too much bias) show as false lit.
+Scene makeRoomCorner() {
+    SceneBuilder builder;
+    addGround(builder, 16.0f);
+    const uint32_t white = builder.addMaterial(colored("walls", glm::vec3(0.85f)));
+    const uint32_t red = builder.addMaterial(colored("caster", {0.8f, 0.3f, 0.2f}));
+    const uint32_t blue = builder.addMaterial(colored("caster_blue", {0.2f, 0.35f, 0.8f}));
+    addBox(builder, {0.1f, 1.6f, 5.0f}, white, at({-4.1f, 1.6f, -5.0f}), "wall_left");
+    addBox(builder, {5.0f, 1.6f, 0.1f}, white, at({0.0f, 1.6f, -9.1f}), "wall_back");
+    addBox(builder, glm::vec3(0.35f), red, at({-2.6f, 0.35f, -6.6f}), "box_corner");
+    addPole(builder, 0.05f, 2.0f, blue, {-1.6f, 0.0f, -8.3f}, "pole_wall");
+    addBox(builder, {0.5f, 0.03f, 0.4f}, red, at({-0.4f, 0.8f, -6.2f}), "table_top");
+    for (float dx : {-0.45f, 0.45f})
+        for (float dz : {-0.35f, 0.35f}) addPole(builder, 0.03f, 0.77f, red, {-0.4f + dx, 0.0f, -6.2f + dz}, "table_leg");
+    addSphere(builder, 0.3f, blue, {-2.8f, 0.3f, -3.8f}, "ball");
+    addBox(builder, {0.25f, 0.5f, 0.25f}, blue, at({1.2f, 0.5f, -7.6f}), "block");
+    Light bulb = makePointLight({-3.0f, 2.5f, -8.0f}, 30.0f, 15.0f);
+    bulb.name = "bulb";
+    builder.addLight(bulb);
+    setCamera(builder, {2.5f, 3.2f, 0.5f}, {-1.8f, 0.7f, -6.5f}, 60.0f);
+    return builder.build();
+}
+
+}  // namespace penumbra::canonical
