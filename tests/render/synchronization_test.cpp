@@ -7,6 +7,8 @@
 #include <memory>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "penumbra/scene_loading.h"
 #include "render_test_support.h"
 #include "scene/canonical_scenes.h"
@@ -92,6 +94,32 @@ TEST_F(SynchronizationTest, LightCullingWithoutClustersAndFrustumCullingRenderWi
     settings.render.lightCulling = LightCulling::None;
     settings.render.viewCulling = ViewCulling::Frustum;
     EXPECT_EQ(hazardsOfTwoFrames(makeCanonicalScene("spot_lights"), settings), 0u);
+}
+
+TEST_F(SynchronizationTest, VirtualShadowMapFramesRenderWithoutHazards) {
+    // Pages allocated and drawn (first frame), kept (second), invalidated by a moved caster (third),
+    // on both rasterizers and both main views: marking, the table's passes, the page draws and the
+    // lit pass's reads of the pool each wait for the pass before them.
+    const Scene scene = makeCanonicalScene("poles");
+    for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+        for (MainView mainView : {MainView::Forward, MainView::Visibility}) {
+            SCOPED_TRACE(std::string(shadowRasterName(raster)) + ", " + mainViewName(mainView));
+            Settings settings = smallSettings(raster, mainView);
+            settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+            settings.shadows.virtualMaps.poolPages = 64;
+            settings.shadows.virtualMaps.resolution = 2048;
+            const uint32_t before = device().validationMessageCount();
+            Renderer renderer(device(), scene);
+            renderer.render(smallRequest(), settings);
+            renderer.render(smallRequest(), settings);
+            const uint32_t last = uint32_t(scene.instances.size()) - 1;
+            renderer.setInstanceTransform(
+                last, glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.0f, 0.0f)) * scene.instances[last].worldFromObject);
+            const RenderResult moved = renderer.render(smallRequest(), settings);
+            EXPECT_GT(moved.stats.virtualPages.drawn, 0u) << "the moved caster's pages are drawn again";
+            EXPECT_EQ(device().validationMessageCount() - before, 0u);
+        }
+    }
 }
 
 }  // namespace
