@@ -23,12 +23,13 @@ layout(push_constant) uniform RasterBlock { VisibilityConstants raster; };
 layout(push_constant) uniform RasterBlock { ShadowRasterConstants raster; };
 #endif
 
-// The mesh slot whose work items (instances x meshlets) hold work item `item`, in mesh order.
-uint meshOfWorkItem(uint item, uint meshCount) {
+// The mesh slot whose run holds `index`, in mesh order: its work items (instances x meshlets:
+// firstRasterItem) or, with listSlots, its slots of a culled list (firstListSlot); both are prefix sums.
+uint meshOfRun(uint index, uint meshCount, bool listSlots) {
     uint lo = 0u, hi = meshCount - 1u;
     while (lo < hi) {
         uint mid = (lo + hi + 1u) / 2u;
-        if (cullMeshes[mid].firstRasterItem <= item) lo = mid;
+        if ((listSlots ? cullMeshes[mid].firstListSlot : cullMeshes[mid].firstRasterItem) <= index) lo = mid;
         else hi = mid - 1u;
     }
     return lo;

@@ -26,11 +26,6 @@ struct SurfaceInput {
     bool blendPass;          // an alpha-blended draw (not in the depth prepass)
 };
 
-vec3 cascadeColor(int cascade) {
-    const vec3 colors[5] = vec3[](vec3(0.0), vec3(1, 0.25, 0.25), vec3(0.25, 1, 0.25), vec3(0.25, 0.4, 1), vec3(1, 1, 0.25));
-    return colors[clamp(cascade + 1, 0, 4)];
-}
-
 // What a lit pixel knows while it sums its lights.
 struct PixelLighting {
     Surface surface;
@@ -107,7 +102,7 @@ vec4 shadeSurface(SurfaceInput s) {
     if ((material.flags & kMaterialUnlit) != 0u) radiance = s.baseColor.rgb;
 
     if (outputMode == kOutputShadowAov) return vec4(vec3(aovShadow), 1.0);
-    if (outputMode == kOutputCascadesAov) return vec4(cascadeColor(aovCascade), 1.0);
+    if (outputMode == kOutputCascadesAov) return vec4(aovCascadeColor(aovCascade), 1.0);
     return vec4(toneMap(radiance * frame.exposure, frame.toneMapping), s.blendPass ? s.baseColor.a : 1.0);
 }
 

@@ -1,15 +1,15 @@
 #version 460
-// Compute rasterizer, pass 1 (shadow_raster.glsl): one workgroup per meshlet (at most kRasterBatch
-// triangles) of a slot of a tile's visible list (the GPU culling pass's output), its threads over the
-// triangles; a meshlet whose box lies outside the tile is skipped whole (render.meshletCulling). Small
-// pieces are rasterized by their thread; large ones are queued, set up, for the chunked passes.
+// Compute rasterizer, pass 1 (shadow_raster.glsl): one workgroup per work item (RasterWorkItem: up to
+// kRasterMeshletsPerItem meshlets of one instance in one tile, queued by shadow_raster_expand.comp),
+// its threads over each meshlet's triangles (at most kRasterBatch); a meshlet whose box lies outside
+// the tile is skipped whole (render.meshletCulling). Small pieces are rasterized by their thread;
+// large ones are queued, set up, for the chunked passes.
 #include "pass_bindings.h"
 #include "shadow_raster.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(set = kPassSet, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kShadowRasterBindingWork, std430) readonly buffer WorkBlock { RasterWorkItem work[]; };
 
 shared mat4 clipFromObject;
 shared bool meshletSkipped;
@@ -28,42 +28,42 @@ void rasterizeOrQueue(RasterTriangleSetup t, CullMesh mesh, float slopeBias) {
         for (int x = t.bounds.x; x <= t.bounds.z; ++x) rasterizeTexel(t, slopeBias, x, y);
 }
 
-void main() {
-    uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    uint tileIndex;
-    if (!rasterTile(gl_WorkGroupID.z, tileIndex)) return;  // z: the raster list's entry (instanceDispatch)
-    uint instanceCount = cull.instanceCount, meshCount = cull.meshCount;
-    uint meshSlot = meshOfWorkItem(item, meshCount);
-    CullMesh mesh = cullMeshes[meshSlot];
-    uint local = item - mesh.firstRasterItem;
-    if (mesh.meshletCount == 0u || local >= mesh.instanceCount * mesh.meshletCount) return;  // past the last item
-    uint instanceInMesh = local / mesh.meshletCount;
-    if (instanceInMesh >= listCounts[tileIndex * meshCount + meshSlot]) return;  // culled slot
-    uint instance = visibleInstances[tileIndex * instanceCount + mesh.firstListSlot + instanceInMesh];
-    Meshlet meshlet = meshlets[mesh.firstMeshlet + local % mesh.meshletCount];
-    CullTile tile = tiles[tileIndex];
-    float slopeBias = tile.slopeBias;
-    if (gl_LocalInvocationID.x == 0u) {
-        clipFromObject = tile.clipFromWorld * instances[instance].worldFromObject;
-        // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.
-        meshletSkipped = raster.meshletCulling != 0u && meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
-                                                                  kMeshletSidesXY | kMeshletSideNearW);
-        if (meshletSkipped) atomicAdd(counters.meshletsOutside, 1u);
-    }
-    barrier();
-    if (meshletSkipped) return;
+void rasterizeMeshlet(CullMesh mesh, Meshlet meshlet, CullTile tile) {
     uint lastTriangle = meshlet.firstTriangle + meshlet.triangleCount;
     for (uint triangle = meshlet.firstTriangle + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
         RasterVertex v[3];
         fetchTriangle(mesh, triangle, clipFromObject, v);
         RasterTriangleSetup t;
         if (!needsClipping(v, kShadowClipPlanes)) {  // nearly always: no polygon array, nothing in local memory
-            if (setupTriangle(tile.viewport, tile.scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh, slopeBias);
+            if (setupTriangle(tile.viewport, tile.scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh, tile.slopeBias);
             continue;
         }
         RasterVertex polygon[kMaxClipped];
         int vertexCount = clipTriangle(v, kShadowClipPlanes, polygon);
         for (int i = 1; i + 1 < vertexCount; ++i)
-            if (setupTriangle(tile.viewport, tile.scissor, polygon[0], polygon[i], polygon[i + 1], t)) rasterizeOrQueue(t, mesh, slopeBias);
+            if (setupTriangle(tile.viewport, tile.scissor, polygon[0], polygon[i], polygon[i + 1], t))
+                rasterizeOrQueue(t, mesh, tile.slopeBias);
+    }
+}
+
+void main() {
+    uint itemIndex = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
+    if (itemIndex >= min(counters.workQueued, raster.workCapacity)) return;  // past the last item (workDispatch)
+    RasterWorkItem item = work[itemIndex];
+    CullMesh mesh = cullMeshes[item.meshSlot];
+    CullTile tile = tiles[item.tile];
+    if (gl_LocalInvocationID.x == 0u) clipFromObject = tile.clipFromWorld * instances[item.instance].worldFromObject;
+    uint lastMeshlet = min(item.firstMeshlet + kRasterMeshletsPerItem, mesh.meshletCount);
+    for (uint m = item.firstMeshlet; m < lastMeshlet; ++m) {
+        Meshlet meshlet = meshlets[mesh.firstMeshlet + m];
+        barrier();  // clipFromObject written; the last meshlet's threads done with meshletSkipped
+        if (gl_LocalInvocationID.x == 0u) {
+            // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.
+            meshletSkipped = raster.meshletCulling != 0u && meshletBoxOutside(clipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
+                                                                      kMeshletSidesXY | kMeshletSideNearW);
+            if (meshletSkipped) atomicAdd(counters.meshletsOutside, 1u);
+        }
+        barrier();
+        if (!meshletSkipped) rasterizeMeshlet(mesh, meshlet, tile);
     }
 }

@@ -1,5 +1,6 @@
 #version 460
-// Sizes the indirect dispatches of the compute rasterizer's passes 2 and 3 from its counters.
+// Sizes the indirect dispatches of the compute rasterizers' passes 2 and 3 (and the shadow
+// rasterizer's pass 1, over its work items) from their counters.
 #include "pass_bindings.h"
 #include "cull_structs.h"
 
@@ -13,5 +14,6 @@ uvec4 dispatchFor(uint count) {
 
 void main() {
     if (args.queue == kRasterArgsLarge) counters.largeDispatch = dispatchFor(min(counters.largeQueued, args.largeCapacity));
+    else if (args.queue == kRasterArgsWork) counters.workDispatch = dispatchFor(min(counters.workQueued, args.workCapacity));
     else counters.chunkDispatch = dispatchFor(min(counters.chunksQueued, args.chunkCapacity));
 }

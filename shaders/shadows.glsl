@@ -138,7 +138,7 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
         if (strength <= 0.0) return ShadowSample(1.0, -1);
         int level;
         float shadow = sampleDirectionalVirtual(shadowSlot, light, directionalShadows.biasMode, receiver, viewDepth, level);
-        return ShadowSample(mix(1.0, shadow, strength), -1);
+        return ShadowSample(mix(1.0, shadow, strength), level);  // --aov cascades shows the level
     }
     CascadeChoice choice = selectDirectionalCascade(wsPosition, viewDepth);
     if (choice.cascade < 0) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow

@@ -20,4 +20,5 @@ void main() {
         first += counters.ageCount[age - 1u];
     }
     counters.freeAtAllocation = pool.freeCount;
+    counters.allocateDispatch = uvec4((counters.missing + kVirtualPageGroupSize - 1u) / kVirtualPageGroupSize, 1u, 1u, 0u);
 }

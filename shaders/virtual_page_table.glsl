@@ -29,6 +29,7 @@ layout(set = kPassSet, binding = kPageTableBindingDrawList, std430) buffer PageD
 layout(set = kPassSet, binding = kPageTableBindingInvalidations, std430) readonly buffer PageInvalidationBlock {
     VirtualPageInvalidation invalidations[];
 };
+layout(set = kPassSet, binding = kPageTableBindingMissing, std430) buffer PageMissingBlock { uint missingEntries[]; };
 
 uint pagesPerLevel() { return table.pagesPerSide * table.pagesPerSide; }
 
@@ -62,6 +63,7 @@ uint ageBucket(VirtualPageEntry entry) {
 
 // Appends a resident, requested, dirty page to the update's draw list.
 void appendDraw(uint entry, VirtualPageEntry page) {
+    atomicAdd(counters.levelDrawn[entry / pagesPerLevel()], 1u);
     draws[atomicAdd(drawHeader.count, 1u)] = VirtualPageDraw(entry, page.physicalPage, page.pageX, page.pageY);
 }
 

@@ -30,9 +30,8 @@ void writeHeaders(uint count) {
     tileList.drawsDispatch = uvec4(constants.meshGroups, count, 1u, 0u);
     tileList.count = count;
     uint clearGroups = (constants.pageSize + kRasterClearGroup - 1u) / kRasterClearGroup;
-    uint items = max(constants.rasterItems, 1u);
     rasterList.clearDispatch = uvec4(clearGroups, clearGroups, count, 0u);
-    rasterList.instanceDispatch = uvec4(min(items, kRasterDispatchWidth), (items + kRasterDispatchWidth - 1u) / kRasterDispatchWidth, count, 0u);
+    rasterList.expandDispatch = uvec4(max(constants.expandGroups, 1u), 1u, count, 0u);
     rasterList.count = count;
 }
 

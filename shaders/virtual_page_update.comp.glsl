@@ -1,45 +1,32 @@
 #version 460
-// Virtual page table, step 1 of an update (render/virtual_page_table_pass.h): one invocation per entry
-// (level, wrap-around slot) against this frame's request bits and windows.
+// Virtual page table, step 1 of an update (render/virtual_page_table_pass.h): one invocation per
+// physical page, for the entry that holds it (owners), against this frame's request bits and windows.
+// The work follows the pool's size, not the levels' slots.
 // - A resident page that left its level's window (the slot now maps to another page) or that nobody
 //   requested for more than keepFrames frames is freed: its physical page goes on the free list.
 // - A resident page requested again is cached: lastRequested is refreshed, and it is drawn if dirty.
 // - A resident page not requested is an eviction candidate, counted by age.
-// - A requested page that is not resident is counted as missing in its level.
+// Step 1b (virtual_page_requests.comp) then lists the requested pages that are not resident.
 // shadows/virtual_page_pool.h (releaseOutside, then update's freeing and caching) is the CPU rule.
 #include "virtual_page_table.glsl"
 layout(local_size_x = kVirtualPageGroupSize) in;
 
-void freePhysicalPage(uint physical) {
-    owners[physical] = kVirtualPageNone;
-    freePages[atomicAdd(pool.freeCount, 1u)] = physical;
-    atomicAdd(counters.stats.evicted, 1u);
-}
-
 void main() {
-    const uint entry = gl_GlobalInvocationID.x;
-    if (entry >= table.entryCount) return;
+    const uint physical = gl_GlobalInvocationID.x;
+    if (physical >= table.capacity) return;
+    const uint entry = owners[physical];
+    if (entry == kVirtualPageNone) return;  // a free page
     VirtualPageEntry page = entries[entry];
     const bool requested = pageRequested(entry);
-    if (!requested && page.flags == 0u) return;  // empty and not wanted: most entries
     const ivec2 windowPage = windowPageOfEntry(entry);
-    bool resident = isResident(page.flags);
     const bool leftWindow = page.pageX != windowPage.x || page.pageY != windowPage.y;
     const bool idle = !requested && table.frame - page.lastRequested > table.keepFrames;
-    if (resident && (leftWindow || idle)) {
-        freePhysicalPage(page.physicalPage);
-        resident = false;
-    }
-    if (requested) atomicAdd(counters.stats.requested, 1u);
-    if (!resident) {
-        page = VirtualPageEntry(kVirtualPageNone, requested ? kVirtualPageRequested : 0u, windowPage.x, windowPage.y,
-                                page.lastRequested, 0u, 0u, 0u);
-        if (requested) {
-            atomicAdd(counters.levelMissing[entry / pagesPerLevel()], 1u);
-            atomicAdd(counters.missing, 1u);
-        }
-        entries[entry] = page;
-        return;
+    if (leftWindow || idle) {
+        owners[physical] = kVirtualPageNone;
+        freePages[atomicAdd(pool.freeCount, 1u)] = physical;
+        atomicAdd(counters.stats.evicted, 1u);
+        entries[entry] = VirtualPageEntry(kVirtualPageNone, 0u, windowPage.x, windowPage.y, page.lastRequested, 0u, 0u, 0u);
+        return;  // requested again, step 1b lists it as missing
     }
     page.flags &= kVirtualPageResident | kVirtualPageDirty;
     if (table.invalidateAll != 0u) page.flags |= kVirtualPageDirty;  // the light changed
@@ -47,6 +34,7 @@ void main() {
         page.flags |= kVirtualPageRequested;
         page.lastRequested = table.frame;
         atomicAdd(counters.stats.cached, 1u);
+        atomicAdd(counters.levelCached[entry / pagesPerLevel()], 1u);
         if ((page.flags & kVirtualPageDirty) != 0u) appendDraw(entry, page);
     } else {
         atomicAdd(counters.ageCount[ageBucket(page)], 1u);

@@ -47,7 +47,7 @@ bool skipMeshlet(Meshlet meshlet, uint instance, bool doubleSided) {
 
 void main() {
     uint item = gl_WorkGroupID.x + gl_WorkGroupID.y * kRasterDispatchWidth;
-    uint meshSlot = meshOfWorkItem(item, raster.meshSlots);
+    uint meshSlot = meshOfRun(item, raster.meshSlots, false);
     CullMesh mesh = cullMeshes[meshSlot];
     uint local = item - mesh.firstRasterItem;
     if (mesh.meshletCount == 0u || local >= mesh.instanceCount * mesh.meshletCount) return;  // past the last item

@@ -6,6 +6,7 @@
 // a debug AOV only when asked. Frames in flight run in a ring (DeviceOptions::framesInFlight): a
 // steady-state frame makes no GPU object, builds no pipeline, waits for no more than the frame that
 // used its ring slot before, and makes one queue submission.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -91,9 +92,10 @@ struct FrameStats {
     // Meshlets the compute rasterizers skipped (render.meshletCulling): in the shadow atlases, those
     // outside their tile; in the visibility buffer, those outside the view and those facing away.
     uint64_t shadowMeshletsOutside = 0, viewMeshletsOutside = 0, viewMeshletsFacingAway = 0;
-    // The compute rasterizer (both atlases): large triangle pieces split into chunks, the chunks, and what
-    // its queues could not hold (drawn incompletely: a warning names it).
-    uint64_t rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
+    // The compute rasterizer (both atlases and the virtual pages): its work items (a few meshlets of one
+    // instance in one tile or page), large triangle pieces split into chunks, the chunks, and what its
+    // queues could not hold (drawn incompletely, then drawn again: a warning names it).
+    uint64_t rasterWorkItems = 0, rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
     // Shadow tiles drawn this frame and kept from earlier frames (shadows.cacheTiles).
     uint32_t tilesRendered = 0, tilesReused = 0;
     // Clustered light culling (render.lightCulling): the spot and point lights per cluster, mean over
@@ -102,6 +104,13 @@ struct FrameStats {
     uint32_t lightsPerClusterMax = 0;
     std::vector<AtlasDrawStats> atlases;
     VirtualPageCounts virtualPages;
+    // Per directional light with a virtual map (the first virtualPages.maps), per level (finest first):
+    // the page view of the viewer and of --stats.
+    struct VirtualMapLevels {
+        uint32_t levelCount = 0;
+        std::array<uint32_t, 16> requested{}, cached{}, drawn{};  // cached: requested and already resident
+    };
+    std::array<VirtualMapLevels, 4> virtualMaps{};
     std::vector<std::string> warnings;
     // The shadow plan (lights reserved, tiles, casters and triangles per tile) as plain data; toJson()
     // writes it as --stats prints it.
@@ -131,9 +140,10 @@ struct RendererOptions {
     PipelineWarmup warmup = PipelineWarmup::OnDemand;
     // Testing and debugging: always draw with the generic lit-pass variant (it must give the same image).
     bool forceGenericVariants = false;
-    // The compute rasterizer's queues of large triangle pieces and of their chunks start this large
-    // (0 = the defaults, 256k and 1M) and grow when a frame overflows them.
-    uint32_t rasterLargeQueue = 0, rasterChunkQueue = 0;
+    // The compute rasterizer's queues of large triangle pieces, of their chunks and of its work items
+    // (a few meshlets of one instance in one tile or page) start this large (0 = the defaults, 256k,
+    // 1M and 64k) and grow when a frame overflows them.
+    uint32_t rasterLargeQueue = 0, rasterChunkQueue = 0, rasterWorkQueue = 0;
 };
 
 // A caller-owned image to render into (see <penumbra/vulkan.h>, which fills it from Vulkan types).

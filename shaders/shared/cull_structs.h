@@ -185,10 +185,11 @@ PENUMBRA_CHECK_LAYOUT(CullTileListHeader, count, 32)
 // The raster list of one compute-raster pass: this header, then `count` culling tile indices (the tiles
 // it draws into its depth buffer, each at its CullTile's viewport). The clear and pass-1 dispatches
 // loop over the entries in z.
-PENUMBRA_CONST(uint, kRasterClearGroup, 16u)  // shadow_raster_clear.comp's workgroup side, in texels
+PENUMBRA_CONST(uint, kRasterClearGroup, 16u)
+PENUMBRA_CONST(uint, kRasterExpandGroup, 64u)  // shadow_raster_expand.comp's workgroup: slots of a tile's list  // shadow_raster_clear.comp's workgroup side, in texels
 struct RasterTileListHeader {
     uvec4 clearDispatch;     // shadow_raster_clear.comp: (ceil(largest side / kRasterClearGroup) x 2, count)
-    uvec4 instanceDispatch;  // shadow_raster.comp: (min(items, kRasterDispatchWidth), rows of items, count)
+    uvec4 expandDispatch;    // shadow_raster_expand.comp: (ceil(instances / kRasterExpandGroup), 1, count)
     uint count;              // entries in the list
     uint reserved0;
     uint reserved1;
@@ -219,9 +220,21 @@ PENUMBRA_CHECK_SIZE(CullTileStats, 16)
 // kRasterChunk chunks, and rasterized one workgroup per chunk, kRasterChunk^2 / 256 texels a thread.
 PENUMBRA_CONST(uint, kRasterSmallArea, 64u)
 PENUMBRA_CONST(uint, kRasterChunk, 16u)
-// Pass 1 works in meshlets of at most kRasterBatch triangles of one instance (one workgroup each), so a mesh
-// of many triangles on few instances still fills the GPU.
+// Pass 1 works in meshlets of at most kRasterBatch triangles of one instance, so a mesh of many
+// triangles on few instances still fills the GPU. Before it, shadow_raster_expand.comp turns each
+// (drawn tile, instance its culling kept) into work items of at most kRasterMeshletsPerItem meshlets
+// (RasterWorkItem), one workgroup of pass 1 each: the dispatch holds only what a tile draws, however
+// many tiles or pages a pass draws and however many instances the scene has.
 PENUMBRA_CONST(uint, kRasterBatch, 128u)
+PENUMBRA_CONST(uint, kRasterMeshletsPerItem, 8u)
+PENUMBRA_CONST(uint, kRasterInitialWork, 65536u)
+struct RasterWorkItem {
+    uint instance;
+    uint tile;          // culling tile index
+    uint meshSlot;      // CullMesh index
+    uint firstMeshlet;  // of the mesh's meshlets; the item holds up to kRasterMeshletsPerItem from there
+};
+PENUMBRA_CHECK_SIZE(RasterWorkItem, 16)
 // The queues of large pieces and chunks start at these capacities and grow when a frame overflows
 // them (the renderer reads the counters back; render() draws the frame again).
 PENUMBRA_CONST(uint, kRasterInitialLarge, 262144u)
@@ -252,10 +265,11 @@ struct RasterCounters {
     uvec4 chunkDispatch;
     uint meshletsOutside;
     uint meshletsFacingAway;
-    uint reserved0;
-    uint reserved1;
+    uint workQueued;    // shadow rasterizer's pass-1 work items (RasterWorkItem) queued
+    uint workDropped;   // and not drawn: the queue was full
+    uvec4 workDispatch;
 };
-PENUMBRA_CHECK_SIZE(RasterCounters, 64)
+PENUMBRA_CHECK_SIZE(RasterCounters, 80)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, largeDispatch, 16)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, meshletsOutside, 48)
 
@@ -266,18 +280,24 @@ struct ShadowRasterConstants {
     uint meshletCulling;   // 1: skip meshlets outside the tile (render.meshletCulling)
     uint largeCapacity;    // large pieces the queue holds
     uint chunkCapacity;    // chunks the queue holds
+    uint workCapacity;     // pass-1 work items the queue holds
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
-PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 16)
+PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 32)
 
 // Push constants of shadow_raster_args.comp, which sizes both rasterizers' indirect dispatches.
 PENUMBRA_CONST(uint, kRasterArgsLarge, 0u)   // the large-piece pass (2)
 PENUMBRA_CONST(uint, kRasterArgsChunks, 1u)  // the chunk pass (3)
+PENUMBRA_CONST(uint, kRasterArgsWork, 2u)    // the shadow rasterizer's pass 1, over its work items
 struct RasterArgsConstants {
     uint queue;  // kRasterArgs*
     uint largeCapacity;
     uint chunkCapacity;
+    uint workCapacity;
 };
-PENUMBRA_CHECK_SIZE(RasterArgsConstants, 12)
+PENUMBRA_CHECK_SIZE(RasterArgsConstants, 16)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

@@ -85,6 +85,7 @@ PENUMBRA_CONST(uint, kShadowRasterBindingCullFrame, 5u)   // uniform CullFrame (
 PENUMBRA_CONST(uint, kShadowRasterBindingAtlasDepth, 8u)  // depthSide^2 float bits
 PENUMBRA_CONST(uint, kShadowRasterBindingTiles, 15u)      // the culling pass's CullTileListHeader + CullTile[]
 PENUMBRA_CONST(uint, kShadowRasterBindingRasterList, 16u) // RasterTileListHeader + the tiles this pass draws
+PENUMBRA_CONST(uint, kShadowRasterBindingWork, 17u)       // RasterWorkItem[] (pass 1's work, shadow_raster_expand.comp's)
 // The visibility rasterizer (visibility_raster.glsl).
 PENUMBRA_CONST(uint, kVisibilityRasterBindingVisibility, 8u)  // uint64 per pixel
 
@@ -121,6 +122,7 @@ PENUMBRA_CONST(uint, kPageTableBindingCounters, 5u)       // VirtualPageCounters
 PENUMBRA_CONST(uint, kPageTableBindingCandidates, 6u)     // the eviction order: entries, oldest first
 PENUMBRA_CONST(uint, kPageTableBindingDrawList, 7u)       // VirtualPageDrawHeader + VirtualPageDraw[]
 PENUMBRA_CONST(uint, kPageTableBindingInvalidations, 8u)  // VirtualPageInvalidation[]
+PENUMBRA_CONST(uint, kPageTableBindingMissing, 9u)        // the requested entries not resident, this update
 
 // Virtual page drawing (virtual_page_tiles.comp, virtual_page_copy.comp; render/virtual_page_draw_pass.h).
 PENUMBRA_CONST(uint, kPageDrawBindingDrawList, 0u)     // VirtualPageDrawHeader + VirtualPageDraw[]

@@ -13,6 +13,20 @@ PENUMBRA_CONST(uint, kOutputColor, 0u)
 PENUMBRA_CONST(uint, kOutputShadowAov, 1u)
 PENUMBRA_CONST(uint, kOutputCascadesAov, 2u)
 
+// The colour of --aov cascades: black where no cascade (or virtual level) serves, then cascade or
+// virtual shadow map level i: red, green, blue, yellow for 0-3, then a hue per further level, full and
+// dimmed in turn so that neighbouring levels differ.
+PENUMBRA_INLINE vec3 aovCascadeColor(int index) {
+    if (index < 0) return vec3(0.0f);
+    if (index == 0) return vec3(1.0f, 0.25f, 0.25f);
+    if (index == 1) return vec3(0.25f, 1.0f, 0.25f);
+    if (index == 2) return vec3(0.25f, 0.4f, 1.0f);
+    if (index == 3) return vec3(1.0f, 1.0f, 0.25f);
+    const float hue = float(index - 4) * 0.0833333f + 0.04f;
+    const vec3 rgb = clamp(abs(fract(vec3(hue) + vec3(0.0f, 0.6666667f, 0.3333333f)) * 6.0f - 3.0f) - 1.0f, 0.0f, 1.0f);
+    return (index % 2 == 0 ? 1.0f : 0.55f) * (0.2f + 0.8f * rgb);
+}
+
 // Tone mapping of the colour output (FrameData.toneMapping; = penumbra::ToneMapping, tone_mapping.glsl).
 PENUMBRA_CONST(uint, kToneMapNone, 0u)
 PENUMBRA_CONST(uint, kToneMapNeutral, 1u)

@@ -34,7 +34,7 @@ struct VirtualPageTilesConstants {
     uint capacity;                // pages the tile lists hold
     uint instanceGroups;          // the culling dispatch's x: ceil(instances / kCullWorkgroupSize)
     uint meshGroups;              // the draw lists' dispatch's x: ceil(meshes / kCullWorkgroupSize)
-    uint rasterItems;             // the compute rasterizer's pass-1 work items per tile
+    uint expandGroups;            // the compute rasterizer's expansion dispatch's x: ceil(instances / kRasterExpandGroup)
     uint reserved;
 };
 PENUMBRA_CHECK_SIZE(VirtualPageTilesConstants, 112)

@@ -125,6 +125,14 @@ struct VirtualPageStats {
 };
 PENUMBRA_CHECK_SIZE(VirtualPageStats, 32)
 
+// What one update did per level: the tail of VirtualPageCounters, read back as one piece.
+struct VirtualPageLevelStats {
+    uint requested[kVirtualPageMaxLevels];
+    uint cached[kVirtualPageMaxLevels];
+    uint drawn[kVirtualPageMaxLevels];
+};
+PENUMBRA_CHECK_SIZE(VirtualPageLevelStats, 3 * 64)
+
 // The counters of one update, zeroed before it. Per level (coarsest first) and per eviction age
 // (oldest first): how many, a cursor, and where their run starts in the allocation / eviction order.
 struct VirtualPageCounters {
@@ -139,8 +147,14 @@ struct VirtualPageCounters {
     uint ageCount[kVirtualPageMaxKeepFrames];  // by age - 1
     uint ageCursor[kVirtualPageMaxKeepFrames];
     uint ageFirst[kVirtualPageMaxKeepFrames];
+    // Per level, for the page view (VirtualPageLevelStats): requested, of them already resident, drawn.
+    uint levelRequested[kVirtualPageMaxLevels];
+    uint levelCached[kVirtualPageMaxLevels];
+    uint levelDrawn[kVirtualPageMaxLevels];
+    uvec4 allocateDispatch;  // virtual_page_allocate.comp over the missing entries (written by the plan)
 };
-PENUMBRA_CHECK_SIZE(VirtualPageCounters, 48 + 3 * 64 + 3 * 128)
+PENUMBRA_CHECK_SIZE(VirtualPageCounters, 48 + 3 * 64 + 3 * 128 + 3 * 64 + 16)
+PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, levelRequested, 48 + 3 * 64 + 3 * 128)
 PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, missing, 32)
 PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, levelMissing, 48)
 PENUMBRA_CHECK_LAYOUT(VirtualPageCounters, ageCount, 240)

@@ -113,7 +113,7 @@ struct Measurements {
     uint32_t viewInstances = 0;  // of the last timed frame
     Series viewEarly, viewLate, viewTriangles;
     Series shadowMeshletsOutside, viewMeshletsOutside, viewMeshletsFacingAway;  // render.meshletCulling
-    uint64_t rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
+    uint64_t rasterWork = 0, rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
     // Virtual shadow map pages per frame (shadows.directional.mode = virtual).
     Series pagesRequested, pagesCached, pagesAllocated, pagesDrawn, pagesEvicted, pagesOverflowed, pagesResident;
@@ -144,6 +144,7 @@ struct Measurements {
         virtualMaps = pages.maps;
         poolPages = pages.poolPages;
         raster = stats.shadowRaster;
+        rasterWork = stats.rasterWorkItems;
         rasterLarge = stats.rasterLargeTriangles;
         rasterChunks = stats.rasterChunks;
         rasterDropped = stats.rasterDropped;
@@ -281,7 +282,8 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
                             {"overflowed", measured.pagesOverflowed.percentile(1.0)},
                             {"resident", measured.pagesResident.median()}};
     json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice},
-                            {"largePieces", measured.rasterLarge}, {"chunks", measured.rasterChunks},
+                            {"workItems", measured.rasterWork}, {"largePieces", measured.rasterLarge},
+                            {"chunks", measured.rasterChunks},
                             {"dropped", measured.rasterDropped}};
     json["lightsPerCluster"] = {{"mean", measured.lightsPerClusterMean}, {"max", measured.lightsPerClusterMax}};
     json["mainView"] = {{"used", measured.mainView},
@@ -327,8 +329,9 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
     for (const AtlasDrawStats& atlas : measured.atlases)
         std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     (unsigned long long)atlas.triangles);
-    std::printf("shadow raster: %s (%s), %llu large pieces in %llu chunks, %llu dropped\n", measured.raster.c_str(),
-                measured.rasterChoice.c_str(), (unsigned long long)measured.rasterLarge,
+    std::printf("shadow raster: %s (%s), %llu work items, %llu large pieces in %llu chunks, %llu dropped\n",
+                measured.raster.c_str(), measured.rasterChoice.c_str(), (unsigned long long)measured.rasterWork,
+                (unsigned long long)measured.rasterLarge,
                 (unsigned long long)measured.rasterChunks, (unsigned long long)measured.rasterDropped);
     std::printf("main view: %s (%s)\n", measured.mainView.c_str(), measured.mainViewChoice.c_str());
     if (measured.mainView == "visibility")

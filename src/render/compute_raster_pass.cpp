@@ -26,12 +26,11 @@ gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* de
 }
 
 void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passName, gpu::PipelineHandle args,
-                              gpu::BufferHandle counters, uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity) {
+                              gpu::BufferHandle counters, const gpu_data::RasterArgsConstants& constants) {
     commands.pass(passName, {gpu::use(counters, gpu::Usage::ComputeWrite)});
     commands.bindPipeline(args);
     const gpu::DescriptorWrite write{gpu_data::kRasterBindingCounters, counters, {}, {}};
     commands.pushDescriptors(std::span(&write, 1));
-    const gpu_data::RasterArgsConstants constants{queue, largeCapacity, chunkCapacity};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(1, 1);
 }
@@ -58,25 +57,26 @@ void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const Gpu
 }
 
 ComputeRasterPass::ComputeRasterPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t largeQueue,
-                                     uint32_t chunkQueue)
+                                     uint32_t chunkQueue, uint32_t workQueue)
     : device_(device), scene_(gpuScene) {
     try {
-        create(largeQueue, chunkQueue);
+        create(largeQueue, chunkQueue, workQueue);
     } catch (...) {
         destroyAll();  // a failed allocation half-way: the destructor does not run
         throw;
     }
 }
 
-void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue) {
+void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue, uint32_t workQueue) {
     gpu::Device& device = device_;
     const GpuScene& gpuScene = scene_;
     gpu::ComputePipelineDesc desc;
     desc.bindings = shadowRasterBindings();
     desc.pushConstantSize = sizeof(gpu_data::ShadowRasterConstants);
     desc.textureTable = gpuScene.textureTable();
-    for (auto [pipeline, shader] : {std::pair{&clear_, "shadow_raster_clear.comp"}, std::pair{&small_, "shadow_raster.comp"},
-                                    std::pair{&bin_, "shadow_raster_bin.comp"}, std::pair{&chunks_, "shadow_raster_chunks.comp"}}) {
+    for (auto [pipeline, shader] : {std::pair{&clear_, "shadow_raster_clear.comp"}, std::pair{&expand_, "shadow_raster_expand.comp"},
+                                    std::pair{&small_, "shadow_raster.comp"}, std::pair{&bin_, "shadow_raster_bin.comp"},
+                                    std::pair{&chunks_, "shadow_raster_chunks.comp"}}) {
         desc.shader = shader;
         desc.debugName = shader;
         *pipeline = device.createComputePipeline(desc);
@@ -85,13 +85,22 @@ void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue) {
     using gpu::MemoryKind;
     counters_ = device.createBuffer(sizeof(gpu_data::RasterCounters), gpu::kBufferStorage | gpu::kBufferIndirect,
                                     MemoryKind::DeviceLocal, nullptr, "shadow raster counters");
-    reserve(largeQueue ? largeQueue : gpu_data::kRasterInitialLarge, chunkQueue ? chunkQueue : gpu_data::kRasterInitialChunks);
+    reserve(largeQueue ? largeQueue : gpu_data::kRasterInitialLarge, chunkQueue ? chunkQueue : gpu_data::kRasterInitialChunks,
+            workQueue ? workQueue : gpu_data::kRasterInitialWork);
 }
 
-void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks) {
+void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems) {
     // Queues as large as the most a frame asked for (capped: 4M pieces = 448 MB), grown by 2x steps.
     const uint32_t large = std::min(std::max(largeCapacity_, largePieces), kMaxLargeCapacity);
     const uint32_t chunkCount = std::min(std::max(chunkCapacity_, chunks), kMaxChunkCapacity);
+    // Work items of 16 bytes: the 8M cap is 128 MiB, the storage buffer range every Vulkan device offers.
+    const uint32_t workCount = std::min(std::max(workCapacity_, workItems), kMaxWorkCapacity);
+    if (workCount != workCapacity_ || !work_) {
+        device_.destroy(work_);
+        work_ = device_.createBuffer(uint64_t(workCount) * sizeof(gpu_data::RasterWorkItem), gpu::kBufferStorage,
+                                     gpu::MemoryKind::DeviceLocal, nullptr, "shadow raster work items");
+        workCapacity_ = workCount;
+    }
     if (large_ && large == largeCapacity_ && chunkCount == chunkCapacity_) return;
     device_.destroy(large_);
     device_.destroy(chunkList_);
@@ -106,8 +115,8 @@ void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks) {
 ComputeRasterPass::~ComputeRasterPass() { destroyAll(); }
 
 void ComputeRasterPass::destroyAll() {
-    for (gpu::PipelineHandle p : {clear_, small_, bin_, chunks_, args_}) device_.destroy(p);
-    for (gpu::BufferHandle b : {counters_, large_, chunkList_}) device_.destroy(b);
+    for (gpu::PipelineHandle p : {clear_, expand_, small_, bin_, chunks_, args_}) device_.destroy(p);
+    for (gpu::BufferHandle b : {counters_, large_, chunkList_, work_}) device_.destroy(b);
 }
 
 void ComputeRasterPass::prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
@@ -120,8 +129,9 @@ void ComputeRasterPass::prepare(const std::vector<gpu::DescriptorWrite>& writes,
     writes_.push_back({kShadowRasterBindingAtlasDepth, gpu::BufferSlice{depth, 0, uint64_t(depthSide) * depthSide * 4}});
     writes_.push_back({kShadowRasterBindingTiles, lists.tiles});
     writes_.push_back({kShadowRasterBindingRasterList, lists.rasterList});
+    writes_.push_back({kShadowRasterBindingWork, work_, {}, {}});
     appendRasterMeshWrites(writes_, scene_, culling, {counters_, large_, chunkList_});
-    constants_ = {depthSide, meshletCulling ? 1u : 0u, largeCapacity_, chunkCapacity_};
+    constants_ = {depthSide, meshletCulling ? 1u : 0u, largeCapacity_, chunkCapacity_, workCapacity_, 0, 0, 0};
     rasterReads(scene_, culling, reads_);
 }
 
@@ -151,15 +161,21 @@ void ComputeRasterPass::recordDraw(gpu::CommandList& commands, std::string_view 
         commands.pass(stepName(step), commands.joinUses(reads_, more));
     };
     auto sizeDispatch = [&](const char* step, uint32_t queue) {
-        recordRasterDispatchSize(commands, stepName(step), args_, counters_, queue, largeCapacity_, chunkCapacity_);
+        recordRasterDispatchSize(commands, stepName(step), args_, counters_, {queue, largeCapacity_, chunkCapacity_, workCapacity_});
     };
     const gpu::BufferSlice& list = lists_.rasterList;
     commands.beginTimer(stepName("/instances"));
+    pass("/expand", {gpu::use(counters_, Usage::ComputeWrite), gpu::use(work_, Usage::ComputeWrite),
+                     gpu::use(list.buffer, Usage::IndirectArguments), gpu::use(list.buffer, Usage::ComputeRead),
+                     gpu::use(lists_.tiles.buffer, Usage::ComputeRead)});
+    bind(commands, expand_);
+    commands.dispatchIndirect(list.buffer, list.offset + offsetof(gpu_data::RasterTileListHeader, expandDispatch));
+    sizeDispatch("/instances size", gpu_data::kRasterArgsWork);
     pass("/instances", {gpu::use(depth, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
-                        gpu::use(large_, Usage::ComputeWrite), gpu::use(list.buffer, Usage::IndirectArguments),
-                        gpu::use(list.buffer, Usage::ComputeRead), gpu::use(lists_.tiles.buffer, Usage::ComputeRead)});
+                        gpu::use(counters_, Usage::IndirectArguments), gpu::use(large_, Usage::ComputeWrite),
+                        gpu::use(work_, Usage::ComputeRead), gpu::use(lists_.tiles.buffer, Usage::ComputeRead)});
     bind(commands, small_);
-    commands.dispatchIndirect(list.buffer, list.offset + offsetof(gpu_data::RasterTileListHeader, instanceDispatch));
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::RasterCounters, workDispatch));
     commands.endTimer();
     commands.beginTimer(stepName("/chunks"));
     sizeDispatch("/bin size", gpu_data::kRasterArgsLarge);

@@ -3,10 +3,12 @@
 // (shaders/shadow_raster.glsl): the tiles of a raster tile list (cull_structs.h: CPU-written for an
 // atlas, GPU-written for the dirty pages) drawn by compute shaders from the GPU culling pass's visible
 // lists into a buffer of depth by atomic min; an atlas's is then copied into its depth image, which the
-// lit pass samples as always. Three passes: per visible instance and tile (small triangles rasterized at
-// once, large ones queued), per large triangle (split into chunks), per chunk: a triangle reaches only
-// the tiles whose culling list holds its instance and, within a tile, only the chunks it overlaps.
-// Every per-tile loop is an indirect dispatch sized by its list's header.
+// lit pass samples as always. Four passes: per slot of each drawn tile's culled list (the visible
+// instances become work items of a few meshlets), per work item (small triangles rasterized at once,
+// large ones queued), per large triangle (split into chunks), per chunk: a triangle reaches only the
+// tiles whose culling list holds its instance and, within a tile, only the chunks it overlaps. Every
+// loop is an indirect dispatch sized by its list's header or by the queue before it, so the work grows
+// with what the drawn tiles hold, not with tiles x the scene's meshlets.
 #include <string>
 
 #include "cull_structs.h"
@@ -21,7 +23,7 @@ namespace penumbra {
 // its recording as the frame graph pass `passName` (queue = kRasterArgsLarge or kRasterArgsChunks).
 gpu::PipelineHandle createRasterArgsPipeline(gpu::Device& device, const char* debugName);
 void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passName, gpu::PipelineHandle args,
-                              gpu::BufferHandle counters, uint32_t queue /* kRasterArgs* */, uint32_t largeCapacity, uint32_t chunkCapacity);
+                              gpu::BufferHandle counters, const gpu_data::RasterArgsConstants& constants);
 // The buffers every rasterizer dispatch may read: the scene's, the meshes, indices and meshlets, and
 // the culled lists (into `uses`, emptied first: its storage is reused frame to frame).
 void rasterReads(const GpuScene& scene, const ShadowCullingPass& culling, std::vector<gpu::ResourceUse>& uses);
@@ -40,8 +42,9 @@ struct RasterTileLists {
 
 class ComputeRasterPass {
 public:
-    // largeQueue, chunkQueue: the queues' first capacities (0 = kRasterInitialLarge / Chunks).
-    ComputeRasterPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t largeQueue = 0, uint32_t chunkQueue = 0);
+    // largeQueue, chunkQueue, workQueue: the queues' first capacities (0 = kRasterInitialLarge / Chunks / Work).
+    ComputeRasterPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t largeQueue = 0, uint32_t chunkQueue = 0,
+                      uint32_t workQueue = 0);
     ~ComputeRasterPass();
     ComputeRasterPass(const ComputeRasterPass&) = delete;
     ComputeRasterPass& operator=(const ComputeRasterPass&) = delete;
@@ -69,11 +72,12 @@ public:
     // skipped meshlets.
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
     // Grows the queues to hold a frame that asked for this many (what its counters said).
-    void reserve(uint32_t largePieces, uint32_t chunks);
-    static constexpr uint32_t kMaxLargeCapacity = 4u << 20, kMaxChunkCapacity = 32u << 20;
+    void reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems = 0);
+    uint32_t workCapacity() const { return workCapacity_; }
+    static constexpr uint32_t kMaxLargeCapacity = 4u << 20, kMaxChunkCapacity = 32u << 20, kMaxWorkCapacity = 8u << 20;
 
 private:
-    void create(uint32_t largeQueue, uint32_t chunkQueue);
+    void create(uint32_t largeQueue, uint32_t chunkQueue, uint32_t workQueue);
     void destroyAll();
     // The pieces both records share: the writes and constants, the list's clear, passes 1-3.
     void prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists, const ShadowCullingPass& culling,
@@ -83,9 +87,9 @@ private:
     void recordDraw(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth);
     gpu::Device& device_;
     const GpuScene& scene_;
-    gpu::PipelineHandle clear_, small_, bin_, chunks_, args_;
-    gpu::BufferHandle counters_, large_, chunkList_;
-    uint32_t largeCapacity_ = 0, chunkCapacity_ = 0;
+    gpu::PipelineHandle clear_, expand_, small_, bin_, chunks_, args_;
+    gpu::BufferHandle counters_, large_, chunkList_, work_;
+    uint32_t largeCapacity_ = 0, chunkCapacity_ = 0, workCapacity_ = 0;
     // Per-record scratch, kept so that a steady frame allocates nothing.
     std::vector<gpu::DescriptorWrite> writes_;
     std::vector<gpu::ResourceUse> reads_;

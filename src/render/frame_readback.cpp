@@ -51,19 +51,20 @@ void applyCullTiles(FrameStats& stats, const ShadowFrame& plan, const FrameReadb
 }
 
 void applyRasterCounters(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback,
-                         glm::uvec2& rasterNeeded) {
+                         glm::uvec3& rasterNeeded) {
     for (uint64_t offset : layout.rasterCounters) {
         gpu_data::RasterCounters counters{};
         if (!readPiece(readback, offset, &counters)) continue;
+        stats.rasterWorkItems += counters.workQueued;
         stats.rasterLargeTriangles += counters.largeQueued;
         stats.rasterChunks += counters.chunksQueued;
-        stats.rasterDropped += uint64_t(counters.largeDropped) + counters.chunksDropped;
+        stats.rasterDropped += uint64_t(counters.largeDropped) + counters.chunksDropped + counters.workDropped;
         stats.shadowMeshletsOutside += counters.meshletsOutside;
-        rasterNeeded = glm::max(rasterNeeded, glm::uvec2(counters.largeQueued, counters.chunksQueued));
+        rasterNeeded = glm::max(rasterNeeded, glm::uvec3(counters.largeQueued, counters.chunksQueued, counters.workQueued));
     }
     if (stats.rasterDropped > 0)
         stats.warnings.push_back("the compute rasterizer's queues were full: " + std::to_string(stats.rasterDropped) +
-                                 " large pieces or chunks were not drawn in frame " + std::to_string(stats.frameIndex) +
+                                 " large pieces, chunks or work items were not drawn in frame " + std::to_string(stats.frameIndex) +
                                  "; the queues grow for the next frames");
 }
 
@@ -102,6 +103,18 @@ void applyVirtualPages(FrameStats& stats, const FrameReadbackLayout& layout, con
         pages.overflowed += counts.overflowed;
         pages.resident += counts.resident;
     }
+    for (size_t map = 0; map < stats.virtualMaps.size(); ++map) {
+        FrameStats::VirtualMapLevels& levels = stats.virtualMaps[map];
+        gpu_data::VirtualPageLevelStats counts{};
+        levels = {};
+        if (!readPiece(readback, layout.virtualLevels[map], &counts)) continue;
+        levels.levelCount = std::min<uint32_t>(layout.virtualLevelCount, uint32_t(levels.requested.size()));
+        for (uint32_t level = 0; level < levels.levelCount; ++level) {
+            levels.requested[level] = counts.requested[level];
+            levels.cached[level] = counts.cached[level];
+            levels.drawn[level] = counts.drawn[level];
+        }
+    }
     if (pages.overflowed > 0)
         stats.warnings.push_back("virtual shadow maps: " + std::to_string(pages.overflowed) +
                                  " requested pages found no free physical page (raise shadows.virtual.poolPages); a "
@@ -111,7 +124,7 @@ void applyVirtualPages(FrameStats& stats, const FrameReadbackLayout& layout, con
 }  // namespace
 
 void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
-                        const std::vector<uint8_t>& readback, glm::uvec2& rasterNeeded) {
+                        const std::vector<uint8_t>& readback, glm::uvec3& rasterNeeded) {
     applyCullTiles(stats, plan, layout, readback);
     applyRasterCounters(stats, layout, readback, rasterNeeded);
     applyViewCulling(stats, layout, readback);

@@ -17,12 +17,15 @@ namespace penumbra {
 struct FrameReadbackLayout {
     static constexpr uint64_t kAbsent = ~0ull;
     uint64_t cullTiles = kAbsent;                       // CullTileStats per shadow tile, directional first
-    uint64_t rasterCounters[2] = {kAbsent, kAbsent};    // RasterCounters of the directional and spot/point atlas
+    // RasterCounters of the directional and spot/point atlas, then of each directional virtual map's pages.
+    uint64_t rasterCounters[6] = {kAbsent, kAbsent, kAbsent, kAbsent, kAbsent, kAbsent};
     uint64_t visibleSurfaces = kAbsent;                 // the tight fit's depth subsample (VisibleSurfacePass)
     uint64_t viewLists = kAbsent;                       // 2 CullTileStats: the main view's early and late lists
     uint64_t viewMeshlets = kAbsent;                    // uvec4: visibility-buffer meshlets outside, facing away
     uint64_t lightClusters = kAbsent;                   // LightClusterStats
     uint64_t virtualPages[4] = {kAbsent, kAbsent, kAbsent, kAbsent};  // VirtualPageStats per directional map
+    uint64_t virtualLevels[4] = {kAbsent, kAbsent, kAbsent, kAbsent};  // VirtualPageLevelStats per directional map
+    uint32_t virtualLevelCount = 0;                                     // levels of every map
 };
 
 // The `bytes` bytes at `offset` in a frame's readback; null where the piece is absent. A piece beyond
@@ -33,9 +36,9 @@ const uint8_t* readbackPiece(const std::vector<uint8_t>& readback, uint64_t offs
 // (from the plan, with the GPU's counts where they came back), the compute rasterizer's counters (and a
 // warning when its queues overflowed), the main view's culling, the light clusters' counts and the
 // virtual shadow maps' pages (a warning when a pool overflowed).
-// `rasterNeeded` grows to the most large pieces (x) and chunks (y) one atlas pass asked for.
+// `rasterNeeded` grows to the most large pieces (x), chunks (y) and work items (z) one raster pass asked for.
 void applyFrameReadback(FrameStats& stats, const ShadowFrame& plan, const FrameReadbackLayout& layout,
-                        const std::vector<uint8_t>& readback, glm::uvec2& rasterNeeded);
+                        const std::vector<uint8_t>& readback, glm::uvec3& rasterNeeded);
 
 // The sum of the GPU timings with these names (0 for names the frame did not time).
 double timedMilliseconds(const FrameStats& stats, std::initializer_list<const char*> names);

@@ -31,6 +31,16 @@ std::string toJson(const FrameStats& frame) {
     stats["virtualPages"] = {{"maps", pages.maps},           {"requested", pages.requested}, {"cached", pages.cached},
                              {"allocated", pages.allocated}, {"drawn", pages.drawn},         {"evicted", pages.evicted},
                              {"overflowed", pages.overflowed}, {"resident", pages.resident}, {"poolPages", pages.poolPages}};
+    nlohmann::json maps = nlohmann::json::array();
+    for (uint32_t map = 0; map < std::min<uint32_t>(pages.maps, uint32_t(frame.virtualMaps.size())); ++map) {
+        const FrameStats::VirtualMapLevels& levels = frame.virtualMaps[map];
+        nlohmann::json perLevel = nlohmann::json::array();
+        for (uint32_t level = 0; level < levels.levelCount; ++level)
+            perLevel.push_back({{"requested", levels.requested[level]}, {"cached", levels.cached[level]},
+                                {"drawn", levels.drawn[level]}});
+        maps.push_back({{"levels", perLevel}});
+    }
+    stats["virtualPages"]["perMap"] = maps;
     return stats.dump();
 }
 

@@ -120,7 +120,8 @@ std::vector<BindingDesc> shadowRasterBindings() {
     std::vector<BindingDesc> bindings = {{"CullFrameBlock", kShadowRasterBindingCullFrame, kUniform, kC},
                                          {"DepthBlock", kShadowRasterBindingAtlasDepth, kStorage, kC},
                                          {"CullTileBlock", kShadowRasterBindingTiles, kStorage, kC},
-                                         {"RasterTileBlock", kShadowRasterBindingRasterList, kStorage, kC}};
+                                         {"RasterTileBlock", kShadowRasterBindingRasterList, kStorage, kC},
+                                         {"WorkBlock", kShadowRasterBindingWork, kStorage, kC}};
     appendRasterMesh(bindings);
     return bindings;
 }
@@ -190,12 +191,14 @@ std::vector<BindingDesc> virtualPageTableBindings(const std::string& shader) {
     const BindingDesc candidates{"PageCandidateBlock", kPageTableBindingCandidates, kStorage, kC};
     const BindingDesc draws{"PageDrawBlock", kPageTableBindingDrawList, kStorage, kC};
     const BindingDesc invalidations{"PageInvalidationBlock", kPageTableBindingInvalidations, kStorage, kC};
+    const BindingDesc missing{"PageMissingBlock", kPageTableBindingMissing, kStorage, kC};
     if (shader == "virtual_page_reset.comp") return {table, entries, owners, pool};
     if (shader == "virtual_page_invalidate.comp") return {table, entries, invalidations};
     if (shader == "virtual_page_update.comp") return {table, requests, entries, owners, pool, counters, draws};
     if (shader == "virtual_page_plan.comp") return {table, pool, counters};
-    if (shader == "virtual_page_candidates.comp") return {table, entries, counters, candidates};
-    if (shader == "virtual_page_allocate.comp") return {table, entries, owners, pool, counters, candidates, draws};
+    if (shader == "virtual_page_requests.comp") return {table, requests, entries, counters, missing};
+    if (shader == "virtual_page_candidates.comp") return {table, requests, entries, owners, counters, candidates};
+    if (shader == "virtual_page_allocate.comp") return {table, entries, owners, pool, counters, candidates, draws, missing};
     if (shader == "virtual_page_finish.comp") return {table, pool, counters, draws};
     if (shader == "virtual_page_drawn.comp") return {entries, draws};
     throw Error("internal: no virtual page table bindings for '" + shader + "'");

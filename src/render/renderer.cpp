@@ -16,7 +16,7 @@ Renderer::State::State(gpu::Device& d, Scene s, const RendererOptions& o)
     : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
       mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
       visiblePass(d, gpuScene, mainPass),
-      computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue), virtualShadows(d, gpuScene, computeRaster),
+      computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue, o.rasterWorkQueue), virtualShadows(d, gpuScene, computeRaster),
       lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name),
       mainViewChoice(d.hasTimestamps(), d.info().name, {"forward", "visibility", "main view"}), targets(d) {
     try {

@@ -146,8 +146,8 @@ const TilesToDraw& Renderer::State::chooseTilesToDraw(FrameRecording& recording)
     packCullTiles(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount(), cullTileUpload);
     recording.cullTileSlice = uploadFrameData(device, &cullTileUpload, cullTileUpload.bytes());
     const uint32_t directionalTiles = uint32_t(plan.directional.tiles.size());
-    packRasterTiles(plan.directional.tiles, draw.directional, 0, gpuScene.rasterWorkItems(), rasterTileUploads[0]);
-    packRasterTiles(plan.other.tiles, draw.other, directionalTiles, gpuScene.rasterWorkItems(), rasterTileUploads[1]);
+    packRasterTiles(plan.directional.tiles, draw.directional, 0, gpuScene.instanceCount(), rasterTileUploads[0]);
+    packRasterTiles(plan.other.tiles, draw.other, directionalTiles, gpuScene.instanceCount(), rasterTileUploads[1]);
     for (size_t pass = 0; pass < 2; ++pass)
         recording.rasterListSlices[pass] = uploadFrameData(device, &rasterTileUploads[pass], rasterTileUploads[pass].bytes());
     return draw;
@@ -164,7 +164,8 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
     culling.record(commands, recording.cullSlice, recording.cullTileSlice);
     commands.endTimer();
     // Twice what a frame asked for: a moving camera rarely needs another growth (each is one allocation).
-    if (frame.computeRaster) computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y);
+    // The virtual pages draw with the compute rasterizer whatever the atlases use.
+    computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y, 2 * rasterNeeded.z);
     frame.readback.cullTiles = device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
     auto drawAtlas = [&](size_t pass, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& drawn,
                          bool fresh, uint32_t firstTile, gpu::TextureHandle atlas, uint32_t size, gpu::BufferHandle rasterDepth) {
@@ -412,9 +413,10 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
 void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finished) {
     FrameStats& stats = finished.stats;
     applyFrameReadback(stats, finished.plan, finished.readback, done.readback, rasterNeeded);
-    if (stats.rasterDropped > 0) {  // those tiles are incomplete: draw them all again
+    if (stats.rasterDropped > 0) {  // those tiles and pages are incomplete: draw them all again
         directionalCache.invalidate();
         otherCache.invalidate();
+        virtualShadows.invalidateAll();
     }
     if (const uint8_t* depths = readbackPiece(done.readback, finished.readback.visibleSurfaces,
                                               VisibleSurfacePass::readbackBytes(finished.view))) {

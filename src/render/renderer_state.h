@@ -102,7 +102,7 @@ struct Renderer::State {
     RasterChoice mainViewChoice;
     std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
     glm::uvec2 latestVisibleSize{0};
-    glm::uvec2 rasterNeeded{0};  // the most large pieces / chunks a finished frame asked the compute rasterizer for
+    glm::uvec3 rasterNeeded{0};  // the most large pieces / chunks / work items a finished frame asked the compute rasterizer for
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
     uint64_t sceneVersion = 0;  // bumped by every change to the casters (transforms, cast flags, materials)

@@ -44,11 +44,16 @@ void Renderer::State::recordDirectionalInputs(FrameRecording& recording, MainPas
         }
         recording.stage = "shadows.virtual";
         commands.beginTimer("shadows.virtual");
-        virtualShadows.record(commands, depth, view, directional, scene.wsBounds);
+        virtualShadows.record(commands, depth, view, directional, scene.wsBounds,
+                              std::span(recording.frame.readback.rasterCounters).subspan(2));
         commands.endTimer();
         const uint32_t maps = std::min(virtualShadows.mapCount(), uint32_t(directional.lights.size()));
-        for (uint32_t map = 0; map < maps; ++map)
-            recording.frame.readback.virtualPages[map] = device.readBackAtFrameEnd(commands, virtualShadows.stats(map));
+        FrameReadbackLayout& readback = recording.frame.readback;
+        readback.virtualLevelCount = virtualShadows.levelCount();
+        for (uint32_t map = 0; map < maps; ++map) {
+            readback.virtualPages[map] = device.readBackAtFrameEnd(commands, virtualShadows.stats(map));
+            readback.virtualLevels[map] = device.readBackAtFrameEnd(commands, virtualShadows.levelStats(map));
+        }
     }
     recordScreenSpaceShadows(recording, inputs);
 }

@@ -163,7 +163,7 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     constants.capacity = capacity();
     constants.instanceGroups = groupsOf(scene_.instanceCount(), kCullWorkgroupSize);
     constants.meshGroups = groupsOf(scene_.meshSlotCount(), kCullWorkgroupSize);
-    constants.rasterItems = scene_.rasterWorkItems();
+    constants.expandGroups = groupsOf(scene_.instanceCount(), kRasterExpandGroup);
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsOf(capacity(), kVirtualPageGroupSize), 1);
     // 2. Culling per page, 3. clear and raster per page (both sized by the lists' headers).

@@ -16,9 +16,10 @@ namespace {
 using gpu::Usage;
 
 constexpr const char* kShaders[] = {"virtual_page_reset.comp",      "virtual_page_invalidate.comp",
-                                    "virtual_page_update.comp",     "virtual_page_plan.comp",
-                                    "virtual_page_candidates.comp", "virtual_page_allocate.comp",
-                                    "virtual_page_finish.comp",     "virtual_page_drawn.comp"};
+                                    "virtual_page_update.comp",     "virtual_page_requests.comp",
+                                    "virtual_page_plan.comp",       "virtual_page_candidates.comp",
+                                    "virtual_page_allocate.comp",   "virtual_page_finish.comp",
+                                    "virtual_page_drawn.comp"};
 constexpr uint32_t kMaxGroups = 65535;  // the guaranteed maxComputeWorkGroupCount[0]
 
 uint32_t groupsFor(uint32_t invocations) {
@@ -106,7 +107,8 @@ void VirtualPageTablePass::useSharedEntries(const VirtualPageStorage& shared) {
 
 void VirtualPageTablePass::release() {
     if (ownsEntries_) device_.destroy(entries_);  // shared entries are their storage's
-    for (gpu::BufferHandle b : {owners_, pool_, counters_, candidates_, drawList_, testRequests_, testTable_, testInvalidations_})
+    for (gpu::BufferHandle b : {owners_, pool_, counters_, candidates_, drawList_, missing_, testRequests_, testTable_,
+                                testInvalidations_})
         device_.destroy(b);
     for (gpu::PipelineHandle p : pipelines_) device_.destroy(p);
 }
@@ -119,7 +121,9 @@ void VirtualPageTablePass::createBuffers() {
     if (ownsEntries_) entries_ = create(entryBytes(), storage, "virtual page table");
     owners_ = create(uint64_t(capacity_) * 4, storage, "virtual page owners");
     pool_ = create(sizeof(gpu_data::VirtualPagePoolHeader) + uint64_t(capacity_) * 4, storage, "virtual page free list");
-    counters_ = create(sizeof(gpu_data::VirtualPageCounters), storage | gpu::kBufferTransferDst, "virtual page counters");
+    counters_ = create(sizeof(gpu_data::VirtualPageCounters), storage | gpu::kBufferTransferDst | gpu::kBufferIndirect,
+                       "virtual page counters");
+    missing_ = create(uint64_t(entryCount_) * 4, storage, "virtual page missing entries");
     candidates_ = create(uint64_t(capacity_) * 4, storage, "virtual page eviction order");
     drawList_ = create(sizeof(gpu_data::VirtualPageDrawHeader) + uint64_t(capacity_) * sizeof(gpu_data::VirtualPageDraw),
                        storage | gpu::kBufferTransferDst | gpu::kBufferIndirect, "virtual page draw list");
@@ -149,7 +153,8 @@ void VirtualPageTablePass::record(gpu::CommandList& commands, const VirtualPageT
                gpu::DescriptorWrite{gpu_data::kPageTableBindingCounters, counters_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingCandidates, candidates_, {}, {}},
                gpu::DescriptorWrite{gpu_data::kPageTableBindingDrawList, drawList_, {}, {}},
-               gpu::DescriptorWrite{gpu_data::kPageTableBindingInvalidations, inputs.invalidations}};
+               gpu::DescriptorWrite{gpu_data::kPageTableBindingInvalidations, inputs.invalidations},
+               gpu::DescriptorWrite{gpu_data::kPageTableBindingMissing, missing_, {}, {}}};
     if (needsReset_) {  // the bound range only: a shared buffer's other tables keep their entries
         commands.pass("virtualPageTable/reset", {gpu::use(entries_, Usage::ComputeWrite),
                                                  gpu::use(owners_, Usage::ComputeWrite), gpu::use(pool_, Usage::ComputeWrite)});
@@ -168,17 +173,26 @@ void VirtualPageTablePass::record(gpu::CommandList& commands, const VirtualPageT
                   {gpu::use(inputs.requestWords.buffer, Usage::ComputeRead), gpu::use(entries_, Usage::ComputeWrite),
                    gpu::use(owners_, Usage::ComputeWrite), gpu::use(pool_, Usage::ComputeWrite),
                    gpu::use(counters_, Usage::ComputeWrite), gpu::use(drawList_, Usage::ComputeWrite)});
-    dispatch(commands, Update, groupsFor(entryCount_));
+    dispatch(commands, Update, groupsFor(capacity_));  // one invocation per physical page
+    commands.pass("virtualPageTable/requests",
+                  {gpu::use(inputs.requestWords.buffer, Usage::ComputeRead), gpu::use(entries_, Usage::ComputeWrite),
+                   gpu::use(counters_, Usage::ComputeWrite), gpu::use(missing_, Usage::ComputeWrite)});
+    dispatch(commands, Requests, groupsFor((entryCount_ + 31) / 32));  // one invocation per word of request bits
     commands.pass("virtualPageTable/plan", {gpu::use(pool_, Usage::ComputeRead), gpu::use(counters_, Usage::ComputeWrite)});
     dispatch(commands, Plan, 1);
-    commands.pass("virtualPageTable/candidates", {gpu::use(entries_, Usage::ComputeRead), gpu::use(counters_, Usage::ComputeWrite),
-                                                  gpu::use(candidates_, Usage::ComputeWrite)});
-    dispatch(commands, Candidates, groupsFor(entryCount_));
+    commands.pass("virtualPageTable/candidates",
+                  {gpu::use(inputs.requestWords.buffer, Usage::ComputeRead), gpu::use(entries_, Usage::ComputeRead),
+                   gpu::use(owners_, Usage::ComputeRead), gpu::use(counters_, Usage::ComputeWrite),
+                   gpu::use(candidates_, Usage::ComputeWrite)});
+    dispatch(commands, Candidates, groupsFor(capacity_));
     commands.pass("virtualPageTable/allocate",
                   {gpu::use(entries_, Usage::ComputeWrite), gpu::use(owners_, Usage::ComputeWrite),
                    gpu::use(pool_, Usage::ComputeRead), gpu::use(counters_, Usage::ComputeWrite),
-                   gpu::use(candidates_, Usage::ComputeRead), gpu::use(drawList_, Usage::ComputeWrite)});
-    dispatch(commands, Allocate, groupsFor(entryCount_));
+                   gpu::use(counters_, Usage::IndirectArguments), gpu::use(candidates_, Usage::ComputeRead),
+                   gpu::use(drawList_, Usage::ComputeWrite), gpu::use(missing_, Usage::ComputeRead)});
+    commands.bindPipeline(pipelines_[Allocate]);
+    commands.pushDescriptors(writes_);
+    commands.dispatchIndirect(counters_, offsetof(gpu_data::VirtualPageCounters, allocateDispatch));
     commands.pass("virtualPageTable/finish", {gpu::use(pool_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                                               gpu::use(drawList_, Usage::ComputeWrite)});
     dispatch(commands, Finish, 1);
@@ -192,6 +206,10 @@ void VirtualPageTablePass::recordMarkDrawn(gpu::CommandList& commands) {
                                            {gpu_data::kPageTableBindingDrawList, drawList_, {}, {}}};
     commands.pushDescriptors(writes);
     commands.dispatchIndirect(drawList_, offsetof(gpu_data::VirtualPageDrawHeader, listDispatch));
+}
+
+gpu::BufferSlice VirtualPageTablePass::levelStats() const {
+    return {counters_, offsetof(gpu_data::VirtualPageCounters, levelRequested), sizeof(gpu_data::VirtualPageLevelStats)};
 }
 
 gpu::BufferSlice VirtualPageTablePass::stats() const {

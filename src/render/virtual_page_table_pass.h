@@ -2,8 +2,7 @@
 // The page table and physical page allocator of one directional light's virtual shadow map, on the
 // GPU with no readback on the frame path (shaders/virtual_page_*.comp, virtual_page_table.glsl; the
 // layouts are shaders/shared/virtual_page_structs.h). shadows/virtual_page_pool.h holds the rules and
-// is the CPU reference the render tests compare with. Not yet used by frames: page drawing and
-// sampling come next.
+// is the CPU reference the render tests compare with.
 //
 // One update per frame, after the marking pass (render/virtual_page_mark_pass.h) wrote the request
 // bits: invalidation (the rectangles of casters that moved), then the update proper: pages that left
@@ -12,7 +11,10 @@
 // recently requested page not requested this frame, coarse levels before fine ones, else overflow
 // (their receivers sample a coarser level: VirtualPageStats::overflowed is the warning's count). The
 // requested dirty pages (new, or invalidated) make the draw list, with its indirect dispatch sizes;
-// once a later pass has drawn them, recordMarkDrawn clears their dirty flags.
+// once a later pass has drawn them, recordMarkDrawn clears their dirty flags. An update's work follows
+// the pool and the requests, not the levels' slots: the resident pages are visited through their
+// owners, the request bits a word at a time (the missing pages listed for the allocation, an indirect
+// dispatch), so a still camera's update touches the resident and requested pages only.
 //
 // GPU-only allocation and wrap-around page tables follow Timberdoodle's virtual shadow maps (GPU Zen
 // 3, "Virtual Shadow Maps"); the cache and keep-alive of unrequested pages follow Unreal Engine's
@@ -92,6 +94,7 @@ public:
     uint32_t entryCount() const { return entryCount_; }
     gpu::BufferHandle drawList() const { return drawList_; }  // VirtualPageDrawHeader + VirtualPageDraw[capacity]
     gpu::BufferSlice stats() const;                           // VirtualPageStats of the last update
+    gpu::BufferSlice levelStats() const;                      // VirtualPageLevelStats of the last update
     uint32_t capacity() const { return capacity_; }
 
     // Tests and debugging (each waits for the GPU): one update from request bits (VirtualPageRequests::
@@ -102,7 +105,7 @@ public:
     VirtualPageTableState readState();
 
 private:
-    enum Step : uint32_t { Reset, Invalidate, Update, Plan, Candidates, Allocate, Finish, Drawn, StepCount };
+    enum Step : uint32_t { Reset, Invalidate, Update, Requests, Plan, Candidates, Allocate, Finish, Drawn, StepCount };
     void useSharedEntries(const VirtualPageStorage& shared);
     void createBuffers();
     uint64_t entryBytes() const { return uint64_t(entryCount_) * sizeof(gpu_data::VirtualPageEntry); }
@@ -118,8 +121,8 @@ private:
     bool ownsEntries_ = true;
     uint64_t entriesOffset_ = 0;  // bytes: this table's first entry in entries_
     std::array<gpu::PipelineHandle, StepCount> pipelines_{};
-    gpu::BufferHandle entries_, owners_, pool_, counters_, candidates_, drawList_;
-    std::array<gpu::DescriptorWrite, 9> writes_{};  // the record's, kept: no allocation per frame
+    gpu::BufferHandle entries_, owners_, pool_, counters_, candidates_, drawList_, missing_;
+    std::array<gpu::DescriptorWrite, 10> writes_{};  // the record's, kept: no allocation per frame
     // updateNow's host-written inputs.
     gpu::BufferHandle testRequests_, testTable_, testInvalidations_;
     size_t testRequestBytes_ = 0, testInvalidationCapacity_ = 0;

@@ -92,6 +92,7 @@ public:
 
     // The last update's VirtualPageStats on the GPU, and its bytes from a readback decoded.
     gpu::BufferSlice stats() const { return table_.stats(); }
+    gpu::BufferSlice levelStats() const { return table_.levelStats(); }  // VirtualPageLevelStats
     static gpu_data::VirtualPageStats statsFromReadback(const uint8_t* bytes);
 
     const VirtualShadowMapConfig& config() const { return config_; }

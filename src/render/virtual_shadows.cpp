@@ -152,7 +152,8 @@ bool VirtualShadows::collectInvalidations(const VirtualShadowMap& map, const Cam
 }
 
 void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
-                            const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds) {
+                            const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds,
+                            std::span<uint64_t> rasterReadback) {
     if (!active_) return;
     const uint32_t lights = std::min(uint32_t(plan.lights.size()), mapCount());
     block_.mapCount = lights;
@@ -169,6 +170,7 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
             lookupReachTexels(light.normalBias, light.pcssTanRadius > 0.0f, ShadowFilter(light.filterMode));
         map.record(commands, depth, view, plan.lights[slot].wsDirection, wsSceneBounds, marginTexels,
                    std::span(invalidations_.data(), invalidationCount_));
+        if (slot < rasterReadback.size()) rasterReadback[slot] = device_.readBackAtFrameEnd(commands, raster_.counters());
         block_.maps[slot] = map.lookupData();
     }
     invalidateAll_ = false;

@@ -67,11 +67,15 @@ public:
 
     // Records every reserved light's chain for the view whose depth `depth` holds; `plan` is this
     // frame's directional plan (the lights' directions and filters), wsSceneBounds the casters' bounds.
+    // The rasterizer's counters after each map's pages are read back into rasterReadback[map]
+    // (Device::readBackAtFrameEnd offsets; the maps share the rasterizer, so each is copied at once).
     void record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
-                const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds);
+                const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds, std::span<uint64_t> rasterReadback);
 
     uint32_t mapCount() const { return uint32_t(maps_.size()); }
     gpu::BufferSlice stats(uint32_t map) const { return maps_[map]->stats(); }
+    gpu::BufferSlice levelStats(uint32_t map) const { return maps_[map]->levelStats(); }
+    uint32_t levelCount() const { return config_.clipmap.levelCount; }
     uint32_t poolPages() const;  // physical pages of all the maps
 
 private:

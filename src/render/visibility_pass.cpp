@@ -204,8 +204,8 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, std::string_view n
         commands.pass(commands.joinName(name, step), commands.joinUses(reads, more));
     };
     auto sizeDispatch = [&](const char* step, uint32_t queue) {
-        recordRasterDispatchSize(commands, commands.joinName(name, step), args_, counters_, queue, kLargeCapacity,
-                                 kChunkCapacity);
+        recordRasterDispatchSize(commands, commands.joinName(name, step), args_, counters_,
+                                 {queue, kLargeCapacity, kChunkCapacity, 0});
     };
     // The queues' counters; the meshlet counts add up over both phases of the frame.
     commands.pass(commands.joinName(name, "/clear"), {gpu::use(counters_, Usage::TransferWrite)});

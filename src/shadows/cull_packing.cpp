@@ -87,13 +87,13 @@ void packCullTiles(const ShadowFrame& frame, uint32_t instanceCount, uint32_t me
     out.header.count = count;
 }
 
-glm::uvec4 rasterInstanceDispatch(uint32_t items, uint32_t tiles) {
-    const uint32_t width = gpu_data::kRasterDispatchWidth, work = std::max(items, 1u);
-    return glm::uvec4(std::min(work, width), (work + width - 1) / width, tiles, 0);
+glm::uvec4 rasterExpandDispatch(uint32_t instanceCount, uint32_t tiles) {
+    const uint32_t group = gpu_data::kRasterExpandGroup;
+    return glm::uvec4(std::max((instanceCount + group - 1) / group, 1u), 1, tiles, 0);
 }
 
 void packRasterTiles(const std::vector<ShadowTile>& tiles, std::span<const uint32_t> drawn, uint32_t firstCullTile,
-                     uint32_t rasterItems, RasterTileUpload& out) {
+                     uint32_t instanceCount, RasterTileUpload& out) {
     PENUMBRA_ASSERT(drawn.size() <= gpu_data::kMaxCullTiles);
     static_assert(offsetof(RasterTileUpload, entries) == sizeof(gpu_data::RasterTileListHeader), "the entries follow the header");
     uint32_t largest = 0, count = 0;
@@ -105,7 +105,7 @@ void packRasterTiles(const std::vector<ShadowTile>& tiles, std::span<const uint3
     const uint32_t groups = (largest + gpu_data::kRasterClearGroup - 1) / gpu_data::kRasterClearGroup;
     out.header = {};
     out.header.clearDispatch = glm::uvec4(groups, groups, count, 0);
-    out.header.instanceDispatch = rasterInstanceDispatch(rasterItems, count);
+    out.header.expandDispatch = rasterExpandDispatch(instanceCount, count);
     out.header.count = count;
 }
 

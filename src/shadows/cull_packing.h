@@ -37,11 +37,13 @@ struct RasterTileUpload {
 // plan has more than kMaxCullTiles tiles.
 void packCullTiles(const ShadowFrame& frame, uint32_t instanceCount, uint32_t meshCount, CullTileUpload& out);
 // The tiles `drawn` (indices into `tiles`, whose culling tiles start at firstCullTile) of one atlas pass,
-// with its clear dispatch (the largest drawn tile) and pass-1 dispatch (rasterItems work items a tile).
+// with its clear dispatch (the largest drawn tile) and work-item expansion dispatch (instanceCount
+// slots of each tile's culled list).
 void packRasterTiles(const std::vector<ShadowTile>& tiles, std::span<const uint32_t> drawn, uint32_t firstCullTile,
-                     uint32_t rasterItems, RasterTileUpload& out);
-// Pass 1's dispatch of the compute rasterizer: `items` work items (at least one group) for `tiles` tiles in z.
-glm::uvec4 rasterInstanceDispatch(uint32_t items, uint32_t tiles);
+                     uint32_t instanceCount, RasterTileUpload& out);
+// The compute rasterizer's expansion dispatch (shadow_raster_expand.comp): the slots of instanceCount
+// instances (at least one group) for `tiles` tiles in z.
+glm::uvec4 rasterExpandDispatch(uint32_t instanceCount, uint32_t tiles);
 
 // The main view's depth pyramid (cull_structs.h CullCamera): level 0 is half the view rounded up,
 // each next level half the one below rounded up, down to 1 x 1; the levels lie one after the other.

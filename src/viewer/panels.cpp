@@ -139,6 +139,36 @@ void drawPanels(PanelContext& c) {
     drawStatsPanel(c);
 }
 
+// The virtual shadow maps' page view: per map (directional light) and level, the pages requested, of
+// them cached (already resident) and drawn this frame, and the pool's occupancy. The cascades view
+// (key 3) colours each pixel by the level it samples.
+static void drawVirtualPageView(const FrameStats& last) {
+    const VirtualPageCounts& pages = last.virtualPages;
+    if (pages.maps == 0) return;
+    char label[64];
+    std::snprintf(label, sizeof label, "pool %u / %u pages", pages.resident, pages.poolPages);
+    ImGui::ProgressBar(pages.poolPages > 0 ? float(pages.resident) / float(pages.poolPages) : 0.0f, ImVec2(-1.0f, 0.0f), label);
+    if (!ImGui::CollapsingHeader("virtual pages per level")) return;
+    for (uint32_t map = 0; map < std::min<uint32_t>(pages.maps, uint32_t(last.virtualMaps.size())); ++map) {
+        const FrameStats::VirtualMapLevels& levels = last.virtualMaps[map];
+        std::snprintf(label, sizeof label, "levels%u", map);
+        ImGui::Text("directional light %u", map);
+        if (!ImGui::BeginTable(label, 4, ImGuiTableFlags_RowBg)) continue;
+        for (const char* heading : {"level", "requested", "cached", "drawn"}) ImGui::TableSetupColumn(heading);
+        ImGui::TableHeadersRow();
+        for (uint32_t level = 0; level < levels.levelCount; ++level) {
+            if (levels.requested[level] == 0 && levels.drawn[level] == 0) continue;  // outside the view
+            ImGui::TableNextColumn();
+            ImGui::Text("%u", level);
+            for (uint32_t value : {levels.requested[level], levels.cached[level], levels.drawn[level]}) {
+                ImGui::TableNextColumn();
+                ImGui::Text("%u", value);
+            }
+        }
+        ImGui::EndTable();
+    }
+}
+
 void drawStatsPanel(PanelContext& c) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(display.x - 348, 8), ImGuiCond_FirstUseEver);
@@ -174,6 +204,7 @@ void drawStatsPanel(PanelContext& c) {
         ImGui::Text("  %u allocated, %u evicted, %u of %u resident (%.0f %%), %u overflowed", pages.allocated,
                     pages.evicted, pages.resident, pages.poolPages,
                     pages.poolPages > 0 ? 100.0 * pages.resident / pages.poolPages : 0.0, pages.overflowed);
+        drawVirtualPageView(last);
     }
     for (const AtlasDrawStats& atlas : last.atlases)
         ImGui::Text("%s: %u tiles, %u draws, %llu triangles", atlas.pass.c_str(), atlas.tiles, atlas.draws,

@@ -208,5 +208,30 @@ TEST_F(ComputeRasterTest, OverflowingQueuesGrowAndTheFrameIsDrawnAgain) {
     EXPECT_TRUE(grown.image.pixels == render(normal, ShadowRaster::Compute, 0, settings).image.pixels);
 }
 
+TEST_F(ComputeRasterTest, AnOverflowingWorkQueueGrowsAndTheFrameIsDrawnAgain) {
+    RendererOptions tiny;
+    tiny.rasterWorkQueue = 2;  // the demo's casters in four cascades need more
+    Renderer small(device(), makeDemoScene(), tiny), normal(device(), makeDemoScene());
+    Settings settings;
+    const RenderResult grown = render(small, ShadowRaster::Compute, 0, settings);
+    EXPECT_EQ(grown.stats.rasterDropped, 0u) << "render() drew the frame again with a larger queue";
+    EXPECT_TRUE(grown.image.pixels == render(normal, ShadowRaster::Compute, 0, settings).image.pixels);
+}
+
+TEST_F(ComputeRasterTest, VirtualPagesDrawnWithAnOverflowingWorkQueueAreDrawnAgain) {
+    // The pages of a frame that dropped work items hold holes: the renderer redraws every page.
+    RendererOptions tiny;
+    tiny.rasterWorkQueue = 2;
+    Renderer small(device(), makeDemoScene(), tiny), normal(device(), makeDemoScene());
+    Settings settings;
+    settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+    settings.shadows.virtualMaps.poolPages = 256;
+    settings.shadows.virtualMaps.resolution = 4096;
+    const RenderResult grown = render(small, ShadowRaster::Compute, 0, settings);
+    EXPECT_EQ(grown.stats.rasterDropped, 0u);
+    EXPECT_GT(grown.stats.virtualPages.drawn, 0u);
+    EXPECT_TRUE(grown.image.pixels == render(normal, ShadowRaster::Compute, 0, settings).image.pixels);
+}
+
 }  // namespace
 }  // namespace penumbra::test

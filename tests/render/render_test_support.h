@@ -9,9 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/glm.hpp>
+
 #include "gpu/device_access.h"
 #include "penumbra/device.h"
 #include "penumbra/renderer.h"
+#include "scene_structs.h"
 
 namespace penumbra::test {
 
@@ -56,6 +59,16 @@ inline double shareOfPixelsOver(const Image& a, const Image& b, int levels) {
         over += differs;
     }
     return double(over) / double(std::max<size_t>(a.pixels.size() / a.channels, 1));
+}
+
+// The cascade (or virtual shadow map level) a pixel of an RGB cascades AOV shows: the nearest of
+// gpu_data::aovCascadeColor's colours for -1 (none) to count - 1.
+inline int aovCascadeIndexOf(const Image& image, size_t pixel, int count) {
+    const glm::vec3 c = glm::vec3(image.pixels[pixel * 3], image.pixels[pixel * 3 + 1], image.pixels[pixel * 3 + 2]) / 255.0f;
+    int best = -1;
+    for (int i = 0; i < count; ++i)
+        if (glm::distance(c, gpu_data::aovCascadeColor(i)) < glm::distance(c, gpu_data::aovCascadeColor(best))) best = i;
+    return best;
 }
 
 // sRGB 8-bit → linear [0,1].

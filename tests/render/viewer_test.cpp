@@ -17,6 +17,7 @@
 #include "cli_process.h"
 #include "penumbra/image.h"
 #include "penumbra/scene_loading.h"
+#include "render_test_support.h"
 #include "viewer_test_support.h"
 
 using namespace penumbra;
@@ -455,16 +456,8 @@ Image rendered(const std::string& scene, const std::string& name, const std::str
     return run.exitCode == 0 ? readPng(out.string()) : Image{};
 }
 
-// The cascade of a cascades-view pixel: the nearest of the shader's colours (shade_surface.glsl's
-// cascadeColor: none black, then red, green, blue, yellow), -1 for none.
-int cascadeOf(const Image& image, size_t pixel) {
-    const glm::vec3 colours[5] = {{0, 0, 0}, {1, 0.25f, 0.25f}, {0.25f, 1, 0.25f}, {0.25f, 0.4f, 1}, {1, 1, 0.25f}};
-    const glm::vec3 c = glm::vec3(image.pixels[pixel * 3], image.pixels[pixel * 3 + 1], image.pixels[pixel * 3 + 2]) / 255.0f;
-    int best = 0;
-    for (int i = 1; i < 5; ++i)
-        if (glm::distance(c, colours[i]) < glm::distance(c, colours[best])) best = i;
-    return best - 1;
-}
+// The cascade of a cascades-view pixel (none black, then red, green, blue, yellow), -1 for none.
+int cascadeOf(const Image& image, size_t pixel) { return test::aovCascadeIndexOf(image, pixel, 4); }
 
 }  // namespace
 

@@ -55,7 +55,7 @@ TEST(FrameReadback, CullTileCountsGoToTheirAtlasAndTheStatsJson) {
     FrameReadbackLayout layout;
     layout.cullTiles = readback.append(tiles, 2);
     FrameStats stats = statsWithAtlases();
-    glm::uvec2 needed{0};
+    glm::uvec3 needed{0};
     applyFrameReadback(stats, plan, layout, readback.bytes, needed);
     EXPECT_EQ(stats.atlases[0].draws, 7u);
     EXPECT_EQ(stats.atlases[0].triangles, 1600u);
@@ -79,7 +79,7 @@ TEST(FrameReadback, PiecesAreReadAtTheirOffsetsInAnyOrder) {
     const gpu_data::CullTileStats tile{1, 1, 10, 0};
     layout.cullTiles = readback.append(&tile);
     FrameStats stats = statsWithAtlases();
-    glm::uvec2 needed{0};
+    glm::uvec3 needed{0};
     applyFrameReadback(stats, plan, layout, readback.bytes, needed);
     EXPECT_DOUBLE_EQ(stats.lightsPerClusterMean, 2.0);
     EXPECT_EQ(stats.lightsPerClusterMax, 9u);
@@ -100,14 +100,14 @@ TEST(FrameReadback, BothAtlasPassesRasterCountersAddUpAndSizeTheQueues) {
     layout.rasterCounters[0] = readback.append(&directional);
     layout.rasterCounters[1] = readback.append(&other);
     FrameStats stats = statsWithAtlases();
-    glm::uvec2 needed{50, 4000};
+    glm::uvec3 needed{50, 4000, 0};
     applyFrameReadback(stats, plan, layout, readback.bytes, needed);
     EXPECT_EQ(stats.rasterLargeTriangles, 400u);
     EXPECT_EQ(stats.rasterChunks, 2500u);
     EXPECT_EQ(stats.shadowMeshletsOutside, 8u);
     EXPECT_EQ(stats.rasterDropped, 0u);
     EXPECT_TRUE(stats.warnings.empty());
-    EXPECT_EQ(needed, glm::uvec2(300, 4000)) << "the most one pass asked for, never less than before";
+    EXPECT_EQ(needed, glm::uvec3(300, 4000, 0)) << "the most one pass asked for, never less than before";
 }
 
 TEST(FrameReadback, DroppedRasterPiecesAreCountedAndWarned) {
@@ -119,12 +119,30 @@ TEST(FrameReadback, DroppedRasterPiecesAreCountedAndWarned) {
     layout.rasterCounters[1] = readback.append(&counters);
     FrameStats stats = statsWithAtlases();
     stats.frameIndex = 42;
-    glm::uvec2 needed{0};
+    glm::uvec3 needed{0};
     applyFrameReadback(stats, plan, layout, readback.bytes, needed);
     EXPECT_EQ(stats.rasterDropped, 7u);
     ASSERT_EQ(stats.warnings.size(), 1u);
-    EXPECT_NE(stats.warnings[0].find("7 large pieces or chunks were not drawn in frame 42"), std::string::npos)
+    EXPECT_NE(stats.warnings[0].find("7 large pieces, chunks or work items were not drawn in frame 42"), std::string::npos)
         << stats.warnings[0];
+}
+
+TEST(FrameReadback, AVirtualMapsDroppedWorkItemsAreCountedAndGrowTheWorkQueue) {
+    const ShadowFrame plan = groundAndBoxPlan(1);
+    Readback readback;
+    FrameReadbackLayout layout;
+    gpu_data::RasterCounters atlas = rasterCounters(0, 0, 0, 0);
+    atlas.workQueued = 900;
+    gpu_data::RasterCounters pages = rasterCounters(0, 0, 0, 0);
+    pages.workQueued = 5000;
+    pages.workDropped = 1000;
+    layout.rasterCounters[0] = readback.append(&atlas);
+    layout.rasterCounters[3] = readback.append(&pages);  // the second directional light's virtual map
+    FrameStats stats = statsWithAtlases();
+    glm::uvec3 needed{0};
+    applyFrameReadback(stats, plan, layout, readback.bytes, needed);
+    EXPECT_EQ(stats.rasterDropped, 1000u) << "the pages drew without those items: the renderer redraws them";
+    EXPECT_EQ(needed.z, 5000u) << "the queue grows to what the largest pass asked for";
 }
 
 TEST(FrameReadback, PiecesTheFrameDidNotReadBackLeaveTheirStatsAtZero) {
@@ -133,13 +151,13 @@ TEST(FrameReadback, PiecesTheFrameDidNotReadBackLeaveTheirStatsAtZero) {
     const gpu_data::LightClusterStats clusters{5000, 9, 0, 0};
     readback.append(&clusters);  // in the bytes, but the layout does not name it
     FrameStats stats = statsWithAtlases();
-    glm::uvec2 needed{0};
+    glm::uvec3 needed{0};
     applyFrameReadback(stats, plan, FrameReadbackLayout{}, readback.bytes, needed);
     EXPECT_EQ(stats.lightsPerClusterMax, 0u);
     EXPECT_EQ(stats.viewInstancesEarly, 0u);
     EXPECT_EQ(stats.rasterChunks, 0u);
     EXPECT_EQ(stats.atlases[0].draws, 0u);
-    EXPECT_EQ(needed, glm::uvec2(0));
+    EXPECT_EQ(needed, glm::uvec3(0));
     EXPECT_EQ(stats.shadows.directional.tileStats.size(), plan.directional.tiles.size())
         << "the plan's part of the shadow stats is written anyway";
 }
