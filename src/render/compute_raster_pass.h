@@ -73,7 +73,6 @@ public:
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
     // Grows the queues to hold a frame that asked for this many (what its counters said).
     void reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems = 0);
-    uint32_t workCapacity() const { return workCapacity_; }
     static constexpr uint32_t kMaxLargeCapacity = 4u << 20, kMaxChunkCapacity = 32u << 20, kMaxWorkCapacity = 8u << 20;
 
 private:

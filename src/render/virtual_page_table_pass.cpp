@@ -137,9 +137,13 @@ gpu_data::VirtualPageTableData VirtualPageTablePass::packFrame(const glm::vec2& 
     return data;
 }
 
-void VirtualPageTablePass::dispatch(gpu::CommandList& commands, Step step, uint32_t groups) {
+void VirtualPageTablePass::bindStep(gpu::CommandList& commands, Step step) {
     commands.bindPipeline(pipelines_[step]);
     commands.pushDescriptors(writes_);  // each step's pipeline takes the bindings it declares
+}
+
+void VirtualPageTablePass::dispatch(gpu::CommandList& commands, Step step, uint32_t groups) {
+    bindStep(commands, step);
     commands.dispatch(groups, 1);
 }
 
@@ -190,8 +194,7 @@ void VirtualPageTablePass::record(gpu::CommandList& commands, const VirtualPageT
                    gpu::use(pool_, Usage::ComputeRead), gpu::use(counters_, Usage::ComputeWrite),
                    gpu::use(counters_, Usage::IndirectArguments), gpu::use(candidates_, Usage::ComputeRead),
                    gpu::use(drawList_, Usage::ComputeWrite), gpu::use(missing_, Usage::ComputeRead)});
-    commands.bindPipeline(pipelines_[Allocate]);
-    commands.pushDescriptors(writes_);
+    bindStep(commands, Allocate);  // over the missing entries: the plan sized the dispatch
     commands.dispatchIndirect(counters_, offsetof(gpu_data::VirtualPageCounters, allocateDispatch));
     commands.pass("virtualPageTable/finish", {gpu::use(pool_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                                               gpu::use(drawList_, Usage::ComputeWrite)});

@@ -110,6 +110,7 @@ private:
     void createBuffers();
     uint64_t entryBytes() const { return uint64_t(entryCount_) * sizeof(gpu_data::VirtualPageEntry); }
     void release();
+    void bindStep(gpu::CommandList& commands, Step step);
     void dispatch(gpu::CommandList& commands, Step step, uint32_t groups);
     void ensureTestBuffers(size_t requestBytes, size_t invalidationCount);
 
