@@ -1,7 +1,7 @@
 #version 460
 // Virtual page table, step 4 of an update (render/virtual_page_table_pass.h), one invocation per
 // missing entry of step 1b (an indirect dispatch the plan sizes): every requested page that is not
-// resident takes its place in step 2's order (its level's run, coarsest level first) and
+// resident takes its place in step 2's order (its level bucket's run, coarsest first) and
 // the physical page at that place: the top of the free list, else the candidate of step 3 at that
 // place (the least recently requested page not requested this frame, which loses its page), else
 // none (overflow, counted by step 5). A new page is dirty and goes on the draw list.
@@ -13,8 +13,8 @@ void main() {
     if (gl_GlobalInvocationID.x >= counters.missing) return;
     const uint entry = missingEntries[gl_GlobalInvocationID.x];
     VirtualPageEntry page = entries[entry];
-    const uint level = entry / pagesPerLevel();
-    const uint order = counters.levelFirst[level] + atomicAdd(counters.levelCursor[level], 1u);
+    const uint bucket = bucketOfEntry(entry);
+    const uint order = counters.levelFirst[bucket] + atomicAdd(counters.levelCursor[bucket], 1u);
     const uint freeCount = counters.freeAtAllocation;
     uint physical;
     if (order < freeCount) {

@@ -12,8 +12,7 @@ void main() {
     if (index >= table.invalidationCount) return;
     const VirtualPageInvalidation rect = invalidations[index];
     if (rect.level >= table.levelCount) return;
-    const VirtualPageLevelWindow window = table.levels[rect.level];
-    const ivec2 windowMin = ivec2(window.minPageX, window.minPageY);
+    const ivec2 windowMin = windowMinPage(rect.level);
     const ivec2 lo = max(ivec2(rect.minPageX, rect.minPageY), windowMin);
     const ivec2 hi = min(ivec2(rect.maxPageX, rect.maxPageY), windowMin + int(table.pagesPerSide) - 1);
     if (any(lessThan(hi, lo))) return;

@@ -9,6 +9,7 @@
 #define PENUMBRA_VIRTUAL_PAGE_MARK_GLSL
 #include "pass_bindings.h"
 #include "virtual_page_structs.h"
+#include "pixel_position.glsl"
 #include "virtual_clipmap.glsl"
 
 layout(set = kPassSet, binding = kPageMarkBindingFrame, std140) uniform PageMarkBlock { VirtualPageMarkData mark; };
@@ -34,11 +35,7 @@ void requestReceiverPages(ClipmapConfig config, uint level, vec2 lsPosition) {
 // Pixel p (inside mark.width x mark.height) whose reversed-Z depth is `depth` (0: nothing drawn).
 void markPixel(uvec2 p, float depth) {
     if (!(depth > 0.0)) return;  // reversed Z: 0 = nothing drawn
-    // Pixel centres, Vulkan NDC (y down): shadows/visible_surfaces.h's wsPositionFromDepth.
-    const float px = float(p.x) + 0.5, py = float(p.y) + 0.5;
-    const vec4 clip = vec4(2.0 * px / float(mark.width) - 1.0, 2.0 * py / float(mark.height) - 1.0, depth, 1.0);
-    const vec4 h = mark.worldFromClip * clip;
-    const vec3 wsPosition = h.xyz / h.w;
+    const vec3 wsPosition = wsPositionOfPixel(mark.worldFromClip, p, mark.width, mark.height, depth);
     const float vsDepth = -(mark.viewFromWorld * vec4(wsPosition, 1.0)).z;
     const vec2 lsPosition = (mark.lightFromWorld * vec4(wsPosition, 1.0)).xy;
     const float wsFootprint = vsDepth * mark.wsFootprintPerDepth;

@@ -1,7 +1,7 @@
 #version 460
 // Virtual page table, step 2 of an update (render/virtual_page_table_pass.h), one invocation: the
-// order in which step 4 hands out pages. Missing pages are served level by level, coarsest first
-// (a prefix over the levels' counts), so that when the pool runs out the fine levels overflow and
+// order in which step 4 hands out pages. Missing pages are served level bucket by bucket, coarsest
+// first (a prefix over the buckets' counts), so that when the pool runs out the fine levels overflow and
 // their receivers fall back to a coarser level, never to a hole. Physical pages come from the free
 // list first, then from the eviction candidates oldest first (a prefix over the ages, one bucket per
 // frame: exact least-recently-requested order up to ties within a frame).
@@ -10,9 +10,10 @@ layout(local_size_x = 1) in;
 
 void main() {
     uint first = 0u;
-    for (uint level = table.levelCount; level > 0u; --level) {
-        counters.levelFirst[level - 1u] = first;
-        first += counters.levelMissing[level - 1u];
+    const uint buckets = (table.levelCount + table.levelsPerBucket - 1u) / table.levelsPerBucket;
+    for (uint bucket = buckets; bucket > 0u; --bucket) {
+        counters.levelFirst[bucket - 1u] = first;
+        first += counters.levelMissing[bucket - 1u];
     }
     first = 0u;
     for (uint age = table.keepFrames; age > 0u; --age) {

@@ -33,12 +33,24 @@ layout(set = kPassSet, binding = kPageTableBindingMissing, std430) buffer PageMi
 
 uint pagesPerLevel() { return table.pagesPerSide * table.pagesPerSide; }
 
+uint levelOfEntry(uint entry) { return entry / pagesPerLevel(); }
+
+// The bucket the counters, the stats and the allocation order use (VirtualPageTableData).
+uint bucketOfEntry(uint entry) { return levelOfEntry(entry) / table.levelsPerBucket; }
+
+// The first page of a level's window (the pages [0, pagesPerSide) in a table of fixed windows).
+ivec2 windowMinPage(uint level) {
+    if (table.fixedWindows != 0u) return ivec2(0);
+    return ivec2(table.levels[level].minPageX, table.levels[level].minPageY);
+}
+
 // The global page that entry `entry`'s slot holds this frame: the page of its level's window whose
-// coordinates are congruent to the slot's modulo pagesPerSide.
+// coordinates are congruent to the slot's modulo pagesPerSide (with fixed windows: the slot itself).
 ivec2 windowPageOfEntry(uint entry) {
     const uint n = table.pagesPerSide;
     const uint slot = entry % pagesPerLevel();
-    const VirtualPageLevelWindow window = table.levels[entry / pagesPerLevel()];
+    if (table.fixedWindows != 0u) return ivec2(slot % n, slot / n);
+    const VirtualPageLevelWindow window = table.levels[levelOfEntry(entry)];
     const uvec2 offset = (uvec2(slot % n, slot / n) + n - uvec2(window.minSlotX, window.minSlotY)) % n;
     return ivec2(window.minPageX, window.minPageY) + ivec2(offset);
 }
@@ -46,6 +58,7 @@ ivec2 windowPageOfEntry(uint entry) {
 // The entry of a global page inside its level's window.
 uint entryOfWindowPage(uint level, ivec2 page) {
     const uint n = table.pagesPerSide;
+    if (table.fixedWindows != 0u) return level * pagesPerLevel() + uint(page.y) * n + uint(page.x);
     const VirtualPageLevelWindow window = table.levels[level];
     const uvec2 slot = (uvec2(page - ivec2(window.minPageX, window.minPageY)) + uvec2(window.minSlotX, window.minSlotY)) % n;
     return level * pagesPerLevel() + slot.y * n + slot.x;
@@ -63,7 +76,7 @@ uint ageBucket(VirtualPageEntry entry) {
 
 // Appends a resident, requested, dirty page to the update's draw list.
 void appendDraw(uint entry, VirtualPageEntry page) {
-    atomicAdd(counters.levelDrawn[entry / pagesPerLevel()], 1u);
+    atomicAdd(counters.levelDrawn[bucketOfEntry(entry)], 1u);
     draws[atomicAdd(drawHeader.count, 1u)] = VirtualPageDraw(entry, page.physicalPage, page.pageX, page.pageY);
 }
 

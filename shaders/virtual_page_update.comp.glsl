@@ -34,7 +34,7 @@ void main() {
         page.flags |= kVirtualPageRequested;
         page.lastRequested = table.frame;
         atomicAdd(counters.stats.cached, 1u);
-        atomicAdd(counters.levelCached[entry / pagesPerLevel()], 1u);
+        atomicAdd(counters.levelCached[bucketOfEntry(entry)], 1u);
         if ((page.flags & kVirtualPageDirty) != 0u) appendDraw(entry, page);
     } else {
         atomicAdd(counters.ageCount[ageBucket(page)], 1u);

@@ -111,6 +111,14 @@ PENUMBRA_CONST(uint, kPageMarkBindingDepth, 1u)     // sampler2D, the main view'
 PENUMBRA_CONST(uint, kPageMarkBindingRequests, 2u)  // the request bits (virtual_page_structs.h)
 PENUMBRA_CONST(uint, kPageMarkBindingVisibility, 3u)  // virtual_page_mark_visibility.comp: the visibility buffer
 
+// Spot and point lights' virtual page marking (virtual_face_mark.comp, virtual_face_mark_visibility.comp).
+PENUMBRA_CONST(uint, kFaceMarkBindingFrame, 0u)       // uniform VirtualFaceMarkData
+PENUMBRA_CONST(uint, kFaceMarkBindingDepth, 1u)       // sampler2D, the main view's depth
+PENUMBRA_CONST(uint, kFaceMarkBindingRequests, 2u)    // the request bits of the faces' table
+PENUMBRA_CONST(uint, kFaceMarkBindingVisibility, 3u)  // the visibility buffer (the _visibility variant)
+PENUMBRA_CONST(uint, kFaceMarkBindingFaces, 4u)       // VirtualFaceData[]
+PENUMBRA_CONST(uint, kFaceMarkBindingLights, 5u)      // VirtualFaceLightData[]
+
 // The virtual page table and physical page allocator (virtual_page_table.glsl, virtual_page_*.comp);
 // each of its shaders reads a subset (render/pass_layouts.cpp virtualPageTableBindings).
 PENUMBRA_CONST(uint, kPageTableBindingFrame, 0u)          // uniform VirtualPageTableData

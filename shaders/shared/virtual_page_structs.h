@@ -83,6 +83,13 @@ struct VirtualPageLevelWindow {
 PENUMBRA_CHECK_SIZE(VirtualPageLevelWindow, 16)
 
 // One update of the table (a uniform buffer): the clipmap's windows, the pool's rules, invalidations.
+//
+// Two kinds of table share the steps. A clipmap's (a directional light): levelCount <= kVirtualPageMaxLevels
+// levels, each with its moving window (levels[]), one level per bucket. A table of fixed windows (the mip
+// chains of spot and point light faces: fixedWindows = 1): every level's window is its pages [0,
+// pagesPerSide) on both axes, slot = page, levels[] unused, and up to kVirtualPageMaxLevels buckets of
+// levelsPerBucket levels each (a mip of every face: level = mip * faces + face, bucket = mip).
+// Counters, stats and the allocation order go by bucket (coarsest, the highest, first).
 struct VirtualPageTableData {
     uint frame;              // increases by one per update; ages are frame - lastRequested
     uint levelCount;
@@ -92,11 +99,16 @@ struct VirtualPageTableData {
     uint invalidateAll;      // 1: every resident page becomes dirty (the light changed)
     uint invalidationCount;  // VirtualPageInvalidation rectangles this update
     uint entryCount;         // levelCount * pagesPerSide^2
+    uint levelsPerBucket;    // 1 for a clipmap
+    uint fixedWindows;       // 1: no windows, slot = page (levels[] unused)
+    uint reserved0;
+    uint reserved1;
     VirtualPageLevelWindow levels[kVirtualPageMaxLevels];
 };
-PENUMBRA_CHECK_SIZE(VirtualPageTableData, 288)
+PENUMBRA_CHECK_SIZE(VirtualPageTableData, 304)
 PENUMBRA_CHECK_LAYOUT(VirtualPageTableData, capacity, 16)
-PENUMBRA_CHECK_LAYOUT(VirtualPageTableData, levels, 32)
+PENUMBRA_CHECK_LAYOUT(VirtualPageTableData, levelsPerBucket, 32)
+PENUMBRA_CHECK_LAYOUT(VirtualPageTableData, levels, 48)
 
 // The resident pages of a level inside a rectangle of global pages (min and max inclusive) become
 // dirty: a caster's old or new bounds (pagesTouchedByBounds).
@@ -133,7 +145,8 @@ struct VirtualPageLevelStats {
 };
 PENUMBRA_CHECK_SIZE(VirtualPageLevelStats, 3 * 64)
 
-// The counters of one update, zeroed before it. Per level (coarsest first) and per eviction age
+// The counters of one update, zeroed before it. Per level bucket (coarsest first; a clipmap's buckets are
+// its levels) and per eviction age
 // (oldest first): how many, a cursor, and where their run starts in the allocation / eviction order.
 struct VirtualPageCounters {
     VirtualPageStats stats;

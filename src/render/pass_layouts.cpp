@@ -181,6 +181,16 @@ std::vector<BindingDesc> virtualPageMarkVisibilityBindings() {
             {"PageRequestBlock", kPageMarkBindingRequests, kStorage, kC}};
 }
 
+std::vector<BindingDesc> virtualFaceMarkBindings(bool visibility) {
+    std::vector<BindingDesc> bindings = {{"FaceMarkBlock", kFaceMarkBindingFrame, kUniform, kC},
+                                         {"FaceRequestBlock", kFaceMarkBindingRequests, kStorage, kC},
+                                         {"FaceBlock", kFaceMarkBindingFaces, kStorage, kC},
+                                         {"FaceLightBlock", kFaceMarkBindingLights, kStorage, kC}};
+    if (visibility) bindings.push_back({"FaceMarkVisibilityBlock", kFaceMarkBindingVisibility, kStorage, kC});
+    else bindings.push_back({"sceneDepth", kFaceMarkBindingDepth, kSampled, kC});
+    return bindings;
+}
+
 std::vector<BindingDesc> virtualPageTableBindings(const std::string& shader) {
     const BindingDesc table{"PageTableBlock", kPageTableBindingFrame, kUniform, kC};
     const BindingDesc requests{"PageRequestBlock", kPageTableBindingRequests, kStorage, kC};

@@ -28,6 +28,8 @@ std::vector<gpu::BindingDesc> lightClusterBindings();    // light_cluster.comp
 std::vector<gpu::BindingDesc> depthSubsampleBindings();  // depth_subsample.comp
 std::vector<gpu::BindingDesc> virtualPageMarkBindings();  // virtual_page_mark.comp
 std::vector<gpu::BindingDesc> virtualPageMarkVisibilityBindings();  // virtual_page_mark_visibility.comp
+// virtual_face_mark.comp, or virtual_face_mark_visibility.comp when `visibility`.
+std::vector<gpu::BindingDesc> virtualFaceMarkBindings(bool visibility);
 // The virtual page table's steps (virtual_page_{reset,invalidate,update,plan,candidates,allocate,finish,
 // drawn}.comp): each reads its own subset of virtual_page_table.glsl's blocks; throws Error for another shader.
 std::vector<gpu::BindingDesc> virtualPageTableBindings(const std::string& shader);

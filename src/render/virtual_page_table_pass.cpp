@@ -35,16 +35,28 @@ std::vector<T> copyOut(const std::vector<uint8_t>& bytes, size_t offset, size_t 
 
 }  // namespace
 
+namespace {
+
+gpu_data::VirtualPageTableData packTableShape(const VirtualPageTableLayout& layout, uint32_t frame, uint32_t capacity,
+                                              uint32_t keepFrames) {
+    gpu_data::VirtualPageTableData data{};
+    data.frame = frame;
+    data.levelCount = layout.levelCount;
+    data.pagesPerSide = layout.pagesPerSide;
+    data.keepFrames = keepFrames;
+    data.capacity = capacity;
+    data.entryCount = layout.entryCount();
+    data.levelsPerBucket = layout.levelsPerBucket;
+    data.fixedWindows = layout.fixedWindows ? 1u : 0u;
+    return data;
+}
+
+}  // namespace
+
 gpu_data::VirtualPageTableData packVirtualPageTable(const VirtualClipmapConfig& config, const glm::vec2& lsCamera,
                                                     uint32_t frame, uint32_t capacity, uint32_t keepFrames) {
     PENUMBRA_ASSERT(config.levelCount <= gpu_data::kVirtualPageMaxLevels);
-    gpu_data::VirtualPageTableData data{};
-    data.frame = frame;
-    data.levelCount = config.levelCount;
-    data.pagesPerSide = pagesPerSide(config);
-    data.keepFrames = keepFrames;
-    data.capacity = capacity;
-    data.entryCount = config.levelCount * data.pagesPerSide * data.pagesPerSide;
+    gpu_data::VirtualPageTableData data = packTableShape(clipmapTableLayout(config), frame, capacity, keepFrames);
     packClipmapWindows(config, lsCamera, data.levels);
     return data;
 }
@@ -61,12 +73,25 @@ gpu_data::VirtualPageInvalidation virtualPageInvalidation(uint32_t level, const 
 
 VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualClipmapConfig& config, uint32_t capacity,
                                            uint32_t keepFrames, const VirtualPageStorage* shared)
-    : device_(device), config_(config), capacity_(capacity), keepFrames_(keepFrames) {
-    const uint32_t side = pagesPerSide(config);
-    entryCount_ = config.levelCount * side * side;
-    if (config.levelCount == 0 || config.levelCount > gpu_data::kVirtualPageMaxLevels)
-        throw Error("virtual page table: " + std::to_string(config.levelCount) + " levels (1 to " +
-                    std::to_string(gpu_data::kVirtualPageMaxLevels) + ")");
+    : device_(device), config_(config), layout_(clipmapTableLayout(config)), capacity_(capacity), keepFrames_(keepFrames) {
+    create(shared);
+}
+
+VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualPageTableLayout& layout, uint32_t capacity,
+                                           uint32_t keepFrames)
+    : device_(device), layout_(layout), capacity_(capacity), keepFrames_(keepFrames) {
+    if (!layout.fixedWindows || layout.levelsPerBucket == 0)
+        throw Error("internal: a virtual page table of fixed windows needs fixedWindows and levelsPerBucket >= 1");
+    create(nullptr);
+}
+
+void VirtualPageTablePass::create(const VirtualPageStorage* shared) {
+    const uint32_t capacity = capacity_, keepFrames = keepFrames_;
+    entryCount_ = layout_.entryCount();
+    if (layout_.levelCount == 0 || layout_.bucketCount() > gpu_data::kVirtualPageMaxLevels ||
+        (!layout_.fixedWindows && layout_.levelsPerBucket != 1))
+        throw Error("virtual page table: " + std::to_string(layout_.levelCount) + " levels (1 to " +
+                    std::to_string(gpu_data::kVirtualPageMaxLevels) + " buckets)");
     if (capacity == 0 || capacity > kMaxGroups)
         throw Error("virtual page table: a pool of " + std::to_string(capacity) + " pages (1 to 65535)");
     if (keepFrames > gpu_data::kVirtualPageMaxKeepFrames)
@@ -81,7 +106,7 @@ VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualCli
             desc.shader = kShaders[step];
             desc.bindings = virtualPageTableBindings(desc.shader);
             desc.debugName = desc.shader;
-            pipelines_[step] = device.createComputePipeline(desc);
+            pipelines_[step] = device_.createComputePipeline(desc);
         }
         createBuffers();
     } catch (...) {
@@ -131,7 +156,9 @@ void VirtualPageTablePass::createBuffers() {
 
 gpu_data::VirtualPageTableData VirtualPageTablePass::packFrame(const glm::vec2& lsCamera, bool invalidateAll,
                                                                uint32_t invalidationCount) {
-    gpu_data::VirtualPageTableData data = packVirtualPageTable(config_, lsCamera, ++frame_, capacity_, keepFrames_);
+    gpu_data::VirtualPageTableData data = layout_.fixedWindows
+                                              ? packTableShape(layout_, ++frame_, capacity_, keepFrames_)
+                                              : packVirtualPageTable(config_, lsCamera, ++frame_, capacity_, keepFrames_);
     data.invalidateAll = invalidateAll ? 1u : 0u;
     data.invalidationCount = invalidationCount;
     return data;

@@ -36,6 +36,7 @@
 #include "gpu/device.h"
 #include "render/virtual_page_storage.h"
 #include "shadows/virtual_clipmap.h"
+#include "shadows/virtual_page_pool.h"
 #include "virtual_page_structs.h"
 
 namespace penumbra {
@@ -74,6 +75,9 @@ public:
     // creates nor destroys; without, a buffer of its own.
     VirtualPageTablePass(gpu::Device& device, const VirtualClipmapConfig& config, uint32_t capacity, uint32_t keepFrames,
                          const VirtualPageStorage* shared = nullptr);
+    // A table of fixed windows (layout.fixedWindows; at most kVirtualPageMaxLevels buckets), with its own
+    // entries; packFrame's lsCamera is then ignored.
+    VirtualPageTablePass(gpu::Device& device, const VirtualPageTableLayout& layout, uint32_t capacity, uint32_t keepFrames);
     ~VirtualPageTablePass();
     VirtualPageTablePass(const VirtualPageTablePass&) = delete;
     VirtualPageTablePass& operator=(const VirtualPageTablePass&) = delete;
@@ -105,6 +109,7 @@ public:
     VirtualPageTableState readState();
 
 private:
+    void create(const VirtualPageStorage* shared);
     enum Step : uint32_t { Reset, Invalidate, Update, Requests, Plan, Candidates, Allocate, Finish, Drawn, StepCount };
     void useSharedEntries(const VirtualPageStorage& shared);
     void createBuffers();
@@ -115,7 +120,8 @@ private:
     void ensureTestBuffers(size_t requestBytes, size_t invalidationCount);
 
     gpu::Device& device_;
-    VirtualClipmapConfig config_;
+    VirtualClipmapConfig config_;   // a clipmap's (layout_.fixedWindows false)
+    VirtualPageTableLayout layout_;
     uint32_t capacity_ = 0, keepFrames_ = 0, entryCount_ = 0;
     uint32_t frame_ = 0;  // the last update packed
     bool needsReset_ = true;

@@ -88,19 +88,12 @@ glm::vec2 lsClipmapCentre(const glm::mat4& lightRotation, const CameraView& view
 VirtualPageRequests markVirtualPages(const VirtualClipmapConfig& config, const glm::mat4& lightRotation,
                                      const CameraView& view, const Image& depth, float marginTexels) {
     PENUMBRA_ASSERT(depth.width == view.width && depth.height == view.height && depth.channels == 4);
-    const glm::mat4 worldFromClip = glm::inverse(view.clipFromWorld);
     const glm::vec2 lsCamera = lsClipmapCentre(lightRotation, view);
     VirtualPageRequests requests(config);
-    for (uint32_t y = 0; y < depth.height; ++y) {
-        for (uint32_t x = 0; x < depth.width; ++x) {
-            const float d = depthAt(depth, x, y);
-            if (!(d > 0.0f)) continue;  // reversed Z: 0 = nothing drawn
-            const glm::vec3 wsPosition = wsPositionFromDepth(worldFromClip, view, float(x) + 0.5f, float(y) + 0.5f, d);
-            const float vsDepth = -(view.viewFromWorld * glm::vec4(wsPosition, 1.0f)).z;
-            const glm::vec2 lsPosition(lightRotation * glm::vec4(wsPosition, 1.0f));
-            markReceiver(requests, config, lsCamera, lsPosition, wsPixelFootprint(view, vsDepth), marginTexels);
-        }
-    }
+    forEachSurfacePixel(depth, view, [&](const glm::vec3& wsPosition, float vsDepth) {
+        const glm::vec2 lsPosition(lightRotation * glm::vec4(wsPosition, 1.0f));
+        markReceiver(requests, config, lsCamera, lsPosition, wsPixelFootprint(view, vsDepth), marginTexels);
+    });
     return requests;
 }
 

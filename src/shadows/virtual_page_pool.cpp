@@ -7,6 +7,10 @@
 
 namespace penumbra {
 
+VirtualPageTableLayout clipmapTableLayout(const VirtualClipmapConfig& config) {
+    return {pagesPerSide(config), config.levelCount, 1, false};
+}
+
 size_t VirtualPageKeyHash::operator()(const VirtualPageKey& key) const {
     uint64_t h = (uint64_t(key.map) << 40) ^ (uint64_t(uint32_t(key.page.x)) << 20) ^ uint64_t(uint32_t(key.page.y));
     h ^= h >> 33;

@@ -34,6 +34,21 @@
 
 namespace penumbra {
 
+// The shape of a GPU page table (render/virtual_page_table_pass.h): levelCount levels of pagesPerSide^2
+// entries. A clipmap's levels (a directional light's) have windows that follow the camera, one level per
+// bucket; a table of fixed windows (the mip chains of spot and point light faces, level = mip * faces +
+// face: shadows/virtual_faces.h) has none, slot = page, and counts, orders and reports its levels in
+// buckets of levelsPerBucket (VirtualPageTableData).
+struct VirtualPageTableLayout {
+    uint32_t pagesPerSide = 0;
+    uint32_t levelCount = 0;
+    uint32_t levelsPerBucket = 1;
+    bool fixedWindows = false;
+    uint32_t entryCount() const { return levelCount * pagesPerSide * pagesPerSide; }
+    uint32_t bucketCount() const { return (levelCount + levelsPerBucket - 1) / levelsPerBucket; }
+};
+VirtualPageTableLayout clipmapTableLayout(const VirtualClipmapConfig& config);
+
 // A virtual page: which map (a directional light's clipmap level, a spot light's mip, a point light's
 // face and mip: the caller numbers them) and the page's global coordinates in it.
 struct VirtualPageKey {

@@ -37,6 +37,21 @@ float depthAt(const Image& depth, uint32_t x, uint32_t y);
 // reversed-Z depth `depth`; worldFromClip = inverse(view.clipFromWorld), computed once by the caller.
 glm::vec3 wsPositionFromDepth(const glm::mat4& worldFromClip, const CameraView& view, float px, float py, float depth);
 
+// Calls visit(wsPosition, vsDepth) for every pixel of such an image (view.width x view.height) with
+// geometry (reversed-Z depth > 0), at the pixel's centre, rows top to bottom: the virtual shadow maps'
+// page marking references walk the view's depth this way.
+template <typename Visit>
+void forEachSurfacePixel(const Image& depth, const CameraView& view, Visit&& visit) {
+    const glm::mat4 worldFromClip = glm::inverse(view.clipFromWorld);
+    for (uint32_t y = 0; y < depth.height; ++y)
+        for (uint32_t x = 0; x < depth.width; ++x) {
+            const float d = depthAt(depth, x, y);
+            if (!(d > 0.0f)) continue;  // reversed Z: 0 = nothing drawn
+            const glm::vec3 wsPosition = wsPositionFromDepth(worldFromClip, view, float(x) + 0.5f, float(y) + 0.5f, d);
+            visit(wsPosition, -(view.viewFromWorld * glm::vec4(wsPosition, 1.0f)).z);
+        }
+}
+
 // Bounds in the light's rotation-only space (lightRotationFromWorld) of the visible points whose view
 // depth lies in [vsNear, vsFar]; invalid when there are none.
 Aabb rotatedVisibleBounds(const VisibleSurfaces& visible, const glm::mat4& lightRotation, float vsNear, float vsFar);

@@ -6,6 +6,7 @@
 // compare the sets exactly avoid those ties, and the others check the counts and the invariants.
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <set>
 #include <string>
@@ -430,6 +431,120 @@ TEST_F(VirtualPageTableTest, InvalidationMarksExactlyTheCoveredPagesDirtyAndDraw
     const GpuView all = pools.frame(relit, "light changed");
     EXPECT_EQ(all.dirty, all.resident);
     EXPECT_EQ(all.toDraw.size(), 32u);
+}
+
+// A table of fixed windows (spot and point faces' mip chains): 3 mips of 8 faces, level = mip * 8 + face,
+// 2 pages a side, so more levels than a clipmap's windows hold (24 > kVirtualPageMaxLevels). Slot = page;
+// counts, stats and the allocation order go by bucket (the mip), coarsest first.
+constexpr VirtualPageTableLayout kFixedLayout{.pagesPerSide = 2, .levelCount = 24, .levelsPerBucket = 8, .fixedWindows = true};
+
+std::vector<uint32_t> fixedRequestWords(const std::vector<PageId>& requests) {
+    std::vector<uint32_t> words((kFixedLayout.entryCount() + 31) / 32, 0u);
+    for (const auto& [level, x, y] : requests) {
+        const uint32_t bit = gpu_data::virtualPageBit(level, kFixedLayout.pagesPerSide, uint32_t(x), uint32_t(y));
+        words[bit / 32] |= 1u << (bit % 32);
+    }
+    return words;
+}
+
+// Random pages of random levels, a rectangle invalidated now and then; levels of a bucket go idle together.
+std::vector<Frame> fixedFrames(uint32_t count) {
+    std::vector<Frame> frames;
+    uint32_t random = 11u;
+    for (uint32_t f = 0; f < count; ++f) {
+        Frame frame;
+        for (uint32_t level = 0; level < kFixedLayout.levelCount; ++level) {
+            if ((f / 4 + level / kFixedLayout.levelsPerBucket) % 3 == 2 || nextRandom(random) % 3 == 0) continue;
+            for (uint32_t i = nextRandom(random) % 4; i > 0; --i)
+                frame.requests.push_back({level, int32_t(nextRandom(random) % 2), int32_t(nextRandom(random) % 2)});
+            if (nextRandom(random) % 8 == 0) frame.invalidations.push_back({level, PageRect{{0, 0}, {0, 1}}});
+        }
+        frame.invalidateAll = f == 9;
+        frames.push_back(std::move(frame));
+    }
+    return frames;
+}
+
+TEST_F(VirtualPageTableTest, ATableOfFixedWindowsEqualsTheCpuReferenceBucketByBucket) {
+    constexpr uint32_t kCapacity = 96, kKeepFrames = 2;  // every entry fits: no eviction by pressure
+    VirtualPageTablePass pass(gpu(), kFixedLayout, kCapacity, kKeepFrames);
+    VirtualPagePool cpu(kCapacity, kKeepFrames);
+    uint32_t cachedFrames = 0, idleFrees = 0, invalidated = 0;
+    const std::vector<Frame> frames = fixedFrames(30);
+    for (uint32_t f = 0; f < frames.size(); ++f) {
+        const std::string what = "frame " + std::to_string(f);
+        const Frame& frame = frames[f];
+        for (uint32_t level = 0; level < kFixedLayout.levelCount && frame.invalidateAll; ++level) cpu.invalidateMap(level);
+        for (const auto& [level, pages] : frame.invalidations) cpu.invalidatePages(level, pages);
+        std::vector<VirtualPageKey> requests;
+        for (const PageId& id : frame.requests) requests.push_back(keyOf(id));
+        std::stable_sort(requests.begin(), requests.end(), [](const VirtualPageKey& a, const VirtualPageKey& b) {
+            return a.map / kFixedLayout.levelsPerBucket > b.map / kFixedLayout.levelsPerBucket;
+        });
+        const VirtualPageFrame expected = cpu.update(requests);
+        std::vector<gpu_data::VirtualPageInvalidation> rects;
+        for (const auto& [level, pages] : frame.invalidations) rects.push_back(virtualPageInvalidation(level, pages));
+        pass.updateNow(fixedRequestWords(frame.requests), glm::vec2(0.0f), frame.invalidateAll, rects);
+        GpuView view{pass.readState(), {}, {}, {}, {}, {}};
+        for (uint32_t entry = 0; entry < view.state.entries.size(); ++entry) {
+            const VirtualPageEntry& e = view.state.entries[entry];
+            const bool resident = e.flags & gpu_data::kVirtualPageResident;
+            view.physicalOf.push_back(resident ? e.physicalPage : gpu_data::kVirtualPageNone);
+            if (!resident) continue;
+            const PageId id{entry / 4, e.pageX, e.pageY};
+            EXPECT_EQ(entry % 4, uint32_t(e.pageY * 2 + e.pageX)) << what << ": slot = page";
+            view.resident.insert(id);
+            if (e.flags & gpu_data::kVirtualPageDirty) view.dirty.insert(id);
+        }
+        for (const gpu_data::VirtualPageDraw& draw : view.state.draws) view.toDraw.insert({draw.entry / 4, draw.pageX, draw.pageY});
+        expectConsistent(view, kCapacity, what);
+        expectStats(view.state.stats, expected, what);
+        PageSet resident, toDraw;
+        for (const VirtualPageKey& key : cpu.residentPages()) resident.insert(idOf(key));
+        for (const VirtualPageKey& key : requests)
+            if (cpu.needsDraw(key)) toDraw.insert(idOf(key));
+        EXPECT_EQ(view.resident, resident) << what;
+        EXPECT_EQ(view.toDraw, toDraw) << what;
+        // The per-bucket counts of the page view.
+        const gpu::BufferSlice levelStats = pass.levelStats();
+        gpu_data::VirtualPageLevelStats stats{};
+        std::memcpy(&stats, gpu().readBuffer(levelStats.buffer).data() + levelStats.offset, sizeof(stats));
+        for (uint32_t bucket = 0; bucket < kFixedLayout.bucketCount(); ++bucket) {
+            uint32_t requestedInBucket = 0;
+            for (const PageId& id : PageSet(frame.requests.begin(), frame.requests.end()))
+                requestedInBucket += std::get<0>(id) / kFixedLayout.levelsPerBucket == bucket;
+            EXPECT_EQ(stats.requested[bucket], requestedInBucket) << what << ", bucket " << bucket;
+        }
+        pass.markDrawnNow();
+        for (const VirtualPageKey& key : requests)
+            if (cpu.needsDraw(key)) cpu.markDrawn(key);
+        cachedFrames += view.state.stats.cached > 0;
+        idleFrees += view.state.stats.evicted > 0;
+        invalidated += !frame.invalidations.empty() && view.state.stats.toDraw > view.state.stats.allocated;
+        if (HasFailure()) break;
+    }
+    EXPECT_GT(cachedFrames, 20u);
+    EXPECT_GT(idleFrees, 5u);
+    EXPECT_GT(invalidated, 2u);
+}
+
+// When the pool runs out, the coarsest bucket (every face's coarsest mip) is served first.
+TEST_F(VirtualPageTableTest, AnExhaustedTableOfFixedWindowsServesTheCoarsestMipOfEveryFaceFirst) {
+    VirtualPageTablePass pass(gpu(), kFixedLayout, 40, 2);
+    std::vector<PageId> all;
+    for (uint32_t level = 0; level < kFixedLayout.levelCount; ++level)
+        for (int32_t y = 0; y < 2; ++y)
+            for (int32_t x = 0; x < 2; ++x) all.push_back({level, x, y});
+    pass.updateNow(fixedRequestWords(all), glm::vec2(0.0f));
+    const VirtualPageTableState state = pass.readState();
+    EXPECT_EQ(state.stats.allocated, 40u);
+    EXPECT_EQ(state.stats.overflowed, 56u);
+    uint32_t perBucket[3] = {};
+    for (uint32_t entry = 0; entry < state.entries.size(); ++entry)
+        if (state.entries[entry].flags & gpu_data::kVirtualPageResident) ++perBucket[entry / 4 / kFixedLayout.levelsPerBucket];
+    EXPECT_EQ(perBucket[2], 32u) << "every page of the coarsest mip of the 8 faces";
+    EXPECT_EQ(perBucket[1], 8u);
+    EXPECT_EQ(perBucket[0], 0u);
 }
 
 // The declarations leave no hazard: updates, draws marked, a reset, on a device with synchronization
