@@ -138,6 +138,7 @@ PENUMBRA_CONST(uint, kPageDrawBindingTiles, 1u)        // CullTileListHeader + C
 PENUMBRA_CONST(uint, kPageDrawBindingRasterList, 2u)   // RasterTileListHeader + entries (written)
 PENUMBRA_CONST(uint, kPageDrawBindingPoolDepth, 3u)    // the pool's depth buffer, float bits per texel
 PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's R32F image (storage), sampled later
+PENUMBRA_CONST(uint, kPageDrawBindingFaces, 5u)        // virtual_face_tiles.comp: VirtualFaceData[]
 
 // The virtual shadow map lookup's test probe (virtual_shadow_probe.comp, driven by
 // tests/render/virtual_shadow_lookup_test.cpp).

@@ -35,7 +35,7 @@ struct VirtualPageTilesConstants {
     uint instanceGroups;          // the culling dispatch's x: ceil(instances / kCullWorkgroupSize)
     uint meshGroups;              // the draw lists' dispatch's x: ceil(meshes / kCullWorkgroupSize)
     uint expandGroups;            // the compute rasterizer's expansion dispatch's x: ceil(instances / kRasterExpandGroup)
-    uint reserved;
+    uint faceCount;               // virtual_face_tiles.comp: the faces of the table (level = mip * faceCount + face)
 };
 PENUMBRA_CHECK_SIZE(VirtualPageTilesConstants, 112)
 PENUMBRA_CHECK_LAYOUT(VirtualPageTilesConstants, lsDepthNear, 64)

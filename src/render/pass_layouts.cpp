@@ -216,9 +216,10 @@ std::vector<BindingDesc> virtualPageTableBindings(const std::string& shader) {
 
 std::vector<BindingDesc> virtualPageDrawBindings(const std::string& shader) {
     const BindingDesc draws{"PageDrawBlock", kPageDrawBindingDrawList, kStorage, kC};
-    if (shader == "virtual_page_tiles.comp")
-        return {draws, {"CullTileBlock", kPageDrawBindingTiles, kStorage, kC},
-                {"RasterTileBlock", kPageDrawBindingRasterList, kStorage, kC}};
+    const BindingDesc tiles{"CullTileBlock", kPageDrawBindingTiles, kStorage, kC};
+    const BindingDesc rasterList{"RasterTileBlock", kPageDrawBindingRasterList, kStorage, kC};
+    if (shader == "virtual_page_tiles.comp") return {draws, tiles, rasterList};
+    if (shader == "virtual_face_tiles.comp") return {draws, tiles, rasterList, {"FaceBlock", kPageDrawBindingFaces, kStorage, kC}};
     if (shader == "virtual_page_copy.comp")
         return {draws, {"PoolDepthBlock", kPageDrawBindingPoolDepth, kStorage, kC},
                 {"poolTexture", kPageDrawBindingPoolTexture, gpu::DescriptorType::StorageTexture, kC}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -60,8 +61,19 @@ gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, 
 VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
                                          const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide,
                                          const VirtualPageStorage* shared)
-    : device_(device), scene_(gpuScene), raster_(raster), poolPagesPerSide_(poolPagesPerSide), pageSize_(clipmap.pageSize),
-      pagesPerLevelSide_(pagesPerSide(clipmap)), culling_(device, gpuScene, std::max(poolPagesPerSide * poolPagesPerSide, 1u)) {
+    : VirtualPageDrawPass(device, gpuScene, raster, clipmap.pageSize, pagesPerSide(clipmap), poolPagesPerSide, false, shared) {}
+
+VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
+                                         const VirtualFaceConfig& faces, uint32_t poolPagesPerSide)
+    : VirtualPageDrawPass(device, gpuScene, raster, faces.pageSize, virtualFacePagesPerSide(faces), poolPagesPerSide, true,
+                          nullptr) {}
+
+VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
+                                         uint32_t pageSize, uint32_t pagesPerLevelSide, uint32_t poolPagesPerSide, bool faces,
+                                         const VirtualPageStorage* shared)
+    : device_(device), scene_(gpuScene), raster_(raster), poolPagesPerSide_(poolPagesPerSide), pageSize_(pageSize),
+      pagesPerLevelSide_(pagesPerLevelSide), faces_(faces),
+      culling_(device, gpuScene, std::max(poolPagesPerSide * poolPagesPerSide, 1u)) {
     if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
         throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
                     std::to_string(pageSize_) + " texels does not fit an image");
@@ -97,7 +109,7 @@ void VirtualPageDrawPass::release() {
 
 void VirtualPageDrawPass::create() {
     gpu::ComputePipelineDesc desc;
-    desc.shader = desc.debugName = "virtual_page_tiles.comp";
+    desc.shader = desc.debugName = faces_ ? "virtual_face_tiles.comp" : "virtual_page_tiles.comp";
     desc.bindings = virtualPageDrawBindings(desc.shader);
     desc.pushConstantSize = sizeof(gpu_data::VirtualPageTilesConstants);
     tilesPipeline_ = device_.createComputePipeline(desc);
@@ -138,25 +150,32 @@ void VirtualPageDrawPass::create() {
 }
 
 void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs) {
-    PENUMBRA_ASSERT(inputs.space && inputs.sceneWrites && inputs.drawList);
-    const VirtualPageDrawSpace& space = *inputs.space;
-    PENUMBRA_ASSERT(space.clipmap.pageSize == pageSize_ && pagesPerSide(space.clipmap) == pagesPerLevelSide_);
+    PENUMBRA_ASSERT(inputs.sceneWrites && inputs.drawList && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
+                                                                       : inputs.space != nullptr));
+    PENUMBRA_ASSERT(faces_ || (inputs.space->clipmap.pageSize == pageSize_ && pagesPerSide(inputs.space->clipmap) == pagesPerLevelSide_));
     using namespace gpu_data;
     const uint64_t tileBytes = device_.bufferSize(tiles_), listBytes = device_.bufferSize(rasterList_);
     // 1. The draw list -> tile lists (one thread per page the lists can hold: the count is the GPU's).
-    commands.pass("virtualPages.tiles", {gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(tiles_, Usage::ComputeWrite),
-                                         gpu::use(rasterList_, Usage::ComputeWrite)});
+    const gpu::ResourceUse tileUses[] = {gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(tiles_, Usage::ComputeWrite),
+                                         gpu::use(rasterList_, Usage::ComputeWrite),
+                                         gpu::use(inputs.faces.buffer, Usage::ComputeRead)};
+    commands.pass("virtualPages.tiles", std::span(tileUses, faces_ ? 4 : 3));
     commands.bindPipeline(tilesPipeline_);
     const gpu::DescriptorWrite tileWrites[] = {{kPageDrawBindingDrawList, inputs.drawList, {}, {}},
                                                {kPageDrawBindingTiles, tiles_, {}, {}},
-                                               {kPageDrawBindingRasterList, rasterList_, {}, {}}};
-    commands.pushDescriptors(tileWrites);
+                                               {kPageDrawBindingRasterList, rasterList_, {}, {}},
+                                               {kPageDrawBindingFaces, inputs.faces}};
+    commands.pushDescriptors(std::span(tileWrites, faces_ ? 4 : 3));
     VirtualPageTilesConstants constants{};
-    constants.lightRotationFromWorld = space.lightRotationFromWorld;
-    constants.lsDepthNear = space.lsDepthNear;
-    constants.lsDepthFar = space.lsDepthFar;
-    constants.firstLevelSize = space.clipmap.firstLevelSize;
-    constants.slopeBias = space.slopeBias;
+    if (!faces_) {
+        const VirtualPageDrawSpace& space = *inputs.space;
+        constants.lightRotationFromWorld = space.lightRotationFromWorld;
+        constants.lsDepthNear = space.lsDepthNear;
+        constants.lsDepthFar = space.lsDepthFar;
+        constants.firstLevelSize = space.clipmap.firstLevelSize;
+        constants.slopeBias = space.slopeBias;
+    }
+    constants.faceCount = inputs.faceCount;
     constants.pagesPerSide = pagesPerLevelSide_;
     constants.pageSize = pageSize_;
     constants.poolPagesPerSide = poolPagesPerSide_;

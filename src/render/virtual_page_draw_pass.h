@@ -1,5 +1,6 @@
 #pragma once
-// Draws the dirty pages of a directional light's virtual shadow map with the compute rasterizer the
+// Draws the dirty pages of a directional light's virtual shadow map (or of spot and point light faces'
+// maps: virtual_face_tiles.comp gives each page its perspective projection) with the compute rasterizer the
 // atlases use (render/compute_raster_pass.h), from the page table's draw list (render/
 // virtual_page_table_pass.h: VirtualPageDrawHeader + VirtualPageDraw[]) that exists only on the GPU: no
 // readback, every loop over the pages an indirect dispatch or a dispatch over the pool's capacity.
@@ -28,6 +29,7 @@
 #include "render/shadow_culling_pass.h"
 #include "render/virtual_page_storage.h"
 #include "shadows/virtual_clipmap.h"
+#include "shadows/virtual_faces.h"
 #include "virtual_page_draw_structs.h"
 #include "virtual_page_structs.h"
 
@@ -56,9 +58,11 @@ gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, 
 
 struct VirtualPageDrawInputs {
     gpu::BufferHandle drawList;  // VirtualPageDrawHeader + VirtualPageDraw[] (the table pass's drawList())
-    const VirtualPageDrawSpace* space = nullptr;
+    const VirtualPageDrawSpace* space = nullptr;  // a clipmap's pages (else faces below)
     const std::vector<gpu::DescriptorWrite>* sceneWrites = nullptr;  // the scene bindings 0-4
     bool meshletCulling = true;                                      // render.meshletCulling
+    gpu::BufferSlice faces;  // a faces' pass: faceCount VirtualFaceData (storage)
+    uint32_t faceCount = 0;
 };
 
 class VirtualPageDrawPass {
@@ -71,6 +75,10 @@ public:
     VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
                         const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide,
                         const VirtualPageStorage* shared = nullptr);
+    // The same for the pages of spot and point light faces (shadows/virtual_faces.h: a table of fixed
+    // windows, level = mip * faceCount + face), an image of its own: record() then takes inputs.faces.
+    VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
+                        const VirtualFaceConfig& faces, uint32_t poolPagesPerSide);
     ~VirtualPageDrawPass();
     VirtualPageDrawPass(const VirtualPageDrawPass&) = delete;
     VirtualPageDrawPass& operator=(const VirtualPageDrawPass&) = delete;
@@ -91,6 +99,8 @@ public:
     const ShadowCullingPass& culling() const { return culling_; }
 
 private:
+    VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster, uint32_t pageSize,
+                        uint32_t pagesPerLevelSide, uint32_t poolPagesPerSide, bool faces, const VirtualPageStorage* shared);
     void useSharedTexture(const VirtualPageStorage& shared);
     void create();
     void release();
@@ -100,6 +110,7 @@ private:
     uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
     uint32_t poolOriginY_ = 0;  // pool texture texels
     bool ownsTexture_ = true;
+    bool faces_ = false;  // spot and point light faces' pages (virtual_face_tiles.comp)
     ShadowCullingPass culling_;
     gpu::PipelineHandle tilesPipeline_, copyPipeline_;
     gpu::BufferHandle cullFrame_, tiles_, rasterList_, poolDepth_;

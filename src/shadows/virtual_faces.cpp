@@ -37,6 +37,17 @@ VirtualFace makeVirtualFace(const VirtualFaceConfig& config, const glm::vec3& ws
     return face;
 }
 
+glm::mat4 virtualFacePageClipFromWorld(const VirtualFace& face, uint32_t pagesPerSide, uint32_t mip, const glm::ivec2& page) {
+    // Operation for operation as virtual_face_tiles.comp pageTile.
+    const float pages = float(pagesPerSide >> mip);  // the page is 2 / pages NDC wide
+    glm::mat4 crop(1.0f);
+    crop[0][0] = pages;
+    crop[1][1] = pages;
+    crop[3][0] = pages - 1.0f - 2.0f * float(page.x);
+    crop[3][1] = pages - 1.0f - 2.0f * float(page.y);
+    return crop * face.clipFromWorld;
+}
+
 std::optional<FacePoint> projectOntoFace(const VirtualFace& face, const glm::vec3& wsPosition) {
     const glm::vec4 clip = face.clipFromWorld * glm::vec4(wsPosition, 1.0f);
     if (!(clip.w > 0.0f)) return std::nullopt;  // behind the light

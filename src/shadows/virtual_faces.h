@@ -57,6 +57,10 @@ struct VirtualFace {
 VirtualFace makeVirtualFace(const VirtualFaceConfig& config, const glm::vec3& wsPosition, const glm::vec3& wsDirection,
                             float coneTangent, float nearDistance, float farDistance, float marginTexels);
 
+// The projection of page `page` of mip `mip` of a face (what virtual_face_tiles.comp computes): the face's
+// clipFromWorld with the page's NDC square cropped to [-1, 1] (depth and w unchanged).
+glm::mat4 virtualFacePageClipFromWorld(const VirtualFace& face, uint32_t pagesPerSide, uint32_t mip, const glm::ivec2& page);
+
 // Where a world point lands on a face: NDC x, y in [-1, 1], depth in [0, 1] and its distance along the
 // face's axis; nullopt when it lies behind the light or outside the frustum.
 struct FacePoint {

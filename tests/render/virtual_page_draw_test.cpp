@@ -23,6 +23,9 @@
 #include "render/virtual_page_draw_pass.h"
 #include "render_test_support.h"
 #include "shadows/cull_packing.h"
+#include "shadows/spot_projection.h"
+#include "shadows/virtual_faces.h"
+#include "virtual_face_structs.h"
 
 namespace penumbra::test {
 namespace {
@@ -52,12 +55,18 @@ glm::vec3 firstDirectionalLight(const Scene& scene) {
     return glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
 }
 
-// One pass and its pool, on a scene; draws pages and reads the pool back.
+// Faces' pages (a table of fixed windows: level = mip * faceCount + face) of 16 pages a side, 5 mips.
+constexpr VirtualFaceConfig kFaceConfig{.resolution = 128 * 16, .pageSize = 128};
+
+// One pass and its pool, on a scene; draws pages and reads the pool back. With faces, the pages are
+// theirs (spot and point light faces) instead of the clipmap's.
 class PageRig {
 public:
-    PageRig(gpu::Device& gpu, Scene scene)
+    PageRig(gpu::Device& gpu, Scene scene, std::vector<VirtualFace> faces = {})
         : gpu_(gpu), scene_(std::move(scene)), gpuScene_(gpu, scene_), raster_(gpu, gpuScene_),
-          pages_(gpu, gpuScene_, raster_, testClipmap(), kPoolPagesPerSide) {
+          pages_(faces.empty() ? VirtualPageDrawPass(gpu, gpuScene_, raster_, testClipmap(), kPoolPagesPerSide)
+                               : VirtualPageDrawPass(gpu, gpuScene_, raster_, kFaceConfig, kPoolPagesPerSide)),
+          faces_(std::move(faces)) {
         space_ = makeVirtualPageDrawSpace(testClipmap(), firstDirectionalLight(scene_), scene_.wsBounds);
         using namespace gpu_data;
         writes_ = {{kSceneBindingVertices, gpuScene_.vertexBuffer(), {}, {}},
@@ -66,8 +75,16 @@ public:
         drawList_ = gpu.createBuffer(sizeof(VirtualPageDrawHeader) + pages_.capacity() * sizeof(VirtualPageDraw),
                                      gpu::kBufferStorage | gpu::kBufferIndirect, gpu::MemoryKind::HostVisible, nullptr,
                                      "test page draw list");
+        std::vector<VirtualFaceData> faceData;
+        for (const VirtualFace& face : faces_) faceData.push_back({face.clipFromWorld, face.wsPosition, face.tanHalfFov});
+        if (!faceData.empty())
+            faceBuffer_ = gpu.createBuffer(faceData.size() * sizeof(VirtualFaceData), gpu::kBufferStorage,
+                                           gpu::MemoryKind::HostVisible, faceData.data(), "test faces");
     }
-    ~PageRig() { gpu_.destroy(drawList_); }
+    ~PageRig() {
+        gpu_.destroy(drawList_);
+        gpu_.destroy(faceBuffer_);
+    }
 
     const Scene& scene() const { return scene_; }
     const VirtualPageDrawSpace& space() const { return space_; }
@@ -77,7 +94,8 @@ public:
 
     // Writes the list as the page table pass would (header with its dispatch sizes, then the draws) and draws it.
     void draw(const std::vector<PageDraw>& draws) {
-        const uint32_t perSide = pagesPerSide(testClipmap()), count = uint32_t(draws.size());
+        const uint32_t perSide = faces_.empty() ? pagesPerSide(testClipmap()) : virtualFacePagesPerSide(kFaceConfig);
+        const uint32_t count = uint32_t(draws.size());
         gpu_data::VirtualPageDrawHeader header{};
         header.pageDispatch = glm::uvec4(count, 1, 1, 0);
         header.listDispatch = glm::uvec4((count + gpu_data::kVirtualPageGroupSize - 1) / gpu_data::kVirtualPageGroupSize, 1, 1, 0);
@@ -91,7 +109,12 @@ public:
         gpu_.writeBuffer(drawList_, &header, sizeof(header));
         if (!list.empty()) gpu_.writeBuffer(drawList_, list.data(), list.size() * sizeof(list[0]), sizeof(header));
         gpu::CommandList commands = gpu_.beginCommands();
-        pages_.record(commands, {drawList_, &space_, &writes_, true});
+        VirtualPageDrawInputs inputs{drawList_, faces_.empty() ? &space_ : nullptr, &writes_, true};
+        if (!faces_.empty()) {
+            inputs.faces = {faceBuffer_, 0, faces_.size() * sizeof(gpu_data::VirtualFaceData)};
+            inputs.faceCount = uint32_t(faces_.size());
+        }
+        pages_.record(commands, inputs);
         gpu_.submitAndWait(commands);
     }
 
@@ -116,7 +139,11 @@ public:
             const gpu::Rect rect = virtualPagePoolRect(d.physical, kPoolPagesPerSide, 128);
             tile.rect.offset = glm::uvec2(rect.x, rect.y);
             tile.rect.size = 128;
-            tile.clipFromWorld = virtualPageClipFromWorld(space_, d.level, d.page);
+            const uint32_t faceCount = uint32_t(faces_.size());
+            tile.clipFromWorld = faces_.empty() ? virtualPageClipFromWorld(space_, d.level, d.page)
+                                                : virtualFacePageClipFromWorld(faces_[d.level % faceCount],
+                                                                               virtualFacePagesPerSide(kFaceConfig),
+                                                                               d.level / faceCount, d.page);
             drawn.push_back(uint32_t(shadowTiles.size()));
             shadowTiles.push_back(tile);
         }
@@ -173,6 +200,8 @@ private:
     GpuScene gpuScene_;
     ComputeRasterPass raster_;
     VirtualPageDrawPass pages_;
+    std::vector<VirtualFace> faces_;
+    gpu::BufferHandle faceBuffer_;
     VirtualPageDrawSpace space_;
     std::vector<gpu::DescriptorWrite> writes_;
     gpu::BufferHandle drawList_;
@@ -356,6 +385,49 @@ TEST_F(VirtualPageDrawTest, AGroundTriangleSpanningManyPagesIsDrawnRightInEach) 
             }
         EXPECT_EQ(differ, 0u) << "level " << d.level << " page (" << d.page.x << ", " << d.page.y << "): worst " << worst;
     }
+}
+
+// A point light 3 m above a scene's centre (faces 0-5) and a spot beside it looking down (face 6): the
+// pages of spot and point light faces are the faces' perspective projections cropped to each page
+// (virtual_face_tiles.comp), drawn by the compute rasterizer as the hardware draws them. The demo's
+// casters, and the tilted ground, whose depth changes across every page (a level ground seen straight
+// from above has one depth everywhere, which would hide a page drawn at the wrong place).
+void expectFacePagesMatchTheHardware(gpu::Device& gpu, const Scene& scene) {
+    const glm::vec3 wsLight = scene.wsBounds.center() + glm::vec3(0.0f, 3.0f, 0.0f);
+    std::vector<VirtualFace> faces;
+    for (const glm::vec3& direction : pointLightFaceDirections())
+        faces.push_back(makeVirtualFace(kFaceConfig, wsLight, direction, 1.0f, 0.1f, 30.0f, 2.0f));
+    faces.push_back(makeVirtualFace(kFaceConfig, wsLight + glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f), 0.6f,
+                                    0.1f, 30.0f, 2.0f));
+    constexpr uint32_t kFaces = 7, kDown = 3, kSpot = 6;
+    PageRig rig(gpu, scene, faces);
+    // Mip 0 pages at the centre of the light's downward face and of the spot, every mip of the downward
+    // face, and a page of each side face near its bottom edge (where the ground is).
+    std::vector<PageDraw> draws = {{kDown, {8, 8}, 0},  {kDown, {7, 8}, 1},  {kSpot, {8, 7}, 2},
+                                   {kFaces + kDown, {4, 3}, 3}, {2 * kFaces + kDown, {2, 2}, 4},
+                                   {3 * kFaces + kDown, {1, 0}, 5}, {4 * kFaces + kDown, {0, 0}, 6},
+                                   {4 * kFaces + kSpot, {0, 0}, 7}};
+    for (uint32_t face : {0u, 1u, 4u, 5u}) draws.push_back({kFaces + face, {4, 7}, 8 + face});
+    rig.draw(draws);
+    const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
+    uint32_t pagesWithCasters = 0;
+    for (const PageDraw& d : draws) {
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
+        const std::string what = "face " + std::to_string(d.level % kFaces) + " mip " + std::to_string(d.level / kFaces) +
+                                 " page (" + std::to_string(d.page.x) + ", " + std::to_string(d.page.y) + ")";
+        EXPECT_LE(c.differ, c.texels / 1000) << what << ": " << c.differ << " texels differ, worst depth difference " << c.worst;
+        pagesWithCasters += c.written > c.texels / 4;
+    }
+    EXPECT_GE(pagesWithCasters, 8u) << "most pages see the ground or a caster";
+}
+
+TEST_F(VirtualPageDrawTest, FacePagesMatchTheHardwareRasterizerTexelForTexel) {
+    {
+        SCOPED_TRACE("demo");
+        expectFacePagesMatchTheHardware(gpu(), makeDemoScene());
+    }
+    SCOPED_TRACE("tilted ground");
+    expectFacePagesMatchTheHardware(gpu(), groundScene());
 }
 
 }  // namespace

@@ -86,6 +86,19 @@ TEST(VirtualFaces, AFilterReadsThePagesItsReachCrossesWithinTheMip) {
     EXPECT_EQ(corner.max, glm::ivec2(0, 3));
 }
 
+TEST(VirtualFaces, APageProjectionMapsThePageSquareOfItsMipOntoTheWholeClipSquare) {
+    const VirtualFace face = downwardSpot();
+    // A ground point at NDC (0.3, -0.6) of the face lies in page (2, 0) of mip 1 (4 pages: NDC [0, 0.5] x
+    // [-1, -0.5]), at 60 % and 80 % of that page's square.
+    const glm::vec4 onFace(0.3f, -0.6f, 0.5f, 1.0f);
+    const glm::vec4 world = glm::inverse(face.clipFromWorld) * onFace;
+    const glm::vec4 clip = virtualFacePageClipFromWorld(face, 8, 1, {2, 0}) * world;
+    EXPECT_NEAR(clip.x / clip.w, 0.2f, 1e-4f);
+    EXPECT_NEAR(clip.y / clip.w, 0.6f, 1e-4f);
+    EXPECT_NEAR(clip.z / clip.w, 0.5f, 1e-4f) << "depth as the face's";
+    EXPECT_EQ(facePages(kConfig, 1, glm::vec2(0.3f, -0.6f), 0.0f).min, glm::ivec2(2, 0));
+}
+
 // 2 m above the ground looking 40 degrees down along -z at 64 x 48.
 CameraView groundCamera() {
     Camera camera;
