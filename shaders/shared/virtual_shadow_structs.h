@@ -32,7 +32,10 @@ struct VirtualShadowLookupData {
     float texelsPerMetre;         // level 0's virtual texels per light-space metre: resolution / firstLevelSize
     uint poolOriginY;             // pool texture texels: this map's pool starts at row poolOriginY, column 0
     uint firstEntry;              // this map's entry e is record firstEntry + e of the bound entry buffer
-    uint reserved2;
+    // 0: a clipmap (levels[] are its windows). Else the faces of spot and point lights (shadows/virtual_faces.h):
+    // a table of fixed windows, level = mip * faceCount + face, the next coarser mip faceCount levels on;
+    // lightRotationFromWorld, the depth fields, firstLevelSize, texelsPerMetre and levels[] unused.
+    uint faceCount;
     VirtualPageLevelWindow levels[kVirtualPageMaxLevels];
 };
 PENUMBRA_CHECK_SIZE(VirtualShadowLookupData, 112 + 16 * 16)

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shadows/spot_projection.h"
 
 namespace penumbra {
 
@@ -28,8 +29,9 @@ VirtualClipmapConfig clipmapOf(const VirtualShadowLookupData& data) {
 // holds the texel's centre (texel >> k: each level halves the texels; C++20's >> floors negatives too).
 bool texelDepth(const VirtualShadowLookupData& data, const VirtualShadowPages& pages, uint32_t level,
                 const glm::ivec2& texel, float& depth) {
-    for (uint32_t coarser = level; coarser < data.levelCount; ++coarser) {
-        const int shift = int(coarser - level);
+    const uint32_t stride = data.faceCount > 0 ? data.faceCount : 1u;  // the next coarser level (mip)
+    for (uint32_t coarser = level; coarser < data.levelCount; coarser += stride) {
+        const int shift = int((coarser - level) / stride);
         const glm::ivec2 t(texel.x >> shift, texel.y >> shift);
         const glm::ivec2 page = virtualShadowPageOfTexel(data, t);
         const int32_t physical = virtualShadowReadyPage(data, pages, coarser, page);
@@ -53,6 +55,19 @@ float texelLit(const VirtualShadowLookupData& data, const VirtualShadowPages& pa
 }
 
 float mixFloat(float a, float b, float t) { return a * (1.0f - t) + b * t; }  // GLSL mix
+
+// The bilinear-weighted compare of the 2 x 2 texels of `level` around t (texel units, centres at i + 0.5).
+float bilinearLit(const VirtualShadowLookupData& data, const VirtualShadowPages& pages, uint32_t level, const glm::vec2& t,
+                  float depth) {
+    const glm::vec2 corner = glm::floor(t - 0.5f);  // texel (i, j) of the 2 x 2 block
+    const glm::vec2 f = t - 0.5f - corner;
+    const glm::ivec2 c(corner);
+    const float lit00 = texelLit(data, pages, level, c, depth);
+    const float lit10 = texelLit(data, pages, level, c + glm::ivec2(1, 0), depth);
+    const float lit01 = texelLit(data, pages, level, c + glm::ivec2(0, 1), depth);
+    const float lit11 = texelLit(data, pages, level, c + glm::ivec2(1, 1), depth);
+    return mixFloat(mixFloat(lit00, lit10, f.x), mixFloat(lit01, lit11, f.x), f.y);
+}
 
 }  // namespace
 
@@ -80,9 +95,13 @@ gpu_data::VirtualShadowLookupData packVirtualShadowLookup(const VirtualClipmapCo
 }
 
 int32_t virtualShadowEntryIndex(const VirtualShadowLookupData& data, uint32_t level, const glm::ivec2& page) {
+    const int n = int(data.pagesPerSide);
+    if (data.faceCount > 0) {  // fixed windows: slot = page
+        if (page.x < 0 || page.y < 0 || page.x >= n || page.y >= n) return -1;
+        return int32_t((level * data.pagesPerSide + uint32_t(page.y)) * data.pagesPerSide + uint32_t(page.x));
+    }
     const gpu_data::VirtualPageLevelWindow& window = data.levels[level];
     const glm::ivec2 offset = page - glm::ivec2(window.minPageX, window.minPageY);
-    const int n = int(data.pagesPerSide);
     if (offset.x < 0 || offset.y < 0 || offset.x >= n || offset.y >= n) return -1;
     const glm::uvec2 slot = (glm::uvec2(offset) + glm::uvec2(window.minSlotX, window.minSlotY)) % data.pagesPerSide;
     return int32_t((level * data.pagesPerSide + slot.y) * data.pagesPerSide + slot.x);
@@ -116,14 +135,41 @@ VirtualShadowSample sampleVirtualShadow(const VirtualShadowLookupData& data, con
         if (!(std::abs(t.x) <= kMaxTexel && std::abs(t.y) <= kMaxTexel)) continue;
         const glm::ivec2 page = virtualShadowPageOfTexel(data, glm::ivec2(glm::floor(t)));
         if (virtualShadowReadyPage(data, pages, level, page) < 0) continue;
-        const glm::vec2 corner = glm::floor(t - 0.5f);  // texel (i, j) of the 2 x 2 block; centres at i + 0.5
-        const glm::vec2 f = t - 0.5f - corner;
-        const glm::ivec2 c(corner);
-        const float lit00 = texelLit(data, pages, level, c, depth);
-        const float lit10 = texelLit(data, pages, level, c + glm::ivec2(1, 0), depth);
-        const float lit01 = texelLit(data, pages, level, c + glm::ivec2(0, 1), depth);
-        const float lit11 = texelLit(data, pages, level, c + glm::ivec2(1, 1), depth);
-        return {mixFloat(mixFloat(lit00, lit10, f.x), mixFloat(lit01, lit11, f.x), f.y), int32_t(level)};
+        return {bilinearLit(data, pages, level, t, depth), int32_t(level)};
+    }
+    return {};
+}
+
+gpu_data::VirtualShadowLookupData packVirtualFaceLookup(const VirtualFaceConfig& config, uint32_t faceCount,
+                                                        uint32_t poolPagesPerSide) {
+    PENUMBRA_ASSERT(faceCount > 0);
+    VirtualShadowLookupData data{};
+    data.resolution = config.resolution;
+    data.pagesPerSide = virtualFacePagesPerSide(config);
+    data.pageSize = config.pageSize;
+    data.levelCount = virtualFaceMipCount(config) * faceCount;
+    data.poolPagesPerSide = poolPagesPerSide;
+    data.faceCount = faceCount;
+    return data;
+}
+
+VirtualShadowSample sampleVirtualFace(const VirtualShadowLookupData& data, const VirtualShadowPages& pages,
+                                      std::span<const VirtualFace> faces, const VirtualFaceLight& light,
+                                      const glm::vec3& wsPosition, float wsFootprint) {
+    PENUMBRA_ASSERT(data.faceCount == faces.size() && light.firstFace < faces.size());
+    const uint32_t face =
+        light.firstFace + (light.point ? pointLightFaceOf(wsPosition - faces[light.firstFace].wsPosition) : 0u);
+    const std::optional<FacePoint> point = projectOntoFace(faces[face], wsPosition);
+    if (!point) return {};  // behind the light or outside its face: nothing cast
+    const VirtualFaceConfig config{data.resolution, data.pageSize};
+    const uint32_t mipCount = data.levelCount / data.faceCount;
+    for (uint32_t mip = faceMipForFootprint(config, faces[face].tanHalfFov, point->lightDistance, wsFootprint);
+         mip < mipCount; ++mip) {
+        const uint32_t level = virtualFaceLevel(mip, face, data.faceCount);
+        const glm::vec2 t = (point->ndc * 0.5f + 0.5f) * float(data.resolution >> mip);  // the mip's texels
+        const glm::ivec2 page = virtualShadowPageOfTexel(data, glm::ivec2(glm::floor(t)));
+        if (virtualShadowReadyPage(data, pages, level, page) < 0) continue;
+        return {bilinearLit(data, pages, level, t, point->depth), int32_t(level)};
     }
     return {};
 }

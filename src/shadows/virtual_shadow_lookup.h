@@ -24,6 +24,7 @@
 #include <glm/glm.hpp>
 
 #include "shadows/virtual_clipmap.h"
+#include "shadows/virtual_faces.h"
 #include "virtual_page_structs.h"
 #include "virtual_shadow_structs.h"
 
@@ -66,5 +67,19 @@ glm::ivec2 virtualShadowPageOfTexel(const gpu_data::VirtualShadowLookupData& dat
 // The lookup at receiver wsPosition whose pixel covers wsFootprint metres.
 VirtualShadowSample sampleVirtualShadow(const gpu_data::VirtualShadowLookupData& data, const VirtualShadowPages& pages,
                                         const glm::vec3& wsPosition, float wsFootprint);
+
+// ---- Spot and point lights' faces (shadows/virtual_faces.h): one table of fixed windows for all of them,
+// level = mip * faceCount + face. The same rules per receiver: the face that holds it (a point light's
+// face of the major axis), its footprint's mip or the first coarser ready one, the 2 x 2 bilinear compare
+// of that mip's texels around it (a texel of a page not ready reads the next coarser ready mip's), the
+// receiver's depth the face's perspective depth; behind the light or outside the face: lit, no level.
+
+// The lookup data of a faces' table of faceCount faces (faceCount > 0; its own storage).
+gpu_data::VirtualShadowLookupData packVirtualFaceLookup(const VirtualFaceConfig& config, uint32_t faceCount,
+                                                        uint32_t poolPagesPerSide);
+// The lookup at receiver wsPosition (biases applied) of `light`, whose pixel covers wsFootprint metres.
+VirtualShadowSample sampleVirtualFace(const gpu_data::VirtualShadowLookupData& data, const VirtualShadowPages& pages,
+                                      std::span<const VirtualFace> faces, const VirtualFaceLight& light,
+                                      const glm::vec3& wsPosition, float wsFootprint);
 
 }  // namespace penumbra
