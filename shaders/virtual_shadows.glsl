@@ -122,6 +122,8 @@ float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup l
 // a receiver `viewDepth` from the camera; `level` is the level that served it (-1: none, lit).
 float sampleDirectionalVirtual(uint slot, DirectionalShadowLight light, uint biasMode, ShadowReceiver receiver,
                                float viewDepth, out int level) {
+    level = -1;
+    if (slot >= virtualShadows.mapCount) return 1.0;  // a light with no map this frame: nothing cast
     VirtualShadowLookupData data = virtualShadows.maps[slot];
     vec3 lsPosition = (data.lightRotationFromWorld * vec4(receiver.wsPosition, 1.0)).xyz;
     level = virtualReceiverLevel(data, lsPosition, viewDepth * virtualShadows.wsFootprintPerDepth);

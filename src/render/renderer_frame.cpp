@@ -350,7 +350,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
 
     virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), settings.render.meshletCulling,
                               view, stats.warnings);
-    stats.virtualPages.maps = virtualShadows.active() ? std::min(virtualShadows.mapCount(), uint32_t(plan.directional.lights.size())) : 0u;
+    stats.virtualPages.maps = virtualShadows.mapsInUse(uint32_t(plan.directional.lights.size()));
     stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
     const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
     try {

@@ -47,7 +47,7 @@ void Renderer::State::recordDirectionalInputs(FrameRecording& recording, MainPas
         virtualShadows.record(commands, depth, view, directional, scene.wsBounds,
                               std::span(recording.frame.readback.rasterCounters).subspan(2));
         commands.endTimer();
-        const uint32_t maps = std::min(virtualShadows.mapCount(), uint32_t(directional.lights.size()));
+        const uint32_t maps = virtualShadows.mapsInUse(uint32_t(directional.lights.size()));
         FrameReadbackLayout& readback = recording.frame.readback;
         readback.virtualLevelCount = virtualShadows.levelCount();
         for (uint32_t map = 0; map < maps; ++map) {

@@ -155,7 +155,7 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
                             const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds,
                             std::span<uint64_t> rasterReadback) {
     if (!active_) return;
-    const uint32_t lights = std::min(uint32_t(plan.lights.size()), mapCount());
+    const uint32_t lights = mapsInUse(uint32_t(plan.lights.size()));
     block_.mapCount = lights;
     for (uint32_t slot = 0; slot < lights; ++slot) {
         VirtualShadowMap& map = *maps_[slot];

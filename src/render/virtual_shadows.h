@@ -17,6 +17,7 @@
 // pass their old and new world bounds (casterChanged), whose pages in every level are drawn again;
 // more rectangles than one record holds, a material edit (alpha cut-outs) or shadows.virtual.cache =
 // false redraw everything requested.
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <span>
@@ -73,6 +74,9 @@ public:
                 const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds, std::span<uint64_t> rasterReadback);
 
     uint32_t mapCount() const { return uint32_t(maps_.size()); }
+    // The maps a frame of lightCount reserved directional lights records and reads back: one per light
+    // while there are maps, none when the mode is not virtual.
+    uint32_t mapsInUse(uint32_t lightCount) const { return active_ ? std::min(mapCount(), lightCount) : 0u; }
     gpu::BufferSlice stats(uint32_t map) const { return maps_[map]->stats(); }
     gpu::BufferSlice levelStats(uint32_t map) const { return maps_[map]->levelStats(); }
     uint32_t levelCount() const { return config_.clipmap.levelCount; }
