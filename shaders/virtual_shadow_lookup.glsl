@@ -46,9 +46,13 @@ ivec2 virtualShadowPageOfTexel(VirtualShadowLookupData data, ivec2 texel) {
 // The entry of global page `page` of `level` (virtual_page_table.glsl entryOfWindowPage), or -1 when the
 // page lies outside the level's window.
 int virtualShadowEntryIndex(VirtualShadowLookupData data, uint level, ivec2 page) {
+    const int n = int(data.pagesPerSide);
+    if (data.faceCount > 0u) {  // a faces' table of fixed windows: slot = page
+        if (any(lessThan(page, ivec2(0))) || any(greaterThanEqual(page, ivec2(n)))) return -1;
+        return int((level * data.pagesPerSide + uint(page.y)) * data.pagesPerSide + uint(page.x));
+    }
     const VirtualPageLevelWindow window = data.levels[level];
     const ivec2 offset = page - ivec2(window.minPageX, window.minPageY);
-    const int n = int(data.pagesPerSide);
     if (any(lessThan(offset, ivec2(0))) || any(greaterThanEqual(offset, ivec2(n)))) return -1;
     const uvec2 slot = (uvec2(offset) + uvec2(window.minSlotX, window.minSlotY)) % data.pagesPerSide;
     return int((level * data.pagesPerSide + slot.y) * data.pagesPerSide + slot.x);
@@ -69,8 +73,9 @@ int virtualShadowReadyPage(VirtualShadowLookupData data, uint level, ivec2 page)
 // centre in the first coarser ready level (texel >> k: levels halve the texel count, and the arithmetic
 // shift floors negative texels too), else nothing cast.
 bool virtualShadowTexelDepth(VirtualShadowLookupData data, uint level, ivec2 texel, out float depth) {
-    for (uint coarser = level; coarser < data.levelCount; ++coarser) {
-        const ivec2 t = texel >> int(coarser - level);
+    const uint stride = data.faceCount > 0u ? data.faceCount : 1u;  // the next coarser level (a faces' mip)
+    for (uint coarser = level; coarser < data.levelCount; coarser += stride) {
+        const ivec2 t = texel >> int((coarser - level) / stride);
         const ivec2 page = virtualShadowPageOfTexel(data, t);
         const int physical = virtualShadowReadyPage(data, coarser, page);
         if (physical < 0) continue;
@@ -89,6 +94,18 @@ float virtualShadowTexelLit(VirtualShadowLookupData data, uint level, ivec2 texe
     return depth <= stored ? 1.0 : 0.0;
 }
 
+// The bilinear-weighted compare of the 2 x 2 texels of `level` around t (texel units, centres at i + 0.5).
+float virtualShadowBilinearLit(VirtualShadowLookupData data, uint level, vec2 t, float depth) {
+    const vec2 corner = floor(t - 0.5);  // texel (i, j) of the 2 x 2 block
+    const vec2 f = t - 0.5 - corner;
+    const ivec2 c = ivec2(corner);
+    const float lit00 = virtualShadowTexelLit(data, level, c, depth);
+    const float lit10 = virtualShadowTexelLit(data, level, c + ivec2(1, 0), depth);
+    const float lit01 = virtualShadowTexelLit(data, level, c + ivec2(0, 1), depth);
+    const float lit11 = virtualShadowTexelLit(data, level, c + ivec2(1, 1), depth);
+    return mix(mix(lit00, lit10, f.x), mix(lit01, lit11, f.x), f.y);
+}
+
 // The receiver's light-space depth in the pages' [0, 1] (lsDepthNear to lsDepthFar).
 float virtualShadowDepth(VirtualShadowLookupData data, vec3 lsPosition) {
     return (data.lsDepthNear - lsPosition.z) * data.depthPerMetre;
@@ -104,14 +121,7 @@ VirtualShadowSample sampleVirtualShadow(VirtualShadowLookupData data, vec3 wsPos
         const vec2 t = ldexp(texel0, ivec2(-int(level)));  // exact: a power of two
         if (any(greaterThan(abs(t), vec2(kVirtualShadowMaxTexel)))) continue;
         if (virtualShadowReadyPage(data, level, virtualShadowPageOfTexel(data, ivec2(floor(t)))) < 0) continue;
-        const vec2 corner = floor(t - 0.5);  // texel (i, j) of the 2 x 2 block; centres at i + 0.5
-        const vec2 f = t - 0.5 - corner;
-        const ivec2 c = ivec2(corner);
-        const float lit00 = virtualShadowTexelLit(data, level, c, depth);
-        const float lit10 = virtualShadowTexelLit(data, level, c + ivec2(1, 0), depth);
-        const float lit01 = virtualShadowTexelLit(data, level, c + ivec2(0, 1), depth);
-        const float lit11 = virtualShadowTexelLit(data, level, c + ivec2(1, 1), depth);
-        return VirtualShadowSample(mix(mix(lit00, lit10, f.x), mix(lit01, lit11, f.x), f.y), int(level));
+        return VirtualShadowSample(virtualShadowBilinearLit(data, level, t, depth), int(level));
     }
     return VirtualShadowSample(1.0, kVirtualShadowNoLevel);
 }

@@ -147,6 +147,7 @@ PENUMBRA_CONST(uint, kShadowProbeBindingEntries, 1u)  // VirtualPageEntry per (l
 PENUMBRA_CONST(uint, kShadowProbeBindingPool, 2u)     // sampler2D, the pool's R32F image (texelFetch)
 PENUMBRA_CONST(uint, kShadowProbeBindingPoints, 3u)   // VirtualShadowProbePoint[]
 PENUMBRA_CONST(uint, kShadowProbeBindingResults, 4u)  // VirtualShadowProbeResult[] (written)
+PENUMBRA_CONST(uint, kShadowProbeBindingFaces, 5u)    // virtual_face_probe.comp: VirtualFaceData[]
 
 // Push constants of the passes whose data has no header of its own.
 struct CasterConstants {  // shadow_caster.vert

@@ -66,8 +66,8 @@ PENUMBRA_CHECK_SIZE(VirtualShadowProbeResult, 16)
 struct VirtualShadowProbeConstants {
     uint pointCount;
     uint entryCount;  // VirtualPageEntry records bound (at least the lookup's firstEntry + levelCount * pagesPerSide^2)
-    uint reserved0;
-    uint reserved1;
+    uint firstFace;   // virtual_face_probe.comp: the light's first face
+    uint point;       // and 1 when it has six (a point light)
 };
 PENUMBRA_CHECK_SIZE(VirtualShadowProbeConstants, 16)
 

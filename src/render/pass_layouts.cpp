@@ -226,12 +226,14 @@ std::vector<BindingDesc> virtualPageDrawBindings(const std::string& shader) {
     throw Error("internal: no virtual page drawing bindings for '" + shader + "'");
 }
 
-std::vector<BindingDesc> virtualShadowProbeBindings() {
-    return {{"ShadowProbeLookupBlock", kShadowProbeBindingLookup, kUniform, kC},
-            {"ShadowProbeEntryBlock", kShadowProbeBindingEntries, kStorage, kC},
-            {"pool", kShadowProbeBindingPool, kSampled, kC},
-            {"ShadowProbePointBlock", kShadowProbeBindingPoints, kStorage, kC},
-            {"ShadowProbeResultBlock", kShadowProbeBindingResults, kStorage, kC}};
+std::vector<BindingDesc> virtualShadowProbeBindings(bool faces) {
+    std::vector<BindingDesc> bindings = {{"ShadowProbeLookupBlock", kShadowProbeBindingLookup, kUniform, kC},
+                                         {"ShadowProbeEntryBlock", kShadowProbeBindingEntries, kStorage, kC},
+                                         {"pool", kShadowProbeBindingPool, kSampled, kC},
+                                         {"ShadowProbePointBlock", kShadowProbeBindingPoints, kStorage, kC},
+                                         {"ShadowProbeResultBlock", kShadowProbeBindingResults, kStorage, kC}};
+    if (faces) bindings.push_back({"ShadowProbeFaceBlock", kShadowProbeBindingFaces, kStorage, kC});
+    return bindings;
 }
 
 }  // namespace penumbra

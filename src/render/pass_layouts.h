@@ -35,6 +35,6 @@ std::vector<gpu::BindingDesc> virtualFaceMarkBindings(bool visibility);
 std::vector<gpu::BindingDesc> virtualPageTableBindings(const std::string& shader);
 // Virtual page drawing (virtual_page_tiles.comp, virtual_page_copy.comp); throws Error for another shader.
 std::vector<gpu::BindingDesc> virtualPageDrawBindings(const std::string& shader);
-std::vector<gpu::BindingDesc> virtualShadowProbeBindings();  // virtual_shadow_probe.comp (tests)
+std::vector<gpu::BindingDesc> virtualShadowProbeBindings(bool faces = false);  // virtual_shadow_probe.comp, or virtual_face_probe.comp (tests)
 
 }  // namespace penumbra

@@ -1,7 +1,8 @@
 // The spot and point lights' virtual shadow lookup (shadows/virtual_shadow_lookup.h sampleVirtualFace) on
 // pages chosen, allocated and drawn by the GPU passes (the faces' marking, the page table of fixed windows,
 // the page drawing), against the ray tracer (reference/embree_scene.h): ground points that are clearly
-// lit or clearly shadowed (the rays from the point and from 2 cm around it all agree) are classified alike.
+// lit or clearly shadowed (the rays from the point and from 2 cm around it all agree) are classified alike;
+// and the GLSL twin (virtual_face_lookup.glsl, through the tests' virtual_face_probe.comp) equals it.
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -86,29 +87,31 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
     VirtualPageDrawPass draw(gpu(), gpuScene, raster, kConfig, kPoolSide);
     std::vector<gpu_data::VirtualFaceData> faceData;
     for (const VirtualFace& face : faces) faceData.push_back(packVirtualFace(face));
-    const gpu::BufferHandle faceBuffer = gpu().createBuffer(faceData.size() * sizeof(faceData[0]), gpu::kBufferStorage,
-                                                            gpu::MemoryKind::HostVisible, faceData.data(), "test faces");
+    const uint64_t faceBytes = faceData.size() * sizeof(faceData[0]);
+    const gpu::BufferHandle faceBuffer = gpu().createBuffer(faceBytes, gpu::kBufferStorage, gpu::MemoryKind::HostVisible,
+                                                            faceData.data(), "test faces");
     const std::vector<gpu::DescriptorWrite> sceneWrites = {{gpu_data::kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
                                                            {gpu_data::kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
                                                            {gpu_data::kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}};
     gpu::CommandList commands = gpu().beginCommands();
     VirtualPageDrawInputs inputs{table.drawList(), nullptr, &sceneWrites, true};
-    inputs.faces = {faceBuffer, 0, faceData.size() * sizeof(faceData[0])};
+    inputs.faces = {faceBuffer, 0, faceBytes};
     inputs.faceCount = 6;
     draw.record(commands, inputs);
     table.recordMarkDrawn(commands);
     gpu().submitAndWait(commands);
-    gpu().destroy(faceBuffer);
     const VirtualPageTableState state = table.readState();
     EXPECT_EQ(state.stats.overflowed, 0u);
     EXPECT_GT(state.stats.allocated, 20u);
-    ShadowProbe probe(gpu());
+    ShadowProbe probe(gpu(), true);
     const std::vector<float> pool = probe.readPool(draw.poolTexture(), draw.poolSide());
     const gpu_data::VirtualShadowLookupData data = packVirtualFaceLookup(kConfig, 6, kPoolSide);
 
     // Ground points the view sees, each with its pixel's footprint, lifted 3 cm off the ground (a normal
     // offset of several texels of the mips they read).
     const EmbreeScene tracer(scene);
+    std::vector<gpu_data::VirtualShadowProbePoint> probePoints;
+    std::vector<VirtualShadowSample> onCpu;
     size_t points = 0, inShadow = 0, wrong = 0, unserved = 0;
     for (uint32_t y = 0; y < view.height; y += 2)
         for (uint32_t x = 0; x < view.width; x += 2) {
@@ -119,8 +122,10 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
             const int clear = clearShadow(tracer, receiver);
             if (clear < 0) continue;
             const float vsDepth = -(view.viewFromWorld * glm::vec4(hit->wsPosition, 1.0f)).z;
-            const VirtualShadowSample s = sampleVirtualFace(data, {state.entries, pool}, faces, lights[0], receiver,
-                                                            wsPixelFootprint(view, vsDepth));
+            const float wsFootprint = wsPixelFootprint(view, vsDepth);
+            const VirtualShadowSample s = sampleVirtualFace(data, {state.entries, pool}, faces, lights[0], receiver, wsFootprint);
+            probePoints.push_back({receiver, wsFootprint});
+            onCpu.push_back(s);
             ++points;
             inShadow += clear == 1;
             unserved += s.level == gpu_data::kVirtualShadowNoLevel;
@@ -132,6 +137,17 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
     EXPECT_GT(points - inShadow, 3000u);
     EXPECT_EQ(unserved, 0u) << "every marked receiver's page is drawn";
     EXPECT_LE(wrong, points / 200) << "at most 0.5 % disagree";
+    // The GLSL lookup (what the lit pass runs) equals its CPU reference at the same points: the same level,
+    // the shadow term within 1e-4 (the float rounding of the projection may pick another texel only within
+    // a rounding error of a texel edge, where both weights are then near 0 or 1).
+    const std::vector<gpu_data::VirtualShadowProbeResult> onGpu =
+        probe.runFaces(data, table.entries(), table.entryCount(), draw.poolTexture(), {faceBuffer, 0, faceBytes}, 0, true,
+                       probePoints);
+    size_t differ = 0;
+    for (size_t i = 0; i < onGpu.size(); ++i)
+        differ += onGpu[i].level != onCpu[i].level || std::abs(onGpu[i].lit - onCpu[i].lit) > 1e-4f;
+    EXPECT_LE(differ, onGpu.size() / 1000) << differ << " of " << onGpu.size() << " points differ";
+    gpu().destroy(faceBuffer);
 }
 
 }  // namespace

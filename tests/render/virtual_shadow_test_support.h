@@ -99,13 +99,14 @@ inline SceneDepth renderSceneDepth(gpu::Device& gpu, const Scene& scene, const C
     return depth;
 }
 
-// Runs virtual_shadow_probe.comp over points, with a table and a pool texture.
+// Runs virtual_shadow_probe.comp over points, with a table and a pool texture; with faces,
+// virtual_face_probe.comp (spot and point light faces' lookup, runFaces).
 class ShadowProbe {
 public:
-    explicit ShadowProbe(gpu::Device& gpu) : gpu_(gpu) {
+    explicit ShadowProbe(gpu::Device& gpu, bool faces = false) : gpu_(gpu) {
         gpu::ComputePipelineDesc desc;
-        desc.shader = desc.debugName = "virtual_shadow_probe.comp";
-        desc.bindings = virtualShadowProbeBindings();
+        desc.shader = desc.debugName = faces ? "virtual_face_probe.comp" : "virtual_shadow_probe.comp";
+        desc.bindings = virtualShadowProbeBindings(faces);
         desc.pushConstantSize = sizeof(gpu_data::VirtualShadowProbeConstants);
         pipeline_ = gpu.createComputePipeline(desc);
         gpu::SamplerDesc nearest;
@@ -136,6 +137,26 @@ public:
     std::vector<gpu_data::VirtualShadowProbeResult> run(const gpu_data::VirtualShadowLookupData& data, gpu::BufferHandle table,
                                                         uint32_t entryCount, gpu::TextureHandle pool,
                                                         const std::vector<gpu_data::VirtualShadowProbePoint>& points) {
+        return run(data, table, entryCount, pool, points, {}, {uint32_t(points.size()), entryCount, 0, 0});
+    }
+
+    // The faces' lookup (a probe made with faces) of the light whose faces start at firstFace (six when
+    // `point`), faces: the table's VirtualFaceData.
+    std::vector<gpu_data::VirtualShadowProbeResult> runFaces(const gpu_data::VirtualShadowLookupData& data,
+                                                             gpu::BufferHandle table, uint32_t entryCount,
+                                                             gpu::TextureHandle pool, gpu::BufferSlice faces,
+                                                             uint32_t firstFace, bool point,
+                                                             const std::vector<gpu_data::VirtualShadowProbePoint>& points) {
+        return run(data, table, entryCount, pool, points, faces,
+                   {uint32_t(points.size()), entryCount, firstFace, point ? 1u : 0u});
+    }
+
+private:
+    std::vector<gpu_data::VirtualShadowProbeResult> run(const gpu_data::VirtualShadowLookupData& data, gpu::BufferHandle table,
+                                                        uint32_t entryCount, gpu::TextureHandle pool,
+                                                        const std::vector<gpu_data::VirtualShadowProbePoint>& points,
+                                                        gpu::BufferSlice faces,
+                                                        const gpu_data::VirtualShadowProbeConstants& constants) {
         using gpu::Usage;
         using namespace gpu_data;
         const auto hostBuffer = [&](uint32_t usage, const void* bytes, size_t size, const char* name) {
@@ -153,9 +174,9 @@ public:
                                                {kShadowProbeBindingEntries, table, {}, {}},
                                                {kShadowProbeBindingPool, {}, pool, sampler_},
                                                {kShadowProbeBindingPoints, input, {}, {}},
-                                               {kShadowProbeBindingResults, output, {}, {}}};
-        commands.pushDescriptors(writes);
-        const VirtualShadowProbeConstants constants{uint32_t(points.size()), entryCount, 0, 0};
+                                               {kShadowProbeBindingResults, output, {}, {}},
+                                               {kShadowProbeBindingFaces, faces}};
+        commands.pushDescriptors(std::span(writes, faces.buffer ? 6 : 5));
         commands.pushConstants(&constants, sizeof(constants));
         commands.dispatch((uint32_t(points.size()) + kVirtualShadowProbeGroup - 1) / kVirtualShadowProbeGroup, 1);
         commands.pass("test/host", {gpu::use(output, Usage::HostRead)});
@@ -166,6 +187,7 @@ public:
         return results;
     }
 
+public:
     // An R32F texture of side x side texels, row by row.
     gpu::TextureHandle uploadPool(const std::vector<float>& texels, uint32_t side) {
         const gpu::BufferHandle staging = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,

@@ -1,0 +1,25 @@
+// The shadow lookup of spot and point lights' virtual maps: mirrors src/shadows/virtual_shadow_lookup.h
+// sampleVirtualFace with the same float operations (the render tests compare the two on pages the GPU
+// drew). The includer includes virtual_shadow_lookup.glsl first (its page table and pool reads) and
+// picks the face: a spot light's one, or a point light's face of the major axis (virtualPointFaceOf).
+#ifndef PENUMBRA_VIRTUAL_FACE_LOOKUP_GLSL
+#define PENUMBRA_VIRTUAL_FACE_LOOKUP_GLSL
+#include "virtual_faces.glsl"
+
+// The lookup at receiver wsPosition (biases applied) on face `face` (its index in the table) whose pixel
+// covers wsFootprint metres: its footprint's mip or the first coarser ready one, the 2 x 2 compare there.
+VirtualShadowSample sampleVirtualFace(VirtualShadowLookupData data, VirtualFaceData faceData, uint face, vec3 wsPosition,
+                                      float wsFootprint) {
+    FacePoint point;
+    if (!projectOntoFace(faceData, wsPosition, point)) return VirtualShadowSample(1.0, kVirtualShadowNoLevel);
+    const uint mipCount = data.levelCount / data.faceCount;
+    for (uint mip = faceMipForFootprint(data.resolution, mipCount, faceData.tanHalfFov, point.lightDistance, wsFootprint);
+         mip < mipCount; ++mip) {
+        const uint level = mip * data.faceCount + face;
+        const vec2 t = (point.ndc * 0.5 + 0.5) * float(data.resolution >> mip);  // the mip's texels
+        if (virtualShadowReadyPage(data, level, virtualShadowPageOfTexel(data, ivec2(floor(t)))) < 0) continue;
+        return VirtualShadowSample(virtualShadowBilinearLit(data, level, t, point.depth), int(level));
+    }
+    return VirtualShadowSample(1.0, kVirtualShadowNoLevel);
+}
+#endif
