@@ -72,6 +72,7 @@ public:
     // Marks an instance or material as changed; recordUpdates uploads it.
     void instanceChanged(uint32_t instance) { dirtyInstances_.push_back(instance); }
     void materialChanged(uint32_t material) { dirtyMaterials_.push_back(material); }
+    bool hasPendingUpdates() const { return !dirtyInstances_.empty() || !dirtyMaterials_.empty(); }
     // Copies the changed entries of `scene` (between beginFrame and submitFrame); returns the bytes
     // copied. They stay marked until updatesSubmitted(), so a frame abandoned after an error loses none.
     uint64_t recordUpdates(gpu::CommandList& commands, const Scene& scene);

@@ -64,7 +64,25 @@ std::optional<VisibleSurfaces> Renderer::State::tightFitSurfacesNow(const Settin
     // caller waits anyway or nothing earlier matches; else the latest finished frame's (none here).
     if (settings.shadows.directional.fit != CascadeFit::Tight || virtualDirectional(settings)) return std::nullopt;
     if (!oneShot && latestVisible && latestVisibleSize == glm::uvec2(view.width, view.height)) return std::nullopt;
+    // The depth pass draws the GPU's instances: the edits since the last frame go up first, or the fit
+    // would see the scene as it was.
+    editBytesUploaded = uploadSceneEditsNow();
     return visiblePass.now(scene, view);
+}
+
+uint64_t Renderer::State::uploadSceneEditsNow() {
+    if (!gpuScene.hasPendingUpdates()) return 0;
+    gpu::CommandList commands = device.beginFrame();
+    uint64_t bytes = 0;
+    try {
+        bytes = gpuScene.recordUpdates(commands, scene);
+    } catch (...) {
+        device.abandonFrame(commands);  // the edits stay marked for the frame that follows
+        throw;
+    }
+    device.submitFrame(commands);
+    gpuScene.updatesSubmitted();
+    return bytes;
 }
 
 void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view,
@@ -334,6 +352,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
 
     Stopwatch phase;
     std::optional<VisibleSurfaces> visibleNow;
+    editBytesUploaded = 0;
     try {
         visibleNow = tightFitSurfacesNow(settings, view, oneShot);
     } catch (const Error& error) {
@@ -376,7 +395,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     FrameRecording recording{commands, frame, settings, view, sizes, casterWrites};
     try {
         phase.restart();  // the wait for the slot's previous frame is not CPU work
-        stats.sceneBytesUploaded = gpuScene.recordUpdates(commands, scene);
+        stats.sceneBytesUploaded = editBytesUploaded + gpuScene.recordUpdates(commands, scene);
         uploadFrameInputs(recording, request, lights);
         const TilesToDraw& draw = chooseTilesToDraw(recording);
         stats.cpu.upload = phase.milliseconds();

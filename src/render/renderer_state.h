@@ -102,6 +102,7 @@ struct Renderer::State {
     RasterChoice mainViewChoice;
     std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
     glm::uvec2 latestVisibleSize{0};
+    uint64_t editBytesUploaded = 0;  // this frame's scene edits that uploadSceneEditsNow sent ahead of it
     glm::uvec3 rasterNeeded{0};  // the most large pieces / chunks / work items a finished frame asked the compute rasterizer for
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
@@ -153,6 +154,9 @@ private:
     bool chooseMainView(const Settings& settings, PendingFrame& frame) const;  // true: the visibility pass is wanted
     // The tight fit's visible surfaces of this very view, when the frame cannot plan with a finished one's.
     std::optional<VisibleSurfaces> tightFitSurfacesNow(const Settings& settings, const CameraView& view, bool oneShot);
+    // Submits the scene edits not yet on the GPU in a frame of their own (before a pass that reads the
+    // scene ahead of the next frame); returns the bytes copied.
+    uint64_t uploadSceneEditsNow();
     void planShadows(PendingFrame& frame, const Settings& settings, const CameraView& view,
                      const std::optional<VisibleSurfaces>& visibleNow);
     // The frame's lit pass variant; makes what the visibility-buffer main view needs when it may draw.

@@ -165,6 +165,26 @@ TEST_F(SceneUpdateTest, MovedCasterRendersAsAFreshSceneWithItMoved) {
     EXPECT_FALSE(after.pixels == before.pixels);
 }
 
+// The tight cascade fit of a one-shot render reads the view's depth before the frame: drawn from the
+// instances as they are after the edit, not as the GPU held them before it.
+TEST_F(SceneUpdateTest, AOneShotRenderAfterAnEditFitsTheCascadesToTheEditedScene) {
+    Light sun = makeDirectionalLight(glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f)), 3.0f);
+    Scene scene = boxUnderLight(sun);
+    Settings settings;
+    settings.shadows.directional.fit = CascadeFit::Tight;
+    Renderer renderer(device(), scene);
+    const Image before = renderer.render(shadowAov(0, 96), settings).image;
+    // The wall moves far off: the visible depth range changes, and with it the tight fit's cascades.
+    const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(-4.5f, 0.75f, -4.0f));
+    renderer.setInstanceTransform(2, moved);
+    const Image after = renderer.render(shadowAov(0, 96), settings).image;
+    scene.instances[2].worldFromObject = moved;
+    scene.instances[2].wsBounds = scene.meshes[scene.instances[2].meshIndex].osBounds.transformed(moved);
+    Renderer fresh(device(), scene);
+    EXPECT_TRUE(after.pixels == fresh.render(shadowAov(0, 96), settings).image.pixels);
+    EXPECT_FALSE(after.pixels == before.pixels);
+}
+
 TEST_F(SceneUpdateTest, OnlyTheChangedInstanceIsUploaded) {
     Renderer renderer(device(), boxUnderLight(testSpot(LightShadows::Soft)));
     const RenderResult first = renderer.render(shadowAov(0, 32), {});
