@@ -75,6 +75,40 @@ PageRect facePages(const VirtualFaceConfig& config, uint32_t mip, const glm::vec
     return {pageOf(texel - marginTexels), pageOf(texel + marginTexels)};
 }
 
+uint32_t casterFacePageRects(const VirtualFaceConfig& config, const VirtualFace& face, uint32_t faceIndex,
+                             uint32_t faceCount, const Aabb& wsBounds, LevelPageRect* out) {
+    if (!wsBounds.valid()) return 0;
+    glm::vec2 ndcMin(1e30f), ndcMax(-1e30f);
+    bool behind = false, allBeyondFar = true;
+    for (uint32_t i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? wsBounds.max.x : wsBounds.min.x, (i & 2) ? wsBounds.max.y : wsBounds.min.y,
+                               (i & 4) ? wsBounds.max.z : wsBounds.min.z);
+        const glm::vec4 clip = face.clipFromWorld * glm::vec4(corner, 1.0f);
+        if (!(clip.w > 0.0f)) {
+            behind = true;
+            continue;
+        }
+        const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        ndcMin = glm::min(ndcMin, ndc);
+        ndcMax = glm::max(ndcMax, ndc);
+        allBeyondFar = allBeyondFar && clip.z > clip.w;
+    }
+    if (behind) {  // the box reaches behind the light: its projection is unbounded
+        ndcMin = glm::vec2(-1.0f);
+        ndcMax = glm::vec2(1.0f);
+    } else if (allBeyondFar || ndcMax.x < -1.0f || ndcMax.y < -1.0f || ndcMin.x > 1.0f || ndcMin.y > 1.0f) {
+        return 0;  // nothing of it in the frustum
+    }
+    ndcMin = glm::clamp(ndcMin, glm::vec2(-1.0f), glm::vec2(1.0f));
+    ndcMax = glm::clamp(ndcMax, glm::vec2(-1.0f), glm::vec2(1.0f));
+    const uint32_t mips = virtualFaceMipCount(config);
+    for (uint32_t mip = 0; mip < mips; ++mip) {
+        const PageRect low = facePages(config, mip, ndcMin, 0.0f), high = facePages(config, mip, ndcMax, 0.0f);
+        out[mip] = {virtualFaceLevel(mip, faceIndex, faceCount), PageRect{low.min, high.max}};
+    }
+    return mips;
+}
+
 namespace {
 
 void requestPages(std::vector<uint32_t>& words, const VirtualPageTableLayout& layout, uint32_t level, const PageRect& pages) {

@@ -79,6 +79,15 @@ uint32_t faceMipForFootprint(const VirtualFaceConfig& config, float tanHalfFov, 
 // reads, clamped to the mip's pages.
 PageRect facePages(const VirtualFaceConfig& config, uint32_t mip, const glm::vec2& ndc, float marginTexels);
 
+// The pages of face `face` (of faceCount) that a caster with world bounds wsBounds covers in every mip:
+// its shadow can only change depth there, so when it moves, appears or disappears these pages of its old
+// and new bounds are drawn again. The bounds' corners projected onto the face, their NDC rectangle clamped
+// to the face; every page of every mip when the bounds reach behind the light's plane (their projection
+// is unbounded). Writes one rectangle per mip they touch (level = mip * faceCount + face) into out[0 ..
+// mipCount) and returns how many: none when the bounds miss the face's frustum.
+uint32_t casterFacePageRects(const VirtualFaceConfig& config, const VirtualFace& face, uint32_t faceIndex,
+                             uint32_t faceCount, const Aabb& wsBounds, LevelPageRect* out);
+
 // A light's faces among the table's: a spot light's one, or a point light's six in the cube-map order of
 // shadows/spot_projection.h, of which a receiver reads the face of the major axis from the light
 // (pointLightFaceOf).

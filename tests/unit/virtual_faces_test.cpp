@@ -99,6 +99,36 @@ TEST(VirtualFaces, APageProjectionMapsThePageSquareOfItsMipOntoTheWholeClipSquar
     EXPECT_EQ(facePages(kConfig, 1, glm::vec2(0.3f, -0.6f), 0.0f).min, glm::ivec2(2, 0));
 }
 
+TEST(VirtualFaces, AMovedCasterInvalidatesThePagesItsBoundsCoverInEveryMip) {
+    const VirtualFace face = downwardSpot();
+    LevelPageRect rects[4];
+    // A 1.2 m box on the ground right below the light: the middle of the face, a few pages of mip 0.
+    const Aabb below{glm::vec3(-0.6f, 0.0f, -0.6f), glm::vec3(0.6f, 0.4f, 0.6f)};
+    ASSERT_EQ(casterFacePageRects(kConfig, face, 2, 3, below, rects), 4u);
+    for (uint32_t mip = 0; mip < 4; ++mip) {
+        EXPECT_EQ(rects[mip].level, mip * 3 + 2);
+        const int32_t centre = int32_t(4u >> mip);  // the page right of the face's centre line
+        EXPECT_LE(rects[mip].pages.min.x, centre - (mip < 3 ? 1 : 0)) << mip;
+        EXPECT_GE(rects[mip].pages.max.x, std::min(centre, int32_t(8u >> mip) - 1)) << mip;
+    }
+    EXPECT_LE(rects[0].pages.max.x - rects[0].pages.min.x, 3) << "a small box covers few pages of mip 0";
+    // Every projected corner lies within the rectangle: the box's shadow cannot change depth elsewhere.
+    for (uint32_t i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? below.max.x : below.min.x, (i & 2) ? below.max.y : below.min.y,
+                               (i & 4) ? below.max.z : below.min.z);
+        const auto p = projectOntoFace(face, corner);
+        ASSERT_TRUE(p);
+        const PageRect at = facePages(kConfig, 0, p->ndc, 0.0f);
+        EXPECT_TRUE(rects[0].pages.contains(at));
+    }
+    // Far to the side: outside the cone's frustum, nothing to redraw.
+    EXPECT_EQ(casterFacePageRects(kConfig, face, 2, 3, {glm::vec3(30.0f, 0.0f, 0.0f), glm::vec3(31.0f, 1.0f, 1.0f)}, rects), 0u);
+    // Reaching above the light: its projection is unbounded, every page of every mip.
+    ASSERT_EQ(casterFacePageRects(kConfig, face, 0, 1, {glm::vec3(-0.1f, 3.0f, -0.1f), glm::vec3(0.1f, 5.0f, 0.1f)}, rects), 4u);
+    EXPECT_EQ(rects[0].pages.min, glm::ivec2(0));
+    EXPECT_EQ(rects[0].pages.max, glm::ivec2(7));
+}
+
 // 2 m above the ground looking 40 degrees down along -z at 64 x 48.
 CameraView groundCamera() {
     Camera camera;
