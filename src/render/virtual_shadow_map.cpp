@@ -103,7 +103,7 @@ void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepth
     sceneWrites_.push_back({gpu_data::kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
-    draw_.record(commands, {table_.drawList(), &space_, &sceneWrites_, config_.meshletCulling});
+    draw_.record(commands, {table_.drawList(), &space_, &sceneWrites_, config_.meshletCulling, {}, 0});
     table_.recordMarkDrawn(commands);
 }
 

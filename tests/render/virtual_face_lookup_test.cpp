@@ -94,7 +94,7 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
                                                            {gpu_data::kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
                                                            {gpu_data::kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}};
     gpu::CommandList commands = gpu().beginCommands();
-    VirtualPageDrawInputs inputs{table.drawList(), nullptr, &sceneWrites, true};
+    VirtualPageDrawInputs inputs{table.drawList(), nullptr, &sceneWrites, true, {}, 0};
     inputs.faces = {faceBuffer, 0, faceBytes};
     inputs.faceCount = 6;
     draw.record(commands, inputs);

@@ -141,7 +141,7 @@ void drawPages(gpu::Device& gpu, const GpuScene& gpuScene, VirtualPageDrawPass& 
     const gpu::BufferHandle drawList = gpu.createBuffer(list.size(), gpu::kBufferStorage | gpu::kBufferIndirect,
                                                         gpu::MemoryKind::HostVisible, list.data(), "test page draw list");
     gpu::CommandList commands = gpu.beginCommands();
-    drawPass.record(commands, {drawList, &space, &sceneWrites, true});
+    drawPass.record(commands, {drawList, &space, &sceneWrites, true, {}, 0});
     gpu.submitAndWait(commands);
     gpu.destroy(drawList);
 }

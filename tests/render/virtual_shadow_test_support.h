@@ -137,7 +137,7 @@ public:
     std::vector<gpu_data::VirtualShadowProbeResult> run(const gpu_data::VirtualShadowLookupData& data, gpu::BufferHandle table,
                                                         uint32_t entryCount, gpu::TextureHandle pool,
                                                         const std::vector<gpu_data::VirtualShadowProbePoint>& points) {
-        return run(data, table, entryCount, pool, points, {}, {uint32_t(points.size()), entryCount, 0, 0});
+        return run(data, table, pool, points, {}, {uint32_t(points.size()), entryCount, 0, 0});
     }
 
     // The faces' lookup (a probe made with faces) of the light whose faces start at firstFace (six when
@@ -147,13 +147,12 @@ public:
                                                              gpu::TextureHandle pool, gpu::BufferSlice faces,
                                                              uint32_t firstFace, bool point,
                                                              const std::vector<gpu_data::VirtualShadowProbePoint>& points) {
-        return run(data, table, entryCount, pool, points, faces,
-                   {uint32_t(points.size()), entryCount, firstFace, point ? 1u : 0u});
+        return run(data, table, pool, points, faces, {uint32_t(points.size()), entryCount, firstFace, point ? 1u : 0u});
     }
 
 private:
     std::vector<gpu_data::VirtualShadowProbeResult> run(const gpu_data::VirtualShadowLookupData& data, gpu::BufferHandle table,
-                                                        uint32_t entryCount, gpu::TextureHandle pool,
+                                                        gpu::TextureHandle pool,
                                                         const std::vector<gpu_data::VirtualShadowProbePoint>& points,
                                                         gpu::BufferSlice faces,
                                                         const gpu_data::VirtualShadowProbeConstants& constants) {
