@@ -11,9 +11,9 @@ layout(location = 3) flat out uint outInstance;
 void main() {
     VertexData vertex = vertices[gl_VertexIndex];
     InstanceData instance = instances[gl_InstanceIndex];
-    vec4 wsPosition = instance.worldFromObject * vec4(vertex.osPosition, 1.0);
+    vec4 wsPosition = instanceWorldFromObject(instance) * vec4(vertex.osPosition, 1.0);
     outWsPosition = wsPosition.xyz;
-    outWsNormal = mat3(instance.normalFromObject) * vertex.osNormal;
+    outWsNormal = instanceNormalFromObject(instance) * vertex.osNormal;
     outUv = vec2(vertex.u, vertex.v);
     outInstance = gl_InstanceIndex;
     gl_Position = frame.clipFromWorld * wsPosition;

@@ -8,7 +8,7 @@
 layout(push_constant) uniform CasterBlock { CasterConstants caster; };
 
 // The tile's visible casters (cull_structs.h): gl_InstanceIndex = the draw's firstInstance + i
-// indexes the list the culling pass wrote.
+// indexes the list the culling pass wrote, in the buffer of the lists that holds this tile's.
 layout(set = kPassSet, binding = kCasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
 
 layout(location = 0) out vec2 outUv;
@@ -20,5 +20,5 @@ void main() {
     InstanceData instance = instances[instanceIndex];
     outUv = vec2(vertex.u, vertex.v);
     outInstance = instanceIndex;
-    gl_Position = caster.clipFromWorld * (instance.worldFromObject * vec4(vertex.osPosition, 1.0));
+    gl_Position = caster.clipFromWorld * (instanceWorldFromObject(instance) * vec4(vertex.osPosition, 1.0));
 }

@@ -16,7 +16,8 @@ layout(set = kPassSet, binding = kCullBindingInstances, std430) readonly buffer 
 layout(set = kPassSet, binding = kCullBindingMeshes, std430) readonly buffer CullMeshBlock { CullMesh cullMeshes[]; };
 layout(set = kPassSet, binding = kCullBindingMaterials, std430) readonly buffer MaterialBlock { MaterialData materials[]; };
 layout(set = kPassSet, binding = kCullBindingListCounts, std430) buffer ListCountBlock { uint listCounts[]; };  // [tile * meshes + mesh]
-layout(set = kPassSet, binding = kCullBindingVisibleInstances, std430) writeonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kCullBindingVisibleInstances, std430) writeonly buffer VisibleBlock { uint entries[]; }
+    visibleLists[kVisibleListBuffers];  // cull_structs.h: the lists split over buffers
 layout(set = kPassSet, binding = kCullBindingViewHistory, std430) buffer ViewHistoryBlock { uint viewHistory[]; };  // kView* bits per instance
 layout(set = kPassSet, binding = kCullBindingPyramid, std430) readonly buffer PyramidBlock { float pyramid[]; };
 layout(set = kPassSet, binding = kCullBindingTileStats, std430) buffer TileStatsBlock { CullTileStats tileStats[]; };
@@ -168,10 +169,17 @@ bool boxInCameraFrustum(vec4 corners[8]) {
     return true;
 }
 
+// Appends `instance` to its mesh's part of list `list` (a tile's or the main view's); the list is the
+// same for the whole workgroup, as indexing the buffer array needs.
+void appendToList(uint list, uint instance, CullMesh mesh, uint meshSlot) {
+    uint slot = atomicAdd(listCounts[list * cull.meshCount + meshSlot], 1u);
+    uint listsPerBuffer = constants.listsPerBuffer;
+    visibleLists[visibleListBuffer(list, listsPerBuffer)]
+        .entries[visibleListStart(list, listsPerBuffer, cull.instanceCount) + mesh.firstListSlot + slot] = instance;
+}
+
 void appendToView(uint list, uint instance, CullMesh mesh, uint meshSlot) {
-    uint meshCount = cull.meshCount;
-    uint slot = atomicAdd(listCounts[list * meshCount + meshSlot], 1u);
-    visibleInstances[list * cull.instanceCount + mesh.firstListSlot + slot] = instance;
+    appendToList(list, instance, mesh, meshSlot);
     atomicAdd(tileStats[list].instances, 1u);
     atomicAdd(tileStats[list].triangles, mesh.indexCount / 3u);
 }
@@ -209,8 +217,7 @@ void main() {
     }
     uint instance = gl_GlobalInvocationID.x;
     uint tileIndex = gl_WorkGroupID.y;
-    uint instanceCount = cull.instanceCount, meshCount = cull.meshCount;
-    if (instance >= instanceCount || tileIndex >= tileList.count) return;
+    if (instance >= cull.instanceCount || tileIndex >= tileList.count) return;
     CullInstance caster = cullInstances[instance];
     if ((caster.flags & kCullInstanceCasts) == 0u) return;
     CullMesh mesh = cullMeshes[caster.meshSlot];
@@ -218,7 +225,5 @@ void main() {
     CullTile tile = tiles[tileIndex];
     bool keep = tile.kind == kCullTileDirectional ? directionalKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz)
                                                                : perspectiveKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz);
-    if (!keep) return;
-    uint slot = atomicAdd(listCounts[tileIndex * meshCount + caster.meshSlot], 1u);
-    visibleInstances[tileIndex * instanceCount + mesh.firstListSlot + slot] = instance;
+    if (keep) appendToList(tileIndex, instance, mesh, caster.meshSlot);
 }

@@ -21,6 +21,7 @@ layout(set = kPassSet, binding = kDrawsBindingTileStats, std430) buffer StatsBlo
 layout(set = kPassSet, binding = kCullBindingTiles, std430) readonly buffer CullTileBlock {
     CullTileListHeader tileList;  // its count; the dispatch is tileList.drawsDispatch
 };
+layout(push_constant) uniform CullConstantsBlock { CullConstants constants; };  // its listsPerBuffer
 
 void main() {
     uint meshIndex = gl_GlobalInvocationID.x;
@@ -38,7 +39,8 @@ void main() {
     drawCommands[base + 1u] = count;
     drawCommands[base + 2u] = mesh.firstIndex;
     drawCommands[base + 3u] = uint(mesh.vertexOffset);
-    drawCommands[base + 4u] = tile * cull.instanceCount + mesh.firstListSlot;
+    // Where the list starts in its buffer (the one the caster pass binds for this tile).
+    drawCommands[base + 4u] = visibleListStart(tile, constants.listsPerBuffer, cull.instanceCount) + mesh.firstListSlot;
     atomicAdd(tileStats[tile].draws, 1u);
     atomicAdd(tileStats[tile].instances, count);
     atomicAdd(tileStats[tile].triangles, count * (mesh.indexCount / 3u));

@@ -52,7 +52,7 @@ void main() {
     RasterWorkItem item = work[itemIndex];
     CullMesh mesh = cullMeshes[item.meshSlot];
     CullTile tile = tiles[item.tile];
-    if (gl_LocalInvocationID.x == 0u) clipFromObject = tile.clipFromWorld * instances[item.instance].worldFromObject;
+    if (gl_LocalInvocationID.x == 0u) clipFromObject = tile.clipFromWorld * instanceWorldFromObject(instances[item.instance]);
     uint lastMeshlet = min(item.firstMeshlet + kRasterMeshletsPerItem, mesh.meshletCount);
     for (uint m = item.firstMeshlet; m < lastMeshlet; ++m) {
         Meshlet meshlet = meshlets[mesh.firstMeshlet + m];

@@ -10,7 +10,8 @@
 layout(local_size_x = kRasterExpandGroup) in;
 
 layout(set = kPassSet, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint entries[]; }
+    visibleLists[kVisibleListBuffers];  // cull_structs.h: the lists split over buffers
 layout(set = kPassSet, binding = kShadowRasterBindingWork, std430) writeonly buffer WorkBlock { RasterWorkItem work[]; };
 
 void main() {
@@ -20,7 +21,9 @@ void main() {
     uint meshSlot = meshOfRun(slot, meshCount, true);
     CullMesh mesh = cullMeshes[meshSlot];
     if (slot - mesh.firstListSlot >= listCounts[tileIndex * meshCount + meshSlot] || mesh.meshletCount == 0u) return;
-    uint instance = visibleInstances[tileIndex * instanceCount + slot];
+    // tileIndex is the workgroup's: a uniform index into the buffer array.
+    uint instance = visibleLists[visibleListBuffer(tileIndex, raster.listsPerBuffer)]
+                        .entries[visibleListStart(tileIndex, raster.listsPerBuffer, instanceCount) + slot];
     uint items = (mesh.meshletCount + kRasterMeshletsPerItem - 1u) / kRasterMeshletsPerItem;
     uint first = atomicAdd(counters.workQueued, items);
     uint kept = first < raster.workCapacity ? min(items, raster.workCapacity - first) : 0u;

@@ -11,7 +11,8 @@
 layout(local_size_x = 64) in;
 
 layout(set = kPassSet, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint visibleInstances[]; };
+layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint entries[]; }
+    visibleLists[kVisibleListBuffers];  // cull_structs.h: the lists split over buffers
 
 shared mat4 clipFromObject;
 shared bool meshletSkipped;
@@ -37,7 +38,7 @@ bool skipMeshlet(Meshlet meshlet, uint instance, bool doubleSided) {
         atomicAdd(counters.meshletsOutside, 1u);
         return true;
     }
-    mat4 worldFromObject = instances[instance].worldFromObject;
+    mat4 worldFromObject = instanceWorldFromObject(instances[instance]);
     if (doubleSided || determinant(mat3(worldFromObject)) <= 0.0) return false;
     vec3 osEye = meshletObjectEye(worldFromObject, frame.wsCameraPosition.xyz);
     if (!meshletFacesAway(meshlet.coneApex.xyz, meshlet.coneAxis, meshlet.coneCutoff, osEye)) return false;
@@ -53,12 +54,13 @@ void main() {
     if (mesh.meshletCount == 0u || local >= mesh.instanceCount * mesh.meshletCount) return;  // past the last item
     uint list = raster.list, instanceInMesh = local / mesh.meshletCount;
     if (instanceInMesh >= listCounts[list * raster.meshSlots + meshSlot]) return;  // culled slot
-    uint instance = visibleInstances[list * raster.instanceCount + mesh.firstListSlot + instanceInMesh];
+    uint instance = visibleLists[visibleListBuffer(list, raster.listsPerBuffer)]
+                        .entries[visibleListStart(list, raster.listsPerBuffer, raster.instanceCount) + mesh.firstListSlot + instanceInMesh];
     Meshlet meshlet = meshlets[mesh.firstMeshlet + local % mesh.meshletCount];
     MaterialData material = materials[mesh.materialIndex];
     bool doubleSided = (material.flags & kMaterialDoubleSided) != 0u;
     if (gl_LocalInvocationID.x == 0u) {
-        clipFromObject = frame.clipFromWorld * instances[instance].worldFromObject;
+        clipFromObject = frame.clipFromWorld * instanceWorldFromObject(instances[instance]);
         meshletSkipped = raster.meshletCulling != 0u && skipMeshlet(meshlet, instance, doubleSided);
     }
     barrier();

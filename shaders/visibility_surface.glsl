@@ -54,12 +54,13 @@ vec4 baseColorGrad(MaterialData material, vec2 uv, vec2 dx, vec2 dy) {
 SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     CullMesh mesh = cullMeshes[cullInstances[instance].meshSlot];
     InstanceData data = instances[instance];
+    mat4 worldFromObject = instanceWorldFromObject(data);
     VertexData v[3];
     vec3 wsPositions[3];
     mat3 clipRows;
     for (int i = 0; i < 3; ++i) {
         v[i] = vertices[uint(int(indices[mesh.firstIndex + triangle * 3u + uint(i)]) + mesh.vertexOffset)];
-        wsPositions[i] = (data.worldFromObject * vec4(v[i].osPosition, 1.0)).xyz;
+        wsPositions[i] = (worldFromObject * vec4(v[i].osPosition, 1.0)).xyz;
         vec4 clip = frame.clipFromWorld * vec4(wsPositions[i], 1.0);
         clipRows[i] = clip.xyw;
     }
@@ -79,7 +80,7 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     vec2 uv = uvs * b;
     vec3 wsPosition = mat3(wsPositions[0], wsPositions[1], wsPositions[2]) * b;
     vec3 osNormal = mat3(v[0].osNormal, v[1].osNormal, v[2].osNormal) * b;
-    vec3 wsNormal = normalize(mat3(data.normalFromObject) * osNormal);
+    vec3 wsNormal = normalize(instanceNormalFromObject(data) * osNormal);
     bool frontFacing = determinant(clipRows) < 0.0;  // visibility_raster.glsl facesShown
     if (!frontFacing) wsNormal = -wsNormal;
     vec3 wsGeometric = cross(wsPositions[1] - wsPositions[0], wsPositions[2] - wsPositions[0]);

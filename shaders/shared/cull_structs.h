@@ -5,9 +5,14 @@
 // to per-(tile, mesh) lists; a second pass turns the non-empty lists into compacted indirect draws,
 // one list per tile and caster kind, drawn with vkCmdDrawIndexedIndirectCount.
 //
-// Visible-instance list layout: tile t, mesh m, entry i lives at
-//   t * instanceCount + meshes[m].firstListSlot + i      (a prefix sum over the meshes' instance counts)
-// so a draw's firstInstance is where its list starts and gl_InstanceIndex indexes the list.
+// Visible-instance list layout: every list (a tile's, or the main view's) has room for every instance:
+// tile t, mesh m, entry i lives at
+//   visibleListStart(t) + meshes[m].firstListSlot + i    (a prefix sum over the meshes' instance counts)
+// of buffer visibleListBuffer(t): the lists are split over up to kVisibleListBuffers storage buffers of
+// listsPerBuffer lists each (render/gpu_scene.h splitVisibleLists), so that no binding is larger than the
+// device's maxStorageBufferRange (34 lists of 10^6 instances are 130 MiB, over the 128 MiB that Vulkan
+// guarantees). A draw's firstInstance is where its list starts in its buffer, and gl_InstanceIndex
+// indexes that buffer (the caster pass binds each tile's buffer).
 //
 // The main view's visibility buffer (render.mainView = visibility) is culled by the same pass, in two more
 // lists after the shadow tiles' (kCullListCameraEarly, kCullListCameraLate), by two-phase occlusion culling:
@@ -48,6 +53,13 @@ PENUMBRA_CONST(uint, kViewDrawnEarly, 2u)
 PENUMBRA_CONST(uint, kMaxPyramidLevels, 16u)
 PENUMBRA_CONST(uint, kCullTileDirectional, 0u)
 PENUMBRA_CONST(uint, kCullTilePerspective, 1u)
+PENUMBRA_CONST(uint, kVisibleListBuffers, 4u)  // the most storage buffers the visible lists are split over
+
+// Which buffer of the visible-instance lists holds list `list`, and where in it the list starts.
+PENUMBRA_INLINE uint visibleListBuffer(uint list, uint listsPerBuffer) { return list / listsPerBuffer; }
+PENUMBRA_INLINE uint visibleListStart(uint list, uint listsPerBuffer, uint instanceCount) {
+    return (list % listsPerBuffer) * instanceCount;
+}
 
 // Per instance; rewritten when its transform or cast flag changes.
 struct CullInstance {
@@ -198,11 +210,14 @@ struct RasterTileListHeader {
 PENUMBRA_CHECK_SIZE(RasterTileListHeader, 48)
 PENUMBRA_CHECK_LAYOUT(RasterTileListHeader, count, 32)
 
-// Push constants of the culling pass.
+// Push constants of the culling pass and of its draw lists (shadow_draws.comp).
 struct CullConstants {
-    uint pass;  // kCullPass*
+    uint pass;            // kCullPass*
+    uint listsPerBuffer;  // of the visible-instance lists
+    uint reserved0;
+    uint reserved1;
 };
-PENUMBRA_CHECK_SIZE(CullConstants, 4)
+PENUMBRA_CHECK_SIZE(CullConstants, 16)
 
 // What one tile drew, accumulated by shadow_draws.comp and read back when the frame is done; the
 // main view's two lists count instances and triangles in the culling pass itself.
@@ -281,7 +296,7 @@ struct ShadowRasterConstants {
     uint largeCapacity;    // large pieces the queue holds
     uint chunkCapacity;    // chunks the queue holds
     uint workCapacity;     // pass-1 work items the queue holds
-    uint reserved0;
+    uint listsPerBuffer;   // of the culling pass's visible-instance lists
     uint reserved1;
     uint reserved2;
 };

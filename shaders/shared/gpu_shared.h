@@ -12,7 +12,8 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #define PENUMBRA_GPU_NAMESPACE_BEGIN namespace penumbra::gpu_data { \
-    using vec2 = glm::vec2; using vec3 = glm::vec3; using vec4 = glm::vec4; using uvec4 = glm::uvec4; using ivec4 = glm::ivec4; using mat4 = glm::mat4; using uint = uint32_t;
+    using vec2 = glm::vec2; using vec3 = glm::vec3; using vec4 = glm::vec4; using uvec4 = glm::uvec4; using ivec4 = glm::ivec4; using mat4 = glm::mat4; using uint = uint32_t; \
+    using mat3 = glm::mat3;
 #define PENUMBRA_GPU_NAMESPACE_END }
 #define PENUMBRA_CONST(type, name, value) inline constexpr type name = value;
 #define PENUMBRA_CHECK_LAYOUT(type, member, offset) static_assert(offsetof(type, member) == (offset), #type "." #member " offset");

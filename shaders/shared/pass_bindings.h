@@ -53,7 +53,7 @@ PENUMBRA_CONST(uint, kScreenShadowBindingSceneDepth, 10u)    // the prepass's de
 PENUMBRA_CONST(uint, kScreenShadowBindingSceneNormals, 11u)  // the prepass's normals
 
 // The shadow casters (shadow_caster.vert), beyond the scene.
-PENUMBRA_CONST(uint, kCasterBindingVisibleInstances, 12u)  // the culling pass's lists
+PENUMBRA_CONST(uint, kCasterBindingVisibleInstances, 12u)  // the culling pass's lists: the drawn tile's buffer
 
 // Shadow-caster and main-view culling (shadow_cull.comp).
 PENUMBRA_CONST(uint, kCullBindingFrame, 0u)             // uniform CullFrame
@@ -61,7 +61,7 @@ PENUMBRA_CONST(uint, kCullBindingInstances, 1u)         // CullInstance[]
 PENUMBRA_CONST(uint, kCullBindingMeshes, 2u)            // CullMesh[]
 PENUMBRA_CONST(uint, kCullBindingMaterials, 3u)         // MaterialData[]
 PENUMBRA_CONST(uint, kCullBindingListCounts, 4u)        // per (list, mesh)
-PENUMBRA_CONST(uint, kCullBindingVisibleInstances, 5u)  // the lists
+PENUMBRA_CONST(uint, kCullBindingVisibleInstances, 5u)  // the lists: kVisibleListBuffers buffers
 PENUMBRA_CONST(uint, kCullBindingViewHistory, 9u)       // kView* bits per instance
 PENUMBRA_CONST(uint, kCullBindingPyramid, 10u)          // the main view's depth pyramid
 PENUMBRA_CONST(uint, kCullBindingTileStats, 11u)        // CullTileStats[]
@@ -78,7 +78,7 @@ PENUMBRA_CONST(uint, kRasterBindingCounters, 9u)          // RasterCounters (als
 PENUMBRA_CONST(uint, kRasterBindingLargePieces, 10u)      // RasterPiece[]
 PENUMBRA_CONST(uint, kRasterBindingChunks, 11u)           // (large piece, chunk x | y << 16)
 PENUMBRA_CONST(uint, kRasterBindingListCounts, 12u)       // the culling pass's list counts
-PENUMBRA_CONST(uint, kRasterBindingVisibleInstances, 13u) // and lists
+PENUMBRA_CONST(uint, kRasterBindingVisibleInstances, 13u) // and lists (kVisibleListBuffers buffers)
 PENUMBRA_CONST(uint, kRasterBindingMeshlets, 14u)         // Meshlet[]
 // The shadow rasterizer (shadow_raster.glsl).
 PENUMBRA_CONST(uint, kShadowRasterBindingCullFrame, 5u)   // uniform CullFrame (instance and mesh counts)

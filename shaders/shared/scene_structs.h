@@ -100,16 +100,41 @@ PENUMBRA_CHECK_LAYOUT(LightData, spotScale, 48)
 PENUMBRA_CHECK_LAYOUT(LightData, sceneLightIndex, 64)
 PENUMBRA_CHECK_LAYOUT(LightData, shadowSlot, 68)
 
+// Per instance, what the shaders read (64 bytes): the affine worldFromObject as its first three rows
+// (row i = worldFromObject[0..3][i]: the linear part and the translation; the fourth row of an affine
+// transform is (0, 0, 0, 1)) and its mesh's material. The normal matrix is not stored: the shaders derive
+// it from the rows (instanceNormalFromObject).
 struct InstanceData {
-    mat4 worldFromObject;
-    mat4 normalFromObject;  // inverse transpose of worldFromObject (upper 3x3 used)
+    vec4 worldFromObjectRow0;
+    vec4 worldFromObjectRow1;
+    vec4 worldFromObjectRow2;
     uint materialIndex;
     uint reserved0;
     uint reserved1;
     uint reserved2;
 };
-PENUMBRA_CHECK_SIZE(InstanceData, 144)
-PENUMBRA_CHECK_LAYOUT(InstanceData, materialIndex, 128)
+PENUMBRA_CHECK_SIZE(InstanceData, 64)
+PENUMBRA_CHECK_LAYOUT(InstanceData, worldFromObjectRow1, 16)
+PENUMBRA_CHECK_LAYOUT(InstanceData, worldFromObjectRow2, 32)
+PENUMBRA_CHECK_LAYOUT(InstanceData, materialIndex, 48)
+
+// The instance's worldFromObject as a 4x4 matrix (the rows back in their columns, exactly).
+PENUMBRA_INLINE mat4 instanceWorldFromObject(InstanceData instance) {
+    return transpose(mat4(instance.worldFromObjectRow0, instance.worldFromObjectRow1, instance.worldFromObjectRow2,
+                          vec4(0.0f, 0.0f, 0.0f, 1.0f)));
+}
+
+// The normals' transform of a worldFromObject with linear part m: its cofactor matrix, which is the
+// inverse transpose times the determinant. It gives the inverse transpose's directions (the shaders
+// normalize) for every invertible transform, non-uniform scales included, keeps the facing of mirrored
+// ones (the sign), and stays finite for a singular one (a zero scale), where the inverse would divide by zero.
+PENUMBRA_INLINE mat3 cofactorNormalMatrix(mat3 m) {
+    mat3 cofactor = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1]));
+    return determinant(m) < 0.0f ? -cofactor : cofactor;
+}
+PENUMBRA_INLINE mat3 instanceNormalFromObject(InstanceData instance) {
+    return cofactorNormalMatrix(mat3(instanceWorldFromObject(instance)));
+}
 
 struct MaterialData {
     vec4 baseColorFactor;

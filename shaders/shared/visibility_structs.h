@@ -25,11 +25,12 @@ struct VisibilityConstants {
     uint background;      // colour (RGBA8) where nothing was drawn
     uint meshSlots;
     // The rasterizer's: the culling list it draws (kCullListCamera*), the instances of a list,
-    // 1: skip meshlets outside the view or facing away (render.meshletCulling).
+    // 1: skip meshlets outside the view or facing away (render.meshletCulling), the visible-instance
+    // lists per buffer (cull_structs.h).
     uint list;
     uint instanceCount;
     uint meshletCulling;
-    uint unused;
+    uint listsPerBuffer;
 };
 PENUMBRA_CHECK_SIZE(VisibilityConstants, 48)
 PENUMBRA_CHECK_LAYOUT(VisibilityConstants, largeCapacity, 16)

@@ -128,7 +128,9 @@ void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
         if (declared == p.bindings.end()) continue;  // a pass's writes serve pipelines that read fewer bindings
         const DescriptorType type = declared->type;
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        PENUMBRA_ASSERT(w.arrayElement < declared->count);
         write.dstBinding = w.binding;
+        write.dstArrayElement = w.arrayElement;
         write.descriptorCount = 1;
         if (type == DescriptorType::UniformBuffer || type == DescriptorType::StorageBuffer) {
             bufferInfos[i] = {d.buffers.at(w.buffer.id).buffer, w.offset, w.size ? w.size : VK_WHOLE_SIZE};
@@ -144,6 +146,17 @@ void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
             imageInfos[i] = {VK_NULL_HANDLE, d.textures.at(w.texture.id).view, VK_IMAGE_LAYOUT_GENERAL};
             write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
             write.pImageInfo = &imageInfos[i];
+        }
+        // The elements of an array binding, written in order, go in one write (one VkWriteDescriptorSet per
+        // binding): on lavapipe (Mesa 22.3) a shader did not see the elements past the first when each came
+        // in a write of its own in the same push.
+        if (!vkWrites.empty() && write.pBufferInfo && vkWrites.back().pBufferInfo) {
+            VkWriteDescriptorSet& last = vkWrites.back();
+            if (last.dstBinding == write.dstBinding && last.dstArrayElement + last.descriptorCount == write.dstArrayElement &&
+                last.pBufferInfo + last.descriptorCount == write.pBufferInfo) {
+                ++last.descriptorCount;
+                continue;
+            }
         }
         vkWrites.push_back(write);
     }

@@ -202,7 +202,7 @@ uint32_t findQueueFamily(VkPhysicalDevice physicalDevice, const std::string& nam
 }
 
 VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
-                             bool memoryBudget, bool& bufferInt64Atomics) {
+                             bool memoryBudget, bool& bufferInt64Atomics, bool& storageBufferArrayIndexing) {
     VkPhysicalDeviceFeatures supported{};
     vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -230,6 +230,10 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderInt64 = bufferInt64Atomics;
+    // Arrays of storage buffers indexed per workgroup or dispatch: the culling lists split over buffers
+    // (render/gpu_scene.h splitVisibleLists), where supported.
+    storageBufferArrayIndexing = supported.shaderStorageBufferArrayDynamicIndexing;
+    features.features.shaderStorageBufferArrayDynamicIndexing = storageBufferArrayIndexing;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -285,7 +289,8 @@ void Device::createOwnDevice(const DeviceOptions& options) {
     d.info = describe(d.physicalDevice, chosen);
     d.queueFamily = findQueueFamily(d.physicalDevice, d.info.name);
     d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
-    d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget, d.bufferInt64Atomics);
+    d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget, d.bufferInt64Atomics,
+                                   d.storageBufferArrayIndexing);
     vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
 }
 
@@ -397,10 +402,15 @@ uint32_t Device::maxImageSize() const {
     return injected > 0 ? std::min(real, injected) : real;
 }
 
-uint64_t Device::maxStorageBufferRange() const { return impl_->properties.limits.maxStorageBufferRange; }
+uint64_t Device::maxStorageBufferRange() const {
+    const uint64_t real = impl_->properties.limits.maxStorageBufferRange;
+    const uint64_t injected = impl_->options.faults.maxStorageBufferRange;
+    return injected > 0 ? std::min(real, injected) : real;
+}
 bool Device::lost() const { return impl_->lost; }
 bool Device::hasTimestamps() const { return impl_->timestampsSupported; }
 bool Device::hasBufferInt64Atomics() const { return impl_->bufferInt64Atomics; }
+bool Device::hasStorageBufferArrayIndexing() const { return impl_->storageBufferArrayIndexing; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);

@@ -39,11 +39,14 @@ public:
     const DeviceInfo& info() const;
     static std::vector<DeviceInfo> listDevices();
     uint32_t maxImageSize() const;            // maxImageDimension2D (or the fault injection's smaller one)
-    uint64_t maxStorageBufferRange() const;   // the largest storage buffer a shader may bind
+    uint64_t maxStorageBufferRange() const;   // the largest storage buffer a shader may bind (or the fault injection's)
     bool lost() const;                        // a submission or wait returned VK_ERROR_DEVICE_LOST
     bool hasTimestamps() const;
     // shaderInt64 + shaderBufferInt64Atomics enabled (the visibility-buffer main view needs them).
     bool hasBufferInt64Atomics() const;
+    // shaderStorageBufferArrayDynamicIndexing enabled: a binding may be an array of storage buffers that
+    // a shader indexes with a dynamically uniform index (the culling lists split over buffers need it).
+    bool hasStorageBufferArrayIndexing() const;
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,

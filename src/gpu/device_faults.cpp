@@ -23,9 +23,10 @@ DeviceFaultInjection faultInjectionFromEnvironment() {
         else if (number && key == "submit") faults.loseDeviceAtSubmit = value;
         else if (number && key == "wait") faults.loseDeviceAtWait = value;
         else if (number && key == "max-image-size" && value <= UINT32_MAX) faults.maxImageSize = uint32_t(value);
+        else if (number && key == "max-storage-buffer-range") faults.maxStorageBufferRange = value;
         else
             throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
-                        "' is not allocation=N, submit=N, wait=N or max-image-size=N");
+                        "' is not allocation=N, submit=N, wait=N, max-image-size=N or max-storage-buffer-range=N");
     }
     return faults;
 }

@@ -15,9 +15,11 @@ struct DeviceFaultInjection {
     uint64_t loseDeviceAtSubmit = 0;  // the Nth queue submission returns VK_ERROR_DEVICE_LOST (not submitted)
     uint64_t loseDeviceAtWait = 0;    // the Nth wait for a submission returns VK_ERROR_DEVICE_LOST
     uint32_t maxImageSize = 0;        // the device's maxImageDimension2D seems to be this (if smaller)
+    uint64_t maxStorageBufferRange = 0;  // the device's maxStorageBufferRange seems to be this (if smaller)
 };
 
-// PENUMBRA_FAULT_INJECTION, e.g. "allocation=3" or "submit=2,max-image-size=512" (unset or empty:
+// PENUMBRA_FAULT_INJECTION, e.g. "allocation=3" or "submit=2,max-image-size=512" or
+// "max-storage-buffer-range=1048576" (unset or empty:
 // none). Throws penumbra::Error naming the variable when an item is not key=N of a known key.
 DeviceFaultInjection faultInjectionFromEnvironment();
 

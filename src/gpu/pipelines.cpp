@@ -77,7 +77,7 @@ void createLayout(Device::Impl& d, PipelineResource& p, const std::vector<Bindin
     // p.pushStages is set by the caller (pushConstantStages).
     std::vector<VkDescriptorSetLayoutBinding> vkBindings;
     for (const BindingDesc& b : bindings)
-        vkBindings.push_back({b.binding, toVkDescriptorType(b.type), 1, toVkShaderStages(b.stages), nullptr});
+        vkBindings.push_back({b.binding, toVkDescriptorType(b.type), b.count, toVkShaderStages(b.stages), nullptr});
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     setInfo.bindingCount = uint32_t(vkBindings.size());

@@ -80,6 +80,9 @@ ShaderInterface reflectShaderInterface(std::span<const uint32_t> spirv, std::str
             out.binding = spvc_compiler_get_decoration(compiler, resource.id, SpvDecorationBinding);
             out.type = type;
             out.name = resource.name;
+            const spvc_type declared = spvc_compiler_get_type_handle(compiler, resource.type_id);
+            for (unsigned dimension = 0; dimension < spvc_type_get_num_array_dimensions(declared); ++dimension)
+                out.count *= spvc_type_get_array_dimension(declared, dimension);
         }
     }
     for (spvc_resource_type unsupported : {SPVC_RESOURCE_TYPE_SEPARATE_IMAGE, SPVC_RESOURCE_TYPE_SEPARATE_SAMPLERS,
@@ -139,6 +142,10 @@ void checkUsedBindings(std::string_view pass, const PipelineStage& stage, const 
         if (declared->type != used.type)
             mismatch(pass, stage.shader, used.binding, used.name,
                      std::string("declared as ") + typeName(declared->type) + ", the shader has a " + typeName(used.type));
+        if (declared->count < used.count)
+            mismatch(pass, stage.shader, used.binding, used.name,
+                     "an array of " + std::to_string(used.count) + " in the shader, " + std::to_string(declared->count) +
+                         " declared");
         if (!(declared->stages & stage.stage))
             mismatch(pass, stage.shader, used.binding, used.name,
                      "used by the " + stageNames(stage.stage) + " stage but declared for " + stageNames(declared->stages));

@@ -19,6 +19,7 @@ struct ShaderResource {
     uint32_t binding = 0;
     DescriptorType type = DescriptorType::StorageBuffer;
     std::string name;  // the block's (or sampler's) name in the GLSL
+    uint32_t count = 1;  // descriptors: an array's size (0: a runtime-sized array)
 };
 
 struct ShaderInterface {

@@ -75,6 +75,7 @@ struct BindingDesc {
     uint32_t binding = 0;
     DescriptorType type = DescriptorType::StorageBuffer;
     uint32_t stages = 0;  // ShaderStage bits: exactly the stages that read it
+    uint32_t count = 1;   // descriptors in the binding: > 1 for an array (at least the shader's array size)
 };
 
 struct SpecConstant {
@@ -130,6 +131,7 @@ struct DescriptorWrite {
     SamplerHandle sampler;
     uint64_t offset = 0;  // buffer range bound (size 0 = whole buffer from offset)
     uint64_t size = 0;
+    uint32_t arrayElement = 0;  // of an array binding (BindingDesc::count)
 
     DescriptorWrite() = default;
     DescriptorWrite(uint32_t b, BufferHandle buf, TextureHandle tex, SamplerHandle smp)

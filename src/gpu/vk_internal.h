@@ -135,6 +135,7 @@ struct Device::Impl {
     uint32_t timestampsPerFrame = 128;
     bool timestampsSupported = false;
     bool bufferInt64Atomics = false;  // enabled on devices it creates; external devices: not known, off
+    bool storageBufferArrayIndexing = false;  // shaderStorageBufferArrayDynamicIndexing, as bufferInt64Atomics
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
     VkPipelineCache pipelineCache = VK_NULL_HANDLE;

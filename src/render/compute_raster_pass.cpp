@@ -13,6 +13,7 @@ namespace penumbra {
 namespace {
 
 constexpr uint32_t kFarDepthBits = 0x3f800000u;  // floatBitsToUint(1.0): nothing cast
+constexpr uint64_t kChunkBytes = 8;                // a queued chunk: (large piece, chunk x | y << 16)
 
 }  // namespace
 
@@ -38,8 +39,8 @@ void recordRasterDispatchSize(gpu::CommandList& commands, std::string_view passN
 void rasterReads(const GpuScene& scene, const ShadowCullingPass& culling, std::vector<gpu::ResourceUse>& uses) {
     using gpu::Usage;
     uses.assign({gpu::use(scene.cullMeshBuffer(), Usage::ComputeRead), gpu::use(scene.indexBuffer(), Usage::ComputeRead),
-                 gpu::use(scene.meshletBuffer(), Usage::ComputeRead), gpu::use(culling.listCounts(), Usage::ComputeRead),
-                 gpu::use(culling.visibleInstances(), Usage::ComputeRead)});
+                 gpu::use(scene.meshletBuffer(), Usage::ComputeRead), gpu::use(culling.listCounts(), Usage::ComputeRead)});
+    culling.addVisibleListUses(uses, Usage::ComputeRead);
     scene.addSceneReads(uses, Usage::ComputeRead);
 }
 
@@ -52,7 +53,7 @@ void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const Gpu
     writes.push_back({kRasterBindingLargePieces, queues.large, {}, {}});
     writes.push_back({kRasterBindingChunks, queues.chunks, {}, {}});
     writes.push_back({kRasterBindingListCounts, culling.listCounts(), {}, {}});
-    writes.push_back({kRasterBindingVisibleInstances, culling.visibleInstances(), {}, {}});
+    culling.appendVisibleListWrites(writes, kRasterBindingVisibleInstances);
     writes.push_back({kRasterBindingMeshlets, gpuScene.meshletBuffer(), {}, {}});
 }
 
@@ -90,9 +91,14 @@ void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue, uint32_
 }
 
 void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems) {
-    // Queues as large as the most a frame asked for (capped: 4M pieces = 448 MB), grown by 2x steps.
-    const uint32_t large = std::min(std::max(largeCapacity_, largePieces), kMaxLargeCapacity);
-    const uint32_t chunkCount = std::min(std::max(chunkCapacity_, chunks), kMaxChunkCapacity);
+    // Queues as large as the most a frame asked for (capped: 4M pieces = 448 MB), grown by 2x steps, and
+    // each within the device's largest storage buffer (a pass binds each whole; 1.2M pieces of 128 MiB): a
+    // frame that needs more gets the warning that the queues were full, as one past the caps always did.
+    const uint64_t range = device_.maxStorageBufferRange();
+    const uint32_t maxLarge = uint32_t(std::min<uint64_t>(kMaxLargeCapacity, range / sizeof(gpu_data::RasterPiece)));
+    const uint32_t maxChunks = uint32_t(std::min<uint64_t>(kMaxChunkCapacity, range / kChunkBytes));
+    const uint32_t large = std::min(std::max(largeCapacity_, largePieces), maxLarge);
+    const uint32_t chunkCount = std::min(std::max(chunkCapacity_, chunks), maxChunks);
     // Work items of 16 bytes: the 8M cap is 128 MiB, the storage buffer range every Vulkan device offers.
     const uint32_t workCount = std::min(std::max(workCapacity_, workItems), kMaxWorkCapacity);
     if (workCount != workCapacity_ || !work_) {
@@ -106,8 +112,8 @@ void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks, uint32_t 
     device_.destroy(chunkList_);
     large_ = device_.createBuffer(uint64_t(large) * sizeof(gpu_data::RasterPiece), gpu::kBufferStorage,
                                   gpu::MemoryKind::DeviceLocal, nullptr, "shadow raster large pieces");
-    chunkList_ = device_.createBuffer(uint64_t(chunkCount) * 8, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal, nullptr,
-                                      "shadow raster chunks");
+    chunkList_ = device_.createBuffer(uint64_t(chunkCount) * kChunkBytes, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal,
+                                      nullptr, "shadow raster chunks");
     largeCapacity_ = large;
     chunkCapacity_ = chunkCount;
 }
@@ -131,7 +137,7 @@ void ComputeRasterPass::prepare(const std::vector<gpu::DescriptorWrite>& writes,
     writes_.push_back({kShadowRasterBindingRasterList, lists.rasterList});
     writes_.push_back({kShadowRasterBindingWork, work_, {}, {}});
     appendRasterMeshWrites(writes_, scene_, culling, {counters_, large_, chunkList_});
-    constants_ = {depthSide, meshletCulling ? 1u : 0u, largeCapacity_, chunkCapacity_, workCapacity_, 0, 0, 0};
+    constants_ = {depthSide, meshletCulling ? 1u : 0u, largeCapacity_, chunkCapacity_, workCapacity_, culling.listsPerBuffer(), 0, 0};
     rasterReads(scene_, culling, reads_);
 }
 

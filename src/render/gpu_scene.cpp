@@ -22,6 +22,10 @@ static_assert(uint32_t(MaterialShadowMode::On) == gpu_data::kShadowModeOn &&
               uint32_t(MaterialShadowMode::Dither) == gpu_data::kShadowModeDither &&
               uint32_t(MaterialShadowMode::Off) == gpu_data::kShadowModeOff);
 
+gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance) {
+    return packInstanceData(instance.worldFromObject, scene.meshes.at(instance.meshIndex).materialIndex);
+}
+
 gpu_data::MaterialData packMaterial(const Material& m) {
     gpu_data::MaterialData data{};
     data.baseColorFactor = m.baseColorFactor;
@@ -36,23 +40,6 @@ gpu_data::MaterialData packMaterial(const Material& m) {
     data.flags = bits;
     data.alphaMode = uint32_t(m.alphaMode);
     data.shadowMode = uint32_t(m.shadows);
-    return data;
-}
-
-// The cofactor matrix is the inverse transpose times the determinant: the same normal directions (the
-// shader normalizes) for every invertible transform, with the sign kept for mirrored ones, and still
-// finite for a singular one (a zero scale), where the inverse would divide by zero.
-glm::mat3 normalMatrix(const glm::mat4& worldFromObject) {
-    const glm::mat3 m(worldFromObject);
-    const glm::mat3 cofactor(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
-    return glm::determinant(m) < 0.0f ? -cofactor : cofactor;
-}
-
-gpu_data::InstanceData packInstance(const Scene& scene, const Instance& instance) {
-    gpu_data::InstanceData data{};
-    data.worldFromObject = instance.worldFromObject;
-    data.normalFromObject = glm::mat4(normalMatrix(instance.worldFromObject));
-    data.materialIndex = scene.meshes.at(instance.meshIndex).materialIndex;
     return data;
 }
 
@@ -117,6 +104,16 @@ gpu::Filter filter(TextureFilter f) { return f == TextureFilter::Nearest ? gpu::
 
 }  // namespace
 
+gpu_data::InstanceData packInstanceData(const glm::mat4& worldFromObject, uint32_t materialIndex) {
+    const glm::mat4 rows = glm::transpose(worldFromObject);
+    gpu_data::InstanceData data{};
+    data.worldFromObjectRow0 = rows[0];
+    data.worldFromObjectRow1 = rows[1];
+    data.worldFromObjectRow2 = rows[2];
+    data.materialIndex = materialIndex;
+    return data;
+}
+
 // The Vulkan sampler that applies scene/texture_sampler.h's rule: the hardware's texel addressing is
 // that rule; mipmaps only when the glTF minFilter asks for them (maxLod 0 otherwise).
 gpu::SamplerDesc samplerDesc(const TextureSampler& sampler) {
@@ -130,7 +127,20 @@ gpu::SamplerDesc samplerDesc(const TextureSampler& sampler) {
     return desc;
 }
 
-void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange) {
+VisibleListSplit splitVisibleLists(uint64_t instanceCount, uint32_t listCount, uint64_t maxStorageBufferRange,
+                                   uint32_t maxBuffers) {
+    const uint64_t listBytes = std::max<uint64_t>(instanceCount, 1) * sizeof(uint32_t);
+    const uint64_t perBuffer = std::min<uint64_t>(std::max(listCount, 1u), maxStorageBufferRange / listBytes);
+    const uint64_t buffers = perBuffer > 0 ? (listCount + perBuffer - 1) / perBuffer : 0;
+    if (perBuffer == 0 || buffers > maxBuffers)
+        throw Error("the scene does not fit on this GPU: its " + std::to_string(instanceCount) + " instances need " +
+                    std::to_string(listCount) + " culling lists of " + mib(listBytes) + ", more than " +
+                    std::to_string(maxBuffers) + " of the device's largest storage buffers (" +
+                    mib(maxStorageBufferRange) + ") hold");
+    return {uint32_t(perBuffer), uint32_t(std::max<uint64_t>(buffers, 1))};
+}
+
+void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange, uint32_t visibleListBuffers) {
     if (totals.indices > UINT32_MAX)
         throw Error("the scene does not fit on the GPU: it has " + std::to_string(totals.indices) +
                     " triangle indices, more than the 2^32 - 1 that 32-bit indices address");
@@ -140,7 +150,9 @@ void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBuffer
     checkBufferSize("vertices", totals.vertices * sizeof(gpu_data::VertexData), maxStorageBufferRange);
     checkBufferSize("indices", totals.indices * sizeof(uint32_t), maxStorageBufferRange);
     checkBufferSize("instances", totals.instances * sizeof(gpu_data::InstanceData), maxStorageBufferRange);
+    checkBufferSize("instances' culling records", totals.instances * sizeof(gpu_data::CullInstance), maxStorageBufferRange);
     checkBufferSize("materials", totals.materials * sizeof(gpu_data::MaterialData), maxStorageBufferRange);
+    splitVisibleLists(totals.instances, gpu_data::kCullListCount, maxStorageBufferRange, visibleListBuffers);
 }
 
 GpuScene::GpuScene(gpu::Device& device, const Scene& scene) : device_(device) {
@@ -160,7 +172,8 @@ void GpuScene::create(const Scene& scene) {
     }
     totals.instances = scene.instances.size();
     totals.materials = std::max<size_t>(scene.materials.size(), 1);
-    checkGpuSceneLimits(totals, device_.maxStorageBufferRange());
+    checkGpuSceneLimits(totals, device_.maxStorageBufferRange(),
+                        device_.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u);
 
     gpu::Device& device = device_;
     std::vector<gpu_data::VertexData> vertices;

@@ -9,6 +9,8 @@
 
 #include "gpu/device.h"
 #include "penumbra/scene.h"
+#include "cull_structs.h"
+#include "scene_structs.h"
 
 namespace penumbra {
 
@@ -20,14 +22,32 @@ struct DrawItem {
     uint32_t materialIndex = 0;
 };
 
+// An instance's GPU record (scene_structs.h InstanceData): the first three rows of its affine
+// worldFromObject and its material; the shaders rebuild the matrix and derive the normal matrix from it.
+gpu_data::InstanceData packInstanceData(const glm::mat4& worldFromObject, uint32_t materialIndex);
+
 // What the packed scene buffers hold, checked against what the GPU layout can address.
 struct GpuSceneTotals {
     uint64_t vertices = 0, indices = 0, instances = 0, materials = 0;
 };
 // Throws Error when the scene does not fit: more than 2^32 - 1 indices in all (32-bit firstIndex and
-// index values), more than 2^31 - 1 vertices (32-bit signed vertexOffset), or a packed buffer larger
-// than the device's maxStorageBufferRange.
-void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange);
+// index values), more than 2^31 - 1 vertices (32-bit signed vertexOffset), a packed buffer larger
+// than the device's maxStorageBufferRange, or the atlases' culling lists (splitVisibleLists of
+// kCullListCount lists) over visibleListBuffers buffers of that size. Per instance the GPU keeps
+// 64 bytes of InstanceData and 48 of CullInstance, so on a device with the 128 MiB that Vulkan
+// guarantees a scene holds up to 2^21 instances (the instance records are the first to fill a binding).
+void checkGpuSceneLimits(const GpuSceneTotals& totals, uint64_t maxStorageBufferRange,
+                         uint32_t visibleListBuffers = gpu_data::kVisibleListBuffers);
+
+// How a culling pass's visible-instance lists (cull_structs.h: `listCount` lists with room for every
+// instance) split over storage buffers that each fit maxStorageBufferRange: as many whole lists per
+// buffer as fit, at most maxBuffers buffers (the last holds the rest). Throws Error when they need more.
+struct VisibleListSplit {
+    uint32_t listsPerBuffer = 1;
+    uint32_t bufferCount = 1;
+};
+VisibleListSplit splitVisibleLists(uint64_t instanceCount, uint32_t listCount, uint64_t maxStorageBufferRange,
+                                   uint32_t maxBuffers);
 // The GPU sampler of a glTF texture sampler (filters, mipmap mode, wrap modes).
 gpu::SamplerDesc samplerDesc(const TextureSampler& sampler);
 

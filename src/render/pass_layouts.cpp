@@ -1,6 +1,7 @@
 #include "render/pass_layouts.h"
 
 #include "core/error.h"
+#include "cull_structs.h"
 #include "pass_bindings.h"
 
 static_assert(penumbra::gpu_data::kPassSet == penumbra::gpu::kPassDescriptorSet &&
@@ -51,7 +52,7 @@ void appendRasterMesh(std::vector<BindingDesc>& bindings) {
                                      {"LargeBlock", kRasterBindingLargePieces, kStorage, kC},
                                      {"ChunkBlock", kRasterBindingChunks, kStorage, kC},
                                      {"ListCountBlock", kRasterBindingListCounts, kStorage, kC},
-                                     {"VisibleBlock", kRasterBindingVisibleInstances, kStorage, kC},
+                                     {"VisibleBlock", kRasterBindingVisibleInstances, kStorage, kC, kVisibleListBuffers},
                                      {"MeshletBlock", kRasterBindingMeshlets, kStorage, kC}});
 }
 
@@ -98,7 +99,7 @@ std::vector<BindingDesc> shadowCullBindings() {
             {"CullMeshBlock", kCullBindingMeshes, kStorage, kC},
             {"MaterialBlock", kCullBindingMaterials, kStorage, kC},
             {"ListCountBlock", kCullBindingListCounts, kStorage, kC},
-            {"VisibleBlock", kCullBindingVisibleInstances, kStorage, kC},
+            {"VisibleBlock", kCullBindingVisibleInstances, kStorage, kC, kVisibleListBuffers},
             {"ViewHistoryBlock", kCullBindingViewHistory, kStorage, kC},
             {"PyramidBlock", kCullBindingPyramid, kStorage, kC},
             {"TileStatsBlock", kCullBindingTileStats, kStorage, kC},

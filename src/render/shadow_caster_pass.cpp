@@ -57,13 +57,19 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
     }
     std::vector<gpu::DescriptorWrite>& casterWrites = writes_;
     casterWrites.assign(writes.begin(), writes.end());
-    casterWrites.push_back({gpu_data::kCasterBindingVisibleInstances, culling.visibleInstances(), {}, {}});
+    // The visible instances of the tile drawn: each tile's draws index the buffer that holds its list.
+    casterWrites.push_back({gpu_data::kCasterBindingVisibleInstances, culling.visibleListBuffer(firstCullTile), {}, {}});
     for (uint32_t kind = 0; kind < 2 && !draw.empty(); ++kind) {
         commands.bindPipeline(kind ? alphaTested_ : depthOnly_);
         commands.pushDescriptors(casterWrites);
         commands.bindTextureTable(scene_.textureTable());
         commands.bindIndexBuffer(scene_.indexBuffer());
+        gpu::BufferHandle boundList = casterWrites.back().buffer;
         for (uint32_t i : draw) {
+            if (const gpu::BufferHandle list = culling.visibleListBuffer(firstCullTile + i); list.id != boundList.id) {
+                casterWrites.back().buffer = boundList = list;
+                commands.pushDescriptors(casterWrites);
+            }
             const ShadowTile& tile = tiles[i];
             const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
             // Other-light tiles keep an empty border: casters are drawn through a smaller scissor, so a

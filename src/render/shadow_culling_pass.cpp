@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <string>
 
 #include "core/error.h"
 #include "cull_structs.h"
@@ -41,7 +42,6 @@ void ShadowCullingPass::create() {
     desc.pushConstantSize = sizeof(gpu_data::CullConstants);
     desc.debugName = "shadow caster and main view culling";
     cull_ = device.createComputePipeline(desc);
-    desc.pushConstantSize = 0;
     desc.shader = "shadow_draws.comp";
     desc.bindings = shadowDrawsBindings();
     desc.debugName = "shadow draw lists";
@@ -52,8 +52,16 @@ void ShadowCullingPass::create() {
     using gpu::MemoryKind;
     listCounts_ = device.createBuffer(tiles * meshes * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
                                       "shadow cull list counts");
-    visible_ = device.createBuffer(tiles * instances * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
-                                   "shadow visible instances");
+    const VisibleListSplit split =
+        splitVisibleLists(instances, listCount_, device.maxStorageBufferRange(),
+                          device.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u);
+    listsPerBuffer_ = split.listsPerBuffer;
+    visibleBufferCount_ = split.bufferCount;
+    for (uint32_t b = 0; b < visibleBufferCount_; ++b) {
+        const uint64_t lists = std::min(listsPerBuffer_, listCount_ - b * listsPerBuffer_);
+        const std::string name = "shadow visible instances" + (b > 0 ? " " + std::to_string(b) : std::string());
+        visible_[b] = device.createBuffer(lists * instances * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr, name);
+    }
     drawCommands_ = device.createBuffer(tiles * gpu_data::kCasterKinds * meshes * kDrawCommandBytes,
                                         gpu::kBufferStorage | gpu::kBufferIndirect, MemoryKind::DeviceLocal, nullptr,
                                         "shadow draw commands");
@@ -71,8 +79,8 @@ ShadowCullingPass::~ShadowCullingPass() { destroyAll(); }
 void ShadowCullingPass::destroyAll() {
     device_.destroy(cull_);
     device_.destroy(buildDraws_);
-    for (gpu::BufferHandle b : {listCounts_, visible_, drawCommands_, drawCounts_, tileStats_, viewHistory_})
-        device_.destroy(b);
+    for (gpu::BufferHandle b : {listCounts_, drawCommands_, drawCounts_, tileStats_, viewHistory_}) device_.destroy(b);
+    for (gpu::BufferHandle b : visible_) device_.destroy(b);
 }
 
 void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
@@ -86,10 +94,10 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
     // The tile count is the list's (a GPU-written list's is known to the GPU only): both dispatches
     // are sized by its header.
     const gpu::ResourceUse tileArgs = gpu::use(tiles.buffer, Usage::IndirectArguments), tileReads = gpu::use(tiles.buffer, Usage::ComputeRead);
-    commands.pass(passName, commands.joinUses(cullUses(viewHistory_), {tileArgs, tileReads}));
+    commands.pass(passName, cullUses(viewHistory_, {tileArgs, tileReads}));
     commands.bindPipeline(cull_);
     commands.pushDescriptors(cullWrites(cullFrame, tiles, viewHistory_));  // no pyramid read: any buffer
-    const gpu_data::CullConstants constants{gpu_data::kCullPassShadows};
+    const gpu_data::CullConstants constants{gpu_data::kCullPassShadows, listsPerBuffer_, 0, 0};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatchIndirect(tiles.buffer, tiles.offset + offsetof(gpu_data::CullTileListHeader, cullDispatch));
     commands.pass(commands.joinName(passName, "/draws"),
@@ -108,30 +116,52 @@ void ShadowCullingPass::record(gpu::CommandList& commands, const gpu::BufferSlic
         {kDrawsBindingTileStats, tileStats_, {}, {}},
         {kCullBindingTiles, tiles}};
     commands.pushDescriptors(drawWrites);
+    commands.pushConstants(&constants, sizeof(constants));
     commands.dispatchIndirect(tiles.buffer, tiles.offset + offsetof(gpu_data::CullTileListHeader, drawsDispatch));
 }
 
-std::array<gpu::DescriptorWrite, 10> ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
-                                                                  gpu::BufferHandle pyramid) const {
+const std::vector<gpu::DescriptorWrite>& ShadowCullingPass::cullWrites(const gpu::BufferSlice& cullFrame,
+                                                                      const gpu::BufferSlice& tiles, gpu::BufferHandle pyramid) {
     using namespace gpu_data;
-    return {{{kCullBindingFrame, cullFrame},
-            {kCullBindingTiles, tiles},
-            {kCullBindingInstances, scene_.cullInstanceBuffer(), {}, {}},
-            {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
-            {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
-            {kCullBindingListCounts, listCounts_, {}, {}},
-            {kCullBindingVisibleInstances, visible_, {}, {}},
-            {kCullBindingViewHistory, viewHistory_, {}, {}},
-            {kCullBindingPyramid, pyramid, {}, {}},
-            {kCullBindingTileStats, tileStats_, {}, {}}}};
+    writes_.assign({{kCullBindingFrame, cullFrame},
+                    {kCullBindingTiles, tiles},
+                    {kCullBindingInstances, scene_.cullInstanceBuffer(), {}, {}},
+                    {kCullBindingMeshes, scene_.cullMeshBuffer(), {}, {}},
+                    {kCullBindingMaterials, scene_.materialBuffer(), {}, {}},
+                    {kCullBindingListCounts, listCounts_, {}, {}},
+                    {kCullBindingViewHistory, viewHistory_, {}, {}},
+                    {kCullBindingPyramid, pyramid, {}, {}},
+                    {kCullBindingTileStats, tileStats_, {}, {}}});
+    appendVisibleListWrites(writes_, kCullBindingVisibleInstances);
+    return writes_;
 }
 
-std::array<gpu::ResourceUse, 8> ShadowCullingPass::cullUses(gpu::BufferHandle pyramid) const {
+const std::vector<gpu::ResourceUse>& ShadowCullingPass::cullUses(gpu::BufferHandle pyramid,
+                                                                 std::initializer_list<gpu::ResourceUse> more) {
     using gpu::Usage;
-    return {{gpu::use(scene_.cullInstanceBuffer(), Usage::ComputeRead), gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead),
-            gpu::use(scene_.materialBuffer(), Usage::ComputeRead),     gpu::use(pyramid, Usage::ComputeRead),
-            gpu::use(listCounts_, Usage::ComputeWrite),                gpu::use(visible_, Usage::ComputeWrite),
-            gpu::use(viewHistory_, Usage::ComputeWrite),               gpu::use(tileStats_, Usage::ComputeWrite)}};
+    uses_.assign({gpu::use(scene_.cullInstanceBuffer(), Usage::ComputeRead), gpu::use(scene_.cullMeshBuffer(), Usage::ComputeRead),
+                  gpu::use(scene_.materialBuffer(), Usage::ComputeRead), gpu::use(pyramid, Usage::ComputeRead),
+                  gpu::use(listCounts_, Usage::ComputeWrite), gpu::use(viewHistory_, Usage::ComputeWrite),
+                  gpu::use(tileStats_, Usage::ComputeWrite)});
+    addVisibleListUses(uses_, Usage::ComputeWrite);
+    uses_.insert(uses_.end(), more);
+    return uses_;
+}
+
+gpu::BufferHandle ShadowCullingPass::visibleListBuffer(uint32_t tile) const {
+    return visible_[gpu_data::visibleListBuffer(tile, listsPerBuffer_)];
+}
+
+void ShadowCullingPass::appendVisibleListWrites(std::vector<gpu::DescriptorWrite>& writes, uint32_t binding) const {
+    for (uint32_t element = 0; element < gpu_data::kVisibleListBuffers; ++element) {
+        gpu::DescriptorWrite& write = writes.emplace_back(binding, visible_[element < visibleBufferCount_ ? element : 0],
+                                                          gpu::TextureHandle{}, gpu::SamplerHandle{});
+        write.arrayElement = element;
+    }
+}
+
+void ShadowCullingPass::addVisibleListUses(std::vector<gpu::ResourceUse>& uses, gpu::Usage usage) const {
+    for (uint32_t b = 0; b < visibleBufferCount_; ++b) uses.push_back(gpu::use(visible_[b], usage));
 }
 
 void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::BufferSlice& cullFrame, uint32_t phase,
@@ -142,7 +172,7 @@ void ShadowCullingPass::recordView(gpu::CommandList& commands, const gpu::Buffer
     commands.bindPipeline(cull_);
     // The main view reads no tile: its list binding is any buffer (the culling frame itself).
     commands.pushDescriptors(cullWrites(cullFrame, {viewHistory_, 0, 0}, pyramid));
-    const gpu_data::CullConstants constants{phase};
+    const gpu_data::CullConstants constants{phase, listsPerBuffer_, 0, 0};
     commands.pushConstants(&constants, sizeof(constants));
     commands.dispatch(groupsFor(scene_.instanceCount()), 1);
 }
@@ -166,7 +196,7 @@ ShadowCullingPass::DrawList ShadowCullingPass::drawList(uint32_t tile, uint32_t 
 void ShadowCullingPass::addDrawUses(std::vector<gpu::ResourceUse>& uses) const {
     uses.push_back(gpu::use(drawCommands_, gpu::Usage::IndirectArguments));
     uses.push_back(gpu::use(drawCounts_, gpu::Usage::IndirectArguments));
-    uses.push_back(gpu::use(visible_, gpu::Usage::GraphicsRead));
+    addVisibleListUses(uses, gpu::Usage::GraphicsRead);
 }
 
 std::vector<std::vector<uint32_t>> ShadowCullingPass::readVisibleLists(uint32_t tileCount) {
@@ -176,15 +206,18 @@ std::vector<std::vector<uint32_t>> ShadowCullingPass::readVisibleLists(uint32_t 
         std::memcpy(values.data(), bytes.data(), values.size() * 4);
         return values;
     };
-    const std::vector<uint32_t> counts = words(listCounts_), visible = words(visible_), meshes = words(scene_.cullMeshBuffer());
-    const uint32_t meshCount = scene_.meshSlotCount(), instanceCount = scene_.instanceCount();
+    const std::vector<uint32_t> counts = words(listCounts_), meshes = words(scene_.cullMeshBuffer());
+    std::vector<std::vector<uint32_t>> visible;
+    for (uint32_t b = 0; b < visibleBufferCount_; ++b) visible.push_back(words(visible_[b]));
+    const uint32_t meshCount = scene_.meshSlotCount(), instanceCount = std::max(scene_.instanceCount(), 1u);
     std::vector<std::vector<uint32_t>> lists(tileCount);
     for (uint32_t tile = 0; tile < tileCount; ++tile) {
+        const std::vector<uint32_t>& buffer = visible[gpu_data::visibleListBuffer(tile, listsPerBuffer_)];
+        const uint32_t start = gpu_data::visibleListStart(tile, listsPerBuffer_, instanceCount);
         for (uint32_t mesh = 0; mesh < meshCount; ++mesh) {
             constexpr size_t kStride = sizeof(gpu_data::CullMesh) / 4, kFirst = offsetof(gpu_data::CullMesh, firstListSlot) / 4;
             const uint32_t first = meshes[mesh * kStride + kFirst];  // CullMesh::firstListSlot
-            for (uint32_t i = 0; i < counts[tile * meshCount + mesh]; ++i)
-                lists[tile].push_back(visible[size_t(tile) * instanceCount + first + i]);
+            for (uint32_t i = 0; i < counts[tile * meshCount + mesh]; ++i) lists[tile].push_back(buffer[start + first + i]);
         }
         std::sort(lists[tile].begin(), lists[tile].end());
     }

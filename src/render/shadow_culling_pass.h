@@ -52,7 +52,15 @@ public:
     // The uses of a pass that draws drawList()s: the commands and counts as indirect arguments, the
     // visible instances read by the vertex shader.
     void addDrawUses(std::vector<gpu::ResourceUse>& uses) const;
-    gpu::BufferHandle visibleInstances() const { return visible_; }
+    // The visible-instance lists (cull_structs.h), split over visibleBufferCount() buffers of
+    // listsPerBuffer() lists each (splitVisibleLists): the buffer that holds culling tile `tile`'s list
+    // (the one its drawList()'s firstInstance values index), the array writes of a shader's list binding
+    // (kVisibleListBuffers elements; the ones past the last buffer repeat the first), and their uses.
+    gpu::BufferHandle visibleListBuffer(uint32_t tile) const;
+    void appendVisibleListWrites(std::vector<gpu::DescriptorWrite>& writes, uint32_t binding) const;
+    void addVisibleListUses(std::vector<gpu::ResourceUse>& uses, gpu::Usage usage) const;
+    uint32_t listsPerBuffer() const { return listsPerBuffer_; }
+    uint32_t visibleBufferCount() const { return visibleBufferCount_; }
     gpu::BufferHandle listCounts() const { return listCounts_; }
     // Per-tile stats (CullTileStats), GPU-written; read them back with Device::readBackAtFrameEnd.
     gpu::BufferSlice tileStats(uint32_t tileCount) const;
@@ -65,13 +73,17 @@ private:
     void destroyAll();
     gpu::Device& device_;
     const GpuScene& scene_;
-    uint32_t tileCapacity_ = 0, listCount_ = 0;
+    uint32_t tileCapacity_ = 0, listCount_ = 0, listsPerBuffer_ = 1, visibleBufferCount_ = 1;
     gpu::PipelineHandle cull_, buildDraws_;
-    std::array<gpu::DescriptorWrite, 10> cullWrites(const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
-                                                    gpu::BufferHandle pyramid) const;
-    std::array<gpu::ResourceUse, 8> cullUses(gpu::BufferHandle pyramid) const;  // the cull dispatch's, any phase
-    gpu::BufferHandle listCounts_, visible_, drawCommands_, drawCounts_, tileStats_;
+    // The cull dispatch's writes and uses (any phase), in scratch kept so a steady frame allocates nothing.
+    const std::vector<gpu::DescriptorWrite>& cullWrites(const gpu::BufferSlice& cullFrame, const gpu::BufferSlice& tiles,
+                                                        gpu::BufferHandle pyramid);
+    const std::vector<gpu::ResourceUse>& cullUses(gpu::BufferHandle pyramid, std::initializer_list<gpu::ResourceUse> more = {});
+    gpu::BufferHandle listCounts_, drawCommands_, drawCounts_, tileStats_;
+    std::array<gpu::BufferHandle, gpu_data::kVisibleListBuffers> visible_{};
     gpu::BufferHandle viewHistory_;  // kView* bits per instance, carried from frame to frame
+    std::vector<gpu::DescriptorWrite> writes_;
+    std::vector<gpu::ResourceUse> uses_;
 };
 
 }  // namespace penumbra

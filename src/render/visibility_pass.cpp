@@ -283,7 +283,8 @@ void VisibilityPass::recordGeometry(gpu::CommandList& commands, const MainPassIn
                                     ShadowCullingPass& culling, const gpu::BufferSlice& cullFrame, ViewCulling viewCulling,
                                     bool meshletCulling) {
     ensureSize(target.width, target.height);
-    const gpu_data::VisibilityConstants constants = constantsFor(target);
+    gpu_data::VisibilityConstants constants = constantsFor(target);
+    constants.listsPerBuffer = culling.listsPerBuffer();
     using namespace gpu_data;
     std::vector<gpu::DescriptorWrite>& rasterWrites = rasterWrites_;  // the scene's (not the lit pass's: 8 is the visibility buffer here)
     rasterWrites.clear();

@@ -164,6 +164,14 @@ TEST(CliErrors, OutOfGpuMemoryIsOneLineAndWritesNoImage) {
     EXPECT_EQ(fileCount(dir), 0u);
 }
 
+TEST(CliErrors, SceneOverTheDeviceStorageRangeIsOneLine) {
+    // 20001 instance records of 64 bytes on a device whose storage buffers seem to hold 1 MiB.
+    expectOneLineError(runPenumbra("bench gen:boxes:20000 --frames 1" + kSmall,
+                                   "PENUMBRA_FAULT_INJECTION=max-storage-buffer-range=1048576"),
+                       "the scene does not fit on this GPU: its instances take 2 MiB, more than the device's largest "
+                       "storage buffer (1 MiB)");
+}
+
 TEST(CliErrors, DeviceLostIsOneLineNamingThePassesAndLeavesTheOldImage) {
     const fs::path dir = freshFolder("lost");
     std::ofstream(dir / "out.png") << "the previous image";

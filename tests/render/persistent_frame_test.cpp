@@ -190,7 +190,7 @@ TEST_F(SceneUpdateTest, OnlyTheChangedInstanceIsUploaded) {
     const RenderResult first = renderer.render(shadowAov(0, 32), {});
     EXPECT_EQ(first.stats.sceneBytesUploaded, 0u);
     renderer.setInstanceTransform(2, glm::translate(glm::mat4(1.0f), glm::vec3(1, 0.75f, 1)));
-    EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 144u + 48u);  // one InstanceData and its CullInstance
+    EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 64u + 48u);  // one InstanceData and its CullInstance
     EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 0u);
 }
 

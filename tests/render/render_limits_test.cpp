@@ -1,5 +1,6 @@
 // The renderer at the limits: textures and atlases over the device's image size
-// (a device limit made small with gpu::DeviceFaultInjection::maxImageSize), more lights than the shader
+// (a device limit made small with gpu::DeviceFaultInjection::maxImageSize), culling lists split over
+// storage buffers (maxStorageBufferRange made small), more lights than the shader
 // arrays hold, degenerate triangles and singular transforms, scenes 10^6 m across, bad camera views,
 // a damaged pipeline cache file.
 // Each is a warning with a fallback or a one-line Error, with no validation message and no NaN.
@@ -48,6 +49,15 @@ Device smallDevice(uint32_t maxImageSize) {
     faults.maxImageSize = maxImageSize;
     return DeviceAccess::makeDevice({testDeviceOptions(), faults});
 }
+
+constexpr uint32_t kSmallAtlas = 256;
+
+Device smallStorageRangeDevice(uint64_t maxStorageBufferRange) {
+    gpu::DeviceFaultInjection faults;
+    faults.maxStorageBufferRange = maxStorageBufferRange;
+    return DeviceAccess::makeDevice({testDeviceOptions(), faults});
+}
+
 
 bool hasWarning(const FrameStats& stats, const std::string& text) {
     for (const std::string& warning : stats.warnings)
@@ -101,6 +111,29 @@ TEST_F(RenderTest, OutputLargerThanTheDeviceLimitIsAnError) {
                   std::string::npos)
             << e.what();
     }
+}
+
+// The culling pass's 34 lists (32 tiles, the main view's 2) of one entry per instance, on a device whose
+// storage buffers seem to hold 16 of them: split over three buffers (tiles 0-15, tiles 16-31, the main
+// view's lists), each read by its tiles' draws, the compute rasterizers and the visibility buffer. The
+// scene has 18 tiles, so both tile buffers are drawn from. Every pixel is the one a single buffer gives.
+// (Small atlases: the compute rasterizer's queues fit that small range too, and hold what they draw.)
+TEST_F(RenderTest, CullingListsSplitOverStorageBuffersDrawTheSameImage) {
+    const Scene scene = boxesWithEighteenShadowTiles(kSplitListBoxes);
+    Device split(smallStorageRangeDevice(kSplitListsPerBuffer * sizeof(uint32_t) * scene.instances.size()));
+    for (MainView mainView : {MainView::Forward, MainView::Visibility})
+        for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+            Settings settings;
+            settings.render.mainView = mainView;
+            settings.shadows.raster = raster;
+            settings.shadows.directional.atlasSize = settings.shadows.spot.atlasSize = kSmallAtlas;
+            Renderer renderer(split, scene);
+            const RenderResult splitFrame = renderer.render(request(), settings);
+            EXPECT_TRUE(splitFrame.stats.warnings.empty()) << splitFrame.stats.warnings.front();  // nothing left out
+            EXPECT_EQ(splitFrame.image.pixels, renderScene(scene, request(), settings).image.pixels)
+                << mainViewName(mainView) << ", raster " << int(raster);
+        }
+    EXPECT_EQ(split.validationMessageCount(), 0u);
 }
 
 TEST_F(RenderTest, LightsBeyondTheShaderArraysAreLeftOutByNameWithAWarning) {

@@ -14,6 +14,8 @@
 #include "gpu/device_access.h"
 #include "penumbra/device.h"
 #include "penumbra/renderer.h"
+#include "penumbra/scene_builder.h"
+#include "scene/generated_scenes.h"
 #include "scene_structs.h"
 
 namespace penumbra::test {
@@ -48,6 +50,22 @@ protected:
 private:
     uint32_t messagesBefore_ = 0;
 };
+
+// The culling lists per storage buffer on a device made to hold only that many (the 64-byte instance
+// records still fit one), and a scene whose 18 shadow tiles then lie in two buffers: gen:boxes's boxes
+// (turned, of non-uniform heights) under its sun (4 cascades), two shadowed point lights (12 faces) and
+// two shadowed spot lights, all 4 m or more above the boxes.
+constexpr uint64_t kSplitListsPerBuffer = 16;
+constexpr uint32_t kSplitListBoxes = 400;
+constexpr size_t kSplitListTiles = 18;
+inline Scene boxesWithEighteenShadowTiles(uint32_t boxes) {
+    Scene scene = makeBoxesScene(boxes);
+    for (float x : {-3.0f, 3.0f}) {
+        scene.lights.push_back(makePointLight({x, 6.0f, 1.0f}, 20.0f, 10.0f));
+        scene.lights.push_back(makeSpotLight({x, 6.0f, -2.0f}, {0.1f, -1.0f, 0.05f}, 30.0f, 20.0f, 0.8f, 0.6f));
+    }
+    return scene;
+}
 
 // The share of pixels of two same-sized images where some channel differs by more than `levels`.
 inline double shareOfPixelsOver(const Image& a, const Image& b, int levels) {

@@ -20,9 +20,11 @@ protected:
     // Per tile of the plan (directional, then spot/point): the GPU's visible instances and the CPU's.
     struct Lists {
         std::vector<std::vector<uint32_t>> gpu, cpu;
+        uint32_t visibleBuffers = 0;  // the storage buffers the GPU's lists were split over
     };
-    Lists cull(const Scene& scene, const Settings& settings, uint32_t width = 160, uint32_t height = 90) {
-        gpu::Device& gpu = gpu::backend(device());
+    Lists cull(const Scene& scene, const Settings& settings, Device* on = nullptr) {
+        constexpr uint32_t width = 160, height = 90;
+        gpu::Device& gpu = gpu::backend(on ? *on : device());
         const CameraView view = resolveCameraView(scene, width, height);
         const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);  // CPU lists kept
         GpuScene gpuScene(gpu, scene);
@@ -40,6 +42,7 @@ protected:
         gpu.submitAndWait(commands);
         Lists lists;
         lists.gpu = culling.readVisibleLists(tiles);
+        lists.visibleBuffers = culling.visibleBufferCount();
         for (const auto* tileList : {&plan.directional.tiles, &plan.other.tiles})
             for (const ShadowTile& tile : *tileList) {
                 std::vector<uint32_t> instances = tile.casterInstances;
@@ -51,8 +54,10 @@ protected:
         return lists;
     }
 
-    void expectSameLists(const Scene& scene, const Settings& settings, const std::string& what) {
-        const Lists lists = cull(scene, settings);
+    // Leaves the lists compared in last_.
+    void expectSameLists(const Scene& scene, const Settings& settings, const std::string& what, Device* on = nullptr) {
+        last_ = cull(scene, settings, on);
+        const Lists& lists = last_;
         ASSERT_EQ(lists.gpu.size(), lists.cpu.size()) << what;
         ASSERT_FALSE(lists.cpu.empty()) << what << ": no shadow tile to compare";
         size_t kept = 0;
@@ -62,6 +67,7 @@ protected:
         }
         EXPECT_GT(kept, 0u) << what;
     }
+    Lists last_;
 };
 
 TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsOnEveryCanonicalScene) {
@@ -89,6 +95,19 @@ TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsOnManyObjects) {
     settings.shadows.maxDistance = 300.0f;
     expectSameLists(loadScene("gen:boxes:3000"), settings, "gen:boxes:3000");
     expectSameLists(loadScene("gen:field:9:6"), Settings{}, "gen:field:9:6");
+}
+
+// On a device whose storage buffers seem to hold 16 of the 34 lists, the lists are split over three
+// buffers; every one of 18 tiles, in whichever buffer, keeps what the CPU keeps.
+TEST_F(ShadowCullingTest, GpuListsSplitOverStorageBuffersEqualTheCpuLists) {
+    const Scene scene = boxesWithEighteenShadowTiles(kSplitListBoxes);
+    gpu::DeviceFaultInjection faults;
+    faults.maxStorageBufferRange = kSplitListsPerBuffer * sizeof(uint32_t) * scene.instances.size();
+    Device split = DeviceAccess::makeDevice({testDeviceOptions(), faults});
+    expectSameLists(scene, Settings{}, "boxes, 18 tiles, lists split", &split);
+    EXPECT_EQ(last_.cpu.size(), kSplitListTiles);
+    EXPECT_EQ(last_.visibleBuffers, 3u);
+    EXPECT_EQ(split.validationMessageCount(), 0u);
 }
 
 TEST_F(ShadowCullingTest, NonCastingNodesAndShadowlessMaterialsAreNeverListed) {

@@ -47,7 +47,7 @@ std::vector<PassCase> everyPass() {
         {"screen shadows", {vertex("fullscreen.vert"), fragment("screen_space_shadows.frag")}, screenSpaceShadowBindings(),
          sizeof(ScreenShadowConstants)},
         {"cull", {compute("shadow_cull.comp")}, shadowCullBindings(), sizeof(CullConstants)},
-        {"draws", {compute("shadow_draws.comp")}, shadowDrawsBindings()},
+        {"draws", {compute("shadow_draws.comp")}, shadowDrawsBindings(), sizeof(CullConstants)},
         {"raster args", {compute("shadow_raster_args.comp")}, rasterArgsBindings(), sizeof(RasterArgsConstants)},
         {"resolve frag", {vertex("fullscreen.vert"), fragment("visibility_resolve.frag")},
          visibilityResolveBindings(gpu::kStageFragment), sizeof(VisibilityConstants), true},
@@ -119,10 +119,18 @@ TEST(ShaderInterfaceTest, AnUndeclaredBindingIsAnError) {
                         "declared by the pass");
 }
 
+TEST(ShaderInterfaceTest, AnArrayDeclaredSmallerThanTheShadersIsAnError) {
+    PassCase c = everyPass()[6];  // cull: its visible-instance lists are an array of buffers
+    for (BindingDesc& b : c.bindings)
+        if (b.binding == gpu_data::kCullBindingVisibleInstances) b.count = 1;
+    EXPECT_EQ(check(c), "pass 'cull', shader 'shadow_cull.comp', binding 5 (VisibleBlock): an array of 4 in the shader, "
+                        "1 declared");
+}
+
 TEST(ShaderInterfaceTest, AWrongPushConstantSizeIsAnError) {
     PassCase c = everyPass()[6];  // cull
     c.pushConstantSize = 32;
-    EXPECT_EQ(check(c), "pass 'cull', shader 'shadow_cull.comp': push constants are 4 bytes in the shader, 32 declared");
+    EXPECT_EQ(check(c), "pass 'cull', shader 'shadow_cull.comp': push constants are 16 bytes in the shader, 32 declared");
 }
 
 TEST(ShaderInterfaceTest, TheTextureTableMustBeDeclaredWhenAShaderSamplesIt) {
