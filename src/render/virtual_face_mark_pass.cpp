@@ -34,31 +34,22 @@ gpu_data::VirtualFaceData packVirtualFace(const VirtualFace& face) {
     return {face.clipFromWorld, face.wsPosition, face.tanHalfFov};
 }
 
-VirtualFaceMarkPass::VirtualFaceMarkPass(gpu::Device& device) : device_(device) {
+namespace {
+
+gpu::ComputePipelineDesc faceMarkPipeline(bool visibility) {
     gpu::ComputePipelineDesc desc;
-    desc.shader = "virtual_face_mark.comp";
-    desc.bindings = virtualFaceMarkBindings(false);
-    desc.debugName = "virtual face marking";
-    pipeline_ = device.createComputePipeline(desc);
-    try {
-        desc.shader = "virtual_face_mark_visibility.comp";
-        desc.bindings = virtualFaceMarkBindings(true);
-        desc.debugName = "virtual face marking (visibility buffer)";
-        visibilityPipeline_ = device.createComputePipeline(desc);
-        pointSampler_ = device.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
-    } catch (...) {
-        device.destroy(pipeline_);  // the destructor does not run
-        device.destroy(visibilityPipeline_);
-        throw;
-    }
+    desc.shader = visibility ? "virtual_face_mark_visibility.comp" : "virtual_face_mark.comp";
+    desc.bindings = virtualFaceMarkBindings(visibility);
+    desc.debugName = visibility ? "virtual face marking (visibility buffer)" : "virtual face marking";
+    return desc;
 }
 
-VirtualFaceMarkPass::~VirtualFaceMarkPass() {
-    device_.destroy(requests_);
-    device_.destroy(pipeline_);
-    device_.destroy(visibilityPipeline_);
-    device_.destroy(pointSampler_);
-}
+}  // namespace
+
+VirtualFaceMarkPass::VirtualFaceMarkPass(gpu::Device& device)
+    : device_(device), pipelines_(device, faceMarkPipeline(false), faceMarkPipeline(true)) {}
+
+VirtualFaceMarkPass::~VirtualFaceMarkPass() { device_.destroy(requests_); }
 
 void VirtualFaceMarkPass::ensureRequests(const VirtualPageTableLayout& layout) {
     const uint64_t bytes = uint64_t((layout.entryCount() + 31) / 32) * 4;
@@ -74,31 +65,12 @@ void VirtualFaceMarkPass::record(gpu::CommandList& commands, const VirtualPageDe
     ensureRequests(layout);
     commands.pass("virtualFaces/clear", {gpu::use(requests_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(requestWords(), 0u);
-    const gpu::DescriptorWrite common[] = {{gpu_data::kFaceMarkBindingFrame, inputs.mark},
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kFaceMarkBindingFrame, inputs.mark},
                                            {gpu_data::kFaceMarkBindingRequests, requests_, {}, {}},
                                            {gpu_data::kFaceMarkBindingFaces, inputs.faces},
                                            {gpu_data::kFaceMarkBindingLights, inputs.lights}};
-    uint32_t width = source.width, height = source.height;
-    if (source.depth) {
-        commands.pass("virtualFaces/mark",
-                      {gpu::use(source.depth, gpu::Usage::ComputeSampled), gpu::use(requests_, gpu::Usage::ComputeWrite)});
-        commands.bindPipeline(pipeline_);
-        const gpu::DescriptorWrite writes[] = {common[0], common[1], common[2], common[3],
-                                               {gpu_data::kFaceMarkBindingDepth, {}, source.depth, pointSampler_}};
-        commands.pushDescriptors(writes);
-        const gpu::TextureDesc& size = device_.textureDesc(source.depth);
-        width = size.width;
-        height = size.height;
-    } else {
-        PENUMBRA_ASSERT(source.visibility);
-        commands.pass("virtualFaces/mark", {gpu::use(source.visibility, gpu::Usage::ComputeRead),
-                                            gpu::use(requests_, gpu::Usage::ComputeWrite)});
-        commands.bindPipeline(visibilityPipeline_);
-        const gpu::DescriptorWrite writes[] = {common[0], common[1], common[2], common[3],
-                                               {gpu_data::kFaceMarkBindingVisibility, source.visibility, {}, {}}};
-        commands.pushDescriptors(writes);
-    }
-    commands.dispatch((width + 7) / 8, (height + 7) / 8);
+    pipelines_.record(commands, source, "virtualFaces/mark", requests_, writes, gpu_data::kFaceMarkBindingDepth,
+                      gpu_data::kFaceMarkBindingVisibility);
 }
 
 namespace {

@@ -50,8 +50,7 @@ private:
     void ensureRequests(const VirtualPageTableLayout& layout);
 
     gpu::Device& device_;
-    gpu::PipelineHandle pipeline_, visibilityPipeline_;
-    gpu::SamplerHandle pointSampler_;
+    DepthSourcePipelines pipelines_;
     gpu::BufferHandle requests_;
     uint64_t requestBytes_ = 0;
 };

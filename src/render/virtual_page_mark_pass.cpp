@@ -1,6 +1,10 @@
 #include "render/virtual_page_mark_pass.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "pass_bindings.h"
@@ -28,30 +32,69 @@ gpu_data::VirtualPageMarkData packVirtualPageMark(const VirtualClipmapConfig& co
     return data;
 }
 
-VirtualPageMarkPass::VirtualPageMarkPass(gpu::Device& device) : device_(device) {
+namespace {
+
+gpu::ComputePipelineDesc markPipeline(const char* shader, std::vector<gpu::BindingDesc> bindings, const char* name) {
     gpu::ComputePipelineDesc desc;
-    desc.shader = "virtual_page_mark.comp";
-    desc.bindings = virtualPageMarkBindings();
-    desc.debugName = "virtual page marking";
-    pipeline_ = device.createComputePipeline(desc);
+    desc.shader = shader;
+    desc.bindings = std::move(bindings);
+    desc.debugName = name;
+    return desc;
+}
+
+}  // namespace
+
+DepthSourcePipelines::DepthSourcePipelines(gpu::Device& device, const gpu::ComputePipelineDesc& texture,
+                                           const gpu::ComputePipelineDesc& visibility)
+    : device_(device) {
+    texture_ = device.createComputePipeline(texture);
     try {
-        desc.shader = "virtual_page_mark_visibility.comp";
-        desc.bindings = virtualPageMarkVisibilityBindings();
-        desc.debugName = "virtual page marking (visibility buffer)";
-        visibilityPipeline_ = device.createComputePipeline(desc);
+        visibility_ = device.createComputePipeline(visibility);
         pointSampler_ = device.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
     } catch (...) {
-        device.destroy(pipeline_);  // the destructor does not run
-        device.destroy(visibilityPipeline_);
+        device.destroy(texture_);  // the destructor does not run
+        device.destroy(visibility_);
         throw;
     }
 }
 
+DepthSourcePipelines::~DepthSourcePipelines() {
+    device_.destroy(texture_);
+    device_.destroy(visibility_);
+    device_.destroy(pointSampler_);
+}
+
+void DepthSourcePipelines::record(gpu::CommandList& commands, const VirtualPageDepthSource& source, const char* name,
+                                  gpu::BufferHandle written, std::span<const gpu::DescriptorWrite> writes,
+                                  uint32_t depthBinding, uint32_t visibilityBinding) {
+    PENUMBRA_ASSERT(writes.size() <= kMaxWrites && (source.depth || source.visibility));
+    std::array<gpu::DescriptorWrite, kMaxWrites + 1> all;  // no heap allocation per frame
+    std::copy(writes.begin(), writes.end(), all.begin());
+    uint32_t width = source.width, height = source.height;
+    if (source.depth) {
+        commands.pass(name, {gpu::use(source.depth, gpu::Usage::ComputeSampled), gpu::use(written, gpu::Usage::ComputeWrite)});
+        commands.bindPipeline(texture_);
+        all[writes.size()] = {depthBinding, {}, source.depth, pointSampler_};
+        const gpu::TextureDesc& size = device_.textureDesc(source.depth);
+        width = size.width;
+        height = size.height;
+    } else {
+        commands.pass(name, {gpu::use(source.visibility, gpu::Usage::ComputeRead), gpu::use(written, gpu::Usage::ComputeWrite)});
+        commands.bindPipeline(visibility_);
+        all[writes.size()] = {visibilityBinding, source.visibility, {}, {}};
+    }
+    commands.pushDescriptors(std::span(all.data(), writes.size() + 1));
+    commands.dispatch((width + 7) / 8, (height + 7) / 8);
+}
+
+VirtualPageMarkPass::VirtualPageMarkPass(gpu::Device& device)
+    : device_(device),
+      pipelines_(device, markPipeline("virtual_page_mark.comp", virtualPageMarkBindings(), "virtual page marking"),
+                 markPipeline("virtual_page_mark_visibility.comp", virtualPageMarkVisibilityBindings(),
+                              "virtual page marking (visibility buffer)")) {}
+
 VirtualPageMarkPass::~VirtualPageMarkPass() {
     for (gpu::BufferHandle b : {requests_, readback_, markNowData_}) device_.destroy(b);
-    device_.destroy(pipeline_);
-    device_.destroy(visibilityPipeline_);
-    device_.destroy(pointSampler_);
 }
 
 void VirtualPageMarkPass::ensureRequests(const VirtualClipmapConfig& config) {
@@ -70,29 +113,10 @@ void VirtualPageMarkPass::record(gpu::CommandList& commands, const VirtualPageDe
     ensureRequests(config);
     commands.pass("virtualPages/clear", {gpu::use(requests_, gpu::Usage::TransferWrite)});
     commands.fillBuffer(requestWords(), 0u);
-    const gpu::DescriptorWrite frame{gpu_data::kPageMarkBindingFrame, mark};
-    const gpu::DescriptorWrite requests{gpu_data::kPageMarkBindingRequests, requests_, {}, {}};
-    uint32_t width = source.width, height = source.height;
-    if (source.depth) {
-        commands.pass("virtualPages/mark",
-                      {gpu::use(source.depth, gpu::Usage::ComputeSampled), gpu::use(requests_, gpu::Usage::ComputeWrite)});
-        commands.bindPipeline(pipeline_);
-        const gpu::DescriptorWrite writes[] = {frame, {gpu_data::kPageMarkBindingDepth, {}, source.depth, pointSampler_},
-                                               requests};  // no heap allocation per frame
-        commands.pushDescriptors(writes);
-        const gpu::TextureDesc& size = device_.textureDesc(source.depth);
-        width = size.width;
-        height = size.height;
-    } else {
-        PENUMBRA_ASSERT(source.visibility);
-        commands.pass("virtualPages/mark", {gpu::use(source.visibility, gpu::Usage::ComputeRead),
-                                            gpu::use(requests_, gpu::Usage::ComputeWrite)});
-        commands.bindPipeline(visibilityPipeline_);
-        const gpu::DescriptorWrite writes[] = {frame, {gpu_data::kPageMarkBindingVisibility, source.visibility, {}, {}},
-                                               requests};
-        commands.pushDescriptors(writes);
-    }
-    commands.dispatch((width + 7) / 8, (height + 7) / 8);
+    const gpu::DescriptorWrite writes[] = {{gpu_data::kPageMarkBindingFrame, mark},
+                                           {gpu_data::kPageMarkBindingRequests, requests_, {}, {}}};
+    pipelines_.record(commands, source, "virtualPages/mark", requests_, writes, gpu_data::kPageMarkBindingDepth,
+                      gpu_data::kPageMarkBindingVisibility);
 }
 
 gpu::BufferSlice VirtualPageMarkPass::requestWords() const { return {requests_, 0, requestBytes_}; }

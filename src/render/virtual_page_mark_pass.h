@@ -9,6 +9,7 @@
 //   stay in requestWords() for the passes that follow (or Device::readBackAtFrameEnd + fromReadback);
 // - markNow(): records, submits, waits and reads back (tests, debugging).
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "gpu/device.h"
@@ -33,6 +34,30 @@ struct VirtualPageDepthSource {
     static VirtualPageDepthSource visibilityBuffer(gpu::BufferHandle words, uint32_t width, uint32_t height) {
         return {{}, words, width, height};
     }
+};
+
+// A pass over the view's pixels in two variants: one sampling a D32 depth texture, one reading the
+// visibility buffer (each shader declares its own depth binding), with the texture variant's point sampler.
+// The virtual shadow maps' markings (directional clipmaps, spot and point faces) both record through it.
+class DepthSourcePipelines {
+public:
+    // texture, visibility: the two variants' pipelines (shader, bindings, name).
+    DepthSourcePipelines(gpu::Device& device, const gpu::ComputePipelineDesc& texture, const gpu::ComputePipelineDesc& visibility);
+    ~DepthSourcePipelines();
+    DepthSourcePipelines(const DepthSourcePipelines&) = delete;
+    DepthSourcePipelines& operator=(const DepthSourcePipelines&) = delete;
+
+    // Declares pass `name` (the depth read, `written` written), binds the variant for `source`, pushes
+    // `writes` (at most kMaxWrites) with the depth at depthBinding or visibilityBinding, and dispatches 8 x 8
+    // groups over the depth's pixels. Allocates nothing.
+    static constexpr size_t kMaxWrites = 7;
+    void record(gpu::CommandList& commands, const VirtualPageDepthSource& source, const char* name, gpu::BufferHandle written,
+                std::span<const gpu::DescriptorWrite> writes, uint32_t depthBinding, uint32_t visibilityBinding);
+
+private:
+    gpu::Device& device_;
+    gpu::PipelineHandle texture_, visibility_;
+    gpu::SamplerHandle pointSampler_;
 };
 
 class VirtualPageMarkPass {
@@ -62,8 +87,7 @@ private:
     void ensureRequests(const VirtualClipmapConfig& config);
 
     gpu::Device& device_;
-    gpu::PipelineHandle pipeline_, visibilityPipeline_;
-    gpu::SamplerHandle pointSampler_;
+    DepthSourcePipelines pipelines_;
     gpu::BufferHandle requests_, readback_;  // readback_: markNow's host copy of requests_
     gpu::BufferHandle markNowData_;          // markNow's VirtualPageMarkData
     uint64_t requestBytes_ = 0;
