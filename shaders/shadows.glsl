@@ -11,6 +11,7 @@
 #include "shadow_bias.glsl"
 #include "shadow_pcss.glsl"
 #include "shadow_tent.glsl"
+#include "virtual_face_shadows.glsl"
 #include "virtual_shadows.glsl"
 
 layout(set = kPassSet, binding = kLitBindingDirectionalShadows, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
@@ -167,10 +168,12 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
 
 // Like the _SHADOWS_HARD / _SHADOWS_SOFT keywords of "Spotlight Shadows" (Shader Keywords), the renderer
 // specializes the lit pass by the reserved lights' shadow kinds (kOtherShadowsHard | kOtherShadowsSoft bits;
-// 0 = no spot/point shadows, otherShadow returns 1 at once), and the soft filter, so a frame pays only for
-// the sampling code it uses. The generic variant (mode hard | soft, filter kShadowFilterFromData) gives the
-// same result for every frame; the renderer draws with it while the specialized one is still being built.
+// 0 = no spot/point shadows, otherShadow returns 1 at once; kOtherShadowsVirtual alone: the virtual faces'
+// sampling only), and the soft filter, so a frame pays only for the sampling code it uses (and lavapipe
+// compiles no more than that). The generic variant (every mode bit, filter kShadowFilterFromData) gives
+// the same result for every frame; the renderer draws with it while the specialized one is still being built.
 layout(constant_id = 2) const uint kOtherShadowMode = 0u;
+const bool kOtherShadowsFromFaces = (kOtherShadowMode & kOtherShadowsVirtual) != 0u;  // shadows.spot.mode = virtual
 layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
 layout(set = kPassSet, binding = kLitBindingOtherShadows, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
 layout(set = kPassSet, binding = kLitBindingOtherAtlas) uniform sampler2DShadow otherShadowAtlas;
@@ -216,6 +219,12 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
     float distance = pointLight ? max(max(abs(wsFromLight.x), abs(wsFromLight.y)), abs(wsFromLight.z))
                                 : dot(wsFromLight, light.wsAxis.xyz);
     if (distance <= 0.0) return ShadowSample(1.0, -1);
+    if (kOtherShadowsFromFaces && virtualFaces.enabled != 0u) {  // the light's virtual faces, no atlas tile
+        int level;
+        float shadow = sampleOtherVirtual(light, otherShadows.biasMode, receiver, wsToLight, viewDepth, level);
+        return ShadowSample(mix(1.0, shadow, strength), -1);
+    }
+    if (kOtherShadowMode == kOtherShadowsVirtual) return ShadowSample(1.0, -1);  // the atlas is not compiled in
     bool soft = light.soft != 0u;
     ShadowBiasParams bias = ShadowBiasParams(otherShadows.biasMode, light.normalBias, light.slopeBias,
                                              light.wsTexelPerDistance * distance, normalOffsetFootprint(light.filterMode),

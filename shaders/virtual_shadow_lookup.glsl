@@ -3,9 +3,11 @@
 // float and integer operations, so the GPU agrees with its CPU reference. Change both together.
 //
 // The includer supplies, before the include, its two reads of the page table and the pool:
-//   VirtualPageEntry virtualShadowEntry(uint record);  // record of the bound entry buffer: data.firstEntry +
-//                                                      // (level * pagesPerSide + slotY) * pagesPerSide + slotX
-//   float virtualShadowPoolTexel(ivec2 poolTexel);     // the pool texture's stored depth (R32F, texelFetch)
+//   VirtualPageEntry virtualShadowEntry(bool faces, uint record);  // record of the bound entry buffer:
+//                       // data.firstEntry + (level * pagesPerSide + slotY) * pagesPerSide + slotX
+//   float virtualShadowPoolTexel(bool faces, ivec2 poolTexel);     // the pool texture's stored depth (R32F)
+// `faces` (data.faceCount > 0) names the table: the spot and point lights' faces, or the directional
+// lights' clipmaps, so that a shader reading both binds two tables and two pools.
 // Several maps may share the entry buffer and the pool texture (render/virtual_page_storage.h): a map's
 // entries start at record data.firstEntry, its pool at pool texture texel (0, data.poolOriginY).
 //
@@ -62,7 +64,7 @@ int virtualShadowEntryIndex(VirtualShadowLookupData data, uint level, ivec2 page
 int virtualShadowReadyPage(VirtualShadowLookupData data, uint level, ivec2 page) {
     const int index = virtualShadowEntryIndex(data, level, page);
     if (index < 0) return -1;
-    const VirtualPageEntry entry = virtualShadowEntry(data.firstEntry + uint(index));
+    const VirtualPageEntry entry = virtualShadowEntry(data.faceCount > 0u, data.firstEntry + uint(index));
     const bool ready = (entry.flags & (kVirtualPageResident | kVirtualPageDirty)) == kVirtualPageResident &&
                        entry.pageX == page.x && entry.pageY == page.y &&
                        entry.physicalPage < data.poolPagesPerSide * data.poolPagesPerSide;
@@ -81,7 +83,7 @@ bool virtualShadowTexelDepth(VirtualShadowLookupData data, uint level, ivec2 tex
         if (physical < 0) continue;
         const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
         const ivec2 origin = ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY));  // pool texture texels
-        depth = virtualShadowPoolTexel(origin + t - page * size);
+        depth = virtualShadowPoolTexel(data.faceCount > 0u, origin + t - page * size);
         return true;
     }
     return false;

@@ -19,12 +19,13 @@ layout(set = kPassSet, binding = kShadowProbeBindingResults, std430) writeonly b
 layout(push_constant) uniform ShadowProbeBlock { VirtualShadowProbeConstants constants; };
 
 // `record` counts from the bound buffer's start (the lookup adds its firstEntry): entryCount bounds it.
-VirtualPageEntry virtualShadowEntry(uint record) {
+// One table is bound, whichever kind the lookup data names.
+VirtualPageEntry virtualShadowEntry(bool faces, uint record) {
     if (record < constants.entryCount) return entries[record];
     return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
 }
 
-float virtualShadowPoolTexel(ivec2 poolTexel) { return texelFetch(pool, poolTexel, 0).r; }
+float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) { return texelFetch(pool, poolTexel, 0).r; }
 
 #include "virtual_shadow_lookup.glsl"
 #endif

@@ -1,5 +1,6 @@
 // Directional shadows from the lights' virtual shadow maps (shadows.directional.mode = virtual), for the
-// lit pass, the visibility resolve and the screen-space resolve: the level a receiver reads, the biases
+// lit pass, the visibility resolve and the screen-space resolve (and the bindings of the spot and point
+// lights' faces, whose page table and pool the lookup's reads pick by the lookup data's faceCount): the level a receiver reads, the biases
 // of shadow_bias.glsl, the tent filters of shadow_tent.glsl and PCSS (shadow_pcss.glsl), each tap a
 // compare of virtual texels through the page table (virtual_shadow_lookup.glsl), so filters read across
 // page borders and fall back to a coarser level where a page is missing, never into a hole.
@@ -24,13 +25,27 @@ layout(set = kPassSet, binding = kLitBindingVirtualPool) uniform sampler2D virtu
 layout(set = kPassSet, binding = kLitBindingVirtualPages, std430) readonly buffer VirtualPageBlock {
     VirtualPageEntry virtualPageEntries[];
 };
+// The spot and point lights' faces (virtual_face_shadows.glsl): their own table and pool.
+layout(set = kPassSet, binding = kLitBindingVirtualFaces, std140) uniform VirtualFaceBlock {
+    VirtualFaceShadowData virtualFaces;
+};
+layout(set = kPassSet, binding = kLitBindingVirtualFacePool) uniform sampler2D virtualFacePool;
+layout(set = kPassSet, binding = kLitBindingVirtualFacePages, std430) readonly buffer VirtualFacePageBlock {
+    VirtualPageEntry virtualFacePageEntries[];
+};
 
-VirtualPageEntry virtualShadowEntry(uint entry) {
-    if (entry < uint(virtualPageEntries.length())) return virtualPageEntries[entry];
+VirtualPageEntry virtualShadowEntry(bool faces, uint entry) {
+    if (faces) {
+        if (entry < uint(virtualFacePageEntries.length())) return virtualFacePageEntries[entry];
+    } else if (entry < uint(virtualPageEntries.length())) {
+        return virtualPageEntries[entry];
+    }
     return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
 }
 
-float virtualShadowPoolTexel(ivec2 poolTexel) { return texelFetch(virtualShadowPool, poolTexel, 0).r; }
+float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) {
+    return faces ? texelFetch(virtualFacePool, poolTexel, 0).r : texelFetch(virtualShadowPool, poolTexel, 0).r;
+}
 
 #include "virtual_shadow_lookup.glsl"
 
@@ -95,11 +110,11 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
 }
 
 // PCSS (shadow_pcss.glsl's pcssShadow) over a level: the blocker search and the filter disk read
-// virtual texels; metres per unit of depth = 1 / depthPerMetre.
-float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup lookup, float tanRadius, float wsTexel) {
+// virtual texels; `light` turns the level's depths into distances (a clipmap's orthographic, a face's
+// perspective).
+float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup lookup, PcssLight light) {
     vec2 u = lookup.uvDepth.xy, g = lookup.depthGradient;
     float z = lookup.uvDepth.z;
-    PcssLight light = PcssLight(0.0, vec4(1.0 / data.depthPerMetre, tanRadius, wsTexel, 0.0));
     float searchRadius = clamp(0.5 * pcssPenumbraTexels(light, z, 0.0), 1.0, kPcssMaxRadiusTexels);
     float blockerSum = 0.0, blockers = 0.0;
     for (int i = 0; i < kPcssSearchSamples; ++i) {
@@ -134,7 +149,10 @@ float sampleDirectionalVirtual(uint slot, DirectionalShadowLight light, uint bia
     vec3 wsToLight = light.wsToLight.xyz;
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
     ShadowLookup lookup = shadowLookup(virtualLevelFromWorld(data, uint(level)), receiver, wsLookup, wsToLight, bias, 1.0);
-    if (light.pcssTanRadius > 0.0) return virtualShadowPcss(data, uint(level), lookup, light.pcssTanRadius, wsTexel);
+    if (light.pcssTanRadius > 0.0) {  // metres per unit of depth: 1 / depthPerMetre
+        PcssLight pcss = PcssLight(0.0, vec4(1.0 / data.depthPerMetre, light.pcssTanRadius, wsTexel, 0.0));
+        return virtualShadowPcss(data, uint(level), lookup, pcss);
+    }
     return virtualShadowFiltered(data, uint(level), lookup.uvDepth, light.filterMode, lookup.depthGradient,
                                  lookup.perTexelPlane);
 }

@@ -59,7 +59,7 @@ struct AtlasDrawStats {
 // Virtual shadow map pages of one frame (shadows.directional.mode = virtual), summed over the
 // directional lights' maps; all 0 with cascades.
 struct VirtualPageCounts {
-    uint32_t maps = 0;        // directional lights with a virtual map
+    uint32_t maps = 0;        // directional lights with a virtual map (spot and point faces: the faces)
     uint32_t requested = 0;   // pages the view's lookups read (the marking pass)
     uint32_t cached = 0;      // requested pages already resident
     uint32_t allocated = 0;   // requested pages given a physical page this frame
@@ -111,6 +111,10 @@ struct FrameStats {
         std::array<uint32_t, 16> requested{}, cached{}, drawn{};  // cached: requested and already resident
     };
     std::array<VirtualMapLevels, 4> virtualMaps{};
+    // The same for the spot and point lights' faces (shadows.spot.mode = virtual; maps = faces), their
+    // levels the mips (finest first, every face together).
+    VirtualPageCounts virtualFacePages;
+    VirtualMapLevels virtualFaceMips;
     std::vector<std::string> warnings;
     // The shadow plan (lights reserved, tiles, casters and triangles per tile) as plain data; toJson()
     // writes it as --stats prints it.
@@ -119,7 +123,7 @@ struct FrameStats {
 
 // The frame's stats as one JSON object, as `penumbra render --stats` prints them after the device and
 // the size (docs/cli.md lists the keys): gpuMs, cpuPlanMs, cpuMs, shadows, warnings, shadowRaster,
-// mainView, meshletsSkipped, tiles, lightsPerCluster, virtualPages.
+// mainView, meshletsSkipped, tiles, lightsPerCluster, virtualPages, virtualFacePages.
 std::string toJson(const FrameStats& stats);
 
 struct RenderResult {

@@ -30,6 +30,11 @@ enum class ShadowFadeMode { Linear, Squared };
 // virtual shadow map per light (a clipmap of pages drawn on demand and cached across frames).
 enum class DirectionalShadowMode { Cascades, Virtual };
 
+// How spot and point lights are shadowed: tiles of the spot atlas (Unity's system), or virtual shadow
+// maps: a face per spot light and six per point light, each a mip chain of pages drawn on demand and
+// cached across frames.
+enum class SpotShadowMode { Atlas, Virtual };
+
 struct DirectionalShadowSettings {
     DirectionalShadowMode mode = DirectionalShadowMode::Cascades;
     uint32_t atlasSize = 1024;
@@ -44,6 +49,7 @@ struct DirectionalShadowSettings {
 };
 
 struct SpotShadowSettings {
+    SpotShadowMode mode = SpotShadowMode::Atlas;
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF5x5;
     // Constant clip-space depth bias of spot/point receivers, 0..1, subtracted from the
@@ -63,7 +69,9 @@ struct SpotShadowSettings {
 
 // The virtual shadow maps (shadows.directional.mode = virtual): each directional light's clipmap of
 // `levelCount` levels of `resolution` virtual texels a side, level i firstLevelSize * 2^i metres wide, cut
-// into pages of pageSize texels; a pool of poolPages physical pages per light.
+// into pages of pageSize texels; a pool of poolPages physical pages per light. With shadows.spot.mode =
+// virtual, the spot and point lights' faces: faceResolution virtual texels a side with mips down to one
+// page, and one more pool of poolPages pages for all of them.
 struct VirtualShadowSettings {
     uint32_t pageSize = 128;
     uint32_t resolution = 16384;
@@ -73,6 +81,11 @@ struct VirtualShadowSettings {
     float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint
     bool cache = true;            // pages stay drawn across frames until invalidated
     uint32_t keepFrames = 8;      // frames an unrequested page stays resident
+    uint32_t faceResolution = 8192;  // spot and point light faces: virtual texels along mip 0's side
+    // The faces' lodBias: a perspective face's filter reaches further in the world at a coarser mip, so
+    // they read finer texels than the clipmaps (measured: docs/fidelity.md, "Spot and point lights'
+    // virtual shadow maps").
+    float faceLodBias = -2.0f;
 };
 
 struct ShadowSettings {
@@ -108,6 +121,7 @@ std::optional<ShadowFilter> parseShadowFilter(const std::string& name);
 std::optional<CascadeBlend> parseCascadeBlend(const std::string& name);
 const char* shadowRasterName(ShadowRaster raster);
 const char* directionalShadowModeName(DirectionalShadowMode mode);
+const char* spotShadowModeName(SpotShadowMode mode);
 std::optional<ShadowRaster> parseShadowRaster(const std::string& name);
 
 // Checks the ranges of settings_keys.h; throws Error naming the first bad key with its allowed range, e.g.

@@ -18,6 +18,9 @@ PENUMBRA_CONST(uint, kMaxShadowedOtherLights, 16u)
 // soft; 0 = no spot/point shadows.
 PENUMBRA_CONST(uint, kOtherShadowsHard, 1u)
 PENUMBRA_CONST(uint, kOtherShadowsSoft, 2u)
+// shadows.spot.mode = virtual: the lights read their virtual faces (virtual_face_shadows.glsl). Alone
+// (no hard or soft bit) the atlas's sampling is compiled out; the generic variant has all three bits.
+PENUMBRA_CONST(uint, kOtherShadowsVirtual, 4u)
 
 // One shadowed spot or point light (a slot).
 struct OtherShadowLight {

@@ -44,6 +44,10 @@ PENUMBRA_CONST(uint, kLitBindingClusterMasks, 15u)         // the mask words (al
 PENUMBRA_CONST(uint, kLitBindingVirtualShadows, 22u)       // uniform VirtualDirectionalShadowData
 PENUMBRA_CONST(uint, kLitBindingVirtualPool, 23u)          // sampler2D, the lights' pools (R32F depth)
 PENUMBRA_CONST(uint, kLitBindingVirtualPages, 24u)         // VirtualPageEntry[], the lights' page tables
+// The spot and point lights' virtual shadow maps (shadows.spot.mode = virtual).
+PENUMBRA_CONST(uint, kLitBindingVirtualFaces, 25u)         // uniform VirtualFaceShadowData
+PENUMBRA_CONST(uint, kLitBindingVirtualFacePool, 26u)      // sampler2D, the faces' pool (R32F depth)
+PENUMBRA_CONST(uint, kLitBindingVirtualFacePages, 27u)     // VirtualPageEntry[], the faces' page table
 
 // The light cluster pass (light_cluster.comp), beyond the lights (4) and clusters (14, 15) above.
 PENUMBRA_CONST(uint, kClusterBindingStats, 16u)  // LightClusterStats

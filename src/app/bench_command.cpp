@@ -103,6 +103,42 @@ private:
     bool drawn_ = false;
 };
 
+// Virtual shadow map pages per frame: the directional lights' or the spot and point lights' faces'.
+struct PageSeries {
+    Series requested, cached, allocated, drawn, evicted, overflowed, resident;
+    uint32_t maps = 0, poolPages = 0;  // of the last timed frame
+    void add(const VirtualPageCounts& pages) {
+        requested.values.push_back(pages.requested);
+        cached.values.push_back(pages.cached);
+        allocated.values.push_back(pages.allocated);
+        drawn.values.push_back(pages.drawn);
+        evicted.values.push_back(pages.evicted);
+        overflowed.values.push_back(pages.overflowed);
+        resident.values.push_back(pages.resident);
+        maps = pages.maps;
+        poolPages = pages.poolPages;
+    }
+    nlohmann::json toJson(const char* mapsKey) const {
+        return {{mapsKey, maps},
+                {"poolPages", poolPages},
+                {"requested", requested.median()},
+                {"cached", cached.median()},
+                {"allocated", allocated.median()},
+                {"drawn", drawn.median()},
+                {"drawnMax", drawn.percentile(1.0)},
+                {"evicted", evicted.median()},
+                {"overflowed", overflowed.percentile(1.0)},
+                {"resident", resident.median()}};
+    }
+    void print(const char* what, const char* maps_) const {
+        if (maps == 0) return;
+        std::printf("%s per frame (median, %u %s, pool %u pages): %.0f requested, %.0f cached, %.0f allocated, "
+                    "%.0f drawn (most %.0f), %.0f evicted, %.0f resident; overflowed at most %.0f\n",
+                    what, maps, maps_, poolPages, requested.median(), cached.median(), allocated.median(), drawn.median(),
+                    drawn.percentile(1.0), evicted.median(), resident.median(), overflowed.percentile(1.0));
+    }
+};
+
 struct Measurements {
     std::map<std::string, Series> passes;
     std::map<std::string, Series> cpu;
@@ -115,9 +151,8 @@ struct Measurements {
     Series shadowMeshletsOutside, viewMeshletsOutside, viewMeshletsFacingAway;  // render.meshletCulling
     uint64_t rasterWork = 0, rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
-    // Virtual shadow map pages per frame (shadows.directional.mode = virtual).
-    Series pagesRequested, pagesCached, pagesAllocated, pagesDrawn, pagesEvicted, pagesOverflowed, pagesResident;
-    uint32_t virtualMaps = 0, poolPages = 0;  // of the last timed frame
+    PageSeries pages;      // shadows.directional.mode = virtual
+    PageSeries facePages;  // shadows.spot.mode = virtual
     double lightsPerClusterMean = 0.0;  // of the last timed frame
     uint32_t lightsPerClusterMax = 0;
     void add(const FrameStats& stats) {
@@ -133,16 +168,8 @@ struct Measurements {
         atlases = stats.atlases;
         tilesRendered.values.push_back(stats.tilesRendered);
         tilesReused.values.push_back(stats.tilesReused);
-        const VirtualPageCounts& pages = stats.virtualPages;
-        pagesRequested.values.push_back(pages.requested);
-        pagesCached.values.push_back(pages.cached);
-        pagesAllocated.values.push_back(pages.allocated);
-        pagesDrawn.values.push_back(pages.drawn);
-        pagesEvicted.values.push_back(pages.evicted);
-        pagesOverflowed.values.push_back(pages.overflowed);
-        pagesResident.values.push_back(pages.resident);
-        virtualMaps = pages.maps;
-        poolPages = pages.poolPages;
+        pages.add(stats.virtualPages);
+        facePages.add(stats.virtualFacePages);
         raster = stats.shadowRaster;
         rasterWork = stats.rasterWorkItems;
         rasterLarge = stats.rasterLargeTriangles;
@@ -271,16 +298,8 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     json["tiles"] = {{"rendered", measured.tilesRendered.median()},
                      {"reused", measured.tilesReused.median()},
                      {"renderedMin", measured.tilesRendered.minimum()}};
-    json["virtualPages"] = {{"maps", measured.virtualMaps},
-                            {"poolPages", measured.poolPages},
-                            {"requested", measured.pagesRequested.median()},
-                            {"cached", measured.pagesCached.median()},
-                            {"allocated", measured.pagesAllocated.median()},
-                            {"drawn", measured.pagesDrawn.median()},
-                            {"drawnMax", measured.pagesDrawn.percentile(1.0)},
-                            {"evicted", measured.pagesEvicted.median()},
-                            {"overflowed", measured.pagesOverflowed.percentile(1.0)},
-                            {"resident", measured.pagesResident.median()}};
+    json["virtualPages"] = measured.pages.toJson("maps");
+    json["virtualFacePages"] = measured.facePages.toJson("faces");
     json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice},
                             {"workItems", measured.rasterWork}, {"largePieces", measured.rasterLarge},
                             {"chunks", measured.rasterChunks},
@@ -343,12 +362,8 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                 measured.viewMeshletsFacingAway.median());
     std::printf("shadow tiles per frame (median): %.0f rendered, %.0f reused\n", measured.tilesRendered.median(),
                 measured.tilesReused.median());
-    if (measured.virtualMaps > 0)
-        std::printf("virtual pages per frame (median, %u maps, pool %u pages): %.0f requested, %.0f cached, %.0f allocated, "
-                    "%.0f drawn (most %.0f), %.0f evicted, %.0f resident; overflowed at most %.0f\n",
-                    measured.virtualMaps, measured.poolPages, measured.pagesRequested.median(), measured.pagesCached.median(),
-                    measured.pagesAllocated.median(), measured.pagesDrawn.median(), measured.pagesDrawn.percentile(1.0),
-                    measured.pagesEvicted.median(), measured.pagesResident.median(), measured.pagesOverflowed.percentile(1.0));
+    measured.pages.print("virtual pages", "maps");
+    measured.facePages.print("virtual face pages", "faces");
     std::printf("spot/point lights per cluster: %.2f mean, %u most\n", measured.lightsPerClusterMean,
                 measured.lightsPerClusterMax);
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,

@@ -89,34 +89,44 @@ void applyLightClusters(FrameStats& stats, const FrameReadbackLayout& layout, co
     stats.lightsPerClusterMax = counts.mostLightsInACluster;
 }
 
-// The maps' page counts, summed; maps and poolPages were set when the frame was recorded.
+void addPageStats(VirtualPageCounts& pages, const gpu_data::VirtualPageStats& counts) {
+    pages.requested += counts.requested;
+    pages.cached += counts.cached;
+    pages.allocated += counts.allocated;
+    pages.drawn += counts.toDraw;
+    pages.evicted += counts.evicted;
+    pages.overflowed += counts.overflowed;
+    pages.resident += counts.resident;
+}
+
+void readLevels(FrameStats::VirtualMapLevels& levels, const std::vector<uint8_t>& readback, uint64_t offset,
+                uint32_t levelCount) {
+    gpu_data::VirtualPageLevelStats counts{};
+    levels = {};
+    if (!readPiece(readback, offset, &counts)) return;
+    levels.levelCount = std::min<uint32_t>(levelCount, uint32_t(levels.requested.size()));
+    for (uint32_t level = 0; level < levels.levelCount; ++level) {
+        levels.requested[level] = counts.requested[level];
+        levels.cached[level] = counts.cached[level];
+        levels.drawn[level] = counts.drawn[level];
+    }
+}
+
+// The maps' page counts, summed, and the faces'; maps and poolPages were set when the frame was recorded.
 void applyVirtualPages(FrameStats& stats, const FrameReadbackLayout& layout, const std::vector<uint8_t>& readback) {
     VirtualPageCounts& pages = stats.virtualPages;
     for (uint64_t offset : layout.virtualPages) {
         gpu_data::VirtualPageStats counts{};
-        if (!readPiece(readback, offset, &counts)) continue;
-        pages.requested += counts.requested;
-        pages.cached += counts.cached;
-        pages.allocated += counts.allocated;
-        pages.drawn += counts.toDraw;
-        pages.evicted += counts.evicted;
-        pages.overflowed += counts.overflowed;
-        pages.resident += counts.resident;
+        if (readPiece(readback, offset, &counts)) addPageStats(pages, counts);
     }
-    for (size_t map = 0; map < stats.virtualMaps.size(); ++map) {
-        FrameStats::VirtualMapLevels& levels = stats.virtualMaps[map];
-        gpu_data::VirtualPageLevelStats counts{};
-        levels = {};
-        if (!readPiece(readback, layout.virtualLevels[map], &counts)) continue;
-        levels.levelCount = std::min<uint32_t>(layout.virtualLevelCount, uint32_t(levels.requested.size()));
-        for (uint32_t level = 0; level < levels.levelCount; ++level) {
-            levels.requested[level] = counts.requested[level];
-            levels.cached[level] = counts.cached[level];
-            levels.drawn[level] = counts.drawn[level];
-        }
-    }
-    if (pages.overflowed > 0)
-        stats.warnings.push_back("virtual shadow maps: " + std::to_string(pages.overflowed) +
+    for (size_t map = 0; map < stats.virtualMaps.size(); ++map)
+        readLevels(stats.virtualMaps[map], readback, layout.virtualLevels[map], layout.virtualLevelCount);
+    gpu_data::VirtualPageStats faceCounts{};
+    if (readPiece(readback, layout.virtualFacePages, &faceCounts)) addPageStats(stats.virtualFacePages, faceCounts);
+    readLevels(stats.virtualFaceMips, readback, layout.virtualFaceMips, layout.virtualFaceMipCount);
+    const uint32_t overflowed = pages.overflowed + stats.virtualFacePages.overflowed;
+    if (overflowed > 0)
+        stats.warnings.push_back("virtual shadow maps: " + std::to_string(overflowed) +
                                  " requested pages found no free physical page (raise shadows.virtual.poolPages); a "
                                  "coarser level served them");
 }

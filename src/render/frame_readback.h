@@ -17,8 +17,9 @@ namespace penumbra {
 struct FrameReadbackLayout {
     static constexpr uint64_t kAbsent = ~0ull;
     uint64_t cullTiles = kAbsent;                       // CullTileStats per shadow tile, directional first
-    // RasterCounters of the directional and spot/point atlas, then of each directional virtual map's pages.
-    uint64_t rasterCounters[6] = {kAbsent, kAbsent, kAbsent, kAbsent, kAbsent, kAbsent};
+    // RasterCounters of the directional and spot/point atlas, then of each directional virtual map's pages,
+    // then of the spot and point lights' faces' pages.
+    uint64_t rasterCounters[7] = {kAbsent, kAbsent, kAbsent, kAbsent, kAbsent, kAbsent, kAbsent};
     uint64_t visibleSurfaces = kAbsent;                 // the tight fit's depth subsample (VisibleSurfacePass)
     uint64_t viewLists = kAbsent;                       // 2 CullTileStats: the main view's early and late lists
     uint64_t viewMeshlets = kAbsent;                    // uvec4: visibility-buffer meshlets outside, facing away
@@ -26,6 +27,9 @@ struct FrameReadbackLayout {
     uint64_t virtualPages[4] = {kAbsent, kAbsent, kAbsent, kAbsent};  // VirtualPageStats per directional map
     uint64_t virtualLevels[4] = {kAbsent, kAbsent, kAbsent, kAbsent};  // VirtualPageLevelStats per directional map
     uint32_t virtualLevelCount = 0;                                     // levels of every map
+    uint64_t virtualFacePages = kAbsent;   // VirtualPageStats of the spot and point lights' faces
+    uint64_t virtualFaceMips = kAbsent;    // VirtualPageLevelStats of them, per mip (the table's buckets)
+    uint32_t virtualFaceMipCount = 0;
 };
 
 // The `bytes` bytes at `offset` in a frame's readback; null where the piece is absent. A piece beyond

@@ -30,7 +30,8 @@ MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_
 
 const std::vector<gpu::SpecConstant>& genericLitSpecialization() {
     static const std::vector<gpu::SpecConstant> generic = {
-        {2, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft}, {3, gpu_data::kShadowFilterFromData}};
+        {2, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft | gpu_data::kOtherShadowsVirtual},
+        {3, gpu_data::kShadowFilterFromData}};
     return generic;
 }
 

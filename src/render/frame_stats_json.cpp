@@ -41,6 +41,15 @@ std::string toJson(const FrameStats& frame) {
         maps.push_back({{"levels", perLevel}});
     }
     stats["virtualPages"]["perMap"] = maps;
+    const VirtualPageCounts& faces = frame.virtualFacePages;
+    nlohmann::json perMip = nlohmann::json::array();
+    for (uint32_t mip = 0; mip < frame.virtualFaceMips.levelCount; ++mip)
+        perMip.push_back({{"requested", frame.virtualFaceMips.requested[mip]}, {"cached", frame.virtualFaceMips.cached[mip]},
+                          {"drawn", frame.virtualFaceMips.drawn[mip]}});
+    stats["virtualFacePages"] = {{"faces", faces.maps},         {"requested", faces.requested}, {"cached", faces.cached},
+                                 {"allocated", faces.allocated}, {"drawn", faces.drawn},         {"evicted", faces.evicted},
+                                 {"overflowed", faces.overflowed}, {"resident", faces.resident}, {"poolPages", faces.poolPages},
+                                 {"perMip", perMip}};
     return stats.dump();
 }
 

@@ -23,7 +23,7 @@ void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene,
     scene.addSceneReads(uses, compute ? Usage::ComputeRead : Usage::GraphicsRead);
     for (gpu::TextureHandle texture : inputs.sampled)
         uses.push_back(gpu::use(texture, compute ? Usage::ComputeSampled : Usage::FragmentSampled));
-    for (gpu::BufferHandle buffer : {inputs.clusterMasks, inputs.virtualPages})
+    for (gpu::BufferHandle buffer : {inputs.clusterMasks, inputs.virtualPages[0], inputs.virtualPages[1]})
         if (buffer) uses.push_back(gpu::use(buffer, compute ? Usage::ComputeRead : Usage::GraphicsRead));
 }
 

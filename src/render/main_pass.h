@@ -31,7 +31,9 @@ struct MainPassInputs {
     // masks (none in the visible-surface prepass).
     std::vector<gpu::TextureHandle> sampled;
     gpu::BufferHandle clusterMasks;
-    gpu::BufferHandle virtualPages;  // the virtual shadow maps' page tables (render/virtual_shadows.h)
+    // The virtual shadow maps' page tables: the directional lights' (render/virtual_shadows.h), the spot
+    // and point lights' faces' (render/virtual_face_shadows.h).
+    std::array<gpu::BufferHandle, 2> virtualPages;
 };
 // The uses of a pass that binds inputs.writes: the scene buffers and the shading inputs, read by the
 // vertex and fragment shaders or (compute) by a compute shader.

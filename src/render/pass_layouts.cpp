@@ -18,12 +18,15 @@ constexpr gpu::DescriptorType kStorage = gpu::DescriptorType::StorageBuffer;
 constexpr gpu::DescriptorType kSampled = gpu::DescriptorType::SampledTexture;
 constexpr uint32_t kV = gpu::kStageVertex, kF = gpu::kStageFragment, kC = gpu::kStageCompute;
 
-// The directional lights' virtual shadow maps (virtual_shadows.glsl), read wherever shadows.glsl's
-// directionalShadow is.
+// The virtual shadow maps (virtual_shadows.glsl): the directional lights' and the spot and point lights'
+// faces, read wherever shadows.glsl's directionalShadow is (its page reads name both tables).
 void appendVirtualShadows(std::vector<BindingDesc>& bindings, uint32_t stage) {
     bindings.insert(bindings.end(), {{"VirtualShadowBlock", kLitBindingVirtualShadows, kUniform, stage},
                                      {"virtualShadowPool", kLitBindingVirtualPool, kSampled, stage},
-                                     {"VirtualPageBlock", kLitBindingVirtualPages, kStorage, stage}});
+                                     {"VirtualPageBlock", kLitBindingVirtualPages, kStorage, stage},
+                                     {"VirtualFaceBlock", kLitBindingVirtualFaces, kUniform, stage},
+                                     {"virtualFacePool", kLitBindingVirtualFacePool, kSampled, stage},
+                                     {"VirtualFacePageBlock", kLitBindingVirtualFacePages, kStorage, stage}});
 }
 
 // What shade_surface.glsl reads beyond the scene: lights, shadows, clusters (all in one stage).

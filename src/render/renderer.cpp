@@ -17,6 +17,7 @@ Renderer::State::State(gpu::Device& d, Scene s, const RendererOptions& o)
       mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
       visiblePass(d, gpuScene, mainPass),
       computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue, o.rasterWorkQueue), virtualShadows(d, gpuScene, computeRaster),
+      virtualFaces(d, gpuScene, computeRaster),
       lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name),
       mainViewChoice(d.hasTimestamps(), d.info().name, {"forward", "visibility", "main view"}), targets(d) {
     try {
@@ -62,6 +63,8 @@ void Renderer::State::requestAllVariants() {
     for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm})
         for (uint32_t mode = 0; mode < 4; ++mode)
             for (uint32_t filter = 0; filter < 4; ++filter) mainPass.request(litVariant(format, mode, filter));
+    for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm})
+        mainPass.request(litVariant(format, gpu_data::kOtherShadowsVirtual, 0));
 }
 
 gpu::TextureHandle Renderer::State::importedTexture(const ExternalImage& target) {
@@ -112,9 +115,9 @@ const Scene& Renderer::scene() const { return state_->scene; }
 
 void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
     const bool exists = instance < state_->scene.instances.size();
-    if (exists) state_->virtualShadows.casterChanged(state_->scene.instances[instance].wsBounds);  // where it was
+    if (exists) state_->casterChanged(state_->scene.instances[instance].wsBounds);  // where it was
     setInstanceWorldTransform(state_->scene, instance, worldFromObject);
-    state_->virtualShadows.casterChanged(state_->scene.instances[instance].wsBounds);  // and is now
+    state_->casterChanged(state_->scene.instances[instance].wsBounds);  // and is now
     ++state_->sceneVersion;
     state_->gpuScene.instanceChanged(instance);
 }
@@ -124,7 +127,7 @@ void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
         throw Error("instance " + std::to_string(instance) + " does not exist (the scene has " +
                     std::to_string(state_->scene.instances.size()) + ")");
     state_->scene.instances[instance].castShadows = castShadows;
-    state_->virtualShadows.casterChanged(state_->scene.instances[instance].wsBounds);
+    state_->casterChanged(state_->scene.instances[instance].wsBounds);
     state_->gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
     ++state_->sceneVersion;
 }
@@ -134,7 +137,7 @@ void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state
 void Renderer::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(state_->scene, material, value);
     state_->gpuScene.materialChanged(material);
-    state_->virtualShadows.invalidateAll();  // its casters' cut-outs or cast flag may differ
+    state_->invalidateVirtualMaps();  // its casters' cut-outs or cast flag may differ
     ++state_->sceneVersion;
 }
 

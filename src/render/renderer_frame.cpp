@@ -243,6 +243,7 @@ MainPassInputs& Renderer::State::recordLightingInputs(FrameRecording& recording)
     inputs.writes.push_back({kLitBindingOtherDepth, {}, targets.otherAtlas, pointSampler});
     inputs.sampled = {targets.directionalAtlas, targets.otherAtlas, noScreenShadows};
     virtualShadows.appendLitInputs(inputs, pointSampler);  // its pool goes before noScreenShadows
+    virtualFaces.appendLitInputs(inputs, pointSampler);    // and so does this one
     inputs.writes.push_back({kLitBindingScreenSpaceShadows, {}, noScreenShadows, pointSampler});  // last: the resolve's output replaces it
     // noScreenShadows is never written: shaders read its binding only with shadows.screenSpace on.
     inputs.clusterMasks = lightClusters.masks();
@@ -371,6 +372,9 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
                               view, stats.warnings);
     stats.virtualPages.maps = virtualShadows.mapsInUse(uint32_t(plan.directional.lights.size()));
     stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
+    virtualFaces.beginFrame(settings.shadows, plan.other, settings.render.meshletCulling, view, stats.warnings);
+    stats.virtualFacePages.maps = virtualFaces.faceCount();
+    stats.virtualFacePages.poolPages = virtualFaces.poolPages();
     const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
     try {
         targets.ensure(sizes);
@@ -403,7 +407,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
         phase.restart();
         recordShadowAtlases(recording, draw);
         MainPassInputs& inputs = recordLightingInputs(recording);
-        recordDirectionalInputs(recording, inputs, *litPass);
+        recordViewShadowInputs(recording, inputs, *litPass);
         recordMainView(recording, request, inputs, *litPass, oneShot);
         gpu::ExternalTarget sync = recordOutputs(recording, target, readback, captureAtlas);
         stats.cpu.record = phase.milliseconds();
@@ -435,7 +439,7 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
     if (stats.rasterDropped > 0) {  // those tiles and pages are incomplete: draw them all again
         directionalCache.invalidate();
         otherCache.invalidate();
-        virtualShadows.invalidateAll();
+        invalidateVirtualMaps();
     }
     if (const uint8_t* depths = readbackPiece(done.readback, finished.readback.visibleSurfaces,
                                               VisibleSurfacePass::readbackBytes(finished.view))) {
@@ -460,7 +464,10 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
         stats.mainViewChoice.assign("forward (a CPU device: auto keeps the forward pass)");
     else
         stats.mainViewChoice.assign(mainViewChoice.describe());
-    if (finished.rasterSetting == ShadowRaster::Auto)
+    const bool atlasTiles = !finished.plan.directional.tiles.empty() || !finished.plan.other.tiles.empty();
+    if (finished.rasterSetting == ShadowRaster::Auto && !atlasTiles && !rasterChoice.decided())
+        stats.shadowRasterChoice.assign("auto: no atlas tile to measure (virtual shadow maps draw with the compute rasterizer)");
+    else if (finished.rasterSetting == ShadowRaster::Auto)
         stats.shadowRasterChoice.assign("auto: ").append(rasterChoice.describe());
     else
         stats.shadowRasterChoice.assign("shadows.raster = ").append(shadowRasterName(finished.rasterSetting));

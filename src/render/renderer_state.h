@@ -21,6 +21,7 @@
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_culling_pass.h"
 #include "render/tile_cache.h"
+#include "render/virtual_face_shadows.h"
 #include "render/virtual_shadows.h"
 #include "render/visibility_pass.h"
 #include "render/visible_surface_pass.h"
@@ -95,6 +96,7 @@ struct Renderer::State {
     VisibleSurfacePass visiblePass;
     ComputeRasterPass computeRaster;
     VirtualShadows virtualShadows;  // shadows.directional.mode = virtual (draws with computeRaster)
+    VirtualFaceShadows virtualFaces;  // shadows.spot.mode = virtual (draws with computeRaster)
     ComputeRasterPass::AtlasTiles atlasTilesScratch;  // recordShadowAtlases: the tiles an atlas pass draws
     LightClusterPass lightClusters;
     RasterChoice rasterChoice;
@@ -145,6 +147,16 @@ struct Renderer::State {
                     const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot);
     void collectCompleted();
 
+    // Every virtual shadow map: a caster whose bounds changed (before and after), or everything redrawn.
+    void casterChanged(const Aabb& wsBounds) {
+        virtualShadows.casterChanged(wsBounds);
+        virtualFaces.casterChanged(wsBounds);
+    }
+    void invalidateVirtualMaps() {
+        virtualShadows.invalidateAll();
+        virtualFaces.invalidateAll();
+    }
+
 private:
     uint64_t submitInto(PendingFrame& frame, const RenderRequest& request, const Settings& settings,
                         const CameraView& view, const ExternalImage* target, bool readback, bool captureAtlas,
@@ -168,7 +180,7 @@ private:
     MainPassInputs& recordLightingInputs(FrameRecording& recording);
     // The view's depth before anything shades, the virtual shadow maps' pages from it (virtual mode),
     // then the screen-space resolve (shadows.screenSpace). renderer_virtual.cpp.
-    void recordDirectionalInputs(FrameRecording& recording, MainPassInputs& inputs, const MainPassVariant& litPass);
+    void recordViewShadowInputs(FrameRecording& recording, MainPassInputs& inputs, const MainPassVariant& litPass);
     void recordScreenSpaceShadows(FrameRecording& recording, MainPassInputs& inputs);
     // The visibility buffer's targets and constants for this frame (opaqueTarget, refilled).
     const VisibilityPass::Target& opaqueTargetFor(const FrameRecording& recording, const MainPassVariant& litPass);

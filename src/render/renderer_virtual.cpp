@@ -1,7 +1,8 @@
 // Renderer::State's steps between the lighting inputs and the main view (renderer_state.h): with
-// shadows.directional.mode = virtual, the view's depth first (the visibility buffer's geometry, or the
-// forward path's depth prepass), then every directional light's virtual shadow map chain from it; then
-// the screen-space resolve (shadows.screenSpace), which samples those maps too.
+// shadows.directional.mode = virtual or shadows.spot.mode = virtual, the view's depth first (the
+// visibility buffer's geometry, or the forward path's depth prepass), then every directional light's
+// virtual shadow map chain from it and the spot and point lights' faces' chain; then the screen-space
+// resolve (shadows.screenSpace), which samples the directional maps too.
 #include <algorithm>
 
 #include "render/renderer_state.h"
@@ -21,10 +22,11 @@ const VisibilityPass::Target& Renderer::State::opaqueTargetFor(const FrameRecord
     return opaque;
 }
 
-void Renderer::State::recordDirectionalInputs(FrameRecording& recording, MainPassInputs& inputs,
-                                              const MainPassVariant& litPass) {
+void Renderer::State::recordViewShadowInputs(FrameRecording& recording, MainPassInputs& inputs,
+                                             const MainPassVariant& litPass) {
     const DirectionalShadowPlan& directional = recording.frame.plan.directional;
-    if (virtualShadows.active() && !directional.lights.empty()) {
+    const bool directionalMaps = virtualShadows.active() && !directional.lights.empty();
+    if (directionalMaps || virtualFaces.active()) {
         gpu::CommandList& commands = recording.commands;
         const CameraView& view = recording.view;
         VirtualPageDepthSource depth;
@@ -42,17 +44,28 @@ void Renderer::State::recordDirectionalInputs(FrameRecording& recording, MainPas
             recording.prepassDepth = screenSpacePass.recordPrepass(commands, scene, view, inputs);
             depth = VirtualPageDepthSource::texture(recording.prepassDepth);
         }
-        recording.stage = "shadows.virtual";
-        commands.beginTimer("shadows.virtual");
-        virtualShadows.record(commands, depth, view, directional, scene.wsBounds,
-                              std::span(recording.frame.readback.rasterCounters).subspan(2));
-        commands.endTimer();
-        const uint32_t maps = virtualShadows.mapsInUse(uint32_t(directional.lights.size()));
         FrameReadbackLayout& readback = recording.frame.readback;
-        readback.virtualLevelCount = virtualShadows.levelCount();
-        for (uint32_t map = 0; map < maps; ++map) {
-            readback.virtualPages[map] = device.readBackAtFrameEnd(commands, virtualShadows.stats(map));
-            readback.virtualLevels[map] = device.readBackAtFrameEnd(commands, virtualShadows.levelStats(map));
+        if (directionalMaps) {
+            recording.stage = "shadows.virtual";
+            commands.beginTimer("shadows.virtual");
+            virtualShadows.record(commands, depth, view, directional, scene.wsBounds,
+                                  std::span(readback.rasterCounters).subspan(2, 4));
+            commands.endTimer();
+            const uint32_t maps = virtualShadows.mapsInUse(uint32_t(directional.lights.size()));
+            readback.virtualLevelCount = virtualShadows.levelCount();
+            for (uint32_t map = 0; map < maps; ++map) {
+                readback.virtualPages[map] = device.readBackAtFrameEnd(commands, virtualShadows.stats(map));
+                readback.virtualLevels[map] = device.readBackAtFrameEnd(commands, virtualShadows.levelStats(map));
+            }
+        }
+        if (virtualFaces.active()) {
+            recording.stage = "shadows.virtualFaces";
+            commands.beginTimer("shadows.virtualFaces");
+            virtualFaces.record(commands, depth, view, readback.rasterCounters[6]);
+            commands.endTimer();
+            readback.virtualFacePages = device.readBackAtFrameEnd(commands, virtualFaces.stats());
+            readback.virtualFaceMips = device.readBackAtFrameEnd(commands, virtualFaces.levelStats());
+            readback.virtualFaceMipCount = virtualFaces.mipCount();
         }
     }
     recordScreenSpaceShadows(recording, inputs);

@@ -126,7 +126,7 @@ void VirtualShadows::appendLitInputs(MainPassInputs& inputs, gpu::SamplerHandle 
     inputs.writes.push_back({kLitBindingVirtualPages, pages, {}, {}});
     // Before the last sampled texture: the screen-space resolve replaces that one.
     inputs.sampled.insert(inputs.sampled.empty() ? inputs.sampled.end() : inputs.sampled.end() - 1, pool);
-    inputs.virtualPages = pages;
+    inputs.virtualPages[0] = pages;
 }
 
 void VirtualShadows::casterChanged(const Aabb& wsBounds) {

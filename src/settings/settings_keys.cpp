@@ -152,6 +152,12 @@ std::vector<SettingKey> makeTable() {
     t.push_back(ranged("shadows.directional.splitLambda", SettingType::Number, 0.0, 1.0, "0..1",
                        PENUMBRA_FIELD(shadows.directional.splitLambda),
                        "With `cascadeSplits: \"practical\"`: the weight of the logarithmic split."));
+    t.push_back(choice("shadows.spot.mode", {"atlas", "virtual"}, PENUMBRA_FIELD(shadows.spot.mode),
+                       "How spot and point lights are shadowed: `atlas` in tiles of the spot atlas (the keys below), or "
+                       "`virtual`: a virtual shadow map per spot light and six per point light (one per cube face), "
+                       "each a chain of mips whose pages are drawn only where visible surfaces need them, at the mip "
+                       "whose texel matches the pixel's footprint, and kept across frames until the light or a caster "
+                       "in them changes (`shadows.virtual.faceResolution`, `faceLodBias`, `pageSize`, `poolPages`)."));
     t.push_back(atlasSizeKey("shadows.spot.atlasSize", PENUMBRA_FIELD(shadows.spot.atlasSize),
                              "atlas of spot and point light shadows: up to 16 tiles, one per spot light and six per "
                              "point light."));
@@ -167,7 +173,8 @@ std::vector<SettingKey> makeTable() {
                        "Virtual shadow maps: virtual texels along a clipmap level's side."));
     t.push_back(ranged("shadows.virtual.poolPages", SettingType::Integer, 16, 16384, "16..16384",
                        PENUMBRA_FIELD(shadows.virtualMaps.poolPages),
-                       "Virtual shadow maps: physical pages per directional light, rounded down to a square number, each "
+                       "Virtual shadow maps: physical pages per directional light (and as many for all the spot and "
+                       "point light faces together), rounded down to a square number, each "
                        "pageSize^2 32-bit depths, twice (the rasterizer's target and the sampled pool): 2048 pages of 128^2 "
                        "take 2 x 127 MiB. A 1920x1080 view needs about 700 pages per light at lodBias 0, 2000-3000 at "
                        "-1. When the visible pages need more, a coarser level serves the rest (a warning and the stat "
@@ -190,6 +197,15 @@ std::vector<SettingKey> makeTable() {
                        PENUMBRA_FIELD(shadows.virtualMaps.keepFrames),
                        "Virtual shadow maps: frames a page nobody requests stays resident (and reusable without a "
                        "redraw) before the pool may give it to another page."));
+    t.push_back(ranged("shadows.virtual.faceResolution", SettingType::PowerOfTwo, 1024, 16384,
+                       "a power of two in 1024..16384", PENUMBRA_FIELD(shadows.virtualMaps.faceResolution),
+                       "Virtual shadow maps of spot and point lights (`shadows.spot.mode = virtual`): virtual texels "
+                       "along the side of a face's finest mip (a spot light's cone, a point light's cube face); "
+                       "`faceResolution / pageSize` must be 2..128 pages."));
+    t.push_back(ranged("shadows.virtual.faceLodBias", SettingType::Number, -4.0, 4.0, "-4..4",
+                       PENUMBRA_FIELD(shadows.virtualMaps.faceLodBias),
+                       "Virtual shadow maps of spot and point lights: which mip a pixel reads, relative to the one "
+                       "whose texel matches the pixel's footprint (as `lodBias` for the clipmaps)."));
     SettingKey exposure = ranged("render.exposure", SettingType::Number, 0.0, kHuge, "> 0", PENUMBRA_FIELD(render.exposure),
                                  "Scales linear radiance before tone mapping and sRGB encoding.");
     exposure.minExclusive = true;
@@ -291,6 +307,11 @@ void validateSettingKeys(const Settings& settings, std::string_view prefix) {
         throw Error("settings: shadows.virtual.resolution / shadows.virtual.pageSize = " + std::to_string(pages.resolution) +
                     " / " + std::to_string(pages.pageSize) + " = " + std::to_string(pagesPerSide) +
                     " pages a side is out of range (allowed 8..256)");
+    const uint32_t facePages = pages.faceResolution / std::max(pages.pageSize, 1u);
+    if (prefix == "shadows." && (facePages < 2 || facePages > 128))
+        throw Error("settings: shadows.virtual.faceResolution / shadows.virtual.pageSize = " +
+                    std::to_string(pages.faceResolution) + " / " + std::to_string(pages.pageSize) + " = " +
+                    std::to_string(facePages) + " pages a side is out of range (allowed 2..128)");
 }
 
 void validateShadowSettings(const ShadowSettings& shadows) {

@@ -88,6 +88,8 @@ const char* directionalShadowModeName(DirectionalShadowMode mode) {
     return mode == DirectionalShadowMode::Virtual ? "virtual" : "cascades";
 }
 
+const char* spotShadowModeName(SpotShadowMode mode) { return mode == SpotShadowMode::Virtual ? "virtual" : "atlas"; }
+
 // validateShadowSettings: src/settings/settings_keys.cpp, from the table of every key.
 
 }  // namespace penumbra

@@ -28,6 +28,7 @@
 #include "penumbra/shadow_settings.h"
 #include "shadows/spot_atlas_layout.h"
 #include "shadows/spot_reservation.h"
+#include "shadows/virtual_faces.h"
 #include "shadows/visible_surfaces.h"
 
 namespace penumbra {
@@ -89,9 +90,17 @@ struct OtherShadowPlan {
     std::vector<uint32_t> droppedLights;     // scene indices that wanted shadows but did not fit
     std::vector<std::string> warnings;       // one line per dropped light
     uint32_t lightsConsidered = 0;           // spot and point lights in the scene
-    uint32_t specializationMode = 0;         // gpu_data::kOtherShadowsHard | kOtherShadowsSoft bits
+    uint32_t specializationMode = 0;         // gpu_data::kOtherShadowsHard | kOtherShadowsSoft bits, or kOtherShadowsVirtual
     double cullingMilliseconds = 0.0;        // CPU time of the per-tile caster culling
     gpu_data::OtherShadowData gpu{};         // packed for the lit pass
+    // shadows.spot.mode = virtual: no atlas tiles (atlas.tileCount 0, `tiles` empty); instead face i of
+    // the virtual shadow maps is where tile i would be (a light's firstTile is its first face), and
+    // gpu.lights[slot].firstTile names it.
+    bool virtualFaces = false;
+    VirtualFaceConfig faceConfig;                 // shadows.virtual.faceResolution, pageSize
+    std::vector<VirtualFace> faces;
+    std::vector<VirtualFaceLight> faceLights;     // per slot
+    float faceMarginTexels = 0.0f;                // the widest lookup reach of the reserved lights
 };
 
 struct ShadowFrame {

@@ -6,6 +6,7 @@
 #include "core/reuse.h"
 #include "core/stopwatch.h"
 #include "shadows/shadow_fade.h"
+#include "shadows/shadow_gpu_packing.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
 
@@ -85,18 +86,47 @@ void packLight(gpu_data::OtherShadowData& data, const Light& light, const Reserv
 
 }  // namespace
 
+// The most a virtual face's frustum is widened for a lookup's reach, in texels of its coarsest mip (one
+// page a side): a PCSS search reaching further at that mip reads beyond the face as lit, where finer
+// mips (what a receiver near the light reads) reach a fraction of a coarse texel.
+constexpr float kMaxFaceMarginTexels = 8.0f;
+
+// shadows.spot.mode = virtual: the faces of every reserved light (tile i's place), widened for the
+// light's lookup reach.
+void planVirtualFaces(const Scene& scene, const ShadowSettings& settings, OtherShadowPlan& plan) {
+    plan.faceConfig = {settings.virtualMaps.faceResolution, settings.virtualMaps.pageSize};
+    plan.faceMarginTexels = 0.0f;
+    for (const ReservedOtherLight& reserved : plan.lights) {
+        const Light& light = scene.lights[reserved.sceneLightIndex];
+        const ShadowFilter filter = reserved.soft ? settings.spot.filter : ShadowFilter::PCF2x2;
+        const float reach = lookupReachTexels(reserved.normalBias, reserved.pcssRadius > 0.0f, filter);
+        plan.faceMarginTexels = std::max(plan.faceMarginTexels, reach);
+        const float margin = std::min(reach, kMaxFaceMarginTexels);
+        const float coneTangent =
+            reserved.point ? 1.0f : std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
+        plan.faceLights.push_back({reserved.firstTile, reserved.point});
+        for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
+            const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
+            plan.faces.push_back(makeVirtualFace(plan.faceConfig, light.wsPosition, direction, coneTangent,
+                                                 reserved.nearDistance, reserved.farDistance, margin));
+        }
+    }
+}
+
 void planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                       const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters, OtherShadowPlan& plan,
                       OtherLightReservation& reservation) {
     resetKeepingStorage(plan, &OtherShadowPlan::lights, &OtherShadowPlan::tiles, &OtherShadowPlan::slotOfSceneLight,
-                        &OtherShadowPlan::droppedLights, &OtherShadowPlan::warnings);
+                        &OtherShadowPlan::droppedLights, &OtherShadowPlan::warnings, &OtherShadowPlan::faces,
+                        &OtherShadowPlan::faceLights);
+    plan.virtualFaces = settings.spot.mode == SpotShadowMode::Virtual;
     reserveOtherShadows(scene, camera, casters, reservation);
     plan.lights.assign(reservation.lights.begin(), reservation.lights.end());
     plan.droppedLights.assign(reservation.droppedLights.begin(), reservation.droppedLights.end());
     plan.warnings.assign(reservation.warnings.begin(), reservation.warnings.end());
     plan.lightsConsidered = reservation.considered;
     plan.slotOfSceneLight.assign(scene.lights.size(), -1);
-    plan.atlas = makeSpotAtlasLayout(settings.spot.atlasSize, reservation.tilesUsed);
+    plan.atlas = makeSpotAtlasLayout(settings.spot.atlasSize, plan.virtualFaces ? 0u : reservation.tilesUsed);
 
     gpu_data::OtherShadowData& data = plan.gpu;
     for (uint32_t slot = 0; slot < plan.lights.size(); ++slot) {
@@ -105,7 +135,7 @@ void planOtherShadows(const Scene& scene, const CameraView& camera, const Shadow
         plan.slotOfSceneLight[reserved.sceneLightIndex] = int32_t(slot);
         plan.specializationMode |= reserved.soft ? gpu_data::kOtherShadowsSoft : gpu_data::kOtherShadowsHard;
         const LightTiles shape = lightTileShape(light, reserved, plan.atlas, settings.spot.filter);
-        for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
+        for (uint32_t face = 0; face < (plan.virtualFaces ? 0u : reserved.tileCount()); ++face) {
             const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
             ShadowTile tile = planOtherTile(scene, casters, plan.atlas, reserved, shape, slot, face, direction,
                                             cullCasters, plan.cullingMilliseconds);
@@ -115,6 +145,11 @@ void planOtherShadows(const Scene& scene, const CameraView& camera, const Shadow
             plan.tiles.push_back(std::move(tile));
         }
         packLight(data, light, reserved, shape, plan.atlas, settings, slot);
+    }
+    if (plan.virtualFaces) {
+        planVirtualFaces(scene, settings, plan);
+        // One lit variant for every virtual frame: its sampling takes each light's filter from the data.
+        if (!plan.lights.empty()) plan.specializationMode = gpu_data::kOtherShadowsVirtual;
     }
     const glm::vec2 squaredFade = squaredFadeScaleBias(shadowDistance, settings.distanceFade);
     data.invShadowDistance = 1.0f / shadowDistance;

@@ -139,33 +139,50 @@ void drawPanels(PanelContext& c) {
     drawStatsPanel(c);
 }
 
-// The virtual shadow maps' page view: per map (directional light) and level, the pages requested, of
-// them cached (already resident) and drawn this frame, and the pool's occupancy. The cascades view
-// (key 3) colours each pixel by the level it samples.
-static void drawVirtualPageView(const FrameStats& last) {
-    const VirtualPageCounts& pages = last.virtualPages;
-    if (pages.maps == 0) return;
-    char label[64];
-    std::snprintf(label, sizeof label, "pool %u / %u pages", pages.resident, pages.poolPages);
-    ImGui::ProgressBar(pages.poolPages > 0 ? float(pages.resident) / float(pages.poolPages) : 0.0f, ImVec2(-1.0f, 0.0f), label);
-    if (!ImGui::CollapsingHeader("virtual pages per level")) return;
-    for (uint32_t map = 0; map < std::min<uint32_t>(pages.maps, uint32_t(last.virtualMaps.size())); ++map) {
-        const FrameStats::VirtualMapLevels& levels = last.virtualMaps[map];
-        std::snprintf(label, sizeof label, "levels%u", map);
-        ImGui::Text("directional light %u", map);
-        if (!ImGui::BeginTable(label, 4, ImGuiTableFlags_RowBg)) continue;
-        for (const char* heading : {"level", "requested", "cached", "drawn"}) ImGui::TableSetupColumn(heading);
-        ImGui::TableHeadersRow();
-        for (uint32_t level = 0; level < levels.levelCount; ++level) {
-            if (levels.requested[level] == 0 && levels.drawn[level] == 0) continue;  // outside the view
+// One map's pages per level (a clipmap's levels, the faces' mips): requested, of them cached (already
+// resident) and drawn this frame; levels with nothing are left out.
+static void drawLevelTable(const char* id, const char* column, const FrameStats::VirtualMapLevels& levels) {
+    if (!ImGui::BeginTable(id, 4, ImGuiTableFlags_RowBg)) return;
+    for (const char* heading : {column, "requested", "cached", "drawn"}) ImGui::TableSetupColumn(heading);
+    ImGui::TableHeadersRow();
+    for (uint32_t level = 0; level < levels.levelCount; ++level) {
+        if (levels.requested[level] == 0 && levels.drawn[level] == 0) continue;  // outside the view
+        ImGui::TableNextColumn();
+        ImGui::Text("%u", level);
+        for (uint32_t value : {levels.requested[level], levels.cached[level], levels.drawn[level]}) {
             ImGui::TableNextColumn();
-            ImGui::Text("%u", level);
-            for (uint32_t value : {levels.requested[level], levels.cached[level], levels.drawn[level]}) {
-                ImGui::TableNextColumn();
-                ImGui::Text("%u", value);
-            }
+            ImGui::Text("%u", value);
         }
-        ImGui::EndTable();
+    }
+    ImGui::EndTable();
+}
+
+// The virtual shadow maps' page view: the frame's page counts and the pool's occupancy, then (folded) per
+// map (directional light) and level, or for the spot and point lights' faces per mip. The cascades view
+// (key 3) colours each pixel by the directional level it samples.
+static void drawVirtualPageView(const FrameStats& last) {
+    const auto counts = [](const char* what, const char* maps, const VirtualPageCounts& pages) {
+        ImGui::Text("%s (%u %s): %u requested, %u cached, %u drawn", what, pages.maps, maps, pages.requested,
+                    pages.cached, pages.drawn);
+        ImGui::Text("  %u allocated, %u evicted, %u overflowed", pages.allocated, pages.evicted, pages.overflowed);
+        char label[64];
+        std::snprintf(label, sizeof label, "pool %u / %u pages", pages.resident, pages.poolPages);
+        ImGui::ProgressBar(pages.poolPages > 0 ? float(pages.resident) / float(pages.poolPages) : 0.0f,
+                           ImVec2(-1.0f, 0.0f), label);
+    };
+    if (const VirtualPageCounts& pages = last.virtualPages; pages.maps > 0) {
+        counts("virtual pages", "maps", pages);
+        if (ImGui::CollapsingHeader("virtual pages per level"))
+            for (uint32_t map = 0; map < std::min<uint32_t>(pages.maps, uint32_t(last.virtualMaps.size())); ++map) {
+                char id[32];
+                std::snprintf(id, sizeof id, "levels%u", map);
+                ImGui::Text("directional light %u", map);
+                drawLevelTable(id, "level", last.virtualMaps[map]);
+            }
+    }
+    if (const VirtualPageCounts& faces = last.virtualFacePages; faces.maps > 0) {
+        counts("spot/point virtual pages", "faces", faces);
+        if (ImGui::CollapsingHeader("spot/point virtual pages per mip")) drawLevelTable("faceMips", "mip", last.virtualFaceMips);
     }
 }
 
@@ -198,14 +215,7 @@ void drawStatsPanel(PanelContext& c) {
     ImGui::Text("        record %.2f  submit %.2f", last.cpu.record, last.cpu.submit);
     ImGui::Text("frame (submit to fence) %.2f ms", last.submitToFenceMilliseconds);
     ImGui::Text("shadow raster %s; tiles drawn %u, reused %u", last.shadowRaster.c_str(), last.tilesRendered, last.tilesReused);
-    if (const VirtualPageCounts& pages = last.virtualPages; pages.maps > 0) {
-        ImGui::Text("virtual pages (%u maps): %u requested, %u cached, %u drawn", pages.maps, pages.requested,
-                    pages.cached, pages.drawn);
-        ImGui::Text("  %u allocated, %u evicted, %u of %u resident (%.0f %%), %u overflowed", pages.allocated,
-                    pages.evicted, pages.resident, pages.poolPages,
-                    pages.poolPages > 0 ? 100.0 * pages.resident / pages.poolPages : 0.0, pages.overflowed);
-        drawVirtualPageView(last);
-    }
+    drawVirtualPageView(last);
     for (const AtlasDrawStats& atlas : last.atlases)
         ImGui::Text("%s: %u tiles, %u draws, %llu triangles", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     static_cast<unsigned long long>(atlas.triangles));

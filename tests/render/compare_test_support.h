@@ -76,6 +76,34 @@ protected:
         result.metrics = compareShadowImages(result.ours.image, reference.shadow, reference.validMask);
         return result;
     }
+
+    // The shadow AOV of light `light` at the compare size, from `renderer` (which keeps its caches).
+    static RenderResult renderAov(Renderer& renderer, const Settings& settings, const CameraView& view, uint32_t light = 0) {
+        RenderRequest request;
+        request.width = kCompareWidth;
+        request.height = kCompareHeight;
+        request.output = OutputMode::ShadowAov;
+        request.aovLight = light;
+        return renderer.render(request, settings, view);
+    }
+
+    // Two frames of one still view of a canonical scene in one renderer (what a cache keeps).
+    std::pair<RenderResult, RenderResult> twoStillFrames(const std::string& name, const Settings& settings,
+                                                         uint32_t light = 0) {
+        const Scene& scene = canonicalScene(name);
+        const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
+        Renderer renderer(device(), scene);
+        RenderResult first = renderAov(renderer, settings, view, light);
+        return {std::move(first), renderAov(renderer, settings, view, light)};
+    }
+
+    // The AOV of `renderer`'s scene against the ray tracer of that very scene (after any edits).
+    static CompareMetrics againstTruth(Renderer& renderer, const RenderResult& result, const Settings& settings,
+                                       const CameraView& view, uint32_t light = 0) {
+        const ReferenceImages reference =
+            traceReferenceShadow(renderer.scene(), view, light, false, referenceOptionsFor(settings, view));
+        return compareShadowImages(result.image, reference.shadow, reference.validMask);
+    }
 };
 
 }  // namespace penumbra::test

@@ -267,6 +267,31 @@ TEST_F(PipelineVariantTest, GenericVariantGivesTheSpecializedImage) {
     }
 }
 
+// shadows.spot.mode = virtual frames draw with the one variant that compiles only the faces' sampling;
+// the generic variant (every mode bit) gives the same shadow terms.
+TEST_F(PipelineVariantTest, GenericVariantGivesTheVirtualFaceVariantsImage) {
+    Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
+    scene.lights.push_back(testPoint(LightShadows::Hard));
+    RendererOptions generic;
+    generic.forceGenericVariants = true;
+    Renderer specialized(device(), scene), fallback(device(), scene, generic);
+    Settings settings = smallSpotAtlas();
+    settings.shadows.spot.mode = SpotShadowMode::Virtual;
+    settings.shadows.virtualMaps.faceResolution = 2048;
+    const auto darkShare = [](const Image& image) {
+        size_t dark = 0;
+        for (uint8_t value : image.pixels) dark += value < 128;
+        return double(dark) / double(image.pixels.size());
+    };
+    for (uint32_t light : {0u, 1u}) {
+        const RenderResult a = specialized.render(shadowAov(light, 96), settings);
+        EXPECT_GT(a.stats.virtualFacePages.requested, 0u);
+        EXPECT_LT(darkShare(a.image), 0.99) << "light " << light;
+        EXPECT_GT(darkShare(a.image), 0.01) << "light " << light << ": some shadow";
+        EXPECT_TRUE(a.image.pixels == fallback.render(shadowAov(light, 96), settings).image.pixels) << "light " << light;
+    }
+}
+
 TEST_F(PipelineVariantTest, AfterBackgroundWarmupNoSettingChangeBuildsAPipeline) {
     Scene scene = boxUnderLight(testSpot(LightShadows::Soft));
     scene.lights.push_back(testPoint(LightShadows::Hard));

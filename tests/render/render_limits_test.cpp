@@ -58,13 +58,6 @@ Device smallStorageRangeDevice(uint64_t maxStorageBufferRange) {
     return DeviceAccess::makeDevice({testDeviceOptions(), faults});
 }
 
-
-bool hasWarning(const FrameStats& stats, const std::string& text) {
-    for (const std::string& warning : stats.warnings)
-        if (warning.find(text) != std::string::npos) return true;
-    return false;
-}
-
 uint32_t darkPixels(const Image& aov) {
     uint32_t count = 0;
     for (uint8_t value : aov.pixels) count += value < 128;

@@ -95,4 +95,11 @@ inline float srgbToLinear(uint8_t value) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
+// Whether one of a frame's warnings contains `text`.
+inline bool hasWarning(const FrameStats& stats, const std::string& text) {
+    for (const std::string& warning : stats.warnings)
+        if (warning.find(text) != std::string::npos) return true;
+    return false;
+}
+
 }  // namespace penumbra::test

@@ -122,5 +122,35 @@ TEST_F(SynchronizationTest, VirtualShadowMapFramesRenderWithoutHazards) {
     }
 }
 
+TEST_F(SynchronizationTest, VirtualFaceFramesRenderWithoutHazards) {
+    // The same for spot and point lights' faces (a point light's six and a spot light's one, with a sun's
+    // virtual map in the same frames: two tables, two pools, one marking depth).
+    Scene scene = makeCanonicalScene("room_corner");
+    const Scene spots = makeCanonicalScene("spot_lights");
+    scene.lights.insert(scene.lights.end(), spots.lights.begin(), spots.lights.end());
+    for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+        for (MainView mainView : {MainView::Forward, MainView::Visibility}) {
+            SCOPED_TRACE(std::string(shadowRasterName(raster)) + ", " + mainViewName(mainView));
+            Settings settings = smallSettings(raster, mainView);
+            settings.shadows.spot.mode = SpotShadowMode::Virtual;
+            settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+            settings.shadows.virtualMaps.poolPages = 64;
+            settings.shadows.virtualMaps.resolution = 2048;
+            settings.shadows.virtualMaps.faceResolution = 2048;
+            const uint32_t before = device().validationMessageCount();
+            Renderer renderer(device(), scene);
+            const RenderResult first = renderer.render(smallRequest(), settings);
+            renderer.render(smallRequest(), settings);
+            const uint32_t last = uint32_t(scene.instances.size()) - 1;
+            renderer.setInstanceTransform(
+                last, glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, 0.0f, 0.0f)) * scene.instances[last].worldFromObject);
+            renderer.render(smallRequest(), settings);
+            EXPECT_GE(first.stats.virtualFacePages.maps, 7u) << "the point light's six faces and a spot's";
+            EXPECT_GT(first.stats.virtualFacePages.drawn, 0u);
+            EXPECT_EQ(device().validationMessageCount() - before, 0u);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace penumbra::test

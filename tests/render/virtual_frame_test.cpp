@@ -31,15 +31,6 @@ Settings cascadeSettings(const std::string& scene) {
     return settings;
 }
 
-RenderRequest aovRequest(uint32_t light = 0) {
-    RenderRequest request;
-    request.width = kCompareWidth;
-    request.height = kCompareHeight;
-    request.output = OutputMode::ShadowAov;
-    request.aovLight = light;
-    return request;
-}
-
 struct SceneLimit {
     const char* scene;
     uint32_t light;
@@ -101,31 +92,12 @@ INSTANTIATE_TEST_SUITE_P(DirectionalCanonicalScenes, VirtualSceneTest, ::testing
 
 namespace {
 
-class VirtualFrameTest : public CompareTest {
-protected:
-    // The AOV of `renderer`'s scene against the ray tracer of that very scene (after any edits).
-    CompareMetrics againstTruth(Renderer& renderer, const RenderResult& result, const Settings& settings,
-                                const CameraView& view) {
-        const ReferenceImages reference =
-            traceReferenceShadow(renderer.scene(), view, 0, false, referenceOptionsFor(settings, view));
-        return compareShadowImages(result.image, reference.shadow, reference.validMask);
-    }
-};
-
-bool hasWarning(const FrameStats& stats, const std::string& text) {
-    return std::any_of(stats.warnings.begin(), stats.warnings.end(),
-                       [&](const std::string& warning) { return warning.find(text) != std::string::npos; });
-}
+class VirtualFrameTest : public CompareTest {};
 
 }  // namespace
 
 TEST_F(VirtualFrameTest, AStillCameraDrawsNoPageAfterTheFirstFrame) {
-    const Scene& scene = canonicalScene("poles");
-    const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
-    Renderer renderer(device(), scene);
-    const Settings settings = virtualSettings("poles");
-    const RenderResult first = renderer.render(aovRequest(), settings, view);
-    const RenderResult second = renderer.render(aovRequest(), settings, view);
+    const auto [first, second] = twoStillFrames("poles", virtualSettings("poles"));
     const VirtualPageCounts& pages = second.stats.virtualPages;
     EXPECT_GT(first.stats.virtualPages.drawn, 0u);
     EXPECT_EQ(pages.drawn, 0u);
@@ -135,13 +107,9 @@ TEST_F(VirtualFrameTest, AStillCameraDrawsNoPageAfterTheFirstFrame) {
 }
 
 TEST_F(VirtualFrameTest, WithTheCacheOffEveryRequestedPageIsDrawnEveryFrame) {
-    const Scene& scene = canonicalScene("poles");
-    const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
-    Renderer renderer(device(), scene);
     Settings settings = virtualSettings("poles");
     settings.shadows.virtualMaps.cache = false;
-    const RenderResult first = renderer.render(aovRequest(), settings, view);
-    const RenderResult second = renderer.render(aovRequest(), settings, view);
+    const auto [first, second] = twoStillFrames("poles", settings);
     EXPECT_GT(second.stats.virtualPages.requested, 0u);
     EXPECT_EQ(second.stats.virtualPages.drawn, second.stats.virtualPages.requested);
     EXPECT_EQ(first.image.pixels, second.image.pixels);
@@ -152,11 +120,11 @@ TEST_F(VirtualFrameTest, ATurnedLightRedrawsEveryRequestedPage) {
     const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
     Renderer renderer(device(), scene);
     const Settings settings = virtualSettings("poles");
-    renderer.render(aovRequest(), settings, view);
+    renderAov(renderer, settings, view);
     Light turned = scene.lights[0];
     turned.wsDirection = glm::normalize(turned.wsDirection + glm::vec3(0.15f, 0.0f, 0.1f));
     renderer.setLight(0, turned);
-    const RenderResult result = renderer.render(aovRequest(), settings, view);
+    const RenderResult result = renderAov(renderer, settings, view);
     EXPECT_EQ(result.stats.virtualPages.drawn, result.stats.virtualPages.requested);
     const CompareMetrics metrics = againstTruth(renderer, result, settings, view);
     EXPECT_LE(metrics.misclassifiedPercent, 0.15) << toText(metrics);  // as the scene's row above
@@ -169,14 +137,14 @@ TEST_F(VirtualFrameTest, AMovedCasterIsRedrawnWhereItWasAndWhereItIs) {
     const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
     Renderer renderer(device(), scene);
     const Settings settings = virtualSettings("cube");
-    const RenderResult before = renderer.render(aovRequest(), settings, view);
+    const RenderResult before = renderAov(renderer, settings, view);
     // The cube: the instance with the smallest bounds.
     uint32_t cube = 0;
     for (uint32_t i = 1; i < scene.instances.size(); ++i)
         if (scene.instances[i].wsBounds.max.x - scene.instances[i].wsBounds.min.x < scene.instances[cube].wsBounds.max.x - scene.instances[cube].wsBounds.min.x) cube = i;
     const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, 0.0f, 0.5f)) * scene.instances[cube].worldFromObject;
     renderer.setInstanceTransform(cube, moved);
-    const RenderResult after = renderer.render(aovRequest(), settings, view);
+    const RenderResult after = renderAov(renderer, settings, view);
     const VirtualPageCounts& pages = after.stats.virtualPages;
     std::printf("moved cube: %u of %u requested pages drawn\n", pages.drawn, pages.requested);
     EXPECT_GT(pages.drawn, 0u);

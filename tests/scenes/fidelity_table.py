@@ -34,6 +34,7 @@ SCENES = {
     "spot_lights": ("spot_lights.gltf", [(0, "spot"), (1, "spot")], []),
     "spot_shelf": ("spot_shelf.gltf", [(0, "spot"), (1, "spot"), (2, "spot")], []),
     "point_light": ("point_light.gltf", [(0, "spot")], []),
+    "room_corner": ("room_corner.gltf", [(0, "spot")], []),
     "pcss_contact": ("pcss_contact.gltf", [(0, "sun"), (1, "spot")], ["--soft", "128"]),
 }
 FILTERS = ["PCF2x2", "PCF3x3", "PCF5x5", "PCF7x7"]

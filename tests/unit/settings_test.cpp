@@ -297,6 +297,25 @@ TEST(SettingsJson, TooManyVirtualPagesASideAreAnError) {
         << parseError(R"({"shadows": {"virtual": {"resolution": 32768, "pageSize": 64}}})");
 }
 
+TEST(SettingsJson, SpotVirtualShadowSettingsAreReadAndChecked) {
+    const Settings settings =
+        parseSettingsJson(R"({"shadows": {"spot": {"mode": "virtual"}, "virtual": {"faceResolution": 4096}}})", "test.json");
+    EXPECT_EQ(settings.shadows.spot.mode, SpotShadowMode::Virtual);
+    EXPECT_EQ(settings.shadows.virtualMaps.faceResolution, 4096u);
+    EXPECT_EQ(Settings{}.shadows.spot.mode, SpotShadowMode::Atlas);
+    EXPECT_NE(parseError(R"({"shadows": {"spot": {"mode": "cube"}}})").find("shadows.spot.mode"), std::string::npos);
+    EXPECT_NE(parseError(R"({"shadows": {"virtual": {"faceResolution": 3000}}})").find("shadows.virtual.faceResolution"),
+              std::string::npos);
+}
+
+// A face of 16384 texels in pages of 64 is 256 pages a side: a table of 16 faces' mips would not fit.
+TEST(SettingsJson, TooManyVirtualFacePagesASideAreAnError) {
+    EXPECT_NE(parseError(R"({"shadows": {"virtual": {"faceResolution": 16384, "pageSize": 64}}})")
+                  .find("shadows.virtual.faceResolution / shadows.virtual.pageSize = 16384 / 64 = 256 pages a side is "
+                        "out of range (allowed 2..128)"),
+              std::string::npos);
+}
+
 TEST(SettingsJson, DecreasingCascadeRatiosAreAnError) {
     EXPECT_NE(parseError(R"({"shadows": {"directional": {"cascadeRatios": [0.5, 0.25, 0.1]}}})")
                   .find("shadows.directional.cascadeRatios = [0.5, 0.25, 0.1] must not decrease"),

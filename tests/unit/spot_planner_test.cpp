@@ -140,3 +140,44 @@ TEST(SpotShadowPlan, PointLightHasSixFaceTilesEachSeeingItsOwnDirection) {
     EXPECT_EQ(plan.gpu.lights[1].point, 1u);
     EXPECT_EQ(plan.gpu.lights[1].firstTile, 1u);
 }
+
+// shadows.spot.mode = virtual: the lights are reserved and packed as for the atlas, but no atlas tile is
+// planned; face i of the virtual maps stands where tile i would (a spot light's cone around its axis, a
+// point light's six faces along the cube directions), each from the light's position.
+TEST(SpotShadowPlan, VirtualModePlansFacesWhereTheAtlasWouldPlanTiles) {
+    Scene scene = spotGridScene(2);
+    scene.lights.push_back(makePointLight({0.0f, 3.0f, 0.0f}, 50.0f, 10.0f));
+    ShadowSettings settings;
+    settings.spot.mode = SpotShadowMode::Virtual;
+    settings.virtualMaps.faceResolution = 4096;
+    const OtherShadowPlan atlas = planFor(scene).other;
+    const OtherShadowPlan plan = planFor(scene, settings).other;
+    EXPECT_TRUE(plan.virtualFaces);
+    EXPECT_TRUE(plan.tiles.empty());
+    EXPECT_EQ(plan.atlas.tileCount, 0u);
+    EXPECT_EQ(plan.faceConfig.resolution, 4096u);
+    ASSERT_EQ(plan.faces.size(), atlas.tiles.size());
+    ASSERT_EQ(plan.faceLights.size(), plan.lights.size());
+    EXPECT_EQ(plan.gpu.lightCount, atlas.gpu.lightCount);
+    EXPECT_GT(plan.faceMarginTexels, 0.0f);
+    for (uint32_t slot = 0; slot < plan.lights.size(); ++slot) {
+        EXPECT_EQ(plan.faceLights[slot].firstFace, plan.gpu.lights[slot].firstTile);
+        EXPECT_EQ(plan.faceLights[slot].point, plan.lights[slot].point);
+    }
+    for (uint32_t face = 0; face < plan.faces.size(); ++face) {
+        const ShadowTile& tile = atlas.tiles[face];
+        const Light& light = scene.lights[plan.lights[tile.lightSlot].sceneLightIndex];
+        const glm::vec3 axis = plan.lights[tile.lightSlot].point ? pointLightFaceDirections()[tile.cascadeIndex]
+                                                                : light.wsDirection;
+        EXPECT_EQ(plan.faces[face].wsPosition, light.wsPosition);
+        // The axis lands at the face's centre, between the near and far planes.
+        const std::optional<FacePoint> centre = projectOntoFace(plan.faces[face], light.wsPosition + 2.0f * axis);
+        ASSERT_TRUE(centre.has_value()) << "face " << face;
+        EXPECT_NEAR(centre->ndc.x, 0.0f, 1e-4f) << "face " << face;
+        EXPECT_NEAR(centre->ndc.y, 0.0f, 1e-4f) << "face " << face;
+        // A spot's cone edge (or a point face's 45° edge) lies inside the face, near its border.
+        const float coneTangent = plan.lights[tile.lightSlot].point ? 1.0f : std::tan(light.outerConeAngle);
+        EXPECT_GT(plan.faces[face].tanHalfFov, coneTangent) << "widened for the filter's reach";
+        EXPECT_LT(plan.faces[face].tanHalfFov, coneTangent * 1.2f) << "by a few coarse texels only";
+    }
+}
