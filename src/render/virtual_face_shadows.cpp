@@ -83,7 +83,7 @@ void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherS
         config.faces = plan.faceConfig;
         config.faceCount = uint32_t(std::min<size_t>(plan.faces.size(), kMaxFaces));
         config.keepFrames = settings.virtualMaps.keepFrames;
-        const uint32_t requested = std::max(1u, uint32_t(std::floor(std::sqrt(double(settings.virtualMaps.poolPages)))));
+        const uint32_t requested = virtualPoolPagesPerSide(settings.virtualMaps);
         config.poolSide = fitVirtualPool(requested, config.faces.pageSize, 1, device_.maxImageSize(),
                                          device_.maxStorageBufferRange());
         if (config.poolSide < requested)
@@ -92,22 +92,19 @@ void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherS
                                " holds; using " + std::to_string(config.poolSide * config.poolSide) + " pages");
         configure(config);
         if (!settings.virtualMaps.cache) invalidateAll_ = true;
-        faceConfig_ = config.faces;
-        faceCount_ = config.faceCount;
-        poolSide_ = config.poolSide;
-        lightCount_ = uint32_t(plan.faceLights.size());
+        lightCount_ = uint32_t(std::min<size_t>(plan.faceLights.size(), kMaxFaces));
         meshletCulling_ = meshletCulling;
         footprintScale_ = std::exp2(settings.virtualMaps.faceLodBias);
         marginTexels_ = plan.faceMarginTexels;
-        faces_.assign(plan.faces.begin(), plan.faces.begin() + faceCount_);
+        faces_.assign(plan.faces.begin(), plan.faces.begin() + config_.faceCount);
         block.enabled = 1u;
         block.wsFootprintPerDepth = wsFootprintPerDepth(view) * footprintScale_;  // the marking pass's
-        block.table = packVirtualFaceLookup(faceConfig_, faceCount_, poolSide_);
+        block.table = packVirtualFaceLookup(config_.faces, config_.faceCount, config_.poolSide);
         std::array<gpu_data::VirtualFaceLightData, kMaxFaces> lights{};
-        for (uint32_t face = 0; face < faceCount_; ++face) block.faces[face] = packVirtualFace(faces_[face]);
-        for (uint32_t light = 0; light < std::min(lightCount_, kMaxFaces); ++light)
+        for (uint32_t face = 0; face < config_.faceCount; ++face) block.faces[face] = packVirtualFace(faces_[face]);
+        for (uint32_t light = 0; light < lightCount_; ++light)
             lights[light] = {plan.faceLights[light].firstFace, plan.faceLights[light].point ? 1u : 0u, 0u, 0u};
-        device_.writeBuffer(uploads_, block.faces, faceCount_ * sizeof(block.faces[0]), base + layout.faces);
+        device_.writeBuffer(uploads_, block.faces, config_.faceCount * sizeof(block.faces[0]), base + layout.faces);
         device_.writeBuffer(uploads_, lights.data(), lightCount_ * sizeof(lights[0]), base + layout.lights);
     } else if (table_) {
         configure(Config{});  // the atlas, or no light: the table and pool go
@@ -141,22 +138,22 @@ void VirtualFaceShadows::casterChanged(const Aabb& wsBounds) {
 
 bool VirtualFaceShadows::collectInvalidations() {
     invalidationCount_ = 0;
-    const uint32_t mips = virtualFaceMipCount(faceConfig_);
+    const uint32_t mips = virtualFaceMipCount(config_.faces);
     const auto add = [&](uint32_t level, const PageRect& pages) {
         if (invalidationCount_ >= invalidations_.size()) return false;
         invalidations_[invalidationCount_++] = virtualPageInvalidation(level, pages);
         return true;
     };
-    for (uint32_t face = 0; face < faceCount_; ++face) {
+    for (uint32_t face = 0; face < config_.faceCount; ++face) {
         if (face < drawnFaces_.size() && drawnFaces_[face] == faces_[face].clipFromWorld) continue;
         for (uint32_t mip = 0; mip < mips; ++mip) {  // a new projection: every page of the face
-            const int32_t last = int32_t(virtualFacePagesPerSide(faceConfig_) >> mip) - 1;
-            if (!add(virtualFaceLevel(mip, face, faceCount_), PageRect{glm::ivec2(0), glm::ivec2(last)})) return false;
+            const int32_t last = int32_t(virtualFacePagesPerSide(config_.faces) >> mip) - 1;
+            if (!add(virtualFaceLevel(mip, face, config_.faceCount), PageRect{glm::ivec2(0), glm::ivec2(last)})) return false;
         }
     }
     for (const Aabb& bounds : changedBounds_)
-        for (uint32_t face = 0; face < faceCount_; ++face) {
-            const uint32_t count = casterFacePageRects(faceConfig_, faces_[face], face, faceCount_, bounds, mipRects_.data());
+        for (uint32_t face = 0; face < config_.faceCount; ++face) {
+            const uint32_t count = casterFacePageRects(config_.faces, faces_[face], face, config_.faceCount, bounds, mipRects_.data());
             for (uint32_t i = 0; i < count; ++i)
                 if (!add(mipRects_[i].level, mipRects_[i].pages)) return false;
         }
@@ -170,25 +167,25 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
     if (invalidateAll) invalidationCount_ = 0;
     invalidateAll_ = false;
     changedBounds_.clear();
-    drawnFaces_.resize(faceCount_);
-    for (uint32_t face = 0; face < faceCount_; ++face) drawnFaces_[face] = faces_[face].clipFromWorld;
+    drawnFaces_.resize(config_.faceCount);
+    for (uint32_t face = 0; face < config_.faceCount; ++face) drawnFaces_[face] = faces_[face].clipFromWorld;
 
     const SlotLayout layout = slotLayout();
     const uint64_t base = uint64_t(slot_) * layout.size;
     const gpu_data::VirtualFaceMarkData mark =
-        packVirtualFaceMark(faceConfig_, view, faceCount_, lightCount_, marginTexels_, footprintScale_);
+        packVirtualFaceMark(config_.faces, view, config_.faceCount, lightCount_, marginTexels_, footprintScale_);
     const gpu_data::VirtualPageTableData tableData = table_->packFrame(glm::vec2(0.0f), invalidateAll, invalidationCount_);
     device_.writeBuffer(uploads_, &mark, sizeof(mark), base + layout.mark);
     device_.writeBuffer(uploads_, &tableData, sizeof(tableData), base + layout.table);
     if (invalidationCount_ > 0)
         device_.writeBuffer(uploads_, invalidations_.data(), invalidationCount_ * sizeof(invalidations_[0]),
                             base + layout.invalidations);
-    const gpu::BufferSlice faces{uploads_, base + layout.faces, faceCount_ * sizeof(gpu_data::VirtualFaceData)};
+    const gpu::BufferSlice faces{uploads_, base + layout.faces, config_.faceCount * sizeof(gpu_data::VirtualFaceData)};
     // 1. Marking, 2. the table update, 3. drawing the dirty pages, 4. marking them drawn.
     mark_->record(commands, depth,
                  {{uploads_, base + layout.mark, sizeof(mark)}, faces,
                   {uploads_, base + layout.lights, lightCount_ * sizeof(gpu_data::VirtualFaceLightData)}},
-                 virtualFaceTableLayout(faceConfig_, faceCount_));
+                 virtualFaceTableLayout(config_.faces, config_.faceCount));
     table_->record(commands, {mark_->requestWords(), {uploads_, base + layout.table, sizeof(tableData)},
                               {uploads_, base + layout.invalidations, kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)},
                               invalidationCount_});
@@ -196,7 +193,7 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
     sceneWrites_.push_back({gpu_data::kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
-    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, &sceneWrites_, meshletCulling_, faces, faceCount_};
+    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, &sceneWrites_, meshletCulling_, faces, config_.faceCount};
     draw_->record(commands, inputs);
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
     table_->recordMarkDrawn(commands);

@@ -63,11 +63,11 @@ public:
     void record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
                 uint64_t& rasterReadback);
 
-    uint32_t faceCount() const { return active_ ? faceCount_ : 0u; }
-    uint32_t poolPages() const { return active_ ? poolSide_ * poolSide_ : 0u; }
+    uint32_t faceCount() const { return active_ ? config_.faceCount : 0u; }
+    uint32_t poolPages() const { return active_ ? config_.poolSide * config_.poolSide : 0u; }
     gpu::BufferSlice stats() const { return table_->stats(); }            // VirtualPageStats of the last record
     gpu::BufferSlice levelStats() const { return table_->levelStats(); }  // per mip (the table's buckets)
-    uint32_t mipCount() const { return virtualFaceMipCount(faceConfig_); }
+    uint32_t mipCount() const { return virtualFaceMipCount(config_.faces); }
     // Tests and debugging.
     VirtualPageTablePass* table() { return table_.get(); }
     const VirtualPageDrawPass* draw() const { return draw_.get(); }
@@ -97,9 +97,8 @@ private:
     std::unique_ptr<VirtualFaceMarkPass> mark_;  // made with the first faces (its pipelines too)
     std::unique_ptr<VirtualPageTablePass> table_;
     std::unique_ptr<VirtualPageDrawPass> draw_;
-    Config config_;
-    VirtualFaceConfig faceConfig_;  // config_.faces, as the plan's
-    uint32_t faceCount_ = 0, poolSide_ = 0, lightCount_ = 0;
+    Config config_;               // of the table and pool made last (faceCount 0: none)
+    uint32_t lightCount_ = 0;     // this frame's lights with faces
     bool active_ = false, invalidateAll_ = false, meshletCulling_ = true;
     float marginTexels_ = 0.0f, footprintScale_ = 1.0f;
     std::vector<VirtualFace> faces_;        // this frame's (capacity kept)

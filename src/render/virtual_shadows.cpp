@@ -10,6 +10,10 @@
 
 namespace penumbra {
 
+uint32_t virtualPoolPagesPerSide(const VirtualShadowSettings& settings) {
+    return std::max(1u, uint32_t(std::floor(std::sqrt(double(settings.poolPages)))));
+}
+
 VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling) {
     const VirtualShadowSettings& pages = settings.virtualMaps;
     VirtualShadowMapConfig config;
@@ -17,7 +21,7 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bo
     config.clipmap.pageSize = pages.pageSize;
     config.clipmap.levelCount = pages.levelCount;
     config.clipmap.firstLevelSize = pages.firstLevelSize;
-    config.poolPagesPerSide = std::max(1u, uint32_t(std::floor(std::sqrt(double(pages.poolPages)))));
+    config.poolPagesPerSide = virtualPoolPagesPerSide(pages);
     config.keepFrames = pages.keepFrames;
     config.meshletCulling = meshletCulling;
     config.footprintScale = std::exp2(pages.lodBias);

@@ -33,6 +33,9 @@
 
 namespace penumbra {
 
+// Pages along a pool's side: shadows.virtual.poolPages rounded down to a square (at least one page).
+uint32_t virtualPoolPagesPerSide(const VirtualShadowSettings& settings);
+
 // The VirtualShadowMapConfig of the shadows.virtual settings (the pool rounded down to a square of pages).
 VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling);
 

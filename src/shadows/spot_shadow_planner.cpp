@@ -16,6 +16,12 @@ float otherShadowFilterReach(bool soft, ShadowFilter filter) { return soft ? fil
 
 namespace {
 
+// The half-angle tangent of what a light's tile or face must cover: the spot's cone (at most 85°), or a
+// point light's 90° cube face.
+float shadowConeTangent(const Light& light, const ReservedOtherLight& reserved) {
+    return reserved.point ? 1.0f : std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
+}
+
 struct LightTiles {
     float tanHalfFov = 1.0f;
     float reach = 1.0f;  // filter reach in texels
@@ -28,9 +34,8 @@ LightTiles lightTileShape(const Light& light, const ReservedOtherLight& reserved
                           ShadowFilter filter) {
     LightTiles shape;
     shape.reach = otherShadowFilterReach(reserved.soft, filter);
-    const float coneTangent =
-        reserved.point ? 1.0f : std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
-    shape.tanHalfFov = tanHalfFovWithMargin(coneTangent, layout.tileSize, float(layout.border) + 2.0f * shape.reach);
+    shape.tanHalfFov = tanHalfFovWithMargin(shadowConeTangent(light, reserved), layout.tileSize,
+                                            float(layout.border) + 2.0f * shape.reach);
     return shape;
 }
 
@@ -84,8 +89,6 @@ void packLight(gpu_data::OtherShadowData& data, const Light& light, const Reserv
     packed.farDistance = reserved.farDistance;
 }
 
-}  // namespace
-
 // The most a virtual face's frustum is widened for a lookup's reach, in texels of its coarsest mip (one
 // page a side): a PCSS search reaching further at that mip reads beyond the face as lit, where finer
 // mips (what a receiver near the light reads) reach a fraction of a coarse texel.
@@ -102,8 +105,7 @@ void planVirtualFaces(const Scene& scene, const ShadowSettings& settings, OtherS
         const float reach = lookupReachTexels(reserved.normalBias, reserved.pcssRadius > 0.0f, filter);
         plan.faceMarginTexels = std::max(plan.faceMarginTexels, reach);
         const float margin = std::min(reach, kMaxFaceMarginTexels);
-        const float coneTangent =
-            reserved.point ? 1.0f : std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
+        const float coneTangent = shadowConeTangent(light, reserved);
         plan.faceLights.push_back({reserved.firstTile, reserved.point});
         for (uint32_t face = 0; face < reserved.tileCount(); ++face) {
             const glm::vec3 direction = reserved.point ? pointLightFaceDirections()[face] : light.wsDirection;
@@ -112,6 +114,8 @@ void planVirtualFaces(const Scene& scene, const ShadowSettings& settings, OtherS
         }
     }
 }
+
+}  // namespace
 
 void planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                       const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters, OtherShadowPlan& plan,
