@@ -133,6 +133,13 @@ void CommandList::pushDescriptors(std::span<const DescriptorWrite> writes) {
         write.dstArrayElement = w.arrayElement;
         write.descriptorCount = 1;
         if (type == DescriptorType::UniformBuffer || type == DescriptorType::StorageBuffer) {
+            // Held to the largest offset alignment Vulkan allows on every device, not this device's own
+            // limit: lavapipe's is 16 bytes, NVIDIA's uniform one 64, and a misaligned offset there reads
+            // other data (a test on lavapipe must fail where a GPU would).
+            if (w.offset % kPortableBufferOffsetAlignment != 0)
+                throw Error("internal: binding " + std::to_string(w.binding) + " bound at offset " +
+                            std::to_string(w.offset) + ", not a multiple of " +
+                            std::to_string(kPortableBufferOffsetAlignment));
             bufferInfos[i] = {d.buffers.at(w.buffer.id).buffer, w.offset, w.size ? w.size : VK_WHOLE_SIZE};
             write.descriptorType = type == DescriptorType::UniformBuffer ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
                                                                          : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;

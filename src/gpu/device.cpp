@@ -337,6 +337,7 @@ void Device::initialize() {
     d.memory = std::make_unique<MemoryAllocator>(d.device, d.memoryProperties);
     d.memory->setOnNewMemory(nameMemory, &d);
     d.memory->failRequestAt(d.options.faults.failAllocation);
+    d.memory->fillNewAllocations(uint8_t(d.options.faults.garbageByte));
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

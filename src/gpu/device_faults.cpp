@@ -24,9 +24,10 @@ DeviceFaultInjection faultInjectionFromEnvironment() {
         else if (number && key == "wait") faults.loseDeviceAtWait = value;
         else if (number && key == "max-image-size" && value <= UINT32_MAX) faults.maxImageSize = uint32_t(value);
         else if (number && key == "max-storage-buffer-range") faults.maxStorageBufferRange = value;
+        else if (number && key == "garbage" && value >= 1 && value <= 255) faults.garbageByte = uint32_t(value);
         else
             throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
-                        "' is not allocation=N, submit=N, wait=N, max-image-size=N or max-storage-buffer-range=N");
+                        "' is not allocation=N, submit=N, wait=N, max-image-size=N, max-storage-buffer-range=N or garbage=1..255");
     }
     return faults;
 }

@@ -211,8 +211,7 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
     Impl& d = *impl_;
     if (d.recordingSlot < 0) throw Error("internal: allocateFrameData outside beginFrame/submitFrame");
     FrameContext& frame = d.frames[d.recordingSlot];
-    alignment = std::max<uint64_t>(alignment, d.properties.limits.minUniformBufferOffsetAlignment);
-    alignment = std::max<uint64_t>(alignment, d.properties.limits.minStorageBufferOffsetAlignment);
+    alignment = std::max<uint64_t>(alignment, kPortableBufferOffsetAlignment);  // a descriptor may bind it
     uint64_t offset = (frame.uploadUsed + alignment - 1) & ~(alignment - 1);
     if (!frame.uploadBuffer || offset + size > frame.uploadCapacity) {
         // Grow the ring (the old buffer stays alive until this frame is done): only when a frame needs

@@ -1,6 +1,7 @@
 #include "gpu/memory_allocator.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "core/error.h"
 
@@ -74,7 +75,7 @@ MemoryAllocation MemoryAllocator::allocate(const VkMemoryRequirements& requireme
         allocation.block = newBlock(memoryType, requirements.size, linear, true, name);
         allocation.memory = blocks_[allocation.block].memory;
         allocation.mapped = blocks_[allocation.block].mapped;
-        return allocation;
+        return filled(allocation);
     }
     auto place = [&](int32_t index) {
         Block& block = blocks_[index];
@@ -90,10 +91,15 @@ MemoryAllocation MemoryAllocator::allocate(const VkMemoryRequirements& requireme
         const Block& block = blocks_[i];
         if (block.memory && !block.dedicated && block.memoryType == memoryType && block.linear == linear &&
             place(int32_t(i)))
-            return allocation;
+            return filled(allocation);
     }
     if (!place(newBlock(memoryType, blockSize_, linear, false, name)))
         throw Error("internal: a fresh memory block could not hold " + std::to_string(requirements.size) + " bytes");
+    return filled(allocation);
+}
+
+MemoryAllocation MemoryAllocator::filled(MemoryAllocation allocation) const {
+    if (garbageByte_ && allocation.mapped) std::memset(allocation.mapped, garbageByte_, allocation.size);
     return allocation;
 }
 

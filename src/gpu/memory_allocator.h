@@ -46,6 +46,9 @@ public:
     // Test-only (DeviceFaultInjection::failAllocation): the Nth allocate() fails as out of device
     // memory, as if its vkAllocateMemory had.
     void failRequestAt(uint64_t request) { failRequestAt_ = request; }
+    // Test-only (DeviceFaultInjection::garbageByte): every host-visible allocation starts as `byte`
+    // repeated (0 = untouched).
+    void fillNewAllocations(uint8_t byte) { garbageByte_ = byte; }
     // Called with every new VkDeviceMemory (for debug names).
     void setOnNewMemory(void (*callback)(void* user, VkDeviceMemory memory, const std::string& name), void* user) {
         onNewMemory_ = callback;
@@ -65,6 +68,7 @@ private:
     uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
     int32_t newBlock(uint32_t memoryType, VkDeviceSize size, bool linear, bool dedicated, const std::string& name);
     void releaseBlock(int32_t index);
+    MemoryAllocation filled(MemoryAllocation allocation) const;
     [[noreturn]] static void throwOutOfMemory(VkDeviceSize size, const std::string& name, VkResult result);
 
     VkDevice device_;
@@ -74,6 +78,7 @@ private:
     uint64_t allocationCalls_ = 0;
     uint64_t requests_ = 0;
     uint64_t failRequestAt_ = 0;
+    uint8_t garbageByte_ = 0;
     void (*onNewMemory_)(void*, VkDeviceMemory, const std::string&) = nullptr;
     void* onNewMemoryUser_ = nullptr;
 };

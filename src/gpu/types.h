@@ -111,6 +111,11 @@ struct ComputePipelineDesc {
     std::string debugName;
 };
 
+// The largest minUniformBufferOffsetAlignment / minStorageBufferOffsetAlignment Vulkan allows: every
+// buffer range a descriptor binds starts at a multiple of it (CommandList::pushDescriptors checks), so
+// an offset right on one device is right on all.
+constexpr uint64_t kPortableBufferOffsetAlignment = 256;
+
 // A range of a buffer: what a descriptor binds and what a copy reads. size 0 = to the end.
 struct BufferSlice {
     BufferHandle buffer;

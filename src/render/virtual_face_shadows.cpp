@@ -11,7 +11,7 @@ namespace penumbra {
 
 namespace {
 
-constexpr uint64_t kSlotAlignment = 256;  // the largest minUniform/StorageBufferOffsetAlignment Vulkan allows
+constexpr uint64_t kSlotAlignment = gpu::kPortableBufferOffsetAlignment;
 uint64_t aligned(uint64_t bytes) { return (bytes + kSlotAlignment - 1) / kSlotAlignment * kSlotAlignment; }
 constexpr uint32_t kMaxFaces = gpu_data::kMaxOtherShadowTiles;
 
@@ -182,13 +182,17 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
                             base + layout.invalidations);
     const gpu::BufferSlice faces{uploads_, base + layout.faces, config_.faceCount * sizeof(gpu_data::VirtualFaceData)};
     // 1. Marking, 2. the table update, 3. drawing the dirty pages, 4. marking them drawn.
+    commands.beginTimer("virtualFaces/mark");
     mark_->record(commands, depth,
                  {{uploads_, base + layout.mark, sizeof(mark)}, faces,
                   {uploads_, base + layout.lights, lightCount_ * sizeof(gpu_data::VirtualFaceLightData)}},
                  virtualFaceTableLayout(config_.faces, config_.faceCount));
+    commands.endTimer();
+    commands.beginTimer("virtualFaces/table");
     table_->record(commands, {mark_->requestWords(), {uploads_, base + layout.table, sizeof(tableData)},
                               {uploads_, base + layout.invalidations, kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)},
                               invalidationCount_});
+    commands.endTimer();
     sceneWrites_.clear();  // the scene's buffers may be new since the last record; the capacity stays
     sceneWrites_.push_back({gpu_data::kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
@@ -196,7 +200,9 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
     VirtualPageDrawInputs inputs{table_->drawList(), nullptr, &sceneWrites_, meshletCulling_, faces, config_.faceCount};
     draw_->record(commands, inputs);
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
+    commands.beginTimer("virtualFaces/drawn");
     table_->recordMarkDrawn(commands);
+    commands.endTimer();
 }
 
 }  // namespace penumbra

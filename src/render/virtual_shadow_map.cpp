@@ -11,7 +11,7 @@ namespace penumbra {
 
 namespace {
 
-constexpr uint64_t kSlotAlignment = 256;  // the largest minUniform/StorageBufferOffsetAlignment Vulkan allows
+constexpr uint64_t kSlotAlignment = gpu::kPortableBufferOffsetAlignment;
 
 uint64_t aligned(uint64_t bytes) { return (bytes + kSlotAlignment - 1) / kSlotAlignment * kSlotAlignment; }
 
@@ -94,17 +94,23 @@ void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepth
     lookupSlice_ = {uploads_, base + layout.lookup, sizeof(lookup_)};
 
     // 1. Marking, 2. the table update, 3. drawing the dirty pages, 4. marking them drawn.
+    commands.beginTimer("virtualPages/mark");
     mark_.record(commands, mainDepth, {uploads_, base + layout.mark, sizeof(mark)}, config_.clipmap);
+    commands.endTimer();
     const gpu::BufferSlice invalidationSlice{uploads_, base + layout.invalidations,
                                              kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)};
+    commands.beginTimer("virtualPages/table");
     table_.record(commands, {mark_.requestWords(), {uploads_, base + layout.table, sizeof(tableData)}, invalidationSlice,
                              rectangles});
+    commands.endTimer();
     sceneWrites_.clear();  // the scene's buffers may be new since the last record; the capacity stays
     sceneWrites_.push_back({gpu_data::kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
     sceneWrites_.push_back({gpu_data::kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
     draw_.record(commands, {table_.drawList(), &space_, &sceneWrites_, config_.meshletCulling, {}, 0});
+    commands.beginTimer("virtualPages/drawn");
     table_.recordMarkDrawn(commands);
+    commands.endTimer();
 }
 
 }  // namespace penumbra

@@ -43,7 +43,7 @@ VirtualShadows::VirtualShadows(gpu::Device& device, const GpuScene& gpuScene, Co
     : device_(device), scene_(gpuScene), raster_(raster) {
     slotCount_ = device.framesInFlight() + 1;  // a slot is free again once its next frame begins
     try {
-        blocks_ = device.createBuffer(sizeof(block_) * slotCount_, gpu::kBufferUniform, gpu::MemoryKind::HostVisible,
+        blocks_ = device.createBuffer(kSlotStride * slotCount_, gpu::kBufferUniform, gpu::MemoryKind::HostVisible,
                                       nullptr, "virtual shadow lit blocks");
         placeholderPool_ = device.createTexture({1, 1, gpu::Format::R32Float, gpu::kTextureSampled, 1, "no virtual pool"});
         placeholderPages_ = device.createBuffer(sizeof(gpu_data::VirtualPageEntry), gpu::kBufferStorage,
@@ -117,7 +117,7 @@ void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCo
     block_ = {};
     block_.enabled = active_ ? 1u : 0u;
     block_.wsFootprintPerDepth = wsFootprintPerDepth(view) * config_.footprintScale;  // the marking pass's
-    device_.writeBuffer(blocks_, &block_, sizeof(block_), uint64_t(slot_) * sizeof(block_));
+    device_.writeBuffer(blocks_, &block_, sizeof(block_), slotOffset());
 }
 
 void VirtualShadows::appendLitInputs(MainPassInputs& inputs, gpu::SamplerHandle pointSampler) const {
@@ -125,7 +125,7 @@ void VirtualShadows::appendLitInputs(MainPassInputs& inputs, gpu::SamplerHandle 
     const bool bound = active_ && storage_;
     const gpu::TextureHandle pool = bound ? storage_->poolTexture() : placeholderPool_;
     const gpu::BufferHandle pages = bound ? storage_->entries() : placeholderPages_;
-    inputs.writes.push_back({kLitBindingVirtualShadows, gpu::BufferSlice{blocks_, uint64_t(slot_) * sizeof(block_), sizeof(block_)}});
+    inputs.writes.push_back({kLitBindingVirtualShadows, gpu::BufferSlice{blocks_, slotOffset(), sizeof(block_)}});
     inputs.writes.push_back({kLitBindingVirtualPool, {}, pool, pointSampler});
     inputs.writes.push_back({kLitBindingVirtualPages, pages, {}, {}});
     // Before the last sampled texture: the screen-space resolve replaces that one.
@@ -179,7 +179,7 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
     }
     invalidateAll_ = false;
     changedBounds_.clear();
-    device_.writeBuffer(blocks_, &block_, sizeof(block_), uint64_t(slot_) * sizeof(block_));
+    device_.writeBuffer(blocks_, &block_, sizeof(block_), slotOffset());
 }
 
 }  // namespace penumbra

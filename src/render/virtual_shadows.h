@@ -100,7 +100,12 @@ private:
     std::vector<std::unique_ptr<VirtualShadowMap>> maps_;
     bool active_ = false, invalidateAll_ = false;
     gpu_data::VirtualDirectionalShadowData block_{};
-    gpu::BufferHandle blocks_;  // slotCount_ uniform slots of the block, one per frame in flight + 1
+    // slotCount_ uniform slots of the block (one per frame in flight + 1), each starting at a multiple
+    // of the largest uniform offset alignment a device may ask.
+    static constexpr uint64_t kSlotStride = (sizeof(gpu_data::VirtualDirectionalShadowData) + gpu::kPortableBufferOffsetAlignment - 1) /
+                                            gpu::kPortableBufferOffsetAlignment * gpu::kPortableBufferOffsetAlignment;
+    uint64_t slotOffset() const { return uint64_t(slot_) * kSlotStride; }
+    gpu::BufferHandle blocks_;
     uint32_t slotCount_ = 0, slot_ = 0;
     gpu::TextureHandle placeholderPool_;   // 1 x 1 R32F, never written: bound with cascades
     gpu::BufferHandle placeholderPages_;   // one VirtualPageEntry, never written

@@ -5,8 +5,6 @@
 #include <memory>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <gtest/gtest.h>
 
 #include "penumbra/error.h"
@@ -18,25 +16,9 @@ using namespace penumbra;
 
 namespace {
 
-// A box on a ground under a sun and a shadowed spot, so both atlases and every pass are used.
-Scene faultScene() {
-    SceneBuilder builder;
-    const uint32_t ground = builder.addMesh(makePlaneMesh(glm::vec2(20.0f), 0));
-    builder.addInstance(ground, glm::mat4(1.0f));
-    const uint32_t box = builder.addMesh(makeBoxMesh(glm::vec3(0.5f), 0));
-    builder.addInstance(box, glm::translate(glm::mat4(1.0f), {0.0f, 0.5f, 0.0f}));
-    builder.addLight(makeDirectionalLight({0.3f, -1.0f, -0.2f}, 3.0f));
-    builder.addLight(makeSpotLight({0.0f, 4.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 30.0f, 10.0f, 0.6f, 0.5f));
-    builder.setCamera(makeLookAtCamera({0.0f, 4.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 0.9f));
-    return builder.build();
-}
+Scene faultScene() { return test::sunAndSpotBoxScene(); }
 
-RenderRequest smallRequest() {
-    RenderRequest request;
-    request.width = 96;
-    request.height = 64;
-    return request;
-}
+RenderRequest smallRequest() { return test::colourRequest(96, 64); }
 
 // An 8192 atlas (256 MiB of depth) needs an allocation of its own while the first frame is made.
 Settings bigAtlasSettings() {

@@ -20,6 +20,30 @@
 
 namespace penumbra::test {
 
+// A box on a ground under a sun and a shadowed spot: both atlases (or both kinds of virtual map) and
+// every pass of a frame are used.
+inline Scene sunAndSpotBoxScene() {
+    SceneBuilder builder;
+    const uint32_t ground = builder.addMesh(makePlaneMesh(glm::vec2(20.0f), 0));
+    builder.addInstance(ground, glm::mat4(1.0f));
+    const uint32_t box = builder.addMesh(makeBoxMesh(glm::vec3(0.5f), 0));
+    glm::mat4 boxFromWorld(1.0f);
+    boxFromWorld[3] = glm::vec4(0.0f, 0.5f, 0.0f, 1.0f);
+    builder.addInstance(box, boxFromWorld);
+    builder.addLight(makeDirectionalLight({0.3f, -1.0f, -0.2f}, 3.0f));
+    builder.addLight(makeSpotLight({0.0f, 4.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 30.0f, 10.0f, 0.6f, 0.5f));
+    builder.setCamera(makeLookAtCamera({0.0f, 4.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, 0.9f));
+    return builder.build();
+}
+
+// A colour image of width x height.
+inline RenderRequest colourRequest(uint32_t width, uint32_t height) {
+    RenderRequest request;
+    request.width = width;
+    request.height = height;
+    return request;
+}
+
 // The options of the shared device: lavapipe (or PENUMBRA_DEVICE), validation on.
 inline DeviceOptions testDeviceOptions() {
     DeviceOptions options;
