@@ -46,7 +46,6 @@ VirtualFaceShadows::VirtualFaceShadows(gpu::Device& device, const GpuScene& gpuS
     faces_.reserve(kMaxFaces);
     drawnFaces_.reserve(kMaxFaces);
     changedBounds_.reserve(kMaxInvalidations);
-    sceneWrites_.reserve(3);
 }
 
 VirtualFaceShadows::~VirtualFaceShadows() {
@@ -193,11 +192,7 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
                               {uploads_, base + layout.invalidations, kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)},
                               invalidationCount_});
     commands.endTimer();
-    sceneWrites_.clear();  // the scene's buffers may be new since the last record; the capacity stays
-    sceneWrites_.push_back({gpu_data::kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
-    sceneWrites_.push_back({gpu_data::kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
-    sceneWrites_.push_back({gpu_data::kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
-    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, &sceneWrites_, meshletCulling_, faces, config_.faceCount};
+    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, meshletCulling_, faces, config_.faceCount};
     draw_->record(commands, inputs);
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
     commands.beginTimer("virtualFaces/drawn");

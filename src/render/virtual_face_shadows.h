@@ -111,7 +111,6 @@ private:
     uint32_t slotCount_ = 0, slot_ = 0;
     gpu::TextureHandle placeholderPool_;  // 1 x 1 R32F, never written: bound with the atlas
     gpu::BufferHandle placeholderPages_;  // one VirtualPageEntry, never written
-    std::vector<gpu::DescriptorWrite> sceneWrites_;  // the scene bindings, refreshed per record (capacity kept)
 };
 
 }  // namespace penumbra

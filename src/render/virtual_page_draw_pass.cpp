@@ -150,7 +150,7 @@ void VirtualPageDrawPass::create() {
 }
 
 void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs) {
-    PENUMBRA_ASSERT(inputs.sceneWrites && inputs.drawList && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
+    PENUMBRA_ASSERT(inputs.drawList && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
                                                                        : inputs.space != nullptr));
     PENUMBRA_ASSERT(faces_ || (inputs.space->clipmap.pageSize == pageSize_ && pagesPerSide(inputs.space->clipmap) == pagesPerLevelSide_));
     using namespace gpu_data;
@@ -188,7 +188,11 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     // 2. Culling per page, 3. clear and raster per page (both sized by the lists' headers).
     culling_.record(commands, {cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, "virtualPages.culling");
     const RasterTileLists lists{{cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, {rasterList_, 0, listBytes}};
-    raster_.recordTiles(commands, *inputs.sceneWrites, lists, culling_, poolDepth_, poolSide(), inputs.meshletCulling, kPassName);
+    sceneWrites_.clear();  // the scene's buffers may be new since the last record
+    sceneWrites_.push_back({kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
+    sceneWrites_.push_back({kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
+    sceneWrites_.push_back({kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
+    raster_.recordTiles(commands, sceneWrites_, lists, culling_, poolDepth_, poolSide(), inputs.meshletCulling, kPassName);
     // 4. The listed pages into the sampled image, one workgroup per page (the list's pageDispatch).
     commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
                                         gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(poolDepth_, Usage::ComputeRead),

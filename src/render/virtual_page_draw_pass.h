@@ -59,8 +59,7 @@ gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, 
 struct VirtualPageDrawInputs {
     gpu::BufferHandle drawList;  // VirtualPageDrawHeader + VirtualPageDraw[] (the table pass's drawList())
     const VirtualPageDrawSpace* space = nullptr;  // a clipmap's pages (else faces below)
-    const std::vector<gpu::DescriptorWrite>* sceneWrites = nullptr;  // the scene bindings 0-4
-    bool meshletCulling = true;                                      // render.meshletCulling
+    bool meshletCulling = true;                   // render.meshletCulling
     gpu::BufferSlice faces;  // a faces' pass: faceCount VirtualFaceData (storage)
     uint32_t faceCount = 0;
 };
@@ -106,6 +105,7 @@ private:
     void release();
     gpu::Device& device_;
     const GpuScene& scene_;
+    std::vector<gpu::DescriptorWrite> sceneWrites_;  // the scene's bindings, refreshed per record (capacity kept)
     ComputeRasterPass& raster_;
     uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
     uint32_t poolOriginY_ = 0;  // pool texture texels

@@ -30,7 +30,6 @@ VirtualShadowMap::VirtualShadowMap(gpu::Device& device, const GpuScene& gpuScene
     slotCount_ = device.framesInFlight() + 1;  // a frame's slot is free again once its slot's next frame begins
     uploads_ = device.createBuffer(slotLayout().size * slotCount_, gpu::kBufferUniform | gpu::kBufferStorage,
                                    gpu::MemoryKind::HostVisible, nullptr, "virtual shadow map uploads");
-    sceneWrites_.reserve(3);
 }
 
 VirtualShadowMap::~VirtualShadowMap() { device_.destroy(uploads_); }
@@ -103,11 +102,7 @@ void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepth
     table_.record(commands, {mark_.requestWords(), {uploads_, base + layout.table, sizeof(tableData)}, invalidationSlice,
                              rectangles});
     commands.endTimer();
-    sceneWrites_.clear();  // the scene's buffers may be new since the last record; the capacity stays
-    sceneWrites_.push_back({gpu_data::kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
-    sceneWrites_.push_back({gpu_data::kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
-    sceneWrites_.push_back({gpu_data::kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
-    draw_.record(commands, {table_.drawList(), &space_, &sceneWrites_, config_.meshletCulling, {}, 0});
+    draw_.record(commands, {table_.drawList(), &space_, config_.meshletCulling, {}, 0});
     commands.beginTimer("virtualPages/drawn");
     table_.recordMarkDrawn(commands);
     commands.endTimer();

@@ -125,7 +125,6 @@ private:
     gpu::BufferSlice lookupSlice_;
     gpu::BufferHandle uploads_;  // slotCount_ slots of slotLayout().size bytes
     uint32_t slotCount_ = 0, nextSlot_ = 0;
-    std::vector<gpu::DescriptorWrite> sceneWrites_;  // the scene bindings, refreshed per record (capacity kept)
 };
 
 }  // namespace penumbra

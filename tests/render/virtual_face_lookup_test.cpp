@@ -90,11 +90,8 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
     const uint64_t faceBytes = faceData.size() * sizeof(faceData[0]);
     const gpu::BufferHandle faceBuffer = gpu().createBuffer(faceBytes, gpu::kBufferStorage, gpu::MemoryKind::HostVisible,
                                                             faceData.data(), "test faces");
-    const std::vector<gpu::DescriptorWrite> sceneWrites = {{gpu_data::kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
-                                                           {gpu_data::kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
-                                                           {gpu_data::kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}};
     gpu::CommandList commands = gpu().beginCommands();
-    VirtualPageDrawInputs inputs{table.drawList(), nullptr, &sceneWrites, true, {}, 0};
+    VirtualPageDrawInputs inputs{table.drawList(), nullptr, true, {}, 0};
     inputs.faces = {faceBuffer, 0, faceBytes};
     inputs.faceCount = 6;
     draw.record(commands, inputs);

@@ -109,7 +109,7 @@ public:
         gpu_.writeBuffer(drawList_, &header, sizeof(header));
         if (!list.empty()) gpu_.writeBuffer(drawList_, list.data(), list.size() * sizeof(list[0]), sizeof(header));
         gpu::CommandList commands = gpu_.beginCommands();
-        VirtualPageDrawInputs inputs{drawList_, faces_.empty() ? &space_ : nullptr, &writes_, true, {}, 0};
+        VirtualPageDrawInputs inputs{drawList_, faces_.empty() ? &space_ : nullptr, true, {}, 0};
         if (!faces_.empty()) {
             inputs.faces = {faceBuffer_, 0, faces_.size() * sizeof(gpu_data::VirtualFaceData)};
             inputs.faceCount = uint32_t(faces_.size());

@@ -133,15 +133,12 @@ std::vector<uint8_t> drawListBytes(const VirtualShadowLookupData& data, const st
 }
 
 // Draws the pages of a draw list with the page drawing pass.
-void drawPages(gpu::Device& gpu, const GpuScene& gpuScene, VirtualPageDrawPass& drawPass, const VirtualPageDrawSpace& space,
+void drawPages(gpu::Device& gpu, VirtualPageDrawPass& drawPass, const VirtualPageDrawSpace& space,
                const std::vector<uint8_t>& list) {
-    const std::vector<gpu::DescriptorWrite> sceneWrites = {{gpu_data::kSceneBindingVertices, gpuScene.vertexBuffer(), {}, {}},
-                                                           {gpu_data::kSceneBindingInstances, gpuScene.instanceBuffer(), {}, {}},
-                                                           {gpu_data::kSceneBindingMaterials, gpuScene.materialBuffer(), {}, {}}};
     const gpu::BufferHandle drawList = gpu.createBuffer(list.size(), gpu::kBufferStorage | gpu::kBufferIndirect,
                                                         gpu::MemoryKind::HostVisible, list.data(), "test page draw list");
     gpu::CommandList commands = gpu.beginCommands();
-    drawPass.record(commands, {drawList, &space, &sceneWrites, true, {}, 0});
+    drawPass.record(commands, {drawList, &space, true, {}, 0});
     gpu.submitAndWait(commands);
     gpu.destroy(drawList);
 }
@@ -172,7 +169,7 @@ TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSays
     GpuScene gpuScene(gpu(), scene);
     ComputeRasterPass raster(gpu(), gpuScene);
     VirtualPageDrawPass drawPass(gpu(), gpuScene, raster, config, kScenePool);
-    drawPages(gpu(), gpuScene, drawPass, space, drawListBytes(data, pages));
+    drawPages(gpu(), drawPass, space, drawListBytes(data, pages));
     const glm::vec2 drawnMin = glm::vec2(pages.front().page) * 4.0f;  // level 3's 4 x 4 pages, 4 m each
     const Aabb drawn{glm::vec3(drawnMin, 0.0f), glm::vec3(drawnMin + 16.0f, 0.0f)};
     std::vector<VirtualShadowProbePoint> points;
