@@ -205,3 +205,16 @@ TEST_F(VirtualFrameTest, ForwardAndVisibilityBufferViewsReadTheSameVirtualMaps) 
     // The two rasterizers may differ on a pixel's edge coverage: at most 0.05 % of pixels by more than 8 levels.
     EXPECT_LE(shareOfPixelsOver(a.ours.image, b.ours.image, 8), 0.0005);
 }
+
+// The frame's GPU timings split the virtual maps' work into its steps (what a still camera costs:
+// docs/performance.md), for the directional maps and the spot and point lights' faces.
+TEST_F(VirtualFrameTest, GpuTimingsNameEachStepOfThePageUpdate) {
+    Settings settings = virtualSettings("cad_engine");
+    settings.shadows.spot.mode = SpotShadowMode::Virtual;
+    const RenderResult second = twoStillFrames("cad_engine", settings).second;
+    std::vector<std::string> names;
+    for (const PassTiming& timing : second.stats.gpuTimings) names.push_back(timing.name);
+    for (const char* step : {"virtualPages/mark", "virtualPages/table", "virtualPages/drawn", "virtualFaces/mark",
+                             "virtualFaces/table", "virtualFaces/drawn"})
+        EXPECT_NE(std::find(names.begin(), names.end(), step), names.end()) << step;
+}
