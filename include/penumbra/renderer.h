@@ -68,6 +68,9 @@ struct VirtualPageCounts {
     uint32_t overflowed = 0;  // requested pages that found no physical page: a coarser level served them
     uint32_t resident = 0;    // resident pages after the frame
     uint32_t poolPages = 0;   // physical pages of all the maps' pools
+    // Pool pressure (spot and point faces): steps coarser than shadows.virtual.faceLodBias the pages were
+    // marked and read at, after earlier frames overflowed the pool (0..2).
+    uint32_t lodBiasSteps = 0;
 };
 
 struct FrameStats {

@@ -106,7 +106,7 @@ private:
 // Virtual shadow map pages per frame: the directional lights' or the spot and point lights' faces'.
 struct PageSeries {
     Series requested, cached, allocated, drawn, evicted, overflowed, resident;
-    uint32_t maps = 0, poolPages = 0;  // of the last timed frame
+    uint32_t maps = 0, poolPages = 0, lodBiasSteps = 0;  // of the last timed frame
     void add(const VirtualPageCounts& pages) {
         requested.values.push_back(pages.requested);
         cached.values.push_back(pages.cached);
@@ -117,10 +117,12 @@ struct PageSeries {
         resident.values.push_back(pages.resident);
         maps = pages.maps;
         poolPages = pages.poolPages;
+        lodBiasSteps = pages.lodBiasSteps;
     }
     nlohmann::json toJson(const char* mapsKey) const {
         return {{mapsKey, maps},
                 {"poolPages", poolPages},
+                {"lodBiasSteps", lodBiasSteps},
                 {"requested", requested.median()},
                 {"cached", cached.median()},
                 {"allocated", allocated.median()},
@@ -133,9 +135,11 @@ struct PageSeries {
     void print(const char* what, const char* maps_) const {
         if (maps == 0) return;
         std::printf("%s per frame (median, %u %s, pool %u pages): %.0f requested, %.0f cached, %.0f allocated, "
-                    "%.0f drawn (most %.0f), %.0f evicted, %.0f resident; overflowed at most %.0f\n",
+                    "%.0f drawn (most %.0f), %.0f evicted, %.0f resident; overflowed at most %.0f",
                     what, maps, maps_, poolPages, requested.median(), cached.median(), allocated.median(), drawn.median(),
                     drawn.percentile(1.0), evicted.median(), resident.median(), overflowed.percentile(1.0));
+        if (lodBiasSteps > 0) std::printf("; pool pressure: lodBias %u step(s) coarser at the end", lodBiasSteps);
+        std::printf("\n");
     }
 };
 

@@ -49,7 +49,7 @@ std::string toJson(const FrameStats& frame) {
     stats["virtualFacePages"] = {{"faces", faces.maps},         {"requested", faces.requested}, {"cached", faces.cached},
                                  {"allocated", faces.allocated}, {"drawn", faces.drawn},         {"evicted", faces.evicted},
                                  {"overflowed", faces.overflowed}, {"resident", faces.resident}, {"poolPages", faces.poolPages},
-                                 {"perMip", perMip}};
+                                 {"lodBiasSteps", faces.lodBiasSteps}, {"perMip", perMip}};
     return stats.dump();
 }
 

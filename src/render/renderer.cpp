@@ -1,6 +1,7 @@
 #include "penumbra/renderer.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/error.h"
 #include "gpu/device_access.h"
@@ -160,7 +161,9 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
             s.completed.erase(i);
             break;
         }
-        if (result.stats.rasterDropped == 0) break;
+        // A frame that overflowed the faces' pool is drawn again a step coarser (pool pressure).
+        const bool coarser = std::exchange(s.facesWentCoarser, false);
+        if (result.stats.rasterDropped == 0 && !coarser) break;
     }
     const FrameTargetSizes& sizes = s.targets.sizes();
     if (request.readback)

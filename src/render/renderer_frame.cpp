@@ -375,6 +375,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     virtualFaces.beginFrame(settings.shadows, plan.other, settings.render.meshletCulling, view, stats.warnings);
     stats.virtualFacePages.maps = virtualFaces.faceCount();
     stats.virtualFacePages.poolPages = virtualFaces.poolPages();
+    stats.virtualFacePages.lodBiasSteps = virtualFaces.poolPressureSteps();
     const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
     try {
         targets.ensure(sizes);
@@ -436,6 +437,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
 void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finished) {
     FrameStats& stats = finished.stats;
     applyFrameReadback(stats, finished.plan, finished.readback, done.readback, rasterNeeded);
+    facesWentCoarser = virtualFaces.notePoolLoad(stats.virtualFacePages) || facesWentCoarser;
     if (stats.rasterDropped > 0) {  // those tiles and pages are incomplete: draw them all again
         directionalCache.invalidate();
         otherCache.invalidate();

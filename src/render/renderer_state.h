@@ -105,6 +105,7 @@ struct Renderer::State {
     std::optional<VisibleSurfaces> latestVisible;  // the tight fit's reduction of the latest finished frame
     glm::uvec2 latestVisibleSize{0};
     uint64_t editBytesUploaded = 0;  // this frame's scene edits that uploadSceneEditsNow sent ahead of it
+    bool facesWentCoarser = false;  // a finished frame overflowed the faces' pool: their lodBias went a step coarser
     glm::uvec3 rasterNeeded{0};  // the most large pieces / chunks / work items a finished frame asked the compute rasterizer for
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of

@@ -5,6 +5,7 @@
 
 #include "pass_bindings.h"
 #include "render/virtual_shadows.h"
+#include "shadows/virtual_page_pool.h"
 #include "shadows/virtual_shadow_lookup.h"
 
 namespace penumbra {
@@ -57,10 +58,21 @@ VirtualFaceShadows::~VirtualFaceShadows() {
     device_.destroy(placeholderPages_);
 }
 
+bool VirtualFaceShadows::notePoolLoad(const VirtualPageCounts& pages) {
+    // Only a frame marked at the current steps and with this pool tells their load (frames in flight
+    // recorded before the last change do not step twice).
+    if (pages.poolPages == 0 || pages.poolPages != config_.poolSide * config_.poolSide || pages.lodBiasSteps != pressureSteps_)
+        return false;
+    const uint32_t before = pressureSteps_;
+    pressureSteps_ = nextPoolPressureSteps(pressureSteps_, {pages.requested, pages.overflowed, pages.poolPages});
+    return pressureSteps_ > before;
+}
+
 void VirtualFaceShadows::configure(const Config& config) {
     if (table_ && config == config_) return;
     draw_.reset();  // deferred by the device until the frames using them are done
     table_.reset();
+    if (config.poolSide != config_.poolSide) pressureSteps_ = 0;  // a new pool's load is not known yet
     config_ = config;
     if (config.faceCount == 0) return;
     if (!mark_) mark_ = std::make_unique<VirtualFaceMarkPass>(device_);
@@ -93,7 +105,7 @@ void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherS
         if (!settings.virtualMaps.cache) invalidateAll_ = true;
         lightCount_ = uint32_t(std::min<size_t>(plan.faceLights.size(), kMaxFaces));
         meshletCulling_ = meshletCulling;
-        footprintScale_ = std::exp2(settings.virtualMaps.faceLodBias);
+        footprintScale_ = std::exp2(settings.virtualMaps.faceLodBias + float(pressureSteps_));
         marginTexels_ = plan.faceMarginTexels;
         faces_.assign(plan.faces.begin(), plan.faces.begin() + config_.faceCount);
         block.enabled = 1u;

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/renderer.h"
 #include "penumbra/shadow_settings.h"
 #include "render/main_pass.h"
 #include "render/virtual_face_mark_pass.h"
@@ -63,6 +64,12 @@ public:
     void record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
                 uint64_t& rasterReadback);
 
+    // A finished frame's page counts (FrameStats::virtualFacePages) set how many steps coarser than
+    // faceLodBias the frames recorded next mark and read their pages (shadows/virtual_page_pool.h,
+    // nextPoolPressureSteps). True when they went coarser: the pool overflowed.
+    bool notePoolLoad(const VirtualPageCounts& pages);
+    uint32_t poolPressureSteps() const { return active_ ? pressureSteps_ : 0u; }
+
     uint32_t faceCount() const { return active_ ? config_.faceCount : 0u; }
     uint32_t poolPages() const { return active_ ? config_.poolSide * config_.poolSide : 0u; }
     gpu::BufferSlice stats() const { return table_->stats(); }            // VirtualPageStats of the last record
@@ -99,6 +106,7 @@ private:
     std::unique_ptr<VirtualPageDrawPass> draw_;
     Config config_;               // of the table and pool made last (faceCount 0: none)
     uint32_t lightCount_ = 0;     // this frame's lights with faces
+    uint32_t pressureSteps_ = 0;  // pool pressure: steps coarser than faceLodBias (notePoolLoad)
     bool active_ = false, invalidateAll_ = false, meshletCulling_ = true;
     float marginTexels_ = 0.0f, footprintScale_ = 1.0f;
     std::vector<VirtualFace> faces_;        // this frame's (capacity kept)

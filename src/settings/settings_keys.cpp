@@ -178,7 +178,8 @@ std::vector<SettingKey> makeTable() {
                        "pageSize^2 32-bit depths, twice (the rasterizer's target and the sampled pool): 2048 pages of 128^2 "
                        "take 2 x 127 MiB. A 1920x1080 view needs about 700 pages per light at lodBias 0, 2000-3000 at "
                        "-1. When the visible pages need more, a coarser level serves the rest (a warning and the stat "
-                       "`overflowed`); a pool larger than the device holds is shrunk, with a warning."));
+                       "`overflowed`), and the faces' frames after it read mips one step coarser (up to two: pool "
+                       "pressure); a pool larger than the device holds is shrunk, with a warning."));
     t.push_back(ranged("shadows.virtual.levelCount", SettingType::Integer, 1, 16, "1..16",
                        PENUMBRA_FIELD(shadows.virtualMaps.levelCount),
                        "Virtual shadow maps: clipmap levels; level i is firstLevelSize x 2^i wide. Receivers beyond the "

@@ -1,5 +1,6 @@
 #include "shadows/virtual_page_pool.h"
 
+#include <algorithm>
 #include <unordered_set>
 #include <utility>
 
@@ -140,6 +141,12 @@ void VirtualPagePool::invalidatePages(uint32_t map, const PageRect& pages) {
         if (key.map == map && key.page.x >= pages.min.x && key.page.x <= pages.max.x && key.page.y >= pages.min.y &&
             key.page.y <= pages.max.y)
             entry.dirty = true;
+}
+
+uint32_t nextPoolPressureSteps(uint32_t steps, const VirtualPoolLoad& load) {
+    if (load.overflowed > 0) return std::min(steps + 1, kMaxPoolPressureSteps);
+    if (steps > 0 && uint64_t(load.requested) * 4 * 2 <= load.capacity) return steps - 1;
+    return steps;
 }
 
 }  // namespace penumbra

@@ -115,4 +115,18 @@ private:
     uint32_t releasedSinceUpdate_ = 0;  // by releaseOutside, counted in the next update's evicted
 };
 
+// Pool pressure: how many steps coarser than its lodBias setting a virtual map marks its pages, from
+// the load of its pool in a finished frame (a dynamic resolution, as Unreal Engine's virtual shadow maps
+// lower theirs when the page pool fills). A frame that overflowed the pool goes one step coarser (a
+// texel twice as wide: about a quarter of the pages), up to kMaxPoolPressureSteps; it goes a step finer
+// only when the pages it requested, four times over, would fill at most half the pool, so the choice
+// does not flip from frame to frame.
+struct VirtualPoolLoad {
+    uint32_t requested = 0;   // pages the frame requested
+    uint32_t overflowed = 0;  // of those, served by a coarser level for want of a physical page
+    uint32_t capacity = 0;    // physical pages of the pool
+};
+constexpr uint32_t kMaxPoolPressureSteps = 2;
+uint32_t nextPoolPressureSteps(uint32_t steps, const VirtualPoolLoad& load);
+
 }  // namespace penumbra

@@ -83,7 +83,15 @@ INSTANTIATE_TEST_SUITE_P(SpotAndPointCanonicalScenes, VirtualFaceSceneTest, ::te
 
 namespace {
 
-class VirtualFaceFrameTest : public CompareTest {};
+class VirtualFaceFrameTest : public CompareTest {
+protected:
+    // point_light's light 0 with a faces' pool of `poolPages` pages, against the ray tracer.
+    SceneComparison pointLightWithPool(uint32_t poolPages) {
+        Settings settings = virtualSettings();
+        settings.shadows.virtualMaps.poolPages = poolPages;
+        return compareCanonicalScene("point_light", 0, settings);
+    }
+};
 
 // The instance whose bounds are the smallest (a box on the floor, not the room).
 uint32_t smallestInstance(const Scene& scene) {
@@ -153,12 +161,32 @@ TEST_F(VirtualFaceFrameTest, AMovedCasterIsRedrawnWhereItWasAndWhereItIs) {
     EXPECT_LE(metrics.misclassifiedPercent, 0.066) << toText(metrics);  // the scene's row above
 }
 
+// Pool pressure: a pool the view's pages overflow (175 pages at faceLodBias -2, a pool of 11^2) makes
+// the frames after it mark and read a mip coarser, where they fit (70 pages); Renderer::render draws the
+// frame again at once, so its image has neither overflow nor warning.
+TEST_F(VirtualFaceFrameTest, AnOverflowedPoolIsReadAMipCoarserFromTheNextFrame) {
+    const SceneComparison squeezed = pointLightWithPool(128);
+    const VirtualPageCounts& pages = squeezed.ours.stats.virtualFacePages;
+    std::printf("pool of 121: %u requested, lodBias %u step(s) coarser; misclassified %.3f %%\n", pages.requested,
+                pages.lodBiasSteps, squeezed.metrics.misclassifiedPercent);
+    EXPECT_EQ(pages.lodBiasSteps, 1u);
+    EXPECT_EQ(pages.overflowed, 0u);
+    EXPECT_LE(pages.requested, pages.poolPages);
+    EXPECT_FALSE(hasWarning(squeezed.ours.stats, "virtual shadow maps"));
+    EXPECT_LE(squeezed.metrics.misclassifiedPercent, 0.17) << toText(squeezed.metrics);  // measured 0.117
+    EXPECT_LE(squeezed.metrics.interiorMisclassifiedPercent, 0.02) << toText(squeezed.metrics);
+}
+
+TEST_F(VirtualFaceFrameTest, APoolWithRoomReadsTheMipsOfTheLodBiasSetting) {
+    const SceneComparison roomy = compareCanonicalScene("point_light", 0, virtualSettings());
+    EXPECT_EQ(roomy.ours.stats.virtualFacePages.lodBiasSteps, 0u);
+    EXPECT_EQ(roomy.ours.stats.virtualFacePages.overflowed, 0u);
+}
+
 // A pool far smaller than the view needs: the pages that find no physical page are served by a coarser
 // mip (never a hole: the shadows stay, blurrier), with a warning and the stat.
 TEST_F(VirtualFaceFrameTest, APoolTooSmallServesCoarserMipsWithAWarning) {
-    Settings settings = virtualSettings();
-    settings.shadows.virtualMaps.poolPages = 16;
-    const SceneComparison small = compareCanonicalScene("point_light", 0, settings);
+    const SceneComparison small = pointLightWithPool(16);
     const VirtualPageCounts& pages = small.ours.stats.virtualFacePages;
     std::printf("16 pages: %u requested, %u overflowed; misclassified %.3f %% (interior %.3f %%)\n", pages.requested,
                 pages.overflowed, small.metrics.misclassifiedPercent, small.metrics.interiorMisclassifiedPercent);

@@ -174,3 +174,28 @@ TEST(VirtualPagePool, TheFrameReportsTheResidentPagesAfterIt) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(VirtualPoolPressure, AnOverflowingFrameGoesOneStepCoarserUpToTheLimit) {
+    const VirtualPoolLoad overflowing{3000, 975, 2025};
+    EXPECT_EQ(nextPoolPressureSteps(0, overflowing), 1u);
+    EXPECT_EQ(nextPoolPressureSteps(1, overflowing), 2u);
+    EXPECT_EQ(nextPoolPressureSteps(kMaxPoolPressureSteps, overflowing), kMaxPoolPressureSteps);
+}
+
+TEST(VirtualPoolPressure, AStepFinerOnlyWhenFourTimesThePagesFillAtMostHalfThePool) {
+    EXPECT_EQ(nextPoolPressureSteps(1, {821, 0, 2025}), 1u);  // 3284 pages a step finer: more than the pool
+    EXPECT_EQ(nextPoolPressureSteps(1, {300, 0, 2025}), 1u);  // 1200 > half the pool: stays (hysteresis)
+    EXPECT_EQ(nextPoolPressureSteps(1, {253, 0, 2025}), 0u);  // 1012 <= 1012
+    EXPECT_EQ(nextPoolPressureSteps(2, {100, 0, 2025}), 1u);  // one step a frame
+}
+
+TEST(VirtualPoolPressure, AFittingPoolAtTheSettingStaysThere) {
+    EXPECT_EQ(nextPoolPressureSteps(0, {0, 0, 2025}), 0u);
+    EXPECT_EQ(nextPoolPressureSteps(0, {2025, 0, 2025}), 0u);
+}
+
+}  // namespace
+}  // namespace penumbra
