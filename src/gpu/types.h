@@ -115,6 +115,10 @@ struct ComputePipelineDesc {
 // buffer range a descriptor binds starts at a multiple of it (CommandList::pushDescriptors checks), so
 // an offset right on one device is right on all.
 constexpr uint64_t kPortableBufferOffsetAlignment = 256;
+// `bytes` rounded up to a multiple of it: the stride of blocks laid one after another in a buffer.
+constexpr uint64_t portablyAligned(uint64_t bytes) {
+    return (bytes + kPortableBufferOffsetAlignment - 1) / kPortableBufferOffsetAlignment * kPortableBufferOffsetAlignment;
+}
 
 // A range of a buffer: what a descriptor binds and what a copy reads. size 0 = to the end.
 struct BufferSlice {

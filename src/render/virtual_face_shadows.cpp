@@ -12,8 +12,6 @@ namespace penumbra {
 
 namespace {
 
-constexpr uint64_t kSlotAlignment = gpu::kPortableBufferOffsetAlignment;
-uint64_t aligned(uint64_t bytes) { return (bytes + kSlotAlignment - 1) / kSlotAlignment * kSlotAlignment; }
 constexpr uint32_t kMaxFaces = gpu_data::kMaxOtherShadowTiles;
 
 }  // namespace
@@ -21,12 +19,12 @@ constexpr uint32_t kMaxFaces = gpu_data::kMaxOtherShadowTiles;
 VirtualFaceShadows::SlotLayout VirtualFaceShadows::slotLayout() {
     SlotLayout layout;
     layout.lit = 0;
-    layout.mark = layout.lit + aligned(sizeof(gpu_data::VirtualFaceShadowData));
-    layout.faces = layout.mark + aligned(sizeof(gpu_data::VirtualFaceMarkData));
-    layout.lights = layout.faces + aligned(kMaxFaces * sizeof(gpu_data::VirtualFaceData));
-    layout.table = layout.lights + aligned(kMaxFaces * sizeof(gpu_data::VirtualFaceLightData));
-    layout.invalidations = layout.table + aligned(sizeof(gpu_data::VirtualPageTableData));
-    layout.size = layout.invalidations + aligned(kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation));
+    layout.mark = layout.lit + gpu::portablyAligned(sizeof(gpu_data::VirtualFaceShadowData));
+    layout.faces = layout.mark + gpu::portablyAligned(sizeof(gpu_data::VirtualFaceMarkData));
+    layout.lights = layout.faces + gpu::portablyAligned(kMaxFaces * sizeof(gpu_data::VirtualFaceData));
+    layout.table = layout.lights + gpu::portablyAligned(kMaxFaces * sizeof(gpu_data::VirtualFaceLightData));
+    layout.invalidations = layout.table + gpu::portablyAligned(sizeof(gpu_data::VirtualPageTableData));
+    layout.size = layout.invalidations + gpu::portablyAligned(kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation));
     return layout;
 }
 
@@ -130,12 +128,8 @@ void VirtualFaceShadows::appendLitInputs(MainPassInputs& inputs, gpu::SamplerHan
     const gpu::TextureHandle pool = bound ? draw_->poolTexture() : placeholderPool_;
     const gpu::BufferHandle pages = bound ? table_->entries() : placeholderPages_;
     const uint64_t base = uint64_t(slot_) * slotLayout().size;
-    inputs.writes.push_back({kLitBindingVirtualFaces, gpu::BufferSlice{uploads_, base, sizeof(VirtualFaceShadowData)}});
-    inputs.writes.push_back({kLitBindingVirtualFacePool, {}, pool, pointSampler});
-    inputs.writes.push_back({kLitBindingVirtualFacePages, pages, {}, {}});
-    // Before the last sampled texture: the screen-space resolve replaces that one.
-    inputs.sampled.insert(inputs.sampled.empty() ? inputs.sampled.end() : inputs.sampled.end() - 1, pool);
-    inputs.virtualPages[1] = pages;
+    appendVirtualLitInputs(inputs, {kLitBindingVirtualFaces, kLitBindingVirtualFacePool, kLitBindingVirtualFacePages, 1},
+                           {uploads_, base, sizeof(VirtualFaceShadowData)}, pool, pages, pointSampler);
 }
 
 void VirtualFaceShadows::casterChanged(const Aabb& wsBounds) {

@@ -30,8 +30,8 @@ struct VirtualPageStorage {
     uint32_t firstEntry = 0;         // this map's levelCount * pagesPerSide^2 entries start here
 };
 
-// Byte alignment of a map's first entry in a shared entry buffer.
-inline constexpr uint64_t kVirtualPageEntryAlignment = 256;
+// Byte alignment of a map's first entry in a shared entry buffer: the one every bound range keeps.
+inline constexpr uint64_t kVirtualPageEntryAlignment = gpu::kPortableBufferOffsetAlignment;
 
 // The pool texture and entry buffer of mapCount maps of clipmap `clipmap` with pools of poolPagesPerSide^2
 // pages, initialized on creation (one submission, waited for).

@@ -11,10 +11,6 @@ namespace penumbra {
 
 namespace {
 
-constexpr uint64_t kSlotAlignment = gpu::kPortableBufferOffsetAlignment;
-
-uint64_t aligned(uint64_t bytes) { return (bytes + kSlotAlignment - 1) / kSlotAlignment * kSlotAlignment; }
-
 bool sameBounds(const Aabb& a, const Aabb& b) {
     if (a.valid() != b.valid()) return false;
     return !a.valid() || (a.min == b.min && a.max == b.max);
@@ -37,10 +33,10 @@ VirtualShadowMap::~VirtualShadowMap() { device_.destroy(uploads_); }
 VirtualShadowMap::SlotLayout VirtualShadowMap::slotLayout() {
     SlotLayout layout;
     layout.mark = 0;
-    layout.table = layout.mark + aligned(sizeof(gpu_data::VirtualPageMarkData));
-    layout.lookup = layout.table + aligned(sizeof(gpu_data::VirtualPageTableData));
-    layout.invalidations = layout.lookup + aligned(sizeof(gpu_data::VirtualShadowLookupData));
-    layout.size = layout.invalidations + aligned(kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation));
+    layout.table = layout.mark + gpu::portablyAligned(sizeof(gpu_data::VirtualPageMarkData));
+    layout.lookup = layout.table + gpu::portablyAligned(sizeof(gpu_data::VirtualPageTableData));
+    layout.invalidations = layout.lookup + gpu::portablyAligned(sizeof(gpu_data::VirtualShadowLookupData));
+    layout.size = layout.invalidations + gpu::portablyAligned(kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation));
     return layout;
 }
 

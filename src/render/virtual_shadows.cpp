@@ -125,12 +125,18 @@ void VirtualShadows::appendLitInputs(MainPassInputs& inputs, gpu::SamplerHandle 
     const bool bound = active_ && storage_;
     const gpu::TextureHandle pool = bound ? storage_->poolTexture() : placeholderPool_;
     const gpu::BufferHandle pages = bound ? storage_->entries() : placeholderPages_;
-    inputs.writes.push_back({kLitBindingVirtualShadows, gpu::BufferSlice{blocks_, slotOffset(), sizeof(block_)}});
-    inputs.writes.push_back({kLitBindingVirtualPool, {}, pool, pointSampler});
-    inputs.writes.push_back({kLitBindingVirtualPages, pages, {}, {}});
+    appendVirtualLitInputs(inputs, {kLitBindingVirtualShadows, kLitBindingVirtualPool, kLitBindingVirtualPages, 0},
+                           {blocks_, slotOffset(), sizeof(block_)}, pool, pages, pointSampler);
+}
+
+void appendVirtualLitInputs(MainPassInputs& inputs, const VirtualLitBindings& bindings, const gpu::BufferSlice& block,
+                            gpu::TextureHandle pool, gpu::BufferHandle pages, gpu::SamplerHandle pointSampler) {
+    inputs.writes.push_back({bindings.block, block});
+    inputs.writes.push_back({bindings.pool, {}, pool, pointSampler});
+    inputs.writes.push_back({bindings.pages, pages, {}, {}});
     // Before the last sampled texture: the screen-space resolve replaces that one.
     inputs.sampled.insert(inputs.sampled.empty() ? inputs.sampled.end() : inputs.sampled.end() - 1, pool);
-    inputs.virtualPages[0] = pages;
+    inputs.virtualPages[bindings.table] = pages;
 }
 
 void VirtualShadows::casterChanged(const Aabb& wsBounds) {

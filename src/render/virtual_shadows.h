@@ -45,6 +45,18 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bo
 uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize,
                         uint64_t maxStorageBufferRange);
 
+// One kind of virtual map's lit bindings (the directional maps', or the spot and point faces'): the
+// binding numbers of its uniform block, pool and page table, and its index in
+// MainPassInputs::virtualPages.
+struct VirtualLitBindings {
+    uint32_t block = 0, pool = 0, pages = 0;
+    uint32_t table = 0;
+};
+// The three bindings into inputs.writes, the pool among inputs.sampled (before its last entry, which the
+// screen-space resolve replaces) and the page table as inputs.virtualPages[bindings.table].
+void appendVirtualLitInputs(MainPassInputs& inputs, const VirtualLitBindings& bindings, const gpu::BufferSlice& block,
+                            gpu::TextureHandle pool, gpu::BufferHandle pages, gpu::SamplerHandle pointSampler);
+
 class VirtualShadows {
 public:
     VirtualShadows(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster);
@@ -102,8 +114,7 @@ private:
     gpu_data::VirtualDirectionalShadowData block_{};
     // slotCount_ uniform slots of the block (one per frame in flight + 1), each starting at a multiple
     // of the largest uniform offset alignment a device may ask.
-    static constexpr uint64_t kSlotStride = (sizeof(gpu_data::VirtualDirectionalShadowData) + gpu::kPortableBufferOffsetAlignment - 1) /
-                                            gpu::kPortableBufferOffsetAlignment * gpu::kPortableBufferOffsetAlignment;
+    static constexpr uint64_t kSlotStride = gpu::portablyAligned(sizeof(gpu_data::VirtualDirectionalShadowData));
     uint64_t slotOffset() const { return uint64_t(slot_) * kSlotStride; }
     gpu::BufferHandle blocks_;
     uint32_t slotCount_ = 0, slot_ = 0;

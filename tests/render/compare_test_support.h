@@ -65,14 +65,9 @@ protected:
         const Scene& scene = canonicalScene(name);
         const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
         const ReferenceImages& reference = cachedReference(name, light, settings);
-        RenderRequest request;
-        request.width = kCompareWidth;
-        request.height = kCompareHeight;
-        request.output = OutputMode::ShadowAov;
-        request.aovLight = light;
         Renderer renderer(device(), scene);
         SceneComparison result;
-        result.ours = renderer.render(request, settings, view);
+        result.ours = renderAov(renderer, settings, view, light);
         result.metrics = compareShadowImages(result.ours.image, reference.shadow, reference.validMask);
         return result;
     }
@@ -85,6 +80,16 @@ protected:
         request.output = OutputMode::ShadowAov;
         request.aovLight = light;
         return renderer.render(request, settings, view);
+    }
+
+    // A canonical scene through the forward path and the visibility buffer, in that order (the settings
+    // otherwise as given).
+    std::pair<SceneComparison, SceneComparison> forwardAndVisibility(const std::string& name, uint32_t light,
+                                                                     Settings settings) {
+        settings.render.mainView = MainView::Forward;
+        SceneComparison forward = compareCanonicalScene(name, light, settings);
+        settings.render.mainView = MainView::Visibility;
+        return {std::move(forward), compareCanonicalScene(name, light, settings)};
     }
 
     // Two frames of one still view of a canonical scene in one renderer (what a cache keeps).

@@ -202,12 +202,7 @@ TEST_F(VirtualFaceFrameTest, APoolTooSmallServesCoarserMipsWithAWarning) {
 // depth prepass: one image.
 TEST_F(VirtualFaceFrameTest, ForwardAndVisibilityBufferViewsReadTheSameFaces) {
     if (!gpu::backend(device()).hasBufferInt64Atomics()) GTEST_SKIP() << "no 64-bit buffer atomics";
-    Settings forward = virtualSettings();
-    forward.render.mainView = MainView::Forward;
-    Settings visibility = forward;
-    visibility.render.mainView = MainView::Visibility;
-    const SceneComparison a = compareCanonicalScene("spot_shelf", 0, forward);
-    const SceneComparison b = compareCanonicalScene("spot_shelf", 0, visibility);
+    const auto [a, b] = forwardAndVisibility("spot_shelf", 0, virtualSettings());
     EXPECT_EQ(b.ours.stats.mainView, "visibility");
     EXPECT_EQ(a.ours.stats.virtualFacePages.requested, b.ours.stats.virtualFacePages.requested);
     // The two rasterizers may differ on a pixel's edge coverage: at most 0.05 % of pixels by more than 8 levels.

@@ -194,12 +194,7 @@ TEST_F(VirtualFrameTest, TheScreenSpaceResolveSamplesTheVirtualMaps) {
 // depth prepass: one image.
 TEST_F(VirtualFrameTest, ForwardAndVisibilityBufferViewsReadTheSameVirtualMaps) {
     if (!gpu::backend(device()).hasBufferInt64Atomics()) GTEST_SKIP() << "no 64-bit buffer atomics";
-    Settings forward = virtualSettings("field_of_objects");
-    forward.render.mainView = MainView::Forward;
-    Settings visibility = forward;
-    visibility.render.mainView = MainView::Visibility;
-    const SceneComparison a = compareCanonicalScene("field_of_objects", 0, forward);
-    const SceneComparison b = compareCanonicalScene("field_of_objects", 0, visibility);
+    const auto [a, b] = forwardAndVisibility("field_of_objects", 0, virtualSettings("field_of_objects"));
     EXPECT_EQ(b.ours.stats.mainView, "visibility");
     EXPECT_EQ(a.ours.stats.virtualPages.requested, b.ours.stats.virtualPages.requested);
     // The two rasterizers may differ on a pixel's edge coverage: at most 0.05 % of pixels by more than 8 levels.
