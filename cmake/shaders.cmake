@@ -14,11 +14,11 @@ function(penumbra_embed_shaders target sources)
     string(MAKE_C_IDENTIFIER ${shader_name} ident)
     set(inc ${out_dir}/${shader_name}.spv.inc)
     # glslc compiles without optimizing and spirv-opt optimizes: shaderc 2023.2's built-in optimizer (-O)
-    # crashes on the lit pass since the PCSS loops (shaders/shadow_pcss.glsl); Debian's spirv-opt does not.
+    # crashes on the lit pass since the PCSS loops (penumbra/shadows/pcss.glsl); Debian's spirv-opt does not.
     add_custom_command(
       OUTPUT ${inc}
       COMMAND ${GLSLC} -fshader-stage=${stage} --target-env=vulkan1.3 -O0 -g
-              -I ${CMAKE_SOURCE_DIR}/shaders -I ${CMAKE_SOURCE_DIR}/shaders/shared
+              -I ${CMAKE_SOURCE_DIR}/shaders -I ${CMAKE_SOURCE_DIR}/shaders/shared -I ${CMAKE_SOURCE_DIR}/include
               -MD -MF ${inc}.d -MT ${inc} -o ${inc}.unoptimized.spv ${src}
       COMMAND ${SPIRV_OPT} -O --target-env=vulkan1.3 ${inc}.unoptimized.spv -o ${inc}.spv
       COMMAND ${CMAKE_COMMAND} -DINPUT=${inc}.spv -DOUTPUT=${inc} -P ${CMAKE_SOURCE_DIR}/cmake/spirv_to_inc.cmake

@@ -44,7 +44,10 @@ def below(layers, name):
 
 def public_headers(build_layers, name):
     folder = os.path.join(build_layers, name, "penumbra")
-    return sorted(os.listdir(folder)) if os.path.isdir(folder) else []
+    headers = []
+    for root, _, files in os.walk(folder):
+        headers += [os.path.relpath(os.path.join(root, file), folder) for file in files]
+    return sorted(headers)
 
 
 def includes_of(folder):

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the built library into a temporary prefix, checks that the generated version header came
-# with it, builds examples/embed against that copy (as a program outside the tree would, through
+# with it, compiles an engine's shaders (tests/glsl/) against the installed shadow sampling GLSL, builds examples/embed against that copy (as a program outside the tree would, through
 # find_package(penumbra)), runs it, and checks that its image equals `penumbra render` of the same
 # scene and size; when the build has the Python package, checks that it was installed under the prefix
 # and imports from there. Run after scripts/build.sh.
@@ -14,6 +14,13 @@ test -f "$prefix/lib/pkgconfig/penumbra.pc"
 # The generated version header is installed with the others, and holds the program's version.
 version=$(./build/penumbra --version | cut -d' ' -f2)
 grep -q "#define PENUMBRA_VERSION_STRING \"$version\"" "$prefix/include/penumbra/version.h"
+# The installed shadow sampling (include/penumbra/shadows.glsl) compiles with the installed headers alone:
+# an engine's shaders (tests/glsl/) include it with nothing of this tree on their include path.
+for shader in tests/glsl/*.glsl; do
+  name=$(basename "$shader" .glsl)
+  glslc -fshader-stage="${name##*.}" --target-env=vulkan1.3 -I "$prefix/include" -o "$work/$name.spv" "$shader"
+done
+echo "shadow sampling: the installed penumbra/shadows.glsl compiles on its own ($(ls tests/glsl/*.glsl | wc -l) shaders)"
 cmake -S examples/embed -B "$work/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" -j "$(nproc)" >/dev/null
 device=${PENUMBRA_DEVICE:-cpu}

@@ -3,6 +3,7 @@
 #define PENUMBRA_BINDINGS_GLSL
 #include "pass_bindings.h"
 #include "scene_structs.h"
+#include "penumbra/shadows/noise.glsl"  // interleavedGradientNoise: dithered casters
 
 layout(constant_id = 0) const uint kTextureCount = 1;
 
@@ -34,11 +35,5 @@ vec4 materialBaseColorLod(MaterialData material, vec2 uv, float level) {
     vec4 color = material.baseColorFactor;
     if (material.baseColorTexture != 0u) color *= textureLod(baseColorTextures[material.baseColorTexture - 1u], uv, level);
     return color;
-}
-
-// Interleaved gradient noise (Jimenez 2014), the dither pattern Unity's pipelines use for dithered
-// shadows and cascade blending (Catlike Coding "Directional Shadows": Dithered Transition, Dithered Shadows).
-float interleavedGradientNoise(vec2 pixel) {
-    return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
 }
 #endif

@@ -1,6 +1,6 @@
 #version 460
 // Depth prepass of the screen-space shadow path (shadows.screenSpace): depth plus the shading and the
-// geometric normal (octahedral, xy and zw), which the resolve's biases need (shadow_bias.glsl). Alpha-tested
+// geometric normal (octahedral, xy and zw), which the resolve's biases need (penumbra/shadows/bias.glsl). Alpha-tested
 // like the lit pass so both see the same surfaces.
 #include "bindings.glsl"
 #include "surface_normals.glsl"

@@ -1,10 +1,10 @@
 #version 460
 // Screen-space shadow resolve in the manner of Unity URP's screen-space shadows (its
 // _ScreenSpaceShadowmapTexture): the main directional light's shadow term per pixel, from the depth
-// prepass, with exactly the forward path's sampling (shadows.glsl).
+// prepass, with exactly the forward path's sampling (penumbra/shadows.glsl).
 #include "pass_bindings.h"
 #include "bindings.glsl"
-#include "shadows.glsl"
+#include "lit_shadows.glsl"
 #include "surface_normals.glsl"
 
 layout(set = kPassSet, binding = kScreenShadowBindingSceneDepth) uniform sampler2D sceneDepth;

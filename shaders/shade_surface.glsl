@@ -8,7 +8,7 @@
 #include "bindings.glsl"
 #include "lighting.glsl"
 #include "light_clusters.glsl"
-#include "shadows.glsl"
+#include "lit_shadows.glsl"
 #include "sky_light.glsl"
 
 // The main directional light's shadow term from the screen-space resolve (shadows.screenSpace), when enabled.

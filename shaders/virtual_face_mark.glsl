@@ -8,7 +8,7 @@
 #include "pass_bindings.h"
 #include "virtual_page_structs.h"
 #include "pixel_position.glsl"
-#include "virtual_faces.glsl"
+#include "penumbra/shadows/virtual_faces.glsl"
 
 layout(set = kPassSet, binding = kFaceMarkBindingFrame, std140) uniform FaceMarkBlock { VirtualFaceMarkData mark; };
 layout(set = kPassSet, binding = kFaceMarkBindingRequests, std430) buffer FaceRequestBlock { uint requestWords[]; };

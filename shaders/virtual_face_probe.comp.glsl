@@ -1,5 +1,5 @@
 #version 460
-// Tests only: evaluates the spot and point lights' virtual shadow lookup (virtual_face_lookup.glsl) of one
+// Tests only: evaluates the spot and point lights' virtual shadow lookup (penumbra/shadows/virtual_face_lookup.glsl) of one
 // light at a list of world points, writing each one's shadow term and serving level, so the render tests
 // can compare the GPU lookup with its CPU reference on the same page table and pool.
 #include "virtual_shadow_probe.glsl"
@@ -7,7 +7,7 @@
 
 layout(set = kPassSet, binding = kShadowProbeBindingFaces, std430) readonly buffer ShadowProbeFaceBlock { VirtualFaceData faces[]; };
 
-#include "virtual_face_lookup.glsl"
+#include "penumbra/shadows/virtual_face_lookup.glsl"
 
 void main() {
     const uint i = gl_GlobalInvocationID.x;

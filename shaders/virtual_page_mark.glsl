@@ -10,7 +10,7 @@
 #include "pass_bindings.h"
 #include "virtual_page_structs.h"
 #include "pixel_position.glsl"
-#include "virtual_clipmap.glsl"
+#include "penumbra/shadows/virtual_clipmap.glsl"
 
 layout(set = kPassSet, binding = kPageMarkBindingFrame, std140) uniform PageMarkBlock { VirtualPageMarkData mark; };
 layout(set = kPassSet, binding = kPageMarkBindingRequests, std430) buffer PageRequestBlock { uint requestWords[]; };

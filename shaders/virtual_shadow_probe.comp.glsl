@@ -1,5 +1,5 @@
 #version 460
-// Tests only: evaluates the virtual shadow map lookup (virtual_shadow_lookup.glsl) at a list of world
+// Tests only: evaluates the virtual shadow map lookup (penumbra/shadows/virtual_shadow_lookup.glsl) at a list of world
 // points and writes each one's shadow term and serving level, so the render tests can compare the GPU
 // lookup with its CPU reference (shadows/virtual_shadow_lookup.h) on the same page table and pool.
 #include "virtual_shadow_probe.glsl"

@@ -1,6 +1,6 @@
 // Tests only: what the virtual shadow lookup probes (virtual_shadow_probe.comp, virtual_face_probe.comp)
 // share: the lookup data, the entries and the pool they read, the points and the results, and the page
-// table and pool reads that virtual_shadow_lookup.glsl asks of its includer.
+// table and pool reads that penumbra/shadows/virtual_shadow_lookup.glsl asks of its includer.
 #ifndef PENUMBRA_VIRTUAL_SHADOW_PROBE_GLSL
 #define PENUMBRA_VIRTUAL_SHADOW_PROBE_GLSL
 #include "pass_bindings.h"
@@ -27,5 +27,5 @@ VirtualPageEntry virtualShadowEntry(bool faces, uint record) {
 
 float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) { return texelFetch(pool, poolTexel, 0).r; }
 
-#include "virtual_shadow_lookup.glsl"
+#include "penumbra/shadows/virtual_shadow_lookup.glsl"
 #endif

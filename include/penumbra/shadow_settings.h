@@ -12,7 +12,7 @@ enum class CascadeBlend { Hard, Soft, Dither };
 // How shadow depth is rasterized: the hardware pipeline, compute shaders (fast where few
 // SMs run graphics, e.g. NVIDIA H100/H200), or whichever the first frames measure faster.
 enum class ShadowRaster { Hw, Compute, Auto };
-// How the lit pass keeps surfaces from shadowing themselves (shaders/shadow_bias.glsl):
+// How the lit pass keeps surfaces from shadowing themselves (penumbra/shadows/bias.glsl):
 // a constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.
 // Every light's shadowNormalBias multiplies the automatic amount, its shadowBias adds a slope-scale bias.
 enum class ShadowBiasMode { Normal, ScaledNormal, ReceiverPlane };

@@ -1,5 +1,5 @@
 // GPU data of the spot and point light shadows (the "other" atlas), shared by C++
-// (shadows/spot_shadow_planner) and GLSL (shadows.glsl otherShadow). One uniform block per frame.
+// (shadows/spot_shadow_planner) and GLSL (penumbra/shadows.glsl otherShadow). One uniform block per frame.
 //
 // Same depth convention as DirectionalShadowData (see shadow_structs.h): Vulkan clip space, standard
 // depth 0 at the near plane, atlas cleared to 1, sampled with compare op LESS_OR_EQUAL. The projections
@@ -18,7 +18,7 @@ PENUMBRA_CONST(uint, kMaxShadowedOtherLights, 16u)
 // soft; 0 = no spot/point shadows.
 PENUMBRA_CONST(uint, kOtherShadowsHard, 1u)
 PENUMBRA_CONST(uint, kOtherShadowsSoft, 2u)
-// shadows.spot.mode = virtual: the lights read their virtual faces (virtual_face_shadows.glsl). Alone
+// shadows.spot.mode = virtual: the lights read their virtual faces (penumbra/shadows/virtual_face_shadows.glsl). Alone
 // (no hard or soft bit) the atlas's sampling is compiled out; the generic variant has all three bits.
 PENUMBRA_CONST(uint, kOtherShadowsVirtual, 4u)
 

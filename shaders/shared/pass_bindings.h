@@ -4,12 +4,13 @@
 // checks each declaration against the shaders' SPIR-V (src/gpu/shader_interface.h).
 //
 // Set 0 is pushed per pass (VK_KHR_push_descriptor); set 1 is the scene's texture table. A number means
-// one thing within a pass; passes that share shader code (bindings.glsl's scene, shadows.glsl's lighting,
+// one thing within a pass; passes that share shader code (bindings.glsl's scene, penumbra/shadows.glsl's lighting,
 // raster_mesh.glsl's rasterizer) share its numbers. The push-constant blocks are the *Constants structs of
 // the other shared headers.
 #ifndef PENUMBRA_PASS_BINDINGS_H
 #define PENUMBRA_PASS_BINDINGS_H
 #include "gpu_shared.h"
+#include "penumbra/shadows/bindings.h"
 
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
@@ -29,25 +30,29 @@ PENUMBRA_CONST(uint, kSceneBindingInstances, 2u)  // InstanceData[]
 PENUMBRA_CONST(uint, kSceneBindingMaterials, 3u)  // MaterialData[]
 PENUMBRA_CONST(uint, kSceneBindingLights, 4u)     // LightData[] (also the light cluster pass)
 
-// Lighting (shadows.glsl, shade_surface.glsl, light_clusters.glsl): the lit pass, the visibility resolve
-// and, in part, the screen-space shadow resolve.
-PENUMBRA_CONST(uint, kLitBindingDirectionalShadows, 5u)    // uniform DirectionalShadowData
-PENUMBRA_CONST(uint, kLitBindingDirectionalAtlas, 6u)      // sampler2DShadow
-PENUMBRA_CONST(uint, kLitBindingOtherShadows, 7u)          // uniform OtherShadowData
-PENUMBRA_CONST(uint, kLitBindingOtherAtlas, 8u)            // sampler2DShadow
+// Lighting (penumbra/shadows.glsl, shade_surface.glsl, light_clusters.glsl): the lit pass, the
+// visibility resolve and, in part, the screen-space shadow resolve.
 PENUMBRA_CONST(uint, kLitBindingScreenSpaceShadows, 9u)    // sampler2D, the screen-space resolve's output
-PENUMBRA_CONST(uint, kLitBindingDirectionalDepth, 12u)     // the directional atlas as raw depth (PCSS)
-PENUMBRA_CONST(uint, kLitBindingOtherDepth, 13u)           // the spot/point atlas as raw depth (PCSS)
 PENUMBRA_CONST(uint, kLitBindingLightClusters, 14u)        // uniform LightClusterData (also the cluster pass)
 PENUMBRA_CONST(uint, kLitBindingClusterMasks, 15u)         // the mask words (also the cluster pass)
-// The directional lights' virtual shadow maps (virtual_shadows.glsl; shadows.directional.mode = virtual).
-PENUMBRA_CONST(uint, kLitBindingVirtualShadows, 22u)       // uniform VirtualDirectionalShadowData
-PENUMBRA_CONST(uint, kLitBindingVirtualPool, 23u)          // sampler2D, the lights' pools (R32F depth)
-PENUMBRA_CONST(uint, kLitBindingVirtualPages, 24u)         // VirtualPageEntry[], the lights' page tables
+// The shadow sampling's descriptors (penumbra/shadows/bindings.h, the installed GLSL's) from binding
+// kLitShadowBindingBase on: PENUMBRA_SHADOW_BINDING_BASE of the passes that include penumbra/shadows.glsl.
+PENUMBRA_CONST(uint, kLitShadowBindingBase, 32u)
+PENUMBRA_CONST(uint, kLitBindingShadowView, kLitShadowBindingBase + kShadowBindingView)
+PENUMBRA_CONST(uint, kLitBindingDirectionalShadows, kLitShadowBindingBase + kShadowBindingDirectional)
+PENUMBRA_CONST(uint, kLitBindingDirectionalAtlas, kLitShadowBindingBase + kShadowBindingDirectionalAtlas)
+PENUMBRA_CONST(uint, kLitBindingDirectionalDepth, kLitShadowBindingBase + kShadowBindingDirectionalDepth)
+PENUMBRA_CONST(uint, kLitBindingOtherShadows, kLitShadowBindingBase + kShadowBindingOther)
+PENUMBRA_CONST(uint, kLitBindingOtherAtlas, kLitShadowBindingBase + kShadowBindingOtherAtlas)
+PENUMBRA_CONST(uint, kLitBindingOtherDepth, kLitShadowBindingBase + kShadowBindingOtherDepth)
+// The directional lights' virtual shadow maps (shadows.directional.mode = virtual).
+PENUMBRA_CONST(uint, kLitBindingVirtualShadows, kLitShadowBindingBase + kShadowBindingVirtual)
+PENUMBRA_CONST(uint, kLitBindingVirtualPool, kLitShadowBindingBase + kShadowBindingVirtualPool)
+PENUMBRA_CONST(uint, kLitBindingVirtualPages, kLitShadowBindingBase + kShadowBindingVirtualPages)
 // The spot and point lights' virtual shadow maps (shadows.spot.mode = virtual).
-PENUMBRA_CONST(uint, kLitBindingVirtualFaces, 25u)         // uniform VirtualFaceShadowData
-PENUMBRA_CONST(uint, kLitBindingVirtualFacePool, 26u)      // sampler2D, the faces' pool (R32F depth)
-PENUMBRA_CONST(uint, kLitBindingVirtualFacePages, 27u)     // VirtualPageEntry[], the faces' page table
+PENUMBRA_CONST(uint, kLitBindingVirtualFaces, kLitShadowBindingBase + kShadowBindingVirtualFaces)
+PENUMBRA_CONST(uint, kLitBindingVirtualFacePool, kLitShadowBindingBase + kShadowBindingVirtualFacePool)
+PENUMBRA_CONST(uint, kLitBindingVirtualFacePages, kLitShadowBindingBase + kShadowBindingVirtualFacePages)
 
 // The light cluster pass (light_cluster.comp), beyond the lights (4) and clusters (14, 15) above.
 PENUMBRA_CONST(uint, kClusterBindingStats, 16u)  // LightClusterStats

@@ -2,6 +2,7 @@
 #ifndef PENUMBRA_SCENE_STRUCTS_H
 #define PENUMBRA_SCENE_STRUCTS_H
 #include "gpu_shared.h"
+#include "shadow_view_structs.h"
 
 PENUMBRA_GPU_NAMESPACE_BEGIN
 
@@ -46,11 +47,8 @@ PENUMBRA_CONST(uint, kShadowModeClip, 1u)
 PENUMBRA_CONST(uint, kShadowModeDither, 2u)
 PENUMBRA_CONST(uint, kShadowModeOff, 3u)
 
-PENUMBRA_CONST(uint, kNoShadowSlot, 0xffffffffu)  // LightData.shadowSlot of a light without shadows
-
-PENUMBRA_CONST(uint, kLightDirectional, 0u)
-PENUMBRA_CONST(uint, kLightSpot, 1u)
-PENUMBRA_CONST(uint, kLightPoint, 2u)
+// kNoShadowSlot (LightData.shadowSlot of a light without shadows) and the kLight* types are
+// shadow_view_structs.h's: the installed shadow sampling reads them too.
 
 struct FrameData {
     mat4 clipFromWorld;

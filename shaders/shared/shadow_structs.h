@@ -32,12 +32,12 @@ PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
 PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)
 
 // ShadowBias.x of DirectionalShadowData and OtherShadowData mirrors ShadowBiasMode (shadows.bias):
-// how the lit pass keeps a surface from shadowing itself (see shaders/shadows.glsl shadowLookup).
+// how the lit pass keeps a surface from shadowing itself (see penumbra/shadows.glsl shadowLookup).
 PENUMBRA_CONST(uint, kShadowBiasNormal, 0u)          // constant normal offset (the classic rule)
 PENUMBRA_CONST(uint, kShadowBiasScaledNormal, 1u)    // normal offset x the texel's size x sin(N, L)
 PENUMBRA_CONST(uint, kShadowBiasReceiverPlane, 2u)   // each fetch compares the receiver plane's depth there
 
-// PCSS (shaders/shadow_pcss.glsl): the widest blocker search and filter radius, in texels; the tight fit
+// PCSS (penumbra/shadows/pcss.glsl): the widest blocker search and filter radius, in texels; the tight fit
 // keeps that many texels around the visible receivers of a pcss light.
 PENUMBRA_CONST(float, kPcssMaxRadiusTexels, 24.0f)
 

@@ -1,4 +1,4 @@
-// What the lit pass reads of the virtual shadow maps (shaders/virtual_shadows.glsl): the directional
+// What the lit pass reads of the virtual shadow maps (penumbra/shadows/virtual_shadows.glsl): the directional
 // lights' (shadows.directional.mode = virtual; render/virtual_shadows.h) and the spot and point lights'
 // faces (shadows.spot.mode = virtual; render/virtual_face_shadows.h), shared by C++ and GLSL.
 #ifndef PENUMBRA_VIRTUAL_LIT_STRUCTS_H

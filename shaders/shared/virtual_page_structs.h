@@ -1,5 +1,5 @@
 // Virtual shadow map page marking, shared by C++ (shadows/virtual_page_marking.h, the CPU reference,
-// and render/virtual_page_mark_pass) and GLSL (virtual_page_mark.comp, virtual_clipmap.glsl); and the
+// and render/virtual_page_mark_pass) and GLSL (virtual_page_mark.comp, penumbra/shadows/virtual_clipmap.glsl); and the
 // GPU page table and physical page allocator (render/virtual_page_table_pass.h, virtual_page_*.comp,
 // virtual_page_table.glsl), whose CPU reference is shadows/virtual_page_pool.h.
 //

@@ -1,5 +1,5 @@
 // The shadow lookup into a directional light's virtual shadow map, shared by C++ (shadows/
-// virtual_shadow_lookup.h, the CPU reference) and GLSL (virtual_shadow_lookup.glsl, and the tests'
+// virtual_shadow_lookup.h, the CPU reference) and GLSL (penumbra/shadows/virtual_shadow_lookup.glsl, and the tests'
 // virtual_shadow_probe.comp): what the lookup needs of the clipmap, the light and the pool.
 //
 // Spaces and units (virtual_page_draw_structs.h has the drawing side): light space is the light's

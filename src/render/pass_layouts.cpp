@@ -18,8 +18,8 @@ constexpr gpu::DescriptorType kStorage = gpu::DescriptorType::StorageBuffer;
 constexpr gpu::DescriptorType kSampled = gpu::DescriptorType::SampledTexture;
 constexpr uint32_t kV = gpu::kStageVertex, kF = gpu::kStageFragment, kC = gpu::kStageCompute;
 
-// The virtual shadow maps (virtual_shadows.glsl): the directional lights' and the spot and point lights'
-// faces, read wherever shadows.glsl's directionalShadow is (its page reads name both tables).
+// The virtual shadow maps (penumbra/shadows/virtual_shadows.glsl): the directional lights' and the spot and point lights'
+// faces, read wherever penumbra/shadows.glsl's directionalShadow is (its page reads name both tables).
 void appendVirtualShadows(std::vector<BindingDesc>& bindings, uint32_t stage) {
     bindings.insert(bindings.end(), {{"VirtualShadowBlock", kLitBindingVirtualShadows, kUniform, stage},
                                      {"virtualShadowPool", kLitBindingVirtualPool, kSampled, stage},
@@ -32,6 +32,7 @@ void appendVirtualShadows(std::vector<BindingDesc>& bindings, uint32_t stage) {
 // What shade_surface.glsl reads beyond the scene: lights, shadows, clusters (all in one stage).
 void appendLighting(std::vector<BindingDesc>& bindings, uint32_t stage) {
     bindings.insert(bindings.end(), {{"LightBlock", kSceneBindingLights, kStorage, stage},
+                                     {"PenumbraShadowViewBlock", kLitBindingShadowView, kUniform, stage},
                                      {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, stage},
                                      {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, stage},
                                      {"OtherShadowBlock", kLitBindingOtherShadows, kUniform, stage},
@@ -87,6 +88,7 @@ std::vector<BindingDesc> shadowCasterBindings() {
 
 std::vector<BindingDesc> screenSpaceShadowBindings() {
     std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, kF},
+                                         {"PenumbraShadowViewBlock", kLitBindingShadowView, kUniform, kF},
                                          {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, kF},
                                          {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, kF},
                                          {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, kF},

@@ -7,6 +7,7 @@
 #include "core/stopwatch.h"
 #include "cull_structs.h"
 #include "pass_bindings.h"
+#include "render/frame_data.h"
 #include "render/frame_setup.h"
 #include "render/light_clusters.h"
 #include "render/renderer_state.h"
@@ -128,6 +129,9 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     const gpu_data::LightClusterData clusterData = makeLightClusterData(
         recording.view, scene.wsBounds, lights.directionalCount, lights.otherCount, recording.clustered);
     recording.clusterSlice = uploadFrameData(device, &clusterData, sizeof(clusterData));
+    // The lit passes call the shadow sampling per light of their own table, not penumbraShadow: no light table.
+    const gpu_data::ShadowViewData shadowView = shadowViewData(recording.view, 0);
+    recording.shadowViewSlice = uploadFrameData(device, &shadowView, sizeof(shadowView));
     recording.directionalSlice = uploadFrameData(device, &plan.directional.gpu, sizeof(plan.directional.gpu));
     recording.otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
     const SceneWrites writes = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
@@ -234,11 +238,12 @@ MainPassInputs& Renderer::State::recordLightingInputs(FrameRecording& recording)
     using namespace gpu_data;
     inputs.writes.push_back({kLitBindingLightClusters, recording.clusterSlice});
     inputs.writes.push_back({kLitBindingClusterMasks, lightClusters.masks(), {}, {}});
+    inputs.writes.push_back({kLitBindingShadowView, recording.shadowViewSlice});
     inputs.writes.push_back({kLitBindingDirectionalShadows, recording.directionalSlice});
     inputs.writes.push_back({kLitBindingDirectionalAtlas, {}, targets.directionalAtlas, shadowSampler});
     inputs.writes.push_back({kLitBindingOtherShadows, recording.otherSlice});
     inputs.writes.push_back({kLitBindingOtherAtlas, {}, targets.otherAtlas, shadowSampler});
-    // The same atlases as raw depth (receiver-plane compare, blocker search; shaders/shadows.glsl).
+    // The same atlases as raw depth (receiver-plane compare, blocker search; penumbra/shadows.glsl).
     inputs.writes.push_back({kLitBindingDirectionalDepth, {}, targets.directionalAtlas, pointSampler});
     inputs.writes.push_back({kLitBindingOtherDepth, {}, targets.otherAtlas, pointSampler});
     inputs.sampled = {targets.directionalAtlas, targets.otherAtlas, noScreenShadows};

@@ -63,7 +63,7 @@ struct FrameRecording {
     std::vector<gpu::DescriptorWrite>& casterWrites;  // scene bindings 0-4 (the State's storage)
     const char* stage = "scene updates";  // the part being recorded, named by a failure
     // Upload ring slices, all made before the frame's first readback (Device::allocateFrameData).
-    gpu::BufferSlice frameSlice, lightSlice, clusterSlice, directionalSlice, otherSlice, cullSlice;
+    gpu::BufferSlice frameSlice, lightSlice, clusterSlice, shadowViewSlice, directionalSlice, otherSlice, cullSlice;
     gpu::BufferSlice cullTileSlice;        // the culling pass's tile list (CullTileUpload)
     gpu::BufferSlice rasterListSlices[2];  // each atlas pass's raster list (RasterTileUpload)
     bool clustered = false;    // the spot/point lights go through the light clusters

@@ -2,7 +2,7 @@
 // The renderer's virtual shadow maps of spot and point lights (shadows.spot.mode = virtual): every
 // reserved light's faces (the plan's OtherShadowPlan::faces, shadows/virtual_faces.h) share one page table
 // of fixed windows and one pool, so that the lit pass, the visibility resolve and the screen-space
-// resolve bind three things whatever the light count (shaders/virtual_shadows.glsl): the uniform
+// resolve bind three things whatever the light count (penumbra/shadows/virtual_shadows.glsl): the uniform
 // VirtualFaceShadowData, the pool's texture and the page table's buffer. With the atlas the same
 // bindings hold a disabled block and placeholders the shaders never read.
 //

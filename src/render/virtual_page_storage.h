@@ -11,7 +11,7 @@
 //   largest minStorageBufferOffsetAlignment Vulkan allows: the table pass binds its own range).
 // Each map's passes write only their own square and range (virtual_page_copy.comp at row poolOriginY, the
 // page table's descriptors at firstEntry); the lookup finds them through VirtualShadowLookupData's
-// poolOriginY and firstEntry (shaders/virtual_shadow_lookup.glsl).
+// poolOriginY and firstEntry (penumbra/shadows/virtual_shadow_lookup.glsl).
 //
 // The set owns the texture and the buffer and starts them as empty maps (every texel far, no entry
 // resident), so a map's passes neither initialize nor destroy them: destroy the set after its maps.

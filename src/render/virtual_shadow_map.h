@@ -7,7 +7,7 @@
 //   3. virtualPages...        the listed pages drawn into the pool (VirtualPageDrawPass);
 //   4. virtualPageTable/drawn those pages are no longer dirty: the lookups may read them.
 // Afterwards a lit pass samples pageEntries(), poolTexture() and lookupData() (shaders/
-// virtual_shadow_lookup.glsl) after declaring its reads; stats() is the update's VirtualPageStats, for
+// penumbra/shadows/virtual_shadow_lookup.glsl) after declaring its reads; stats() is the update's VirtualPageStats, for
 // Device::readBackAtFrameEnd (statsFromReadback decodes it).
 //
 // Invalidation: the pages' depth is relative to the light's rotation and the scene bounds' depth range

@@ -2,7 +2,7 @@
 // The renderer's virtual shadow maps (shadows.directional.mode = virtual): one VirtualShadowMap per
 // reserved directional light, all in one VirtualPageStorageSet, so that the lit pass, the visibility
 // resolve and the screen-space resolve bind three things whatever the light count
-// (shaders/virtual_shadows.glsl): the uniform VirtualDirectionalShadowData, the pools' texture and the
+// (penumbra/shadows/virtual_shadows.glsl): the uniform VirtualDirectionalShadowData, the pools' texture and the
 // page tables' buffer. With cascades the same bindings hold a disabled block and placeholders the
 // shaders never read.
 //

@@ -26,7 +26,7 @@ float distanceFadeStrength(ShadowFadeMode mode, float shadowDistance, float dist
 
 namespace {
 
-// The cascade holding the point and its own fade (1 inside, 0 at its edge): see shadows.glsl
+// The cascade holding the point and its own fade (1 inside, 0 at its edge): see penumbra/shadows.glsl
 // selectDirectionalCascade. cascadeIndex == count when none does.
 std::pair<uint32_t, float> cascadeAndFade(const gpu_data::DirectionalShadowData& data, const glm::vec3& wsPosition,
                                           float viewDepth) {

@@ -77,7 +77,7 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     tile.clipFromLight = orthoClipFromLight(view.halfExtent, tile.nearDistance, tile.farDistance);
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = atlasFromClip(in.atlas, tileIndex) * tile.clipFromWorld;
-    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (shadow_bias.glsl)
+    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (penumbra/shadows/bias.glsl)
     tile.depthClamp = true;
     tile.casterInstances = std::move(casters.instances);
     return tile;

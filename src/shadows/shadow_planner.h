@@ -11,7 +11,7 @@
 //   being clipped;
 // - no rasterizer depth bias: the caster pass writes the casters' exact depth (clamped to [0, 1] by
 //   depth clamp). Every bias, the light's slope-scale shadowBias included, is applied by the lit pass
-//   to the receiver (shaders/shadow_bias.glsl), so a compute rasterizer has only the depth to reproduce.
+//   to the receiver (penumbra/shadows/bias.glsl), so a compute rasterizer has only the depth to reproduce.
 #include <cstdint>
 #include <string>
 #include <vector>

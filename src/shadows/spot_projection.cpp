@@ -38,7 +38,7 @@ const std::array<glm::vec3, 6>& pointLightFaceDirections() {
 
 uint32_t pointLightFaceOf(const glm::vec3& wsFromLight) {
     const glm::vec3 a = glm::abs(wsFromLight);
-    // Ties go to the lower axis, as in the GLSL twin (shadows.glsl otherShadowTile).
+    // Ties go to the lower axis, as in the GLSL twin (penumbra/shadows.glsl otherShadowTile).
     const uint32_t axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);
     return 2u * axis + (wsFromLight[int(axis)] < 0.0f ? 1u : 0u);
 }

@@ -56,7 +56,7 @@ ShadowTile planOtherTile(const Scene& scene, const std::vector<uint32_t>& caster
     tile.clipFromWorld = tile.clipFromLight * tile.lightFromWorld;
     tile.atlasFromWorld = spotAtlasFromClip(layout, tileIndex) * tile.clipFromWorld;
     tile.wsTexelSize = 2.0f * shape.tanHalfFov / float(layout.tileSize);
-    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (shadow_bias.glsl)
+    tile.slopeScaleBias = 0.0f;  // the light's shadowBias is applied by the lit pass (penumbra/shadows/bias.glsl)
     tile.depthClamp = true;  // pancaking onto the near plane, as for directional tiles
     tile.perspective = true;
     tile.wsApex = light.wsPosition;
@@ -74,7 +74,7 @@ void packLight(gpu_data::OtherShadowData& data, const Light& light, const Reserv
     packed.soft = reserved.soft ? 1u : 0u;
     packed.point = reserved.point ? 1u : 0u;
     // World texel size grows linearly with the distance d along the tile's axis: 2 d tan(fov/2) / tileSize.
-    // The lit pass scales its biases by it, with the directional lights' rule (shadow_bias.glsl).
+    // The lit pass scales its biases by it, with the directional lights' rule (penumbra/shadows/bias.glsl).
     const float texelPerDistance = 2.0f * shape.tanHalfFov / float(layout.tileSize);
     const ShadowFilter filter = reserved.soft ? settings.spot.filter : ShadowFilter::PCF2x2;
     packed.wsPosition = glm::vec4(light.wsPosition, 0.0f);

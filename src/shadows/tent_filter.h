@@ -2,7 +2,7 @@
 // The tent filters behind PCF3x3 / PCF5x5 / PCF7x7 (Unity's ShadowSamplingTent.hlsl,
 // SampleShadow_ComputeSamples_Tent_*): a tent (triangle) of radius 1.5 / 2.5 / 3.5 texels around the sample
 // point, integrated over each shadow-map texel, then grouped into 2x2 blocks that one hardware-PCF (bilinear
-// compare) fetch each evaluates: 4 / 9 / 16 fetches. shaders/shadow_tent.glsl holds the same math for the
+// compare) fetch each evaluates: 4 / 9 / 16 fetches. penumbra/shadows/tent.glsl holds the same math for the
 // GPU; this is its tested reference.
 #include <vector>
 

@@ -1,6 +1,6 @@
 #pragma once
 // The shadow lookup into a directional light's virtual shadow map, on the CPU: the reference of
-// shaders/virtual_shadow_lookup.glsl, function for function with the same float and integer operations
+// penumbra/shadows/virtual_shadow_lookup.glsl, function for function with the same float and integer operations
 // (the render tests compare the two on the same page table and pool). Change both together.
 //
 // Given a receiver's world position (the caller's biases applied) and its pixel's world footprint:

@@ -42,7 +42,7 @@ const Limits kLimits[] = {
     // limits = measured x 1.15 + 0.03 (misclassified %), x 1.5 + 0.01 (interior %), x 1.2 + 0.0005 (MAE),
     // tight enough that a 2 px shift breaks every row (ShadowShiftedTwoPixelsBreaksTheLimits); measured on
     // lavapipe (Mesa llvmpipe), 256x144, default settings but the filter (and settingsFor): the
-    // receiver-plane bias (shaders/shadow_bias.glsl), tight cascades with log splits, the reference's shadow
+    // receiver-plane bias (penumbra/shadows/bias.glsl), tight cascades with log splits, the reference's shadow
     // rays starting a few ulps off the surface. The earlier limits (normal-bias unit, old reference) were
     // e.g. thin_wall PCF7x7 1.89 % (measured 1.467), near_far_casters PCF7x7 1.64 % (1.266).
     // scene                filter               mis %  int. %   MAE      measured: mis %, interior %, MAE

@@ -77,7 +77,7 @@ TEST_F(DirectionalShadowTest, PlaneAtSixtyDegreesToTheSunShowsNoAcneWithDefaultB
     }
 }
 
-// The constant normal-offset bias mode (shadows.bias = normal), for the measurements of shadow_bias.glsl.
+// The constant normal-offset bias mode (shadows.bias = normal), for the measurements of penumbra/shadows/bias.glsl.
 Settings normalBiasSettings(ShadowFilter filter = ShadowFilter::PCF2x2) {
     Settings settings = shadowSettings(30.0f, 4, 1024, filter);
     settings.shadows.bias = ShadowBiasMode::Normal;

@@ -1,4 +1,4 @@
-// The GPU tent filters (shaders/shadow_tent.glsl) give, pixel by pixel, the attenuation their CPU twin
+// The GPU tent filters (penumbra/shadows/tent.glsl) give, pixel by pixel, the attenuation their CPU twin
 // (src/shadows/tent_filter.cpp) predicts across a straight shadow edge: the tent's width and shape are
 // checked on the GPU, not just that wider filters blur more.
 #include <cmath>

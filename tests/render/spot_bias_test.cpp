@@ -66,7 +66,7 @@ BiasResult measure(float normalBias, float depthBias, LightShadows shadows,
 // 0.0067 with normal bias 1), and at 0.005 this scene peter-pans more than with the normal bias. So the
 // normal bias stays the default (numbers and reasons: SpotShadowSettings::depthBias).
 
-// The default receiver-plane bias (shadow_bias.glsl) removes the acne with no tuning, even at
+// The default receiver-plane bias (penumbra/shadows/bias.glsl) removes the acne with no tuning, even at
 // shadowNormalBias 0, and peter-pans less than the normal bias.
 TEST_F(RenderTest, ReceiverPlaneBiasRemovesSpotAcneWithLessPeterPanningThanTheNormalBias) {
     const BiasResult normal = measure(1.0f, 0.0f, LightShadows::Hard);

@@ -2,7 +2,7 @@
 // pages chosen, allocated and drawn by the GPU passes (the faces' marking, the page table of fixed windows,
 // the page drawing), against the ray tracer (reference/embree_scene.h): ground points that are clearly
 // lit or clearly shadowed (the rays from the point and from 2 cm around it all agree) are classified alike;
-// and the GLSL twin (virtual_face_lookup.glsl, through the tests' virtual_face_probe.comp) equals it.
+// and the GLSL twin (penumbra/shadows/virtual_face_lookup.glsl, through the tests' virtual_face_probe.comp) equals it.
 #include <cmath>
 #include <cstring>
 #include <vector>

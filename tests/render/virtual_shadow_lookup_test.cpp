@@ -1,4 +1,4 @@
-// The virtual shadow map lookup on the GPU (shaders/virtual_shadow_lookup.glsl, through the tests' probe
+// The virtual shadow map lookup on the GPU (penumbra/shadows/virtual_shadow_lookup.glsl, through the tests' probe
 // virtual_shadow_probe.comp) against its CPU reference (src/shadows/virtual_shadow_lookup.h) on the same
 // page table and pool, and, on the demo scene drawn into pages by the page drawing pass, against the
 // ray-traced reference (reference/embree_scene.h) at ground points that are clearly lit or clearly shadowed.

@@ -2,13 +2,13 @@
 // "pcss": a blocker search averages the depth of the occluders around the receiver, similar triangles turn
 // receiver and blocker distances and the light's size into the penumbra's width, and a disk of bilinear
 // compares that wide gives the visibility. Every compare uses the receiver plane's depth at the tap
-// (shadow_bias.glsl) at each texel's centre (shadow_tent.glsl penumbraCompareBilinear), so wide kernels bring
+// (bias.glsl) at each texel's centre (tent.glsl penumbraCompareBilinear), so wide kernels bring
 // no acne.
 #ifndef PENUMBRA_SHADOW_PCSS_GLSL
 #define PENUMBRA_SHADOW_PCSS_GLSL
-#include "shadow_bias.glsl"
+#include "bias.glsl"
 #include "shadow_structs.h"
-#include "shadow_tent.glsl"
+#include "tent.glsl"
 
 const int kPcssSearchSamples = 32;
 const int kPcssFilterSamples = 64;

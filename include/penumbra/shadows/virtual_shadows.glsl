@@ -1,7 +1,7 @@
 // Directional shadows from the lights' virtual shadow maps (shadows.directional.mode = virtual), for the
 // lit pass, the visibility resolve and the screen-space resolve (and the bindings of the spot and point
 // lights' faces, whose page table and pool the lookup's reads pick by the lookup data's faceCount): the level a receiver reads, the biases
-// of shadow_bias.glsl, the tent filters of shadow_tent.glsl and PCSS (shadow_pcss.glsl), each tap a
+// of bias.glsl, the tent filters of tent.glsl and PCSS (pcss.glsl), each tap a
 // compare of virtual texels through the page table (virtual_shadow_lookup.glsl), so filters read across
 // page borders and fall back to a coarser level where a page is missing, never into a hole.
 //
@@ -12,25 +12,25 @@
 // (Unreal Engine's "Virtual Shadow Maps" documentation: a clipmap level picked by the pixel's footprint).
 #ifndef PENUMBRA_VIRTUAL_SHADOWS_GLSL
 #define PENUMBRA_VIRTUAL_SHADOWS_GLSL
-#include "pass_bindings.h"
-#include "shadow_bias.glsl"
-#include "shadow_pcss.glsl"
-#include "shadow_tent.glsl"
+#include "bindings.h"
+#include "bias.glsl"
+#include "pcss.glsl"
+#include "tent.glsl"
 #include "virtual_lit_structs.h"
 
-layout(set = kPassSet, binding = kLitBindingVirtualShadows, std140) uniform VirtualShadowBlock {
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtual, std140) uniform VirtualShadowBlock {
     VirtualDirectionalShadowData virtualShadows;
 };
-layout(set = kPassSet, binding = kLitBindingVirtualPool) uniform sampler2D virtualShadowPool;
-layout(set = kPassSet, binding = kLitBindingVirtualPages, std430) readonly buffer VirtualPageBlock {
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualPool) uniform sampler2D virtualShadowPool;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualPages, std430) readonly buffer VirtualPageBlock {
     VirtualPageEntry virtualPageEntries[];
 };
 // The spot and point lights' faces (virtual_face_shadows.glsl): their own table and pool.
-layout(set = kPassSet, binding = kLitBindingVirtualFaces, std140) uniform VirtualFaceBlock {
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFaces, std140) uniform VirtualFaceBlock {
     VirtualFaceShadowData virtualFaces;
 };
-layout(set = kPassSet, binding = kLitBindingVirtualFacePool) uniform sampler2D virtualFacePool;
-layout(set = kPassSet, binding = kLitBindingVirtualFacePages, std430) readonly buffer VirtualFacePageBlock {
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFacePool) uniform sampler2D virtualFacePool;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFacePages, std430) readonly buffer VirtualFacePageBlock {
     VirtualPageEntry virtualFacePageEntries[];
 };
 
@@ -71,7 +71,7 @@ mat4 virtualLevelFromWorld(VirtualShadowLookupData data, uint level) {
     return texelsFromLight * data.lightRotationFromWorld;
 }
 
-// The bilinear-weighted depth test of the 2 x 2 texels around q (texel units), as shadow_tent.glsl's
+// The bilinear-weighted depth test of the 2 x 2 texels around q (texel units), as tent.glsl's
 // penumbraCompareBilinear: against one depth, or (receiver plane) against the plane's depth at each
 // texel's centre (u: where the plane's depth is uvDepth.z, g: its gradient per texel).
 float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, vec3 uvDepth, vec2 u, vec2 g,
@@ -93,7 +93,7 @@ float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, v
 }
 
 // The light's filter at uvDepth (texels, depth): one bilinear block (PCF2x2) or the tent of
-// shadow_tent.glsl, whose fetch positions and weights are the cascades'.
+// tent.glsl, whose fetch positions and weights are the cascades'.
 float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDepth, uint filterMode, vec2 g,
                             bool perTexelPlane) {
     vec2 u = uvDepth.xy;
@@ -109,7 +109,7 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
     return shadow;
 }
 
-// PCSS (shadow_pcss.glsl's pcssShadow) over a level: the blocker search and the filter disk read
+// PCSS (pcss.glsl's pcssShadow) over a level: the blocker search and the filter disk read
 // virtual texels; `light` turns the level's depths into distances (a clipmap's orthographic, a face's
 // perspective).
 float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup lookup, PcssLight light) {

@@ -7,7 +7,7 @@
 //   cos θ, so b ∝ sin θ is just enough, and no offset (no peter-panning) where the light hits head-on;
 // - receiverPlane (receiver plane depth bias, Isidoro, "Shadow Mapping: GPU-based Tips and Techniques",
 //   GDC 2006): no offset; every texel a filter reads is compared with the depth the receiver's plane
-//   has at that texel's centre (shadow_tent.glsl penumbraCompareBilinear; the plane's depth
+//   has at that texel's centre (tent.glsl penumbraCompareBilinear; the plane's depth
 //   gradient in the tile comes from the triangle's normal), less a margin of kPlaneSlopeMargin of the
 //   plane's depth change over one texel x shadowNormalBias, plus a rounding epsilon.
 // In every mode the light's shadowBias adds shadowBias x the receiver's depth slope per texel (the

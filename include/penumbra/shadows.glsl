@@ -1,31 +1,60 @@
-// Shadow sampling for the lit pass and the screen-space resolve, after Catlike Coding's Custom SRP
-// tutorials "Directional Shadows" (sections Sampling Shadows, Cascaded Shadow Maps, Shadow Quality) and
-// "Spotlight Shadows", and Unity URP's Shadows.hlsl: cascade selection by culling sphere, distance and
-// cascade fades, normal bias, PCF / tent filters, cascade blending. Every function names the tutorial
-// section or the Unity function it follows.
+// <penumbra/shadows.glsl>: Penumbra's shadow sampling, one source for Penumbra's own lit pass,
+// screen-space resolve and visibility resolve and for an engine's shaders. After Catlike Coding's Custom
+// SRP tutorials "Directional Shadows" (sections Sampling Shadows, Cascaded Shadow Maps, Shadow Quality)
+// and "Spotlight Shadows", and Unity URP's Shadows.hlsl: cascade selection by culling sphere, distance
+// and cascade fades, normal or receiver-plane bias, PCF / tent filters, PCSS, cascade blending; and the
+// virtual shadow maps' page-table lookups. Every function names the tutorial section or the Unity
+// function it follows.
+//
+// An engine's fragment or compute shader (GL_GOOGLE_include_directive; compile with -I <prefix>/include):
+//
+//     #define PENUMBRA_SHADOW_SET 2           // optional: the descriptor set (default 0)
+//     #define PENUMBRA_SHADOW_BINDING_BASE 0  // optional: added to every binding (default 0)
+//     #include <penumbra/shadows.glsl>
+//     ...
+//     float shadow = penumbraShadow(light, wsPosition, wsNormal, gl_FragCoord.xy);  // 1 lit, 0 shadowed
+//
+// The descriptors it reads are <penumbra/shadows/bindings.h>'s (kShadowDescriptors in C++). Optional:
+// PENUMBRA_SHADOW_CONSTANT_ID N makes the spot/point sampling's shadow kinds and filter specialization
+// constants N and N + 1 (other_shadow_structs.h; without it every kind is compiled and the filter is read
+// from the data). Names this file declares: the penumbra* functions, the blocks and samplers of
+// bindings.h, and the structs and k* constants of the headers in penumbra/shadows/.
 #ifndef PENUMBRA_SHADOWS_GLSL
 #define PENUMBRA_SHADOWS_GLSL
-#include "pass_bindings.h"
-#include "other_shadow_structs.h"
-#include "shadow_structs.h"
-#include "shadow_bias.glsl"
-#include "shadow_pcss.glsl"
-#include "shadow_tent.glsl"
-#include "virtual_face_shadows.glsl"
-#include "virtual_shadows.glsl"
+#ifndef PENUMBRA_SHADOW_SET
+#define PENUMBRA_SHADOW_SET 0
+#endif
+#ifndef PENUMBRA_SHADOW_BINDING_BASE
+#define PENUMBRA_SHADOW_BINDING_BASE 0
+#endif
+#include "shadows/bindings.h"
+#include "shadows/structs.glsl"
+#include "shadows/noise.glsl"
+#include "shadows/bias.glsl"
+#include "shadows/pcss.glsl"
+#include "shadows/tent.glsl"
+#include "shadows/virtual_face_shadows.glsl"
+#include "shadows/virtual_shadows.glsl"
 
-layout(set = kPassSet, binding = kLitBindingDirectionalShadows, std140) uniform DirectionalShadowBlock { DirectionalShadowData directionalShadows; };
-layout(set = kPassSet, binding = kLitBindingDirectionalAtlas) uniform sampler2DShadow directionalShadowAtlas;
+#define PENUMBRA_SHADOW_BINDING(name) set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + name
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingView), std140) uniform PenumbraShadowViewBlock { ShadowViewData shadowView; };
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingLights), std430) readonly buffer PenumbraShadowLightBlock {
+    ShadowLightSlot shadowLights[];
+};
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectional), std140) uniform DirectionalShadowBlock {
+    DirectionalShadowData directionalShadows;
+};
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas)) uniform sampler2DShadow directionalShadowAtlas;
 // The same atlases read as raw depth (nearest): the receiver-plane compare and blocker searches.
-layout(set = kPassSet, binding = kLitBindingDirectionalDepth) uniform sampler2D directionalShadowDepth;
-layout(set = kPassSet, binding = kLitBindingOtherDepth) uniform sampler2D otherShadowDepth;
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalDepth)) uniform sampler2D directionalShadowDepth;
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOtherDepth)) uniform sampler2D otherShadowDepth;
 
 struct ShadowSample {
     float attenuation;  // 1 = lit, 0 = fully shadowed (strength and fades applied)
     int cascade;        // cascade index sampled, -1 = none
 };
 
-// (1 / size, 1 / size, size, size) of a square atlas: the texelSize of the tent filters (shadow_tent.glsl).
+// (1 / size, 1 / size, size, size) of a square atlas: the texelSize of the tent filters (tent.glsl).
 vec4 shadowTexelSize(float atlasSize, float invAtlasSize) { return vec4(invAtlasSize, invAtlasSize, atlasSize, atlasSize); }
 
 // FadedShadowStrength ("Directional Shadows", Fading Shadows): saturate((1 - distance * scale) * fade).
@@ -43,8 +72,8 @@ vec4 directionalTileBounds(uint tile) {
 }
 
 // "Directional Shadows", Normal Bias and PCF Filtering: sample one cascade of a light, biased as
-// shadows.bias says (shadow_bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent
-// (shadow_tent.glsl).
+// shadows.bias says (bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent
+// (tent.glsl).
 float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
     DirectionalShadowLight light = directionalShadows.lights[slot];
     uint filterMode = light.filterMode;
@@ -115,7 +144,7 @@ struct DistanceFade {
 
 float distanceFadeStrength(vec3 wsPosition, float viewDepth, DistanceFade fade) {
     if (fade.mode == kShadowFadeSquared) {
-        vec3 fromCamera = wsPosition - frame.wsCameraPosition.xyz;
+        vec3 fromCamera = wsPosition - shadowView.wsCameraPosition.xyz;
         return 1.0 - clamp(dot(fromCamera, fromCamera) * fade.squaredScale + fade.squaredBias, 0.0, 1.0);
     }
     return fadedShadowStrength(viewDepth, fade.invShadowDistance, fade.invDistanceFade);
@@ -128,7 +157,7 @@ float distanceFadeStrength(vec3 wsPosition, float viewDepth, DistanceFade fade) 
 ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
     if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.lightCount) return ShadowSample(1.0, -1);
     vec3 wsPosition = receiver.wsPosition;
-    float viewDepth = -(frame.viewFromWorld * vec4(wsPosition, 1.0)).z;
+    float viewDepth = -(shadowView.viewFromWorld * vec4(wsPosition, 1.0)).z;
     DistanceFade fade = DistanceFade(directionalShadows.fadeMode, directionalShadows.invShadowDistance,
                                      directionalShadows.invDistanceFade, directionalShadows.squaredFadeScale,
                                      directionalShadows.squaredFadeBias);
@@ -172,11 +201,16 @@ ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pi
 // sampling only), and the soft filter, so a frame pays only for the sampling code it uses (and lavapipe
 // compiles no more than that). The generic variant (every mode bit, filter kShadowFilterFromData) gives
 // the same result for every frame; the renderer draws with it while the specialized one is still being built.
-layout(constant_id = 2) const uint kOtherShadowMode = 0u;
+#ifdef PENUMBRA_SHADOW_CONSTANT_ID
+layout(constant_id = PENUMBRA_SHADOW_CONSTANT_ID) const uint kOtherShadowMode = 0u;
+layout(constant_id = PENUMBRA_SHADOW_CONSTANT_ID + 1) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
+#else
+const uint kOtherShadowMode = kOtherShadowsHard | kOtherShadowsSoft | kOtherShadowsVirtual;  // the generic variant
+const uint kOtherShadowFilter = kShadowFilterFromData;
+#endif
 const bool kOtherShadowsFromFaces = (kOtherShadowMode & kOtherShadowsVirtual) != 0u;  // shadows.spot.mode = virtual
-layout(constant_id = 3) const uint kOtherShadowFilter = 2u;  // kShadowFilterPcf5x5
-layout(set = kPassSet, binding = kLitBindingOtherShadows, std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
-layout(set = kPassSet, binding = kLitBindingOtherAtlas) uniform sampler2DShadow otherShadowAtlas;
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOther), std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOtherAtlas)) uniform sampler2DShadow otherShadowAtlas;
 
 // HardShadowAttenuation / SoftShadowAttenuation ("Spotlight Shadows", Soft Shadows), the soft one with
 // spot.filter's tent.
@@ -199,7 +233,7 @@ uint pointLightFace(vec3 wsFromLight) {
 }
 
 // ShadowAttenuation of "Spotlight Shadows", extended to point lights: bias the lookup as shadows.bias
-// says (shadow_bias.glsl; the world texel grows with the distance along the tile's axis), pick the tile
+// says (bias.glsl; the world texel grows with the distance along the tile's axis), pick the tile
 // (a point light's cube face by the major axis of light -> lookup point), project, divide by w, keep the
 // filter inside the tile's drawn interior (inside the scissored border, "Shadow Map Atlas"), compare,
 // lerp by strength.
@@ -208,7 +242,7 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
     if (kOtherShadowMode == 0u) return ShadowSample(1.0, -1);
     if (shadowSlot == kNoShadowSlot || shadowSlot >= otherShadows.lightCount) return ShadowSample(1.0, -1);
     OtherShadowLight light = otherShadows.lights[shadowSlot];
-    float viewDepth = -(frame.viewFromWorld * vec4(receiver.wsPosition, 1.0)).z;
+    float viewDepth = -(shadowView.viewFromWorld * vec4(receiver.wsPosition, 1.0)).z;
     DistanceFade fade = DistanceFade(otherShadows.fadeMode, otherShadows.invShadowDistance, otherShadows.invDistanceFade,
                                      otherShadows.squaredFadeScale, otherShadows.squaredFadeBias);
     float strength = light.strength * distanceFadeStrength(receiver.wsPosition, viewDepth, fade);
@@ -250,4 +284,29 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
         : filterOtherShadow(lookup, soft);
     return ShadowSample(mix(1.0, shadow, strength), -1);
 }
+// ---- The entry points of an engine's shaders ----
+
+// Light `light`'s shadow term at a surface point, as Penumbra's lit pass computes it: 1 lit, 0 fully
+// shadowed, the light's strength, the distance fade and the cascade blend applied. `light` indexes the
+// light table (PenumbraShadowLightBlock, the caller's light order); wsNormal is the unit shading normal
+// turned toward the viewer, wsGeometricNormal the triangle's unit normal on the same side (the
+// receiver-plane and scaled-normal biases use it), pixel the window position of the pixel centre
+// (dithered cascade blends). A light without shadows, or beyond the table, gives 1.
+float penumbraShadowWithGeometricNormal(uint light, vec3 wsPosition, vec3 wsNormal, vec3 wsGeometricNormal, vec2 pixel) {
+    if (light >= shadowView.lightCount) return 1.0;
+    ShadowLightSlot entry = shadowLights[light];
+    ShadowReceiver receiver = ShadowReceiver(wsPosition, wsNormal, wsGeometricNormal);
+    if (entry.type == kLightDirectional) return directionalShadow(entry.slot, receiver, pixel).attenuation;
+    if (entry.slot == kNoShadowSlot || entry.slot >= otherShadows.lightCount) return 1.0;
+    vec3 wsOffset = otherShadows.lights[entry.slot].wsPosition.xyz - wsPosition;
+    vec3 wsToLight = wsOffset * inversesqrt(max(dot(wsOffset, wsOffset), 1e-8));
+    return otherShadow(entry.slot, receiver, wsToLight).attenuation;
+}
+
+// The same where only the shading normal is known (a G-buffer without the triangle's normal): it serves
+// as the geometric normal too, exact on flat-shaded surfaces.
+float penumbraShadow(uint light, vec3 wsPosition, vec3 wsNormal, vec2 pixel) {
+    return penumbraShadowWithGeometricNormal(light, wsPosition, wsNormal, wsNormal, pixel);
+}
+
 #endif

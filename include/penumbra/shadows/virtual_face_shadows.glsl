@@ -1,7 +1,7 @@
 // Spot and point light shadows from their virtual shadow maps (shadows.spot.mode = virtual), for the lit
 // pass and the visibility resolve: the face a receiver reads (a spot light's one, a point light's face of
 // the major axis), the mip its footprint picks or the first coarser ready one (virtual_face_lookup.glsl,
-// the marking pass's rule), the biases of shadow_bias.glsl with that mip's texel, and the light's filter
+// the marking pass's rule), the biases of bias.glsl with that mip's texel, and the light's filter
 // (tent, 2 x 2 or PCSS) over the mip's texels through the page table, so filters read across page borders
 // and fall back to a coarser mip where a page is missing (Unreal Engine's "Virtual Shadow Maps"
 // documentation: local lights' virtual maps with mips picked by the pixel's footprint).
