@@ -61,6 +61,7 @@ struct RenderSettings {
     bool meshletCulling = false;
     ToneMapping toneMapping = ToneMapping::Neutral;
     Background background = Background::Gradient;
+    bool operator==(const RenderSettings&) const = default;
 };
 
 }  // namespace penumbra

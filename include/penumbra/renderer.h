@@ -71,6 +71,10 @@ struct VirtualPageCounts {
     // Pool pressure (spot and point faces): steps coarser than shadows.virtual.faceLodBias the pages were
     // marked and read at, after earlier frames overflowed the pool (0..2).
     uint32_t lodBiasSteps = 0;
+    // The page update was skipped: the frame's inputs (camera, settings, casters, lights) equal those of a
+    // finished frame that found every requested page resident and drew nothing; that frame's requested,
+    // cached and resident counts are repeated (docs/rendering.md, "Settled frames").
+    bool settled = false;
 };
 
 struct FrameStats {

@@ -18,6 +18,7 @@ struct Settings {
     // applySettingOverride), so that applySceneDefaults leaves the user's own choices alone.
     std::vector<std::string> userKeys;
     bool userSet(const std::string& key) const;
+    bool operator==(const Settings&) const = default;
 };
 
 // Parses settings JSON text; every key optional. Unknown key, wrong type or out-of-range value:

@@ -46,6 +46,7 @@ struct DirectionalShadowSettings {
     CascadeFit fit = CascadeFit::Tight;                   // measured best (docs/fidelity.md)
     CascadeSplitMode cascadeSplits = CascadeSplitMode::Log;  // measured best (docs/fidelity.md)
     float splitLambda = 0.75f;  // practical splits: weight of the logarithmic split, 0..1
+    bool operator==(const DirectionalShadowSettings&) const = default;
 };
 
 struct SpotShadowSettings {
@@ -65,6 +66,7 @@ struct SpotShadowSettings {
     // grazing spot of tests/render/spot_bias_test.cpp peter-pans more than the normal bias (0.27 % vs
     // 0.19 %). The normal bias is in texels, so it is right at every near plane and tile size.
     float depthBias = 0.0f;
+    bool operator==(const SpotShadowSettings&) const = default;
 };
 
 // The virtual shadow maps (shadows.directional.mode = virtual): each directional light's clipmap of
@@ -86,6 +88,7 @@ struct VirtualShadowSettings {
     // they read finer texels than the clipmaps (measured: docs/fidelity.md, "Spot and point lights'
     // virtual shadow maps").
     float faceLodBias = -2.0f;
+    bool operator==(const VirtualShadowSettings&) const = default;
 };
 
 struct ShadowSettings {
@@ -101,6 +104,7 @@ struct ShadowSettings {
     DirectionalShadowSettings directional;
     SpotShadowSettings spot;
     VirtualShadowSettings virtualMaps;  // the "shadows.virtual" keys
+    bool operator==(const ShadowSettings&) const = default;
 };
 
 // Filter footprint in texels beyond the centre tap: PCF2x2 -> 0 ... PCF7x7 -> 3.

@@ -107,7 +107,9 @@ private:
 struct PageSeries {
     Series requested, cached, allocated, drawn, evicted, overflowed, resident;
     uint32_t maps = 0, poolPages = 0, lodBiasSteps = 0;  // of the last timed frame
+    uint32_t settled = 0;  // frames whose page update was skipped (VirtualPageCounts::settled)
     void add(const VirtualPageCounts& pages) {
+        settled += pages.settled ? 1u : 0u;
         requested.values.push_back(pages.requested);
         cached.values.push_back(pages.cached);
         allocated.values.push_back(pages.allocated);
@@ -123,6 +125,7 @@ struct PageSeries {
         return {{mapsKey, maps},
                 {"poolPages", poolPages},
                 {"lodBiasSteps", lodBiasSteps},
+                {"settledFrames", settled},
                 {"requested", requested.median()},
                 {"cached", cached.median()},
                 {"allocated", allocated.median()},
@@ -139,6 +142,7 @@ struct PageSeries {
                     what, maps, maps_, poolPages, requested.median(), cached.median(), allocated.median(), drawn.median(),
                     drawn.percentile(1.0), evicted.median(), resident.median(), overflowed.percentile(1.0));
         if (lodBiasSteps > 0) std::printf("; pool pressure: lodBias %u step(s) coarser at the end", lodBiasSteps);
+        if (settled > 0) std::printf("; %u of %zu frames settled (page update skipped)", settled, requested.values.size());
         std::printf("\n");
     }
 };

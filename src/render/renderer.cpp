@@ -133,7 +133,10 @@ void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
     ++state_->sceneVersion;
 }
 
-void Renderer::setLight(uint32_t light, const Light& value) { replaceLight(state_->scene, light, value); }
+void Renderer::setLight(uint32_t light, const Light& value) {
+    replaceLight(state_->scene, light, value);
+    ++state_->lightVersion;
+}
 
 void Renderer::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(state_->scene, material, value);

@@ -381,6 +381,9 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     stats.virtualFacePages.maps = virtualFaces.faceCount();
     stats.virtualFacePages.poolPages = virtualFaces.poolPages();
     stats.virtualFacePages.lodBiasSteps = virtualFaces.poolPressureSteps();
+    virtualSettling.beginFrame(frameIndex, {settings, view, sceneVersion, lightVersion, virtualFaces.poolPressureSteps()});
+    frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
+    frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
     const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
     try {
         targets.ensure(sizes);
@@ -438,10 +441,34 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     return submitted;
 }
 
+// A finished frame's virtual page counts: a skipped update repeats those of the frame that settled it;
+// an update that found nothing to do settles its kind for the frames of the same inputs.
+void Renderer::State::settleVirtualPages(PendingFrame& finished) {
+    FrameStats& stats = finished.stats;
+    const auto repeat = [](VirtualPageCounts& pages, const VirtualPageCounts& at) {
+        pages.requested = pages.cached = at.requested;
+        pages.resident = at.resident;
+        pages.settled = true;
+    };
+    if (finished.virtualSettled) {
+        repeat(stats.virtualPages, virtualSettling.directionalPages().pages);
+        stats.virtualMaps = virtualSettling.directionalPages().levels;
+    } else {
+        virtualSettling.directionalFinished(finished.frameIndex, stats);
+    }
+    if (finished.facesSettled) {
+        repeat(stats.virtualFacePages, virtualSettling.facePages().pages);
+        stats.virtualFaceMips = virtualSettling.facePages().levels[0];
+    } else {
+        virtualSettling.facesFinished(finished.frameIndex, stats);
+    }
+}
+
 // A frame the GPU has finished: its readback into its stats, its timings into the auto choices.
 void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finished) {
     FrameStats& stats = finished.stats;
     applyFrameReadback(stats, finished.plan, finished.readback, done.readback, rasterNeeded);
+    settleVirtualPages(finished);
     facesWentCoarser = virtualFaces.notePoolLoad(stats.virtualFacePages) || facesWentCoarser;
     if (stats.rasterDropped > 0) {  // those tiles and pages are incomplete: draw them all again
         directionalCache.invalidate();
@@ -517,6 +544,7 @@ void Renderer::State::resetPendingFrame(PendingFrame& frame) {
     frame.frameIndex = 0;
     frame.readback = FrameReadbackLayout{};
     frame.computeRaster = frame.autoRaster = frame.visibilityView = frame.autoMainView = false;
+    frame.virtualSettled = frame.facesSettled = false;
     frame.view = CameraView{};
     frame.rasterSetting = ShadowRaster::Auto;
     frame.mainViewSetting = MainView::Auto;

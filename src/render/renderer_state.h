@@ -22,6 +22,7 @@
 #include "render/shadow_culling_pass.h"
 #include "render/tile_cache.h"
 #include "render/virtual_face_shadows.h"
+#include "render/virtual_settling.h"
 #include "render/virtual_shadows.h"
 #include "render/visibility_pass.h"
 #include "render/visible_surface_pass.h"
@@ -48,6 +49,8 @@ struct PendingFrame {
     bool autoRaster = false;      // shadows.raster = auto and still measuring: its timings feed the choice
     bool visibilityView = false;  // the main view came from the visibility buffer
     bool autoMainView = false;    // render.mainView = auto and still measuring: its main pass time feeds the choice
+    // The page update of the directional maps / the faces was skipped (render/virtual_settling.h).
+    bool virtualSettled = false, facesSettled = false;
     CameraView view;              // for the tight fit's depth subsample
     ShadowRaster rasterSetting = ShadowRaster::Auto;
     MainView mainViewSetting = MainView::Auto;
@@ -110,6 +113,8 @@ struct Renderer::State {
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
     uint64_t sceneVersion = 0;  // bumped by every change to the casters (transforms, cast flags, materials)
+    uint64_t lightVersion = 0;  // bumped by every change to a light
+    VirtualSettling virtualSettling;
     FrameTargets targets;
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
@@ -152,10 +157,12 @@ struct Renderer::State {
     void casterChanged(const Aabb& wsBounds) {
         virtualShadows.casterChanged(wsBounds);
         virtualFaces.casterChanged(wsBounds);
+        virtualSettling.unsettle();
     }
     void invalidateVirtualMaps() {
         virtualShadows.invalidateAll();
         virtualFaces.invalidateAll();
+        virtualSettling.unsettle();
     }
 
 private:
@@ -190,6 +197,7 @@ private:
     gpu::ExternalTarget recordOutputs(FrameRecording& recording, const ExternalImage* target, bool readback,
                                       bool captureAtlas);
     void finishFrame(gpu::CompletedFrame& done, PendingFrame& finished);
+    void settleVirtualPages(PendingFrame& finished);
 };
 
 }  // namespace penumbra

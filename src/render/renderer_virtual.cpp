@@ -25,8 +25,17 @@ const VisibilityPass::Target& Renderer::State::opaqueTargetFor(const FrameRecord
 void Renderer::State::recordViewShadowInputs(FrameRecording& recording, MainPassInputs& inputs,
                                              const MainPassVariant& litPass) {
     const DirectionalShadowPlan& directional = recording.frame.plan.directional;
-    const bool directionalMaps = virtualShadows.active() && !directional.lights.empty();
-    if (directionalMaps || virtualFaces.active()) {
+    // A settled kind (render/virtual_settling.h) keeps its pages and tables as they are: no pass, an empty timer.
+    const bool directionalMaps = virtualShadows.active() && !directional.lights.empty() && !recording.frame.virtualSettled;
+    const bool faces = virtualFaces.active() && !recording.frame.facesSettled;
+    if (recording.frame.virtualSettled) virtualShadows.keepPages(directional);
+    for (const auto& [settled, timer] : {std::pair{recording.frame.virtualSettled, "shadows.virtual"},
+                                         std::pair{recording.frame.facesSettled, "shadows.virtualFaces"}}) {
+        if (!settled) continue;
+        recording.commands.beginTimer(timer);
+        recording.commands.endTimer();
+    }
+    if (directionalMaps || faces) {
         gpu::CommandList& commands = recording.commands;
         const CameraView& view = recording.view;
         VirtualPageDepthSource depth;
@@ -58,7 +67,7 @@ void Renderer::State::recordViewShadowInputs(FrameRecording& recording, MainPass
                 readback.virtualLevels[map] = device.readBackAtFrameEnd(commands, virtualShadows.levelStats(map));
             }
         }
-        if (virtualFaces.active()) {
+        if (faces) {
             recording.stage = "shadows.virtualFaces";
             commands.beginTimer("shadows.virtualFaces");
             virtualFaces.record(commands, depth, view, readback.rasterCounters[6]);

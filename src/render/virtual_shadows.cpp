@@ -166,7 +166,6 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
                             std::span<uint64_t> rasterReadback) {
     if (!active_) return;
     const uint32_t lights = mapsInUse(uint32_t(plan.lights.size()));
-    block_.mapCount = lights;
     for (uint32_t slot = 0; slot < lights; ++slot) {
         VirtualShadowMap& map = *maps_[slot];
         const gpu_data::DirectionalShadowLight& light = plan.gpu.lights[slot];
@@ -181,10 +180,19 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
         map.record(commands, depth, view, plan.lights[slot].wsDirection, wsSceneBounds, marginTexels,
                    std::span(invalidations_.data(), invalidationCount_));
         if (slot < rasterReadback.size()) rasterReadback[slot] = device_.readBackAtFrameEnd(commands, raster_.counters());
-        block_.maps[slot] = map.lookupData();
     }
     invalidateAll_ = false;
     changedBounds_.clear();
+    publishLookupData(lights);
+}
+
+void VirtualShadows::keepPages(const DirectionalShadowPlan& plan) {
+    if (active_) publishLookupData(mapsInUse(uint32_t(plan.lights.size())));
+}
+
+void VirtualShadows::publishLookupData(uint32_t lights) {
+    block_.mapCount = lights;
+    for (uint32_t slot = 0; slot < lights; ++slot) block_.maps[slot] = maps_[slot]->lookupData();
     device_.writeBuffer(blocks_, &block_, sizeof(block_), slotOffset());
 }
 

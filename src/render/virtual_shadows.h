@@ -88,6 +88,10 @@ public:
     void record(gpu::CommandList& commands, const VirtualPageDepthSource& depth, const CameraView& view,
                 const DirectionalShadowPlan& plan, const Aabb& wsSceneBounds, std::span<uint64_t> rasterReadback);
 
+    // A settled frame (render/virtual_settling.h): no pass; the frame's uniform block gets the maps' lookup
+    // data of their last record, which the page tables still hold.
+    void keepPages(const DirectionalShadowPlan& plan);
+
     uint32_t mapCount() const { return uint32_t(maps_.size()); }
     // The maps a frame of lightCount reserved directional lights records and reads back: one per light
     // while there are maps, none when the mode is not virtual.
@@ -99,6 +103,8 @@ public:
 
 private:
     void configure(const VirtualShadowMapConfig& config, uint32_t lightCount);
+    // The lights' lookup data into this frame's uniform slot.
+    void publishLookupData(uint32_t lights);
     void releaseMaps();
     // The rectangles of the changed casters as `map` sees them this frame, into invalidations_; false
     // when they do not fit one record.
