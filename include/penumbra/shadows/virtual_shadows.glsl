@@ -47,6 +47,15 @@ float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) {
     return faces ? texelFetch(virtualFacePool, poolTexel, 0).r : texelFetch(virtualShadowPool, poolTexel, 0).r;
 }
 
+// The 2 x 2 pool texels from poolTexel (its lower corner) to poolTexel + 1 in one gather, in the order
+// (0,0) (1,0) (0,1) (1,1); textureGather gives them as (0,1) (1,1) (1,0) (0,0).
+vec4 virtualShadowPoolGather(bool faces, ivec2 poolTexel) {
+    vec4 gathered;
+    if (faces) gathered = textureGather(virtualFacePool, vec2(poolTexel + 1) / vec2(textureSize(virtualFacePool, 0)), 0);
+    else gathered = textureGather(virtualShadowPool, vec2(poolTexel + 1) / vec2(textureSize(virtualShadowPool, 0)), 0);
+    return gathered.wzxy;
+}
+
 #include "virtual_shadow_lookup.glsl"
 
 // The level that serves a receiver at light-space lsPosition: its footprint's level, or the first
@@ -92,20 +101,61 @@ float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, v
     return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
 }
 
+// virtualCompareBilinear where every texel of the block lies in one ready page of the level, whose pool
+// texel is texel + poolFromTexel: one gather, no page lookup; the same texels, so the same result.
+float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 q, vec3 uvDepth, vec2 u, vec2 g, bool perTexelPlane) {
+    vec2 first = floor(q - 0.5);
+    vec2 f = q - 0.5 - first;
+    vec4 stored = virtualShadowPoolGather(faces, ivec2(first) + poolFromTexel);
+    vec4 lit;  // (0,0) (1,0) (0,1) (1,1)
+    for (int i = 0; i < 4; ++i) {
+        vec2 offset = vec2(float(i & 1), float(i >> 1));
+        float z = perTexelPlane ? uvDepth.z + dot(g, first + offset + 0.5 - u) : uvDepth.z;
+        lit[i] = z <= stored[i] ? 1.0 : 0.0;
+    }
+    return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
+}
+
+// Whether a filter that reads the texels within `reach` of the one nearest u (on both axes) reads one
+// ready page of the level (most receivers: a kernel of a few texels in a page of 128), and where that
+// page's texels are in the pool (pool texel = texel + poolFromTexel).
+bool virtualKernelInOnePage(VirtualShadowLookupData data, uint level, vec2 u, int reach, out ivec2 poolFromTexel) {
+    poolFromTexel = ivec2(0);
+    if (any(greaterThan(abs(u), vec2(kVirtualShadowMaxTexel)))) return false;
+    ivec2 centre = ivec2(floor(u + 0.5));
+    ivec2 page = virtualShadowPageOfTexel(data, centre - reach);
+    if (page != virtualShadowPageOfTexel(data, centre + reach)) return false;
+    int physical = virtualShadowReadyPage(data, level, page);
+    if (physical < 0) return false;
+    const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
+    poolFromTexel = ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY)) - page * size;
+    return true;
+}
+
 // The light's filter at uvDepth (texels, depth): one bilinear block (PCF2x2) or the tent of
-// tent.glsl, whose fetch positions and weights are the cascades'.
+// tent.glsl, whose fetch positions and weights are the cascades'. A kernel inside one ready page
+// (virtualKernelInOnePage) gathers its blocks from that page; one that crosses a page border or needs a
+// coarser level's texels looks every texel up.
 float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDepth, uint filterMode, vec2 g,
                             bool perTexelPlane) {
     vec2 u = uvDepth.xy;
-    if (filterMode == kShadowFilterPcf2x2) return virtualCompareBilinear(data, level, u, uvDepth, u, g, perTexelPlane);
-    int pairs = int(filterMode) + 1;
+    bool faces = data.faceCount > 0u;
+    int pairs = filterMode == kShadowFilterPcf2x2 ? 0 : int(filterMode) + 1;
+    ivec2 poolFromTexel;
+    bool onePage = virtualKernelInOnePage(data, level, u, max(pairs, 1) + 1, poolFromTexel);
+    if (pairs == 0)
+        return onePage ? virtualCompareGathered(faces, poolFromTexel, u, uvDepth, u, g, perTexelPlane)
+                       : virtualCompareBilinear(data, level, u, uvDepth, u, g, perTexelPlane);
     vec4 px, wx, py, wy;
     penumbraTentFetches1D(u.x, pairs, px, wx);
     penumbraTentFetches1D(u.y, pairs, py, wy);
     float shadow = 0.0;
     for (int y = 0; y < pairs; ++y)
-        for (int x = 0; x < pairs; ++x)
-            shadow += wx[x] * wy[y] * virtualCompareBilinear(data, level, vec2(px[x], py[y]), uvDepth, u, g, perTexelPlane);
+        for (int x = 0; x < pairs; ++x) {
+            vec2 q = vec2(px[x], py[y]);
+            shadow += wx[x] * wy[y] * (onePage ? virtualCompareGathered(faces, poolFromTexel, q, uvDepth, u, g, perTexelPlane)
+                                               : virtualCompareBilinear(data, level, q, uvDepth, u, g, perTexelPlane));
+        }
     return shadow;
 }
 
