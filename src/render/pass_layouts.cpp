@@ -18,31 +18,25 @@ constexpr gpu::DescriptorType kStorage = gpu::DescriptorType::StorageBuffer;
 constexpr gpu::DescriptorType kSampled = gpu::DescriptorType::SampledTexture;
 constexpr uint32_t kV = gpu::kStageVertex, kF = gpu::kStageFragment, kC = gpu::kStageCompute;
 
-// The virtual shadow maps (penumbra/shadows/virtual_shadows.glsl): the directional lights' and the spot and point lights'
-// faces, read wherever penumbra/shadows.glsl's directionalShadow is (its page reads name both tables).
-void appendVirtualShadows(std::vector<BindingDesc>& bindings, uint32_t stage) {
-    bindings.insert(bindings.end(), {{"VirtualShadowBlock", kLitBindingVirtualShadows, kUniform, stage},
-                                     {"virtualShadowPool", kLitBindingVirtualPool, kSampled, stage},
-                                     {"VirtualPageBlock", kLitBindingVirtualPages, kStorage, stage},
-                                     {"VirtualFaceBlock", kLitBindingVirtualFaces, kUniform, stage},
-                                     {"virtualFacePool", kLitBindingVirtualFacePool, kSampled, stage},
-                                     {"VirtualFacePageBlock", kLitBindingVirtualFacePages, kStorage, stage}});
+// The shadow sampling's descriptors (penumbra/shadows.glsl) at the passes' kLitShadowBindingBase, from the
+// table the installed GLSL documents; the light table only serves penumbraShadow, which the passes do not call.
+void appendShadowSampling(std::vector<BindingDesc>& bindings, uint32_t stage) {
+    for (const ShadowDescriptor& descriptor : kShadowDescriptors) {
+        if (descriptor.binding == kShadowBindingLights) continue;
+        const gpu::DescriptorType type = descriptor.type == ShadowDescriptorType::UniformBuffer ? kUniform
+                                         : descriptor.type == ShadowDescriptorType::StorageBuffer ? kStorage
+                                                                                                  : kSampled;
+        bindings.push_back({descriptor.glslName, kLitShadowBindingBase + descriptor.binding, type, stage});
+    }
 }
 
 // What shade_surface.glsl reads beyond the scene: lights, shadows, clusters (all in one stage).
 void appendLighting(std::vector<BindingDesc>& bindings, uint32_t stage) {
     bindings.insert(bindings.end(), {{"LightBlock", kSceneBindingLights, kStorage, stage},
-                                     {"PenumbraShadowViewBlock", kLitBindingShadowView, kUniform, stage},
-                                     {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, stage},
-                                     {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, stage},
-                                     {"OtherShadowBlock", kLitBindingOtherShadows, kUniform, stage},
-                                     {"otherShadowAtlas", kLitBindingOtherAtlas, kSampled, stage},
                                      {"screenSpaceShadows", kLitBindingScreenSpaceShadows, kSampled, stage},
-                                     {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, stage},
-                                     {"otherShadowDepth", kLitBindingOtherDepth, kSampled, stage},
                                      {"LightClusterBlock", kLitBindingLightClusters, kUniform, stage},
                                      {"ClusterMaskBlock", kLitBindingClusterMasks, kStorage, stage}});
-    appendVirtualShadows(bindings, stage);
+    appendShadowSampling(bindings, stage);
 }
 
 // raster_mesh.glsl's buffers, shared by both compute rasterizers.
@@ -88,13 +82,9 @@ std::vector<BindingDesc> shadowCasterBindings() {
 
 std::vector<BindingDesc> screenSpaceShadowBindings() {
     std::vector<BindingDesc> bindings = {{"FrameBlock", kSceneBindingFrame, kUniform, kF},
-                                         {"PenumbraShadowViewBlock", kLitBindingShadowView, kUniform, kF},
-                                         {"DirectionalShadowBlock", kLitBindingDirectionalShadows, kUniform, kF},
-                                         {"directionalShadowAtlas", kLitBindingDirectionalAtlas, kSampled, kF},
-                                         {"directionalShadowDepth", kLitBindingDirectionalDepth, kSampled, kF},
                                          {"sceneDepth", kScreenShadowBindingSceneDepth, kSampled, kF},
                                          {"sceneNormals", kScreenShadowBindingSceneNormals, kSampled, kF}};
-    appendVirtualShadows(bindings, kF);
+    appendShadowSampling(bindings, kF);  // the spot and point ones, which no stage reads: allowed
     return bindings;
 }
 

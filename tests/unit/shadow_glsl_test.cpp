@@ -5,11 +5,10 @@
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
+#include <penumbra/files.h>
 #include <penumbra/shadows/bindings.h>
 
 #include "gpu/shader_interface.h"
@@ -19,9 +18,7 @@ namespace penumbra {
 namespace {
 
 std::vector<uint32_t> readSpirv(const std::string& name) {
-    std::ifstream file(std::string(PENUMBRA_TEST_SPIRV_DIR) + "/" + name + ".spv", std::ios::binary);
-    EXPECT_TRUE(file.good()) << name;
-    std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const std::vector<uint8_t> bytes = readFileBytes(std::string(PENUMBRA_TEST_SPIRV_DIR) + "/" + name + ".spv");
     std::vector<uint32_t> words(bytes.size() / 4);
     std::memcpy(words.data(), bytes.data(), words.size() * 4);
     return words;
