@@ -41,6 +41,9 @@ struct ExternalVulkanDevice {
     // Optional features the caller enabled: shaderInt64 (1.0) and shaderBufferInt64Atomics (1.2) let
     // render.mainView use the visibility buffer; without them it draws forward.
     bool bufferInt64Atomics = false;
+    // The timelineSemaphore feature (1.2): ShadowSystem's frames, recorded into the caller's command
+    // buffers, complete on a timeline semaphore value that the caller's submission signals.
+    bool timelineSemaphores = false;
 };
 
 // What is alive on a device, and what it has done so far (see Device::liveObjects).

@@ -23,4 +23,5 @@
 #include <penumbra/settings_keys.h>
 #include <penumbra/shadow_compare.h>
 #include <penumbra/shadow_stats.h>
+#include <penumbra/shadow_system.h>
 #include <penumbra/version.h>

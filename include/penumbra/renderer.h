@@ -208,6 +208,7 @@ public:
     void buildAllPipelines();
 
 private:
+    friend class ShadowSystem;  // runs the same State, frames of shadows only (shadow_system.h)
     struct State;
     std::unique_ptr<State> state_;
 };

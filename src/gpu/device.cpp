@@ -202,7 +202,8 @@ uint32_t findQueueFamily(VkPhysicalDevice physicalDevice, const std::string& nam
 }
 
 VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
-                             bool memoryBudget, bool& bufferInt64Atomics, bool& storageBufferArrayIndexing) {
+                             bool memoryBudget, bool& bufferInt64Atomics, bool& storageBufferArrayIndexing,
+                             bool& timelineSemaphores) {
     VkPhysicalDeviceFeatures supported{};
     vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -223,6 +224,9 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     // The visibility-buffer main view's 64-bit atomicMax (render/visibility_pass.h), where supported.
     bufferInt64Atomics = supported.shaderInt64 && supported12.shaderBufferInt64Atomics;
     features12.shaderBufferInt64Atomics = bufferInt64Atomics;
+    // Frames recorded into an embedder's command buffer complete on a timeline value (ShadowSystem).
+    timelineSemaphores = supported12.timelineSemaphore;
+    features12.timelineSemaphore = timelineSemaphores;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &features12;
     if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
@@ -290,7 +294,7 @@ void Device::createOwnDevice(const DeviceOptions& options) {
     d.queueFamily = findQueueFamily(d.physicalDevice, d.info.name);
     d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
     d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget, d.bufferInt64Atomics,
-                                   d.storageBufferArrayIndexing);
+                                   d.storageBufferArrayIndexing, d.timelineSemaphores);
     vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
 }
 
@@ -304,6 +308,7 @@ Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& option
     d.queue = reinterpret_cast<VkQueue>(external.queue);
     d.queueFamily = external.queueFamily;
     d.bufferInt64Atomics = external.bufferInt64Atomics;
+    d.timelineSemaphores = external.timelineSemaphores;
     if (!d.instance || !d.physicalDevice || !d.device || !d.queue)
         throw Error("external Vulkan device: instance, physical device, device and queue are all required");
     d.info = describe(d.physicalDevice, 0);
@@ -412,6 +417,7 @@ bool Device::lost() const { return impl_->lost; }
 bool Device::hasTimestamps() const { return impl_->timestampsSupported; }
 bool Device::hasBufferInt64Atomics() const { return impl_->bufferInt64Atomics; }
 bool Device::hasStorageBufferArrayIndexing() const { return impl_->storageBufferArrayIndexing; }
+bool Device::hasTimelineSemaphores() const { return impl_->timelineSemaphores; }
 
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);

@@ -47,15 +47,28 @@ public:
     // shaderStorageBufferArrayDynamicIndexing enabled: a binding may be an array of storage buffers that
     // a shader indexes with a dynamically uniform index (the culling lists split over buffers need it).
     bool hasStorageBufferArrayIndexing() const;
+    bool hasTimelineSemaphores() const;  // the timelineSemaphore feature is enabled (external frames)
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,
                               const std::string& debugName = "");
     void writeBuffer(BufferHandle buffer, const void* data, size_t size, size_t offset = 0);  // HostVisible only
     void* mappedPointer(BufferHandle buffer);
+    // The Vulkan objects behind handles, as integers (VkBuffer, VkImageView, VkSampler): what an
+    // embedder's own descriptors bind (ShadowSystem). Valid while the handle lives.
+    uint64_t nativeBuffer(BufferHandle buffer) const;
+    uint64_t nativeImageView(TextureHandle texture) const;
+    uint64_t nativeSampler(SamplerHandle sampler) const;
     uint64_t bufferSize(BufferHandle buffer) const;
     TextureHandle createTexture(const TextureDesc& desc);
     const TextureDesc& textureDesc(TextureHandle texture) const;
+    // A caller's depth image (VK_FORMAT_D32_SFLOAT, one level and layer, SAMPLED and DEPTH_STENCIL_ATTACHMENT
+    // usage) and its depth-aspect view, which passes sample; neither is ever destroyed here.
+    TextureHandle importDepthTexture(uint64_t vkImage, uint64_t vkImageView, uint32_t width, uint32_t height,
+                                     const std::string& debugName);
+    // The caller's own commands, recorded before the next pass, last wrote `texture` as `usage` (and left
+    // it in that usage's layout): the next pass that uses it waits for them.
+    void assumeWritten(TextureHandle texture, Usage usage);
     // Uploads level 0 (tightly packed RGBA8 / R8 ...) and builds the mip chain; leaves it ShaderRead.
     void uploadTexture(TextureHandle texture, std::span<const uint8_t> pixels);
     // Wraps a caller's VkImage (ExternalTarget::image) as a transfer destination; owns nothing.
@@ -89,6 +102,18 @@ public:
     // Ends and submits the frame with its fence (one vkQueueSubmit); `sync` adds the caller's
     // semaphores. Returns the frame's index.
     uint64_t submitFrame(CommandList& commands, const ExternalTarget* sync = nullptr);
+    // A frame recorded into a caller's primary command buffer (in the recording state, of this device's
+    // queue family) instead of the slot's own: the ring, timers and readbacks work as for beginFrame.
+    // endExternalFrame submits nothing: the caller submits the command buffer and signals the returned
+    // timeline value, which the slot waits for before it is used again (and readbacks and timers are
+    // read). Needs hasTimelineSemaphores().
+    CommandList beginExternalFrame(uint64_t vkCommandBuffer);
+    struct ExternalFrameEnd {
+        uint64_t frameIndex = 0;
+        uint64_t vkTimelineSemaphore = 0;  // VkSemaphore (VK_SEMAPHORE_TYPE_TIMELINE)
+        uint64_t signalValue = 0;          // what the caller's submission signals it to
+    };
+    ExternalFrameEnd endExternalFrame(CommandList& commands);
     // Drops the frame being recorded (after an error while recording it): nothing is submitted, the
     // slot is free for the next beginFrame, objects destroyed meanwhile go with the next submission.
     void abandonFrame(CommandList& commands);

@@ -157,6 +157,17 @@ void FrameGraph::forget(ResourceKey resource) {
     forgotten_.push_back(resource);
 }
 
+void FrameGraph::assumeWritten(ResourceKey resource, Usage usage) {
+    const UsageInfo ui = info(usage);
+    State& s = state(resource);
+    s.writeStages = ui.stages;
+    s.writeAccess = ui.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                                 VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    s.readStages = 0;
+    s.visibleTo = 0;
+    s.layout = resource.texture ? uint32_t(ui.layout) : 0u;
+}
+
 void FrameGraph::setName(ResourceKey resource, const std::string& name) {
     auto& names = resource.texture ? textureNames_ : bufferNames_;
     const uint32_t slot = slotOf(resource);

@@ -80,6 +80,9 @@ public:
 
     // A destroyed handle: its slot may come back for a new resource, which starts unused.
     void forget(ResourceKey resource);
+    // A resource that commands outside the graph (a caller's) last wrote as `usage`, leaving a texture in
+    // that usage's layout.
+    void assumeWritten(ResourceKey resource, Usage usage);
     // The slots tracked (states are kept per handle slot, not per id: an id carries a generation).
     size_t trackedSlots() const { return buffers_.size() + textures_.size(); }
     // Names shown by the printers (the debug names given at creation).

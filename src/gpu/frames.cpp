@@ -68,6 +68,25 @@ void Device::Impl::waitForFence(VkFence fence, const SubmissionName& what) {
         throw Error("Vulkan call failed: vkWaitForFences (" + what.describe() + ") returned " + vkResultName(result));
 }
 
+void Device::Impl::waitForTimeline(uint64_t value, const SubmissionName& what) {
+    throwIfLost();
+    ++fenceWaits;
+    // A generous bound: a frame's commands finish in well under this, so reaching it means the
+    // caller never submitted the command buffer with its signal (a hang would help nobody).
+    constexpr uint64_t kTimeoutNs = 60ull * 1000 * 1000 * 1000;
+    VkSemaphoreWaitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
+    wait.semaphoreCount = 1;
+    wait.pSemaphores = &externalTimeline;
+    wait.pValues = &value;
+    const VkResult result = vkWaitSemaphores(device, &wait, kTimeoutNs);
+    if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what.describe(), result);
+    if (result == VK_TIMEOUT)
+        throw Error(what.describe() + " did not finish within 60 s: was its command buffer submitted with the "
+                    "frame's completion semaphore signalled to its value?");
+    if (result != VK_SUCCESS)
+        throw Error("Vulkan call failed: vkWaitSemaphores (" + what.describe() + ") returned " + vkResultName(result));
+}
+
 void Device::Impl::createFrames(uint32_t count) {
     frames.resize(count);
     for (FrameContext& frame : frames) {
@@ -110,6 +129,8 @@ void Device::Impl::destroyFrames() {
         if (frame.commandPool) vkDestroyCommandPool(device, frame.commandPool, nullptr);
     }
     frames.clear();
+    if (externalTimeline) vkDestroySemaphore(device, externalTimeline, nullptr);
+    externalTimeline = VK_NULL_HANDLE;
 }
 
 void Device::Impl::retireFrame(FrameContext& frame) {
@@ -124,9 +145,13 @@ void Device::Impl::retireFrame(FrameContext& frame) {
         return;
     }
     try {
-        waitForFence(frame.fence, {{}, frame.frameIndex, std::span(frame.timerNames.data(), frame.timerCount)});
+        const SubmissionName what{{}, frame.frameIndex, std::span(frame.timerNames.data(), frame.timerCount)};
+        if (frame.external) waitForTimeline(frame.timelineValue, what);
+        else waitForFence(frame.fence, what);
     } catch (const Error&) {
-        retireFrame(frame);  // lost now: drop it as above
+        // Lost now: drop it as above. (An external frame whose command buffer never came stays in flight:
+        // each later wait for it fails the same way.)
+        if (lost) retireFrame(frame);
         throw;
     }
     if (completedCount == completed.size()) completed.emplace_back();
@@ -168,8 +193,19 @@ void Device::Impl::retireFrame(FrameContext& frame) {
 uint32_t Device::framesInFlight() const { return uint32_t(impl_->frames.size()); }
 uint64_t Device::nextFrameIndex() const { return impl_->nextFrameIndex; }
 
-CommandList Device::beginFrame() {
-    Impl& d = *impl_;
+CommandList Device::beginFrame() { return impl_->beginSlot(*this, VK_NULL_HANDLE); }
+
+CommandList Device::beginExternalFrame(uint64_t vkCommandBuffer) {
+    if (!impl_->timelineSemaphores)
+        throw Error("recording into a caller's command buffer needs the timelineSemaphore feature (Vulkan 1.2) on " +
+                    impl_->info.name + (impl_->ownsDevice ? "" : ": enable it and say so in ExternalVulkanDevice"));
+    if (!vkCommandBuffer) throw Error("no command buffer to record the frame into");
+    return impl_->beginSlot(*this, reinterpret_cast<VkCommandBuffer>(vkCommandBuffer));
+}
+
+// The next ring slot, its previous frame retired, recording into its own command buffer or `external`.
+CommandList Device::Impl::beginSlot(Device& owner, VkCommandBuffer external) {
+    Impl& d = *this;
     // Always checked: a frame left recording (not submitted, not abandoned) would be lost silently.
     if (d.recordingSlot >= 0) throw Error("internal: beginFrame while frame " +
                                           std::to_string(d.frames[d.recordingSlot].frameIndex) + " is still recording");
@@ -178,10 +214,14 @@ CommandList Device::beginFrame() {
     const uint32_t slot = uint32_t(d.nextFrameIndex % d.frames.size());
     FrameContext& frame = d.frames[slot];
     d.retireFrame(frame);
-    VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));
+    frame.external = external != VK_NULL_HANDLE;
+    VkCommandBuffer commandBuffer = frame.external ? external : frame.commandBuffer;
+    if (!frame.external) {
+        VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT));
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));
+    }
     frame.frameIndex = d.nextFrameIndex++;
     frame.uploadUsed = 0;
     frame.readbackRanges.clear();
@@ -189,8 +229,8 @@ CommandList Device::beginFrame() {
     d.frameGraph.beginFrame();
 
     CommandList commands;
-    commands.device = this;
-    commands.nativeCommandBuffer = frame.commandBuffer;
+    commands.device = &owner;
+    commands.nativeCommandBuffer = commandBuffer;
     commands.timerNames.swap(frame.timerNames);  // lent while it records (submitFrame gives them back)
     commands.openTimers.swap(frame.openTimers);
     commands.openTimers.clear();
@@ -198,8 +238,8 @@ CommandList Device::beginFrame() {
         // The slot's last two queries time the whole frame (submitFrame writes the end).
         commands.queryBase = slot * d.timestampsPerFrame;
         commands.queryCapacity = d.timestampsPerFrame - 2;
-        vkCmdResetQueryPool(frame.commandBuffer, d.timestampPool, commands.queryBase, d.timestampsPerFrame);
-        vkCmdWriteTimestamp2(frame.commandBuffer, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool,
+        vkCmdResetQueryPool(commandBuffer, d.timestampPool, commands.queryBase, d.timestampsPerFrame);
+        vkCmdWriteTimestamp2(commandBuffer, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, d.timestampPool,
                              commands.queryBase + commands.queryCapacity);
     } else {
         commands.queryBase = kNoQueries;
@@ -218,11 +258,11 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
         // more than any frame before it, so the steady state allocates nothing.
         uint64_t capacity = std::max(kInitialUploadBytes, frame.uploadCapacity * 2);
         while (capacity < offset + size) capacity *= 2;
+        if (!frame.readbackRanges.empty()) throw Error("internal: the upload ring grew after a frame readback");
         if (frame.uploadBuffer) {
             // Data written earlier in this frame lives in the old buffer; keep it until the frame is done.
             frame.garbage.buffers.push_back(d.buffers.remove(frame.uploadBuffer.id));
         }
-        if (!frame.readbackRanges.empty()) throw Error("internal: the upload ring grew after a frame readback");
         frame.uploadBuffer = createBuffer(capacity, kUploadRingUsage,
                                           MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = capacity;
@@ -248,15 +288,45 @@ uint64_t Device::readBackAtFrameEnd(CommandList& commands, const BufferSlice& so
     return start;
 }
 
+// The frame's last commands: the host readback's barrier and the closing timestamp.
+void Device::Impl::endSlotCommands(FrameContext& frame, CommandList& commands) {
+    PENUMBRA_ASSERT(recordingSlot >= 0 && commands.openTimers.empty());
+    // The host reads what readBackAtFrameEnd copied once the frame is done.
+    if (!frame.readbackRanges.empty()) commands.pass("host readback", {use(frame.uploadBuffer, Usage::HostRead)});
+    if (timestampsSupported)
+        vkCmdWriteTimestamp2(static_cast<VkCommandBuffer>(commands.nativeCommandBuffer), VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT,
+                             timestampPool, commands.queryBase + commands.queryCapacity + 1);
+}
+
+// The slot is in flight: it takes back its timers, and the objects destroyed since the last frame go
+// when it is done (frames before it may still use them).
+void Device::Impl::closeSlot(FrameContext& frame, CommandList& commands) {
+    frame.submitTime = std::chrono::steady_clock::now();
+    frame.inFlight = true;
+    frame.timerNames.swap(commands.timerNames);
+    frame.timerCount = commands.timerCount;
+    frame.openTimers.swap(commands.openTimers);
+    commands.timerCount = 0;
+    Garbage& garbage = frame.garbage;
+    auto append = [](auto& to, auto& from) {
+        to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+        from.clear();
+    };
+    append(garbage.buffers, pendingGarbage.buffers);
+    append(garbage.textures, pendingGarbage.textures);
+    append(garbage.pipelines, pendingGarbage.pipelines);
+    append(garbage.samplers, pendingGarbage.samplers);
+    append(garbage.tables, pendingGarbage.tables);
+    recordingSlot = -1;
+    commands.nativeCommandBuffer = nullptr;
+}
+
 uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) {
     Impl& d = *impl_;
-    PENUMBRA_ASSERT(d.recordingSlot >= 0 && commands.openTimers.empty());
+    if (d.recordingSlot < 0) throw Error("internal: submitFrame without beginFrame");
     FrameContext& frame = d.frames[d.recordingSlot];
-    // The host reads what readBackAtFrameEnd copied once the fence has signalled.
-    if (!frame.readbackRanges.empty()) commands.pass("host readback", {use(frame.uploadBuffer, Usage::HostRead)});
-    if (d.timestampsSupported)
-        vkCmdWriteTimestamp2(frame.commandBuffer, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, d.timestampPool,
-                             commands.queryBase + commands.queryCapacity + 1);
+    if (frame.external) throw Error("internal: submitFrame of a frame recorded into a caller's command buffer");
+    d.endSlotCommands(frame, commands);
     VK_CHECK(vkEndCommandBuffer(frame.commandBuffer));
     VkCommandBufferSubmitInfo commandInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     commandInfo.commandBuffer = frame.commandBuffer;
@@ -278,28 +348,28 @@ uint64_t Device::submitFrame(CommandList& commands, const ExternalTarget* sync) 
         submit.pSignalSemaphoreInfos = &signal;
     }
     VK_CHECK(vkResetFences(d.device, 1, &frame.fence));
-    frame.submitTime = std::chrono::steady_clock::now();
     d.queueSubmit(submit, frame.fence, {{}, frame.frameIndex, std::span(commands.timerNames.data(), commands.timerCount)});
-    frame.inFlight = true;
-    frame.timerNames.swap(commands.timerNames);
-    frame.timerCount = commands.timerCount;
-    frame.openTimers.swap(commands.openTimers);
-    commands.timerCount = 0;
-    // Objects destroyed since the last submit may be used by frames before this one: they go when
-    // this frame (the latest on the queue) is done.
-    Garbage& garbage = frame.garbage;
-    auto append = [](auto& to, auto& from) {
-        to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
-        from.clear();
-    };
-    append(garbage.buffers, d.pendingGarbage.buffers);
-    append(garbage.textures, d.pendingGarbage.textures);
-    append(garbage.pipelines, d.pendingGarbage.pipelines);
-    append(garbage.samplers, d.pendingGarbage.samplers);
-    append(garbage.tables, d.pendingGarbage.tables);
-    d.recordingSlot = -1;
-    commands.nativeCommandBuffer = nullptr;
+    d.closeSlot(frame, commands);
     return frame.frameIndex;
+}
+
+Device::ExternalFrameEnd Device::endExternalFrame(CommandList& commands) {
+    Impl& d = *impl_;
+    if (d.recordingSlot < 0) throw Error("internal: endExternalFrame without beginExternalFrame");
+    FrameContext& frame = d.frames[d.recordingSlot];
+    if (!frame.external) throw Error("internal: endExternalFrame of a frame recorded into Penumbra's command buffer");
+    d.endSlotCommands(frame, commands);
+    if (!d.externalTimeline) {
+        VkSemaphoreTypeCreateInfo type{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+        type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+        VkSemaphoreCreateInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        info.pNext = &type;
+        VK_CHECK(vkCreateSemaphore(d.device, &info, nullptr, &d.externalTimeline));
+        d.setDebugName(VK_OBJECT_TYPE_SEMAPHORE, uint64_t(d.externalTimeline), "penumbra external frames");
+    }
+    frame.timelineValue = ++d.externalTimelineValue;
+    d.closeSlot(frame, commands);
+    return {frame.frameIndex, reinterpret_cast<uint64_t>(d.externalTimeline), frame.timelineValue};
 }
 
 void Device::abandonFrame(CommandList& commands) {
@@ -307,8 +377,8 @@ void Device::abandonFrame(CommandList& commands) {
     if (d.recordingSlot < 0) return;
     FrameContext& frame = d.frames[d.recordingSlot];
     // Resetting the pool returns the command buffer to the initial state, recording or not (even
-    // inside a render pass instance).
-    vkResetCommandPool(d.device, frame.commandPool, 0);
+    // inside a render pass instance). A caller's command buffer is the caller's to reset.
+    if (!frame.external) vkResetCommandPool(d.device, frame.commandPool, 0);
     d.frameGraph.abandonFrame();  // none of its barriers and transitions happened
     frame.readbackRanges.clear();
     Garbage& garbage = frame.garbage;

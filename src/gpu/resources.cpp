@@ -99,6 +99,15 @@ void Device::writeBuffer(BufferHandle buffer, const void* data, size_t size, siz
 
 void* Device::mappedPointer(BufferHandle buffer) { return impl_->buffers.at(buffer.id).mapped; }
 uint64_t Device::bufferSize(BufferHandle buffer) const { return impl_->buffers.at(buffer.id).size; }
+uint64_t Device::nativeBuffer(BufferHandle buffer) const {
+    return reinterpret_cast<uint64_t>(impl_->buffers.at(buffer.id).buffer);
+}
+uint64_t Device::nativeImageView(TextureHandle texture) const {
+    return reinterpret_cast<uint64_t>(impl_->textures.at(texture.id).view);
+}
+uint64_t Device::nativeSampler(SamplerHandle sampler) const {
+    return reinterpret_cast<uint64_t>(impl_->samplers.at(sampler.id));
+}
 
 void Device::Impl::destroyNow(BufferResource& resource) {
     if (resource.buffer) vkDestroyBuffer(device, resource.buffer, nullptr);
@@ -178,10 +187,30 @@ TextureHandle Device::importTexture(const ExternalTarget& target, const std::str
     return handle;
 }
 
+TextureHandle Device::importDepthTexture(uint64_t vkImage, uint64_t vkImageView, uint32_t width, uint32_t height,
+                                        const std::string& debugName) {
+    Impl& d = *impl_;
+    if (!vkImage || !vkImageView || width == 0 || height == 0)
+        throw Error("external depth image: a VkImage, its VkImageView and its size are required");
+    TextureResource resource;
+    resource.image = reinterpret_cast<VkImage>(vkImage);
+    resource.view = reinterpret_cast<VkImageView>(vkImageView);
+    resource.imported = resource.importedView = true;
+    resource.format = VK_FORMAT_D32_SFLOAT;
+    resource.desc = {width, height, Format::D32Float, kTextureSampled | kTextureDepthTarget, 1, debugName};
+    ++d.objectsCreated;
+    const TextureHandle handle{d.textures.insert(resource)};
+    d.frameGraph.forget({handle.id, true});
+    d.frameGraph.setName({handle.id, true}, debugName);
+    return handle;
+}
+
+void Device::assumeWritten(TextureHandle texture, Usage usage) { impl_->frameGraph.assumeWritten({texture.id, true}, usage); }
+
 const TextureDesc& Device::textureDesc(TextureHandle texture) const { return impl_->textures.at(texture.id).desc; }
 
 void Device::Impl::destroyNow(TextureResource& resource) {
-    if (resource.view) vkDestroyImageView(device, resource.view, nullptr);
+    if (resource.view && !resource.importedView) vkDestroyImageView(device, resource.view, nullptr);
     // An imported image belongs to the caller. (Not "has no memory": an image whose allocation
     // failed has none either, and must still go.)
     if (resource.image && !resource.imported) vkDestroyImage(device, resource.image, nullptr);

@@ -44,6 +44,7 @@ struct BufferResource {
 struct TextureResource {
     VkImage image = VK_NULL_HANDLE;
     bool imported = false;  // a caller's VkImage (importTexture): never destroyed here
+    bool importedView = false;  // and its view too (importDepthTexture)
     MemoryAllocation memory;
     VkImageView view = VK_NULL_HANDLE;
     TextureDesc desc;
@@ -108,6 +109,10 @@ struct FrameContext {
     uint64_t uploadCapacity = 0;
     uint64_t uploadUsed = 0;
     std::vector<std::pair<uint64_t, uint64_t>> readbackRanges;  // (offset, size) in the upload ring
+    // Recorded into a caller's command buffer (beginExternalFrame): done once the Device's timeline
+    // semaphore reaches timelineValue (the caller's submission signals it), not when the fence signals.
+    bool external = false;
+    uint64_t timelineValue = 0;
 };
 
 // A graphics pipeline built on the Device's worker thread.
@@ -136,6 +141,10 @@ struct Device::Impl {
     bool timestampsSupported = false;
     bool bufferInt64Atomics = false;  // enabled on devices it creates; external devices: not known, off
     bool storageBufferArrayIndexing = false;  // shaderStorageBufferArrayDynamicIndexing, as bufferInt64Atomics
+    bool timelineSemaphores = false;  // the timelineSemaphore feature (external frames need it)
+    // The timeline semaphore a caller's submission of an external frame signals (made by the first one).
+    VkSemaphore externalTimeline = VK_NULL_HANDLE;
+    uint64_t externalTimelineValue = 0;
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
     VkPipelineCache pipelineCache = VK_NULL_HANDLE;
@@ -222,6 +231,13 @@ struct Device::Impl {
     // names the work in the error.
     void queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const SubmissionName& what);
     void waitForFence(VkFence fence, const SubmissionName& what);
+    // The frame ring's steps (frames.cpp): a slot begun into its own or a caller's command buffer, its
+    // closing commands, and its hand-over to the GPU.
+    CommandList beginSlot(Device& owner, VkCommandBuffer external);
+    void endSlotCommands(FrameContext& frame, CommandList& commands);
+    void closeSlot(FrameContext& frame, CommandList& commands);
+    // Waits for an external frame's timeline value: an error names a command buffer never submitted.
+    void waitForTimeline(uint64_t value, const SubmissionName& what);
     // Scratch of CommandList::pushDescriptors (capacity kept: no allocation per pass once warm).
     std::vector<VkWriteDescriptorSet> scratchWrites;
     std::vector<VkDescriptorBufferInfo> scratchBufferInfos;

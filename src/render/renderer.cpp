@@ -47,6 +47,8 @@ Renderer::State::~State() {
 void Renderer::State::destroyOwnObjects() {
     for (const ImportedImage& image : imported) device.destroy(image.texture);
     imported.clear();
+    device.destroy(callerDepth.texture);
+    callerDepth = ImportedImage{};
     device.destroy(noScreenShadows);
     device.destroy(shadowSampler);
     device.destroy(pointSampler);
@@ -114,36 +116,45 @@ Renderer::~Renderer() {
 
 const Scene& Renderer::scene() const { return state_->scene; }
 
-void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
-    const bool exists = instance < state_->scene.instances.size();
-    if (exists) state_->casterChanged(state_->scene.instances[instance].wsBounds);  // where it was
-    setInstanceWorldTransform(state_->scene, instance, worldFromObject);
-    state_->casterChanged(state_->scene.instances[instance].wsBounds);  // and is now
-    ++state_->sceneVersion;
-    state_->gpuScene.instanceChanged(instance);
+void Renderer::State::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
+    const bool exists = instance < scene.instances.size();
+    if (exists) casterChanged(scene.instances[instance].wsBounds);  // where it was
+    setInstanceWorldTransform(scene, instance, worldFromObject);
+    casterChanged(scene.instances[instance].wsBounds);  // and is now
+    ++sceneVersion;
+    gpuScene.instanceChanged(instance);
 }
 
-void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
-    if (instance >= state_->scene.instances.size())
+void Renderer::State::setInstanceCastShadows(uint32_t instance, bool castShadows) {
+    if (instance >= scene.instances.size())
         throw Error("instance " + std::to_string(instance) + " does not exist (the scene has " +
-                    std::to_string(state_->scene.instances.size()) + ")");
-    state_->scene.instances[instance].castShadows = castShadows;
-    state_->casterChanged(state_->scene.instances[instance].wsBounds);
-    state_->gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
-    ++state_->sceneVersion;
+                    std::to_string(scene.instances.size()) + ")");
+    scene.instances[instance].castShadows = castShadows;
+    casterChanged(scene.instances[instance].wsBounds);
+    gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
+    ++sceneVersion;
 }
 
-void Renderer::setLight(uint32_t light, const Light& value) {
-    replaceLight(state_->scene, light, value);
-    ++state_->lightVersion;
+void Renderer::State::setLight(uint32_t light, const Light& value) {
+    replaceLight(scene, light, value);
+    ++lightVersion;
 }
 
-void Renderer::setMaterial(uint32_t material, const Material& value) {
-    replaceMaterial(state_->scene, material, value);
-    state_->gpuScene.materialChanged(material);
-    state_->invalidateVirtualMaps();  // its casters' cut-outs or cast flag may differ
-    ++state_->sceneVersion;
+void Renderer::State::setMaterial(uint32_t material, const Material& value) {
+    replaceMaterial(scene, material, value);
+    gpuScene.materialChanged(material);
+    invalidateVirtualMaps();  // its casters' cut-outs or cast flag may differ
+    ++sceneVersion;
 }
+
+void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
+    state_->setInstanceTransform(instance, worldFromObject);
+}
+void Renderer::setInstanceCastShadows(uint32_t instance, bool castShadows) {
+    state_->setInstanceCastShadows(instance, castShadows);
+}
+void Renderer::setLight(uint32_t light, const Light& value) { state_->setLight(light, value); }
+void Renderer::setMaterial(uint32_t material, const Material& value) { state_->setMaterial(material, value); }
 
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings) {
     return render(request, settings, resolveCameraView(state_->scene, request.width, request.height));

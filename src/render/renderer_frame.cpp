@@ -341,16 +341,15 @@ uint64_t Renderer::State::submit(const RenderRequest& request, const Settings& r
     }
 }
 
-uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& request,
-                                     const Settings& requestedSettings, const CameraView& view,
-                                     const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot) {
-    resetPendingFrame(frame);
+FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& settings, const CameraView& view,
+                                           OutputMode output, bool oneShot, bool shadowsOnly, bool& visibilityWanted) {
     FrameStats& stats = frame.stats;
     stats.warnings.assign(gpuScene.warnings().begin(), gpuScene.warnings().end());
     // The settings this device can hold (an atlas over its largest image is shrunk, with a warning).
-    Settings settings = requestedSettings;
-    settings.shadows = fitShadowSettings(requestedSettings.shadows, device.maxImageSize(), stats.warnings);
-    const bool visibilityWanted = chooseMainView(settings, frame);
+    settings.shadows = fitShadowSettings(settings.shadows, device.maxImageSize(), stats.warnings);
+    visibilityWanted = false;
+    if (shadowsOnly) stats.mainView = "none";  // the caller draws it
+    else visibilityWanted = chooseMainView(settings, frame);
     const uint64_t frameIndex = device.nextFrameIndex();
     const auto failed = [&](const std::string& stage, const Error& error) {
         return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
@@ -381,26 +380,50 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     stats.virtualFacePages.maps = virtualFaces.faceCount();
     stats.virtualFacePages.poolPages = virtualFaces.poolPages();
     stats.virtualFacePages.lodBiasSteps = virtualFaces.poolPressureSteps();
-    virtualSettling.beginFrame(frameIndex, {settings, view, sceneVersion, lightVersion, virtualFaces.poolPressureSteps()});
+    virtualSettling.beginFrame(frameIndex, {settings, view, sceneVersion + callerDepthFrames, lightVersion,
+                                            virtualFaces.poolPressureSteps()});
     frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
     frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
-    const FrameTargetSizes sizes = frameTargetSizes(plan, view, request.output, settings.shadows);
+    const FrameTargetSizes sizes = frameTargetSizes(plan, view, output, settings.shadows);
     try {
         targets.ensure(sizes);
     } catch (const Error& error) {
         throw failed("render targets and shadow atlases", error);
     }
-
-    const MainPassVariant* litPass = nullptr;
-    try {
-        litPass = &prepareMainView(settings, plan, sizes, visibilityWanted);
-    } catch (const Error& error) {
-        throw failed("the visibility-buffer main view", error);
-    }
     frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
     frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
     frame.rasterSetting = settings.shadows.raster;
     stats.shadowRaster = frame.computeRaster ? "compute" : "hw";
+    return sizes;
+}
+
+void Renderer::State::dropRecordedTiles() {
+    // The tile caches counted this frame's tiles as drawn: draw every tile of the next frame.
+    directionalCache.invalidate();
+    otherCache.invalidate();
+    directionalGenerationDrawn = otherGenerationDrawn = ~0ull;
+}
+
+uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& request,
+                                     const Settings& requestedSettings, const CameraView& view,
+                                     const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot) {
+    resetPendingFrame(frame);
+    FrameStats& stats = frame.stats;
+    Settings settings = requestedSettings;
+    bool visibilityWanted = false;
+    const FrameTargetSizes sizes = planFrame(frame, settings, view, request.output, oneShot, false, visibilityWanted);
+    const uint64_t frameIndex = device.nextFrameIndex();
+    const auto failed = [&](const std::string& stage, const Error& error) {
+        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
+    };
+    const MainPassVariant* litPass = nullptr;
+    try {
+        litPass = &prepareMainView(settings, frame.plan, sizes, visibilityWanted);
+    } catch (const Error& error) {
+        throw failed("the visibility-buffer main view", error);
+    }
+    const PackedLights& lights = packedLights;
+    Stopwatch phase;
 
     gpu::CommandList commands = device.beginFrame();
     // A failure from here to the submission drops the frame (the next one starts clean) and names the
@@ -426,10 +449,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
         frame.frameIndex = device.submitFrame(commands, target ? &sync : nullptr);  // its errors name the frame
     } catch (const Error& error) {
         device.abandonFrame(commands);
-        // The tile caches counted this frame's tiles as drawn: draw every tile of the next frame.
-        directionalCache.invalidate();
-        otherCache.invalidate();
-        directionalGenerationDrawn = otherGenerationDrawn = ~0ull;
+        dropRecordedTiles();
         if (std::string(recording.stage) == "submit") throw;
         throw failed(recording.stage, error);
     }

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/recycling_queue.h"
+#include "penumbra/shadow_system.h"
+#include "penumbra/shadows/bindings.h"
 #include "gpu/device.h"
 #include "penumbra/renderer.h"
 #include "render/compute_raster_pass.h"
@@ -36,6 +38,7 @@ struct ImportedImage {
     uint64_t vkImage = 0;
     uint32_t width = 0, height = 0, format = 0;
     gpu::TextureHandle texture;
+    uint64_t vkImageView = 0;  // a caller's depth view (ShadowViewDepth)
 };
 constexpr size_t kMaxImportedImages = 8;
 
@@ -73,6 +76,7 @@ struct FrameRecording {
     bool screenSpace = false;  // URP's screen-space resolve of the directional shadows
     bool viewGeometryDone = false;  // the visibility buffer's geometry is recorded: the main view only shades
     gpu::TextureHandle prepassDepth;  // the depth prepass's depth, when this frame recorded one
+    gpu::TextureHandle callerDepth;   // a ShadowSystem caller's depth of the view, in place of the prepass
     float clearColor[4] = {0, 0, 0, 1};  // the main view's: 1 (lit) for the shadow AOV, else black
 };
 
@@ -86,6 +90,9 @@ struct TilesToDraw {
     std::vector<uint32_t> directional, other;
     bool freshDirectional = false, freshOther = false;  // the atlas is new: nothing to keep, clear it
 };
+
+// The descriptors of <penumbra/shadows.glsl> after a shadow frame, binding kShadowBinding* each.
+using ShadowFrameWrites = std::array<gpu::DescriptorWrite, kShadowBindingCount>;
 
 struct Renderer::State {
     gpu::Device& device;
@@ -114,11 +121,15 @@ struct Renderer::State {
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
     uint64_t sceneVersion = 0;  // bumped by every change to the casters (transforms, cast flags, materials)
     uint64_t lightVersion = 0;  // bumped by every change to a light
+    // Shadow frames on a caller's depth so far: the virtual pages' settling counts each as new inputs
+    // (the caller's geometry may move with nothing else changing), so none settles.
+    uint64_t callerDepthFrames = 0;
     VirtualSettling virtualSettling;
     FrameTargets targets;
     gpu::SamplerHandle shadowSampler, pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
     std::vector<ImportedImage> imported;
+    ImportedImage callerDepth;  // a ShadowSystem caller's depth image, imported once
     // Submitted frames, oldest first, and the finished frames' stats not yet taken: both recycle their
     // elements (a steady-state frame reuses the storage of the frames before it).
     RecyclingQueue<PendingFrame> pending;
@@ -137,6 +148,9 @@ struct Renderer::State {
     // The tile lists uploaded each frame (fixed arrays: nothing allocated per frame).
     CullTileUpload cullTileUpload;
     RasterTileUpload rasterTileUploads[2];
+    std::vector<gpu_data::ShadowLightSlot> shadowLightTable;  // a shadow frame's light table
+    gpu::BufferSlice shadowLightTableSlice, shadowViewSlice;   // its light table and camera, uploaded
+    std::vector<gpu::ResourceUse> shadowHandOverUses;         // and what its hand-over declares
 
     State(gpu::Device& d, Scene s, const RendererOptions& o);
     ~State();
@@ -152,6 +166,19 @@ struct Renderer::State {
     uint64_t submit(const RenderRequest& request, const Settings& settings, const CameraView& view,
                     const ExternalImage* target, bool readback, bool captureAtlas, bool oneShot);
     void collectCompleted();
+    // ShadowSystem's frame (renderer_shadow_frame.cpp): the shadows alone, recorded into the caller's
+    // command buffer; `writes` gets what <penumbra/shadows.glsl> binds. The caller submits the command
+    // buffer, signalling the returned timeline value, before the next frame.
+    // depth: the caller's depth of the view, or null.
+    gpu::Device::ExternalFrameEnd recordShadowFrame(uint64_t vkCommandBuffer, const Settings& settings,
+                                                    const CameraView& view, const ShadowViewDepth* depth,
+                                                    ShadowFrameWrites& writes);
+
+    // Scene changes between frames (Renderer's and ShadowSystem's; renderer.cpp).
+    void setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject);
+    void setInstanceCastShadows(uint32_t instance, bool castShadows);
+    void setLight(uint32_t light, const Light& value);
+    void setMaterial(uint32_t material, const Material& value);
 
     // Every virtual shadow map: a caster whose bounds changed (before and after), or everything redrawn.
     void casterChanged(const Aabb& wsBounds) {
@@ -170,6 +197,12 @@ private:
                         const CameraView& view, const ExternalImage* target, bool readback, bool captureAtlas,
                         bool oneShot);
     static void resetPendingFrame(PendingFrame& frame);
+    // The CPU half of a frame (renderer_frame.cpp): the settings fitted to the device (in place), the
+    // main view chosen (none when shadowsOnly), the shadows planned, the lights packed, the virtual maps
+    // begun and the targets made; returns the targets' sizes.
+    FrameTargetSizes planFrame(PendingFrame& frame, Settings& settings, const CameraView& view, OutputMode output,
+                               bool oneShot, bool shadowsOnly, bool& visibilityWanted);
+    void dropRecordedTiles();  // after a frame that failed while recording
     // The steps of submit(), in order.
     bool chooseMainView(const Settings& settings, PendingFrame& frame) const;  // true: the visibility pass is wanted
     // The tight fit's visible surfaces of this very view, when the frame cannot plan with a finished one's.
@@ -198,6 +231,13 @@ private:
                                       bool captureAtlas);
     void finishFrame(gpu::CompletedFrame& done, PendingFrame& finished);
     void settleVirtualPages(PendingFrame& finished);
+    gpu::Device::ExternalFrameEnd recordShadowFrameInto(PendingFrame& frame, uint64_t vkCommandBuffer,
+                                                        const Settings& settings, const CameraView& view,
+                                                        const ShadowViewDepth* depth, ShadowFrameWrites& writes);
+    gpu::TextureHandle importedDepth(const ShadowViewDepth& depth, const CameraView& view);
+    void uploadShadowHandOver(FrameRecording& recording);
+    void recordShadowFitDepth(FrameRecording& recording, MainPassInputs& inputs);
+    void handOverShadowBindings(FrameRecording& recording, const MainPassInputs& inputs, ShadowFrameWrites& writes);
 };
 
 }  // namespace penumbra

@@ -39,7 +39,9 @@ void Renderer::State::recordViewShadowInputs(FrameRecording& recording, MainPass
         gpu::CommandList& commands = recording.commands;
         const CameraView& view = recording.view;
         VirtualPageDepthSource depth;
-        if (recording.frame.visibilityView) {
+        if (recording.callerDepth) {
+            depth = VirtualPageDepthSource::texture(recording.callerDepth);  // a ShadowSystem caller's own
+        } else if (recording.frame.visibilityView) {
             recording.stage = "main view depth (visibility buffer)";
             const RenderSettings& render = recording.settings.render;
             commands.beginTimer("mainDepth");
