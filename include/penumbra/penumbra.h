@@ -22,6 +22,7 @@
 #include <penumbra/settings.h>
 #include <penumbra/settings_keys.h>
 #include <penumbra/shadow_compare.h>
+#include <penumbra/shadow_plan.h>
 #include <penumbra/shadow_stats.h>
 #include <penumbra/shadow_system.h>
 #include <penumbra/version.h>
