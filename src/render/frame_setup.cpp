@@ -54,13 +54,14 @@ gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& li
     return frame;
 }
 
+uint32_t shadowSlotOfSceneLight(const Scene& scene, const ShadowFrame& plan, uint32_t light) {
+    const bool directional = scene.lights[light].type == LightType::Directional;
+    const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(light);
+    return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
+}
+
 void packFrameLights(const Scene& scene, const ShadowFrame& plan, PackedLights& packed) {
-    const auto slotOf = [&](uint32_t i) {
-        const bool directional = scene.lights[i].type == LightType::Directional;
-        const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
-        return slot >= 0 ? uint32_t(slot) : kNoShadowSlot;
-    };
-    packLights(scene, slotOf, packed);
+    packLights(scene, [&](uint32_t i) { return shadowSlotOfSceneLight(scene, plan, i); }, packed);
 }
 
 FrameTargetSizes frameTargetSizes(const ShadowFrame& plan, const CameraView& view, OutputMode output,

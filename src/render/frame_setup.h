@@ -28,6 +28,8 @@ const std::vector<gpu::SpecConstant>& genericLitSpecialization();
 gpu_data::FrameData makeFrameData(const CameraView& view, const PackedLights& lights, const RenderRequest& request,
                                   const Settings& settings, bool screenSpaceShadows);
 
+// Scene light `light`'s slot in the plan (directional or spot/point), or kNoShadowSlot.
+uint32_t shadowSlotOfSceneLight(const Scene& scene, const ShadowFrame& plan, uint32_t light);
 // The scene's lights for the GPU, each shadowed one with its slot in the plan's atlases.
 void packFrameLights(const Scene& scene, const ShadowFrame& plan, PackedLights& packed);  // replaced, storage reused
 

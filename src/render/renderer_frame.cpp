@@ -26,6 +26,10 @@ constexpr const char* kAtlasPassNames[2] = {"shadows.directional", "shadows.othe
 
 }  // namespace
 
+Error frameFailure(uint64_t frameIndex, const std::string& stage, const Error& error) {
+    return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
+}
+
 void Renderer::State::checkRequest(const RenderRequest& request, const CameraView& view) const {
     if (request.output != OutputMode::Color && request.aovLight >= scene.lights.size() && !scene.lights.empty())
         throw Error("light " + std::to_string(request.aovLight) + " does not exist (the scene has " +
@@ -351,9 +355,6 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     if (shadowsOnly) stats.mainView = "none";  // the caller draws it
     else visibilityWanted = chooseMainView(settings, frame);
     const uint64_t frameIndex = device.nextFrameIndex();
-    const auto failed = [&](const std::string& stage, const Error& error) {
-        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
-    };
 
     Stopwatch phase;
     std::optional<VisibleSurfaces> visibleNow;
@@ -361,7 +362,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     try {
         visibleNow = tightFitSurfacesNow(settings, view, oneShot);
     } catch (const Error& error) {
-        throw failed("the tight fit's visible surfaces", error);
+        throw frameFailure(frameIndex, "the tight fit's visible surfaces", error);
     }
     planShadows(frame, settings, view, visibleNow);
     const ShadowFrame& plan = frame.plan;
@@ -388,7 +389,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     try {
         targets.ensure(sizes);
     } catch (const Error& error) {
-        throw failed("render targets and shadow atlases", error);
+        throw frameFailure(frameIndex, "render targets and shadow atlases", error);
     }
     frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
     frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
@@ -413,14 +414,11 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     bool visibilityWanted = false;
     const FrameTargetSizes sizes = planFrame(frame, settings, view, request.output, oneShot, false, visibilityWanted);
     const uint64_t frameIndex = device.nextFrameIndex();
-    const auto failed = [&](const std::string& stage, const Error& error) {
-        return Error("frame " + std::to_string(frameIndex) + ", " + stage + ": " + error.what());
-    };
     const MainPassVariant* litPass = nullptr;
     try {
         litPass = &prepareMainView(settings, frame.plan, sizes, visibilityWanted);
     } catch (const Error& error) {
-        throw failed("the visibility-buffer main view", error);
+        throw frameFailure(frameIndex, "the visibility-buffer main view", error);
     }
     const PackedLights& lights = packedLights;
     Stopwatch phase;
@@ -451,7 +449,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
         device.abandonFrame(commands);
         dropRecordedTiles();
         if (std::string(recording.stage) == "submit") throw;
-        throw failed(recording.stage, error);
+        throw frameFailure(frameIndex, recording.stage, error);
     }
     gpuScene.updatesSubmitted();
     stats.cpu.submit = phase.milliseconds();

@@ -24,14 +24,12 @@ static_assert(kShadowBindingCount == 14 && gpu_data::kLitBindingShadowView == gp
 void packShadowLightTable(const Scene& scene, const ShadowFrame& plan, std::vector<gpu_data::ShadowLightSlot>& table) {
     table.resize(std::max<size_t>(scene.lights.size(), 1));
     table[0] = {gpu_data::kLightDirectional, gpu_data::kNoShadowSlot};  // the table is never empty
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const LightType type = scene.lights[i].type;
-        const bool directional = type == LightType::Directional;
-        const int32_t slot = (directional ? plan.directional.slotOfSceneLight : plan.other.slotOfSceneLight).at(i);
-        table[i].type = directional ? gpu_data::kLightDirectional
-                        : type == LightType::Spot ? gpu_data::kLightSpot
-                                                  : gpu_data::kLightPoint;
-        table[i].slot = slot >= 0 ? uint32_t(slot) : gpu_data::kNoShadowSlot;
+        table[i].type = type == LightType::Directional ? gpu_data::kLightDirectional
+                        : type == LightType::Spot      ? gpu_data::kLightSpot
+                                                       : gpu_data::kLightPoint;
+        table[i].slot = shadowSlotOfSceneLight(scene, plan, i);
     }
 }
 
@@ -44,8 +42,7 @@ void Renderer::State::recordShadowFitDepth(FrameRecording& recording, MainPassIn
     if (settings.shadows.directional.fit != CascadeFit::Tight || virtualDirectional(settings)) return;
     gpu::CommandList& commands = recording.commands;
     recording.stage = "depth prepass (tight fit)";
-    gpu::TextureHandle depth = recording.callerDepth ? recording.callerDepth : recording.prepassDepth;
-    if (!depth) depth = recording.prepassDepth = screenSpacePass.recordPrepass(commands, scene, recording.view, inputs);
+    const gpu::TextureHandle depth = recording.callerDepth ? recording.callerDepth : prepassDepthOf(recording, inputs);
     recording.frame.readback.visibleSurfaces = visiblePass.recordSubsample(commands, depth, recording.view);
     recording.frame.view = recording.view;
 }
@@ -174,7 +171,7 @@ gpu::Device::ExternalFrameEnd Renderer::State::recordShadowFrameInto(PendingFram
     } catch (const Error& error) {
         device.abandonFrame(commands);
         dropRecordedTiles();
-        throw Error("frame " + std::to_string(frameIndex) + ", " + recording.stage + ": " + error.what());
+        throw frameFailure(frameIndex, recording.stage, error);
     } catch (...) {
         device.abandonFrame(commands);
         dropRecordedTiles();

@@ -10,6 +10,7 @@
 #include "penumbra/shadow_system.h"
 #include "penumbra/shadows/bindings.h"
 #include "gpu/device.h"
+#include "penumbra/error.h"
 #include "penumbra/renderer.h"
 #include "render/compute_raster_pass.h"
 #include "render/frame_readback.h"
@@ -79,6 +80,9 @@ struct FrameRecording {
     gpu::TextureHandle callerDepth;   // a ShadowSystem caller's depth of the view, in place of the prepass
     float clearColor[4] = {0, 0, 0, 1};  // the main view's: 1 (lit) for the shadow AOV, else black
 };
+
+// A failure while frame `frameIndex` was at `stage`, as one line naming both.
+Error frameFailure(uint64_t frameIndex, const std::string& stage, const Error& error);
 
 // Whether directional lights use virtual shadow maps (shadows.directional.mode = virtual).
 inline bool virtualDirectional(const Settings& settings) {
@@ -223,6 +227,8 @@ private:
     // then the screen-space resolve (shadows.screenSpace). renderer_virtual.cpp.
     void recordViewShadowInputs(FrameRecording& recording, MainPassInputs& inputs, const MainPassVariant& litPass);
     void recordScreenSpaceShadows(FrameRecording& recording, MainPassInputs& inputs);
+    // The forward depth prepass of the view, recorded by the first step of the frame that needs it.
+    gpu::TextureHandle prepassDepthOf(FrameRecording& recording, MainPassInputs& inputs);
     // The visibility buffer's targets and constants for this frame (opaqueTarget, refilled).
     const VisibilityPass::Target& opaqueTargetFor(const FrameRecording& recording, const MainPassVariant& litPass);
     void recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,

@@ -52,8 +52,7 @@ void Renderer::State::recordViewShadowInputs(FrameRecording& recording, MainPass
             depth = VirtualPageDepthSource::visibilityBuffer(visibility->visibilityBuffer(), view.width, view.height);
         } else {
             recording.stage = "depth prepass";
-            recording.prepassDepth = screenSpacePass.recordPrepass(commands, scene, view, inputs);
-            depth = VirtualPageDepthSource::texture(recording.prepassDepth);
+            depth = VirtualPageDepthSource::texture(prepassDepthOf(recording, inputs));
         }
         FrameReadbackLayout& readback = recording.frame.readback;
         if (directionalMaps) {
@@ -82,11 +81,17 @@ void Renderer::State::recordViewShadowInputs(FrameRecording& recording, MainPass
     recordScreenSpaceShadows(recording, inputs);
 }
 
+gpu::TextureHandle Renderer::State::prepassDepthOf(FrameRecording& recording, MainPassInputs& inputs) {
+    if (!recording.prepassDepth)
+        recording.prepassDepth = screenSpacePass.recordPrepass(recording.commands, scene, recording.view, inputs);
+    return recording.prepassDepth;
+}
+
 void Renderer::State::recordScreenSpaceShadows(FrameRecording& recording, MainPassInputs& inputs) {
     if (!recording.screenSpace) return;
     recording.stage = "screen-space shadows (depthPrepass, screenSpaceShadows)";
     gpu::CommandList& commands = recording.commands;
-    if (!recording.prepassDepth) recording.prepassDepth = screenSpacePass.recordPrepass(commands, scene, recording.view, inputs);
+    prepassDepthOf(recording, inputs);
     inputs.writes.back().texture = screenSpacePass.recordResolve(commands, recording.view, inputs, 0);
     inputs.sampled.back() = inputs.writes.back().texture;
 }
