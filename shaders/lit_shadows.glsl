@@ -1,5 +1,6 @@
 // Penumbra's own passes read the installed shadow sampling (penumbra/shadows.glsl) in their pushed set,
-// its descriptors from binding kLitShadowBindingBase on, its spot/point specialization at constants 2, 3.
+// its descriptors from binding kLitShadowBindingBase on, its specialization at constants 2, 3 (spot/point)
+// and 4, 5 (directional).
 #ifndef PENUMBRA_LIT_SHADOWS_GLSL
 #define PENUMBRA_LIT_SHADOWS_GLSL
 #include "pass_bindings.h"

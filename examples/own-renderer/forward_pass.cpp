@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -70,7 +71,8 @@ void imageBarrier(VkCommandBuffer commandBuffer, VkImage image, VkImageAspectFla
 ForwardPass::ForwardPass(VulkanContext& vulkan, const penumbra::Scene& scene, uint32_t width, uint32_t height,
                          const std::string& spirvDir, bool depthPrepass)
     : vk_(vulkan), width_(width), height_(height), depthPrepass_(depthPrepass) {
-    const std::vector<Draw> meshes = uploadMeshes(scene);
+    meshRanges_ = uploadMeshes(scene);
+    const std::vector<Draw>& meshes = meshRanges_;
     uploadTextures(scene);
     makeDescriptors(textures_.size());
     makePipelines(spirvDir);
@@ -118,12 +120,51 @@ std::vector<ForwardPass::Draw> ForwardPass::uploadMeshes(const penumbra::Scene& 
         indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
         ranges.push_back(range);
     }
-    vertices_ = vk_.createBuffer(std::max<size_t>(vertices.size(), 1) * sizeof(VertexIn), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
-    indices_ = vk_.createBuffer(std::max<size_t>(indices.size(), 1) * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true);
+    // TRANSFER_SRC: ShadowSystem reads its casters from them.
+    vertices_ = vk_.createBuffer(std::max<size_t>(vertices.size(), 1) * sizeof(VertexIn),
+                                 VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    indices_ = vk_.createBuffer(std::max<size_t>(indices.size(), 1) * sizeof(uint32_t),
+                                VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    vertexCount_ = uint32_t(vertices.size());
+    indexCount_ = uint32_t(indices.size());
     std::memcpy(vertices_.mapped, vertices.data(), vertices.size() * sizeof(VertexIn));
     std::memcpy(indices_.mapped, indices.data(), indices.size() * sizeof(uint32_t));
     frame_ = vk_.createBuffer(sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     return ranges;
+}
+
+penumbra::CasterBuffers ForwardPass::casterBuffers(const penumbra::Scene& scene) const {
+    penumbra::CasterBuffers casters;
+    casters.vkPositionBuffer = casters.vkUvBuffer = reinterpret_cast<uint64_t>(vertices_.buffer);
+    casters.positionStride = casters.uvStride = sizeof(VertexIn);
+    casters.positionOffset = offsetof(VertexIn, osPosition);
+    casters.uvOffset = offsetof(VertexIn, uv);
+    casters.vertexCount = vertexCount_;
+    casters.vkIndexBuffer = reinterpret_cast<uint64_t>(indices_.buffer);
+    casters.indexType = penumbra::CasterIndexType::Uint32;
+    casters.indexCount = indexCount_;
+    for (const Draw& range : meshRanges_) casters.meshes.push_back({range.firstIndex, range.indexCount, range.vertexOffset});
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+        const Texture& texture = textures_[t + 1];
+        casters.alphaTextures.push_back({reinterpret_cast<uint64_t>(texture.image), uint32_t(texture.format), texture.width,
+                                         texture.height, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, scene.textures[t].sampler});
+    }
+    for (const penumbra::Instance& instance : scene.instances) {
+        const penumbra::Material& material = scene.materials[scene.meshes[instance.meshIndex].materialIndex];
+        penumbra::CasterInstance caster;
+        caster.mesh = instance.meshIndex;
+        caster.worldFromObject = instance.worldFromObject;
+        caster.castShadows = instance.castShadows;
+        caster.shadowMode = material.shadows;
+        caster.alpha = material.baseColorFactor.a;
+        caster.alphaCutoff = material.alphaCutoff;
+        caster.alphaTexture = material.baseColorTexture;
+        caster.alphaMode = material.alphaMode;
+        caster.doubleSided = material.doubleSided;
+        caster.name = instance.nodeName;
+        casters.instances.push_back(caster);
+    }
+    return casters;
 }
 
 // An sRGB RGBA8 texture with its mip chain (blits), left in SHADER_READ_ONLY_OPTIMAL.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <penumbra/caster_buffers.h>
 #include <penumbra/scene.h>
 
 #include "vulkan_context.h"
@@ -22,6 +23,9 @@ public:
     ForwardPass(const ForwardPass&) = delete;
     ForwardPass& operator=(const ForwardPass&) = delete;
 
+    // The engine's shadow casters for ShadowSystem: its own vertex buffer (positions and uvs), index
+    // buffer and base colour textures (their alpha), with each instance's material as how it casts.
+    penumbra::CasterBuffers casterBuffers(const penumbra::Scene& scene) const;
     VkDescriptorSet shadowSet() const { return shadowSet_; }
     VkImage depthImage() const { return depth_.image; }
     VkImageView depthView() const { return depth_.view; }
@@ -68,6 +72,8 @@ private:
     VkPipeline prepassPipelines_[2] = {};
     bool depthPrepass_ = false;
     std::vector<Draw> draws_;
+    std::vector<Draw> meshRanges_;  // per scene mesh: its range of the index buffer
+    uint32_t vertexCount_ = 0, indexCount_ = 0;
 };
 
 }  // namespace own

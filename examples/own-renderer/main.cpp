@@ -106,7 +106,8 @@ int run(int argc, char** argv) {
         penumbra::Device device(penumbra::externalVulkanDevice(vulkan.instance, vulkan.physicalDevice, vulkan.device,
                                                                vulkan.queue, vulkan.queueFamily, false, true));
         own::ForwardPass forward(vulkan, scene, width, height, OWN_RENDERER_SPIRV_DIR, depthPrepass);
-        penumbra::ShadowSystem shadows(device, scene);
+        // The engine's casters are its own buffers; ShadowSystem reads them once, here.
+        penumbra::ShadowSystem shadows(device, forward.casterBuffers(scene), scene.lights);
         renderFrame(vulkan, shadows, forward, settings, view, depthPrepass);
         shadows.waitIdle();
         penumbra::Image color(width, height, 3), shadow(width, height, 1);

@@ -7,6 +7,7 @@
 // The tools the CLI and the viewer use are public too: the ray-traced reference and the shadow
 // comparison (reference.h, shadow_compare.h), glTF writing, image differences and whole-file I/O.
 #include <penumbra/camera.h>
+#include <penumbra/caster_buffers.h>
 #include <penumbra/device.h>
 #include <penumbra/error.h>
 #include <penumbra/files.h>

@@ -142,9 +142,13 @@ struct RenderResult {
 // How the renderer gets the pipeline variants a setting can reach (the spot/point shadow kinds and
 // filter of the lit pass, the colour formats of the outputs).
 enum class PipelineWarmup {
-    OnDemand,    // build a variant when a frame first needs it (one-shot renders: builds only what is used)
-    Background,  // build every reachable variant on the device's worker thread from the start; until a
-                 // variant is ready, frames use the generic variant (same image), so no frame stalls
+    OnDemand,    // build a variant when a frame first needs it (one-shot renders: builds only what is used,
+                 // and a variant compiles only the sampling of the frame's directional and spot/point kinds)
+    Background,  // build every variant that settings can reach for the scene's lights as they are (a
+                 // light edited into another kind builds its variant on demand) on the device's worker
+                 // thread from the start; until a variant is ready, frames use the generic variant (same
+                 // image), so no frame stalls. On a CPU device (lavapipe), whose shaders compile when first
+                 // drawn, a frame waits for its own variant instead of drawing the generic one
 };
 
 struct RendererOptions {

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include <penumbra/camera.h>
+#include <penumbra/caster_buffers.h>
 #include <penumbra/device.h>
 #include <penumbra/renderer.h>
 #include <penumbra/scene.h>
@@ -51,6 +52,11 @@ struct ShadowFrameBindings {
     // its timings and statistics, once it is reached.
     uint64_t vkCompletionSemaphore = 0;
     uint64_t completionValue = 0;
+    // The frame's values of the specialization constants PENUMBRA_SHADOW_CONSTANT_ID + 0 .. + 3 of
+    // <penumbra/shadows.glsl> (spot/point kinds, spot filter, directional kinds, directional filter): a
+    // shader that defines it and is specialized with them compiles only the sampling this frame's lights
+    // need; one that does not define it compiles every kind and needs none.
+    std::array<uint32_t, 4> specialization{};
     // In binding order (kShadowDescriptors). Buffers and views stay valid until the next frame call
     // that reuses the frame's ring slot (DeviceOptions::framesInFlight calls later).
     std::array<ShadowDescriptorResource, kShadowBindingCount> descriptors;
@@ -62,6 +68,14 @@ public:
     // the caller's own VkDevice (<penumbra/vulkan.h>; it must enable the timelineSemaphore feature and
     // say so in ExternalVulkanDevice). Throws penumbra::Error naming what is wrong.
     ShadowSystem(Device& device, Scene scene, const RendererOptions& options = {});
+    // The engine's own caster geometry in its GPU buffers (penumbra/caster_buffers.h) and its lights:
+    // the constructor reads the buffers and textures once on the device's queue (after the writes of
+    // everything submitted to it before, waiting for the copies) into Penumbra's own meshlet-ordered copy;
+    // the engine keeps and may change or free its objects afterwards. Instance i of `casters` is instance
+    // i of setInstanceTransform / setInstanceCastShadows, light i of `lights` light i of setLight and of
+    // the shadow light table. Throws penumbra::Error (one line) for a description that cannot be read.
+    ShadowSystem(Device& device, const CasterBuffers& casters, std::vector<Light> lights,
+                 const RendererOptions& options = {});
     ~ShadowSystem();
     ShadowSystem(const ShadowSystem&) = delete;
     ShadowSystem& operator=(const ShadowSystem&) = delete;
@@ -72,7 +86,8 @@ public:
     void setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject);
     void setInstanceCastShadows(uint32_t instance, bool castShadows);
     void setLight(uint32_t light, const Light& value);  // the light table follows Scene::lights
-    void setMaterial(uint32_t material, const Material& value);
+    void setMaterial(uint32_t material, const Material& value);  // scene().materials (from CasterBuffers: one per
+                                                                   // distinct shadow mode, alpha and texture)
 
     // Records this frame's shadow passes into `vkCommandBuffer` (a primary VkCommandBuffer of the
     // device's queue family, in the recording state, outside a render pass), for the camera `view`

@@ -16,9 +16,11 @@
 //
 // The descriptors it reads are <penumbra/shadows/bindings.h>'s (kShadowDescriptors in C++). Optional:
 // PENUMBRA_SHADOW_CONSTANT_ID N makes the spot/point sampling's shadow kinds and filter specialization
-// constants N and N + 1 (other_shadow_structs.h; without it every kind is compiled and the filter is read
-// from the data). Names this file declares: the penumbra* functions, the blocks and samplers of
-// bindings.h, and the structs and k* constants of the headers in penumbra/shadows/.
+// constants N and N + 1 (other_shadow_structs.h) and the directional sampling's kinds and filter
+// constants N + 2 and N + 3 (kDirectionalShadows* and kShadowFilter* of shadow_structs.h); without it
+// every kind is compiled and the filters are read from the data (ShadowFrameBindings::specialization
+// gives a frame's values). Names this file declares: the penumbra* functions, the blocks and samplers
+// of bindings.h, and the structs and k* constants of the headers in penumbra/shadows/.
 #ifndef PENUMBRA_SHADOWS_GLSL
 #define PENUMBRA_SHADOWS_GLSL
 #ifndef PENUMBRA_SHADOW_SET
@@ -49,6 +51,21 @@ layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas)) uniform sampler2
 layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalDepth)) uniform sampler2D directionalShadowDepth;
 layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOtherDepth)) uniform sampler2D otherShadowDepth;
 
+#ifdef PENUMBRA_SHADOW_CONSTANT_ID
+layout(constant_id = PENUMBRA_SHADOW_CONSTANT_ID + 2) const uint kDirectionalShadowMode = kDirectionalShadowsAll;
+layout(constant_id = PENUMBRA_SHADOW_CONSTANT_ID + 3) const uint kDirectionalShadowFilter = kShadowFilterFromData;
+#else
+const uint kDirectionalShadowMode = kDirectionalShadowsAll;
+const uint kDirectionalShadowFilter = kShadowFilterFromData;
+#endif
+// A directional light's filter: the specialized one where every reserved light has it, else its own.
+uint directionalFilterMode(DirectionalShadowLight light) {
+    return kDirectionalShadowFilter == kShadowFilterFromData ? light.filterMode : kDirectionalShadowFilter;
+}
+const bool kDirectionalCascadesCompiled = (kDirectionalShadowMode & kDirectionalShadowsCascades) != 0u;
+const bool kDirectionalVirtualCompiled = (kDirectionalShadowMode & kDirectionalShadowsVirtual) != 0u;
+const bool kDirectionalPcssCompiled = (kDirectionalShadowMode & kDirectionalShadowsPcss) != 0u;
+
 struct ShadowSample {
     float attenuation;  // 1 = lit, 0 = fully shadowed (strength and fades applied)
     int cascade;        // cascade index sampled, -1 = none
@@ -76,7 +93,7 @@ vec4 directionalTileBounds(uint tile) {
 // (tent.glsl).
 float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
     DirectionalShadowLight light = directionalShadows.lights[slot];
-    uint filterMode = light.filterMode;
+    uint filterMode = directionalFilterMode(light);
     uint tile = light.firstTile + uint(cascade);
     mat4 atlasFromWorld = directionalShadows.atlasFromWorld[tile];
     // The tile's world texel: 1 / (atlas texels per metre along u), exact for sphere and tight tiles.
@@ -88,7 +105,7 @@ float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) 
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
     ShadowLookup lookup = shadowLookup(atlasFromWorld, receiver, wsLookup, wsToLight, bias, directionalShadows.atlasSize);
     vec4 texelSize = shadowTexelSize(directionalShadows.atlasSize, directionalShadows.invAtlasSize);
-    if (light.pcssTanRadius > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
+    if (kDirectionalPcssCompiled && light.pcssTanRadius > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
         float metresPerDepth = 1.0 / length(vec3(atlasFromWorld[0][2], atlasFromWorld[1][2], atlasFromWorld[2][2]));
         PcssLight pcss = PcssLight(0.0, vec4(metresPerDepth, light.pcssTanRadius, wsTexel, 0.0));
         return pcssShadow(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth, lookup.depthGradient, texelSize,
@@ -155,21 +172,24 @@ float distanceFadeStrength(vec3 wsPosition, float viewDepth, DistanceFade fade) 
 // distance and in the last cascade, blend cascades (soft: lerp two samples; dither: pick one by
 // interleaved gradient noise), then lerp(1, shadow, strength).
 ShadowSample directionalShadow(uint shadowSlot, ShadowReceiver receiver, vec2 pixel) {
-    if (shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.lightCount) return ShadowSample(1.0, -1);
+    if (kDirectionalShadowMode == 0u || shadowSlot == kNoShadowSlot || shadowSlot >= directionalShadows.lightCount)
+        return ShadowSample(1.0, -1);
     vec3 wsPosition = receiver.wsPosition;
     float viewDepth = -(shadowView.viewFromWorld * vec4(wsPosition, 1.0)).z;
     DistanceFade fade = DistanceFade(directionalShadows.fadeMode, directionalShadows.invShadowDistance,
                                      directionalShadows.invDistanceFade, directionalShadows.squaredFadeScale,
                                      directionalShadows.squaredFadeBias);
     float strength = distanceFadeStrength(wsPosition, viewDepth, fade);
-    if (virtualShadows.enabled != 0u) {  // shadows.directional.mode = virtual: the light's virtual map, no cascades
+    if (kDirectionalVirtualCompiled && virtualShadows.enabled != 0u) {  // mode = virtual: the light's virtual map, no cascades
         DirectionalShadowLight light = directionalShadows.lights[shadowSlot];
         strength *= light.strength;
         if (strength <= 0.0) return ShadowSample(1.0, -1);
         int level;
-        float shadow = sampleDirectionalVirtual(shadowSlot, light, directionalShadows.biasMode, receiver, viewDepth, level);
+        float shadow = sampleDirectionalVirtual(shadowSlot, light, directionalShadows.biasMode, receiver, viewDepth,
+                                                directionalFilterMode(light), kDirectionalPcssCompiled, level);
         return ShadowSample(mix(1.0, shadow, strength), level);  // --aov cascades shows the level
     }
+    if (!kDirectionalCascadesCompiled) return ShadowSample(1.0, -1);
     CascadeChoice choice = selectDirectionalCascade(wsPosition, viewDepth);
     if (choice.cascade < 0) return ShadowSample(1.0, -1);  // beyond the last cascade: no shadow
     int cascade = choice.cascade;

@@ -27,6 +27,16 @@ PENUMBRA_CONST(uint, kShadowFilterPcf7x7, 3u)
 // Value of the lit pass's spot-filter specialization constant that reads the filter from
 // OtherShadowData.filterMode instead: the generic variant used while a specialized one is built.
 PENUMBRA_CONST(uint, kShadowFilterFromData, 4u)
+// Specialization constant "directional shadow mode" of the lit pass (penumbra/shadows.glsl, constant
+// PENUMBRA_SHADOW_CONSTANT_ID + 2): the sampling the frame's directional lights need, so a variant
+// compiles only that (the virtual maps' page-table filters are most of the generic variant's code).
+// 0 = no directional shadows; the generic variant has every bit.
+PENUMBRA_CONST(uint, kDirectionalShadowsCascades, 1u)
+PENUMBRA_CONST(uint, kDirectionalShadowsVirtual, 2u)
+PENUMBRA_CONST(uint, kDirectionalShadowsPcss, 4u)  // some reserved directional light uses pcss
+PENUMBRA_CONST(uint, kDirectionalShadowsAll, 7u)
+// Its filter constant (PENUMBRA_SHADOW_CONSTANT_ID + 3) is a kShadowFilter* value where every reserved
+// directional light filters alike (soft: shadows.directional.filter, hard: PCF2x2), else kShadowFilterFromData.
 PENUMBRA_CONST(uint, kCascadeBlendHard, 0u)
 PENUMBRA_CONST(uint, kCascadeBlendSoft, 1u)
 PENUMBRA_CONST(uint, kCascadeBlendDither, 2u)

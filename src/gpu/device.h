@@ -143,6 +143,16 @@ public:
     void submitAndWait(CommandList& commands);
     // Copies a whole buffer to host memory (waits for the GPU; tests and debugging).
     std::vector<uint8_t> readBuffer(BufferHandle buffer);
+    // Reads of a caller's own objects (ShadowSystem's caster buffers), after the writes of everything
+    // submitted to the queue before; they wait for the GPU. `size` bytes of a VkBuffer made with
+    // TRANSFER_SRC usage, from `offset`:
+    std::vector<uint8_t> readExternalBuffer(uint64_t vkBuffer, uint64_t offset, uint64_t size);
+    // Level 0, layer 0 of a 2D VkImage made with TRANSFER_SRC usage, in `vkImageLayout` (left so), as
+    // tightly packed RGBA8 (R8's value becomes the alpha of white; BGRA is swizzled). Formats: R8_UNORM,
+    // R8G8B8A8_UNORM / _SRGB, B8G8R8A8_UNORM / _SRGB (readsExternalFormat).
+    static bool readsExternalFormat(uint32_t vkFormat);
+    std::vector<uint8_t> readExternalImageRgba8(uint64_t vkImage, uint32_t vkFormat, uint32_t width, uint32_t height,
+                                                uint32_t vkImageLayout);
 
     ObjectCounts objectCounts() const;
     // Device memory this process uses: VK_EXT_memory_budget's heap usage where the driver has it,

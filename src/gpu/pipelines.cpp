@@ -1,5 +1,7 @@
 // Graphics and compute pipelines: shader modules from the embedded SPIR-V, a push-descriptor set 0,
 // an optional texture-table set 1, push constants, specialization constants, dynamic rendering.
+#include <algorithm>
+
 #include "gpu/shader_interface.h"
 #include "gpu/shader_registry.h"
 #include "gpu/vk_internal.h"
@@ -263,6 +265,15 @@ bool Device::pipelineReady(PipelineHandle pipeline) {
 
 void Device::waitForPipeline(PipelineHandle pipeline) {
     Impl& d = *impl_;
+    {  // still queued behind a warm-up's builds: it goes first
+        std::lock_guard lock(d.jobsMutex);
+        const auto queued = std::find_if(d.jobs.begin(), d.jobs.end(), [&](const auto& job) { return job.id == pipeline.id; });
+        if (queued != d.jobs.end() && queued != d.jobs.begin()) {
+            auto job = std::move(*queued);
+            d.jobs.erase(queued);
+            d.jobs.push_front(std::move(job));
+        }
+    }
     while (!pipelineReady(pipeline)) {
         std::unique_lock lock(d.jobsMutex);
         if (!d.buildErrors.empty()) break;

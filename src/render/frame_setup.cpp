@@ -14,24 +14,29 @@ gpu::Format colorFormatOf(OutputMode output) {
     return output == OutputMode::Color ? gpu::Format::RGBA8Srgb : gpu::Format::RGBA8Unorm;
 }
 
-void litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter, MainPassVariant& variant) {
+void litVariant(gpu::Format format, const LitShadowKinds& kinds, MainPassVariant& variant) {
     variant.colorFormat = format;
     variant.fragmentShader.assign(MainPassVariant{}.fragmentShader);
     variant.drawBlended = format == gpu::Format::RGBA8Srgb;  // the AOVs show the opaque surface only
-    const bool soft = (otherShadowMode & gpu_data::kOtherShadowsSoft) != 0;
-    variant.specialization = {{2, otherShadowMode}, {3, soft ? spotFilter : gpu_data::kShadowFilterPcf5x5}};
+    const bool soft = (kinds.otherMode & gpu_data::kOtherShadowsSoft) != 0;
+    variant.specialization = {{2, kinds.otherMode},
+                              {3, soft ? kinds.spotFilter : gpu_data::kShadowFilterPcf5x5},
+                              {4, kinds.directionalMode},
+                              {5, kinds.directionalMode != 0 ? kinds.directionalFilter : gpu_data::kShadowFilterPcf5x5}};
 }
 
-MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter) {
+MainPassVariant litVariant(gpu::Format format, const LitShadowKinds& kinds) {
     MainPassVariant variant;
-    litVariant(format, otherShadowMode, spotFilter, variant);
+    litVariant(format, kinds, variant);
     return variant;
 }
 
 const std::vector<gpu::SpecConstant>& genericLitSpecialization() {
     static const std::vector<gpu::SpecConstant> generic = {
         {2, gpu_data::kOtherShadowsHard | gpu_data::kOtherShadowsSoft | gpu_data::kOtherShadowsVirtual},
-        {3, gpu_data::kShadowFilterFromData}};
+        {3, gpu_data::kShadowFilterFromData},
+        {4, gpu_data::kDirectionalShadowsAll},
+        {5, gpu_data::kShadowFilterFromData}};
     return generic;
 }
 

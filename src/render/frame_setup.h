@@ -17,11 +17,19 @@ namespace penumbra {
 
 gpu::Format colorFormatOf(OutputMode output);
 
-// The lit pass variant for a colour format and the frame's spot/point shadow kinds and filter (the
-// specialization that stands for the _SHADOWS_HARD / _SHADOWS_SOFT keywords of Catlike Coding's "Spotlight
-// Shadows"). The filter only matters when some light is soft, so the others share one variant.
-MainPassVariant litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter);
-void litVariant(gpu::Format format, uint32_t otherShadowMode, uint32_t spotFilter, MainPassVariant& variant);  // in place
+// The shadow sampling a lit pass variant compiles (its specialization constants): the directional
+// lights' kinds (kDirectionalShadows* bits: cascades, virtual maps, pcss) and filter, and the spot/point lights' kinds
+// and filter (the specialization that stands for the _SHADOWS_HARD / _SHADOWS_SOFT keywords of Catlike
+// Coding's "Spotlight Shadows"). The filter only matters when some light is soft, so the others share one
+// variant.
+struct LitShadowKinds {
+    uint32_t directionalMode = 0;
+    uint32_t directionalFilter = 0;  // kShadowFilter* or kShadowFilterFromData
+    uint32_t otherMode = 0;
+    uint32_t spotFilter = 0;
+};
+MainPassVariant litVariant(gpu::Format format, const LitShadowKinds& kinds);
+void litVariant(gpu::Format format, const LitShadowKinds& kinds, MainPassVariant& variant);  // in place
 // The specialization of the generic lit variant, which every frame can fall back on.
 const std::vector<gpu::SpecConstant>& genericLitSpecialization();
 

@@ -122,7 +122,10 @@ const MainPass::PipelineSet& MainPass::pipelinesFor(const Target& target) {
     request(target.variant);
     PipelineSet& wanted = pipelineSets_.at(target.variant);
     if (setReady(wanted)) return wanted;
-    if (!target.genericSpecialization.empty()) {
+    // A CPU device (lavapipe) compiles a fragment shader when it is first drawn, not when its pipeline is
+    // made: drawing the generic stand-in would not spare this frame a wait but add the largest compile of
+    // all. It waits for the variant it wants.
+    if (!target.genericSpecialization.empty() && !device_.info().isCpu) {
         MainPassVariant generic = target.variant;
         generic.specialization = target.genericSpecialization;
         request(generic);
@@ -150,21 +153,23 @@ void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const Dra
     }
 }
 
+void MainPass::partitionDraws(const Scene& scene) {
+    opaqueDraws_.clear();
+    blendedDraws_.clear();
+    for (const DrawItem& item : scene_.draws())
+        (scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend ? blendedDraws_ : opaqueDraws_).push_back(&item);
+    partitioned_ = true;
+}
+
 void MainPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                       const MainPassInputs& inputs, const Target& target) {
     const PipelineSet& set = pipelinesFor(target);
-    std::vector<const DrawItem*>& opaque = opaque_;  // members: their storage is reused frame to frame
-    std::vector<const DrawItem*>& blended = blended_;
-    opaque.clear();
+    if (!partitioned_) partitionDraws(scene);
+    static const std::vector<const DrawItem*> none;
+    const std::vector<const DrawItem*>& opaque = target.opaqueDone ? none : opaqueDraws_;
+    std::vector<const DrawItem*>& blended = blended_;  // a member: its storage is reused frame to frame
     blended.clear();
-    for (const DrawItem& item : scene_.draws()) {
-        const bool isBlend = scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend;
-        if (isBlend) {
-            if (target.variant.drawBlended) blended.push_back(&item);
-        } else if (!target.opaqueDone) {
-            opaque.push_back(&item);
-        }
-    }
+    if (target.variant.drawBlended) blended.assign(blendedDraws_.begin(), blendedDraws_.end());
     // Transparent draws back to front by the distance of their bounds' centre to the camera, equal
     // distances in scene order (std::sort with that tie-break: stable_sort would allocate a buffer).
     auto distance = [&](const DrawItem* item) {

@@ -76,6 +76,9 @@ public:
     // Records the pass into target.color / target.depth (cleared unless opaqueDone).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,
                 const Target& target);
+    // A material changed: the draws are sorted into opaque and blended again before the next record
+    // (until then each record reuses the partition: no walk over the scene's draws per frame).
+    void materialsChanged() { partitioned_ = false; }
     // Starts building a variant (Background: on the worker thread; OnDemand: now) unless it exists.
     void request(const MainPassVariant& variant);
     bool ready(const MainPassVariant& variant);
@@ -105,8 +108,12 @@ private:
     PipelineWarmup warmup_;
     std::map<MainPassVariant, PipelineSet, VariantLess> pipelineSets_;
     std::map<gpu::Format, gpu::PipelineHandle> backgrounds_;  // by colour format
+    void partitionDraws(const Scene& scene);
+    // The scene's draws by alpha mode (scene order), kept until materialsChanged().
+    std::vector<const DrawItem*> opaqueDraws_, blendedDraws_;
+    bool partitioned_ = false;
     // Per-record scratch, kept so that a steady frame allocates nothing.
-    std::vector<const DrawItem*> opaque_, blended_;
+    std::vector<const DrawItem*> blended_;
     std::vector<gpu::ResourceUse> uses_;
     gpu::RenderingDesc rendering_;
 };

@@ -58,16 +58,32 @@ void Renderer::State::destroyOwnObjects() {
 
 void Renderer::State::requestAllVariants() {
     for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm}) {
-        MainPassVariant generic = litVariant(format, 0, 0);
+        MainPassVariant generic = litVariant(format, {});
         generic.specialization = genericLitSpecialization();
         mainPass.request(generic);
     }
     mainPass.request(ScreenSpaceShadowPass::prepassVariant());
-    for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm})
-        for (uint32_t mode = 0; mode < 4; ++mode)
-            for (uint32_t filter = 0; filter < 4; ++filter) mainPass.request(litVariant(format, mode, filter));
-    for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm})
-        mainPass.request(litVariant(format, gpu_data::kOtherShadowsVirtual, 0));
+    // The directional kinds the scene's lights reach as they are (cascades or virtual maps by the setting,
+    // pcss where a light has it); their filter is read from the data (prepareMainView), or the variants to
+    // build would be five times as many. A light edited into another kind builds its variant on demand.
+    using namespace gpu_data;
+    bool directional = false, pcss = false;
+    for (const Light& light : scene.lights) {
+        directional = directional || (light.type == LightType::Directional && light.shadows != LightShadows::None);
+        pcss = pcss || (light.type == LightType::Directional && light.shadows == LightShadows::Pcss);
+    }
+    std::vector<uint32_t> directionalModes = {0u};
+    if (directional) {
+        const uint32_t extra = pcss ? kDirectionalShadowsPcss : 0u;
+        directionalModes = {kDirectionalShadowsCascades | extra, kDirectionalShadowsVirtual | extra};
+    }
+    for (uint32_t directionalMode : directionalModes)
+        for (gpu::Format format : {gpu::Format::RGBA8Srgb, gpu::Format::RGBA8Unorm}) {
+            for (uint32_t mode = 0; mode < 4; ++mode)
+                for (uint32_t filter = 0; filter < 4; ++filter)
+                    mainPass.request(litVariant(format, {directionalMode, kShadowFilterFromData, mode, filter}));
+            mainPass.request(litVariant(format, {directionalMode, kShadowFilterFromData, kOtherShadowsVirtual, 0}));
+        }
 }
 
 gpu::TextureHandle Renderer::State::importedTexture(const ExternalImage& target) {
@@ -143,6 +159,7 @@ void Renderer::State::setLight(uint32_t light, const Light& value) {
 void Renderer::State::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(scene, material, value);
     gpuScene.materialChanged(material);
+    mainPass.materialsChanged();  // its alpha mode may move its draws between opaque and blended
     invalidateVirtualMaps();  // its casters' cut-outs or cast flag may differ
     ++sceneVersion;
 }

@@ -104,7 +104,14 @@ void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings,
 const MainPassVariant& Renderer::State::prepareMainView(const Settings& settings, const ShadowFrame& plan,
                                                  const FrameTargetSizes& sizes, bool visibilityWanted) {
     MainPassVariant& litPass = litPassScratch;  // refilled in place: its lists keep their storage
-    litVariant(sizes.colorFormat, plan.other.specializationMode, uint32_t(settings.shadows.spot.filter), litPass);
+    // A background warm-up builds the variants ahead with the directional filter read from the data
+    // (requestAllVariants); on demand a variant compiles only the frame's directional filter too.
+    const bool background = options.warmup == PipelineWarmup::Background;
+    litVariant(sizes.colorFormat,
+               {plan.directional.specializationMode,
+                background ? gpu_data::kShadowFilterFromData : plan.directional.specializationFilter,
+                plan.other.specializationMode, uint32_t(settings.shadows.spot.filter)},
+               litPass);
     if (options.forceGenericVariants) litPass.specialization = genericLitSpecialization();
     // Also while auto still draws forward frames to measure: the visibility frames that follow then
     // make nothing (the steady state allocates no GPU object).

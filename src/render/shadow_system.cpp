@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "gpu/device_access.h"
+#include "render/caster_buffer_reads.h"
 #include "render/renderer_state.h"
 
 namespace penumbra {
@@ -30,6 +31,10 @@ ShadowSystem::ShadowSystem(Device& device, Scene scene, const RendererOptions& o
                     ": a caller's VkDevice must enable it and say so in ExternalVulkanDevice::timelineSemaphores");
 }
 
+ShadowSystem::ShadowSystem(Device& device, const CasterBuffers& casters, std::vector<Light> lights,
+                           const RendererOptions& options)
+    : ShadowSystem(device, readCasterBuffers(gpu::backend(device), casters, std::move(lights)), options) {}
+
 ShadowSystem::~ShadowSystem() = default;
 
 const Scene& ShadowSystem::scene() const { return impl_->renderer.scene(); }
@@ -52,6 +57,9 @@ ShadowFrameBindings ShadowSystem::recordFrame(uint64_t vkCommandBuffer, const Se
     bindings.frameIndex = end.frameIndex;
     bindings.vkCompletionSemaphore = end.vkTimelineSemaphore;
     bindings.completionValue = end.signalValue;
+    for (const gpu::SpecConstant& constant : state.litPassScratch.specialization)
+        if (constant.id >= 2 && constant.id < 2 + bindings.specialization.size())
+            bindings.specialization[constant.id - 2] = constant.value;
     for (uint32_t i = 0; i < kShadowBindingCount; ++i) {
         const gpu::DescriptorWrite& write = impl_->writes[i];
         ShadowDescriptorResource& out = bindings.descriptors[i];

@@ -117,9 +117,17 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
     workspace.receivers.assign(1, directional.wsReceiverBounds);
     const BlendCulling blendCulling{directional.blendCullingFactor,
                                     directional.wsReceiverBounds.valid() ? &workspace.receivers : nullptr};
+    directional.specializationMode = 0;
+    directional.specializationFilter = gpu_data::kShadowFilterPcf5x5;  // any: no light reads it
     for (uint32_t slot = 0; slot < directional.lights.size(); ++slot) {
         const ReservedDirectionalLight& light = directional.lights[slot];
         directional.slotOfSceneLight[light.sceneLightIndex] = int32_t(slot);
+        directional.specializationMode |= virtualMaps ? gpu_data::kDirectionalShadowsVirtual : gpu_data::kDirectionalShadowsCascades;
+        if (light.pcssTanRadius > 0.0f) directional.specializationMode |= gpu_data::kDirectionalShadowsPcss;
+        // The packed light's filterMode (shadow_gpu_packing.cpp): soft lights the setting's, hard ones PCF2x2.
+        const uint32_t filter = light.soft ? uint32_t(config.filter) : gpu_data::kShadowFilterPcf2x2;
+        directional.specializationFilter = slot == 0 || filter == directional.specializationFilter ? filter
+                                                                                                   : gpu_data::kShadowFilterFromData;
         const glm::mat4 rotation = lightRotationFromWorld(light.wsDirection);
         workspace.rsCasterBounds.clear();
         if (options.cullCasters) workspace.rsCasterBounds = rotatedCasterBounds(scene, casters, rotation);

@@ -79,6 +79,8 @@ struct DirectionalShadowPlan {
     gpu_data::DirectionalShadowData gpu{};         // packed for the lit pass
     Aabb wsReceiverBounds;                         // every shadow receiver: how far shadows can reach
     float blendCullingFactor = 0.0f;               // Unity's shadowCascadeBlendCullingFactor
+    uint32_t specializationMode = 0;               // gpu_data::kDirectionalShadows* bits the reserved lights need
+    uint32_t specializationFilter = 0;             // their common filter (kShadowFilter*), or kShadowFilterFromData
 };
 
 // Spot and point light shadows in their own atlas, planned by shadows/spot_shadow_planner.

@@ -91,6 +91,10 @@ protected:
     void TearDown() override {
         if (device) {
             vkDeviceWaitIdle(device);
+            for (auto [buffer, memory] : buffers) {
+                vkDestroyBuffer(device, buffer, nullptr);
+                vkFreeMemory(device, memory, nullptr);
+            }
             for (auto [image, memory] : images) {
                 vkDestroyImage(device, image, nullptr);
                 vkFreeMemory(device, memory, nullptr);
@@ -116,14 +120,59 @@ protected:
         return 0;
     }
 
-    VkImage makeImage(VkFormat format, uint32_t width, uint32_t height) {
+    // One layout transition of a whole image of one level and layer.
+    static void imageBarrier(VkCommandBuffer commandBuffer, VkImage image, VkImageAspectFlags aspect, VkImageLayout from,
+                             VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                             VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+        VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        barrier.srcStageMask = srcStage;
+        barrier.srcAccessMask = srcAccess;
+        barrier.dstStageMask = dstStage;
+        barrier.dstAccessMask = dstAccess;
+        barrier.oldLayout = from;
+        barrier.newLayout = to;
+        barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        barrier.image = image;
+        barrier.subresourceRange = {aspect, 0, 1, 0, 1};
+        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dependency.imageMemoryBarrierCount = 1;
+        dependency.pImageMemoryBarriers = &barrier;
+        vkCmdPipelineBarrier2(commandBuffer, &dependency);
+    }
+
+    // A host-visible buffer of the caller holding `bytes` (freed by TearDown).
+    VkBuffer makeBuffer(const void* bytes, VkDeviceSize size, VkBufferUsageFlags usage) {
+        VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+        info.size = size;
+        info.usage = usage;
+        VkBuffer buffer = VK_NULL_HANDLE;
+        EXPECT_EQ(vkCreateBuffer(device, &info, nullptr, &buffer), VK_SUCCESS);
+        VkMemoryRequirements requirements;
+        vkGetBufferMemoryRequirements(device, buffer, &requirements);
+        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        alloc.allocationSize = requirements.size;
+        alloc.memoryTypeIndex = memoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        EXPECT_EQ(vkAllocateMemory(device, &alloc, nullptr, &memory), VK_SUCCESS);
+        EXPECT_EQ(vkBindBufferMemory(device, buffer, memory, 0), VK_SUCCESS);
+        void* mapped = nullptr;
+        vkMapMemory(device, memory, 0, size, 0, &mapped);
+        std::memcpy(mapped, bytes, size);
+        vkUnmapMemory(device, memory);
+        buffers.emplace_back(buffer, memory);
+        return buffer;
+    }
+
+    VkImage makeImage(VkFormat format, uint32_t width, uint32_t height,
+                      VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT) {
         VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         info.imageType = VK_IMAGE_TYPE_2D;
         info.format = format;
         info.extent = {width, height, 1};
         info.mipLevels = info.arrayLayers = 1;
         info.samples = VK_SAMPLE_COUNT_1_BIT;
-        info.usage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        info.usage = usage;
         VkImage image = VK_NULL_HANDLE;
         EXPECT_EQ(vkCreateImage(device, &info, nullptr, &image), VK_SUCCESS);
         VkMemoryRequirements requirements;
@@ -191,6 +240,7 @@ protected:
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     std::vector<std::pair<VkImage, VkDeviceMemory>> images;
+    std::vector<std::pair<VkBuffer, VkDeviceMemory>> buffers;
     VkBuffer readback = VK_NULL_HANDLE;
     VkDeviceMemory readbackMemory = VK_NULL_HANDLE;
     VkSemaphore semaphore = VK_NULL_HANDLE;

@@ -308,28 +308,17 @@ TEST_F(ShadowSystemTest, TheCallersDepthMarksTheVirtualPages) {
             VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
             vkBeginCommandBuffer(commandBuffer, &begin);
             // The caller's "depth prepass": cleared to empty, left in DEPTH_ATTACHMENT_OPTIMAL.
-            VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-            barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-            barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-            barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            barrier.image = depth;
-            barrier.subresourceRange = viewInfo.subresourceRange;
-            VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dependency.imageMemoryBarrierCount = 1;
-            dependency.pImageMemoryBarriers = &barrier;
-            vkCmdPipelineBarrier2(commandBuffer, &dependency);
+            imageBarrier(commandBuffer, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
             const VkClearDepthStencilValue empty{0.0f, 0};
             vkCmdClearDepthStencilImage(commandBuffer, depth, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &empty, 1,
                                         &viewInfo.subresourceRange);
-            barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-            barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            barrier.dstStageMask = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-            barrier.dstAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-            barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            barrier.newLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-            vkCmdPipelineBarrier2(commandBuffer, &dependency);
+            imageBarrier(commandBuffer, depth, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
             const ShadowFrameBindings frame = recordShadowFrame(shadows, commandBuffer, settings, view,
                                                                 withDepth ? depth : VK_NULL_HANDLE,
                                                                 withDepth ? depthView : VK_NULL_HANDLE);
@@ -344,6 +333,151 @@ TEST_F(ShadowSystemTest, TheCallersDepthMarksTheVirtualPages) {
     vkDestroyImageView(device, depthView, nullptr);
     EXPECT_GT(requested[0], 0u) << "Penumbra's own depth of the scene";
     EXPECT_EQ(requested[1], 0u) << "the caller's empty depth";
+}
+
+// The caller's own buffers of a scene's casters, as an engine keeps them: one interleaved vertex buffer
+// (position, normal, uv: 32 bytes a vertex, meshes one after another, drawn with vertexOffset) and 16-bit
+// indices after 8 bytes of something else.
+struct CallerGeometry {
+    std::vector<float> vertices;
+    std::vector<uint16_t> indices{0xdead, 0xbeef, 0xdead, 0xbeef};  // the 8 bytes before indexOffset
+    CasterBuffers casters;
+};
+
+CallerGeometry callerGeometryOf(const Scene& scene) {
+    CallerGeometry geometry;
+    std::vector<CasterMesh> meshes;
+    for (const Mesh& mesh : scene.meshes) {
+        meshes.push_back({uint32_t(geometry.indices.size() - 4), uint32_t(mesh.indices.size()),
+                          int32_t(geometry.vertices.size() / 8)});
+        for (const Vertex& v : mesh.vertices)
+            geometry.vertices.insert(geometry.vertices.end(), {v.osPosition.x, v.osPosition.y, v.osPosition.z, v.osNormal.x,
+                                                               v.osNormal.y, v.osNormal.z, v.uv.x, v.uv.y});
+        for (uint32_t index : mesh.indices) geometry.indices.push_back(uint16_t(index));
+    }
+    geometry.casters.meshes = meshes;
+    geometry.casters.vertexCount = uint32_t(geometry.vertices.size() / 8);
+    geometry.casters.indexCount = uint32_t(geometry.indices.size() - 4);
+    geometry.casters.indexType = CasterIndexType::Uint16;
+    geometry.casters.indexOffset = 8;
+    geometry.casters.positionStride = geometry.casters.uvStride = 32;
+    geometry.casters.uvOffset = 24;
+    for (const Instance& instance : scene.instances) {
+        CasterInstance caster;
+        caster.mesh = instance.meshIndex;
+        caster.worldFromObject = instance.worldFromObject;
+        caster.castShadows = instance.castShadows;
+        geometry.casters.instances.push_back(caster);
+    }
+    return geometry;
+}
+
+class ShadowSystemCasterBuffersTest : public ShadowSystemTest {
+protected:
+    // The caller's buffers of `geometry` (TRANSFER_SRC usage, as ShadowSystem reads them) filled in.
+    void upload(CallerGeometry& geometry) {
+        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+        const VkBuffer vertices = makeBuffer(geometry.vertices.data(), geometry.vertices.size() * sizeof(float), usage);
+        const VkBuffer indices = makeBuffer(geometry.indices.data(), geometry.indices.size() * sizeof(uint16_t),
+                                            VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        geometry.casters.vkPositionBuffer = geometry.casters.vkUvBuffer = reinterpret_cast<uint64_t>(vertices);
+        geometry.casters.vkIndexBuffer = reinterpret_cast<uint64_t>(indices);
+    }
+
+    // A 4x4 B8G8R8A8 texture of the caller, blue and fully transparent (a swizzle that read blue as alpha
+    // would make it opaque), sampled by its shaders: left in SHADER_READ_ONLY_OPTIMAL.
+    CasterTexture transparentTexture() {
+        const std::vector<uint8_t> texels(4 * 4 * 4, 0);
+        std::vector<uint8_t> bgra = texels;
+        for (size_t i = 0; i < bgra.size(); i += 4) bgra[i] = 255;
+        const VkBuffer staging = makeBuffer(bgra.data(), bgra.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        const VkImage image = makeImage(VK_FORMAT_B8G8R8A8_UNORM, 4, 4,
+                                        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+        vkResetCommandBuffer(commandBuffer, 0);
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        vkBeginCommandBuffer(commandBuffer, &begin);
+        imageBarrier(commandBuffer, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {4, 4, 1};
+        vkCmdCopyBufferToImage(commandBuffer, staging, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        imageBarrier(commandBuffer, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        vkEndCommandBuffer(commandBuffer);
+        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &commandBuffer;
+        EXPECT_EQ(vkQueueSubmit(queue, 1, &submit, VK_NULL_HANDLE), VK_SUCCESS);  // not waited for: ShadowSystem's read is after it
+        CasterTexture texture;
+        texture.vkImage = reinterpret_cast<uint64_t>(image);
+        texture.vkFormat = VK_FORMAT_B8G8R8A8_UNORM;
+        texture.width = texture.height = 4;
+        texture.vkImageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        return texture;
+    }
+
+    // The caller's ground term of light 0 (cascades), second frame, of a ShadowSystem made by `make`.
+    template <typename Make>
+    std::vector<float> groundTerm(Device& penumbraDevice, Make&& make) {
+        ShadowSystem shadows = make(penumbraDevice);
+        const CameraView view = resolveCameraView(groundOnlyScene(), kWidth, kHeight);
+        callerFrame(shadows, Settings{}, view, 0);
+        std::vector<float> term = callerFrame(shadows, Settings{}, view, 0);
+        shadows.waitIdle();
+        return term;
+    }
+};
+
+size_t pixelsThatDiffer(const std::vector<float>& a, const std::vector<float>& b) {
+    size_t count = 0;
+    for (size_t p = 0; p < a.size(); ++p) count += a[p] != b[p];
+    return count;
+}
+
+// The same geometry read from the caller's buffers (interleaved, 16-bit indices at an offset, meshes
+// drawn with vertexOffset) casts exactly the shadows of the Scene holding it: same passes, same depths.
+TEST_F(ShadowSystemCasterBuffersTest, TheCallersBuffersCastTheShadowsOfTheSceneTheyHold) {
+    makeGroundPass();
+    if (HasFatalFailure()) return;
+    CallerGeometry geometry = callerGeometryOf(groundOnlyScene());
+    upload(geometry);
+    Device penumbraDevice(externalVulkanDevice(instance, physicalDevice, device, queue, 0, false, true));
+    const std::vector<float> fromScene =
+        groundTerm(penumbraDevice, [](Device& d) { return ShadowSystem(d, groundOnlyScene()); });
+    const std::vector<float> fromBuffers = groundTerm(
+        penumbraDevice, [&](Device& d) { return ShadowSystem(d, geometry.casters, groundOnlyScene().lights); });
+    size_t shadowed = 0;
+    for (float value : fromScene) shadowed += value >= 0.0f && value < 0.25f;
+    EXPECT_GT(shadowed, fromScene.size() / 50) << "the scene must show shadow";
+    EXPECT_EQ(pixelsThatDiffer(fromScene, fromBuffers), 0u);
+}
+
+// A clip caster whose alpha texture (the caller's, in B8G8R8A8) is transparent everywhere casts nothing:
+// the texture was read, swizzled and sampled; the caller's image is back in its layout.
+TEST_F(ShadowSystemCasterBuffersTest, AClipCasterWithATransparentAlphaTextureCastsNothing) {
+    makeGroundPass();
+    if (HasFatalFailure()) return;
+    CallerGeometry geometry = callerGeometryOf(groundOnlyScene());
+    upload(geometry);
+    geometry.casters.alphaTextures.push_back(transparentTexture());
+    geometry.casters.instances[1].shadowMode = MaterialShadowMode::Clip;
+    geometry.casters.instances[1].alphaTexture = 0;
+    Device penumbraDevice(externalVulkanDevice(instance, physicalDevice, device, queue, 0, false, true));
+    const std::vector<float> clipped =
+        groundTerm(penumbraDevice, [&](Device& d) { return ShadowSystem(d, geometry.casters, groundOnlyScene().lights); });
+    const std::vector<float> withoutBox = groundTerm(penumbraDevice, [](Device& d) {
+        Scene scene = groundOnlyScene();
+        scene.instances[1].castShadows = false;
+        return ShadowSystem(d, std::move(scene));
+    });
+    const std::vector<float> withBox =
+        groundTerm(penumbraDevice, [](Device& d) { return ShadowSystem(d, groundOnlyScene()); });
+    EXPECT_GT(pixelsThatDiffer(withBox, withoutBox), 20u) << "the box's shadow must be in view";
+    EXPECT_EQ(pixelsThatDiffer(clipped, withoutBox), 0u);
 }
 
 TEST_F(ShadowSystemTest, ADeviceWithoutTimelineSemaphoresIsRefusedWithOneLine) {

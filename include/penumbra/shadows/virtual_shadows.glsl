@@ -12,6 +12,7 @@
 // (Unreal Engine's "Virtual Shadow Maps" documentation: a clipmap level picked by the pixel's footprint).
 #ifndef PENUMBRA_VIRTUAL_SHADOWS_GLSL
 #define PENUMBRA_VIRTUAL_SHADOWS_GLSL
+#extension GL_EXT_control_flow_attributes : require
 #include "bindings.h"
 #include "bias.glsl"
 #include "pcss.glsl"
@@ -88,7 +89,7 @@ float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, v
     vec2 first = floor(q - 0.5);
     vec2 f = q - 0.5 - first;
     vec4 lit;  // (0,0) (1,0) (0,1) (1,1)
-    for (int i = 0; i < 4; ++i) {
+    [[dont_unroll]] for (int i = 0; i < 4; ++i) {
         ivec2 offset = ivec2(i & 1, i >> 1);
         float stored;
         if (!virtualShadowTexelDepth(data, level, ivec2(first) + offset, stored)) {
@@ -150,12 +151,19 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
     penumbraTentFetches1D(u.x, pairs, px, wx);
     penumbraTentFetches1D(u.y, pairs, py, wy);
     float shadow = 0.0;
-    for (int y = 0; y < pairs; ++y)
-        for (int x = 0; x < pairs; ++x) {
-            vec2 q = vec2(px[x], py[y]);
-            shadow += wx[x] * wy[y] * (onePage ? virtualCompareGathered(faces, poolFromTexel, q, uvDepth, u, g, perTexelPlane)
-                                               : virtualCompareBilinear(data, level, q, uvDepth, u, g, perTexelPlane));
-        }
+    if (onePage) {
+        for (int y = 0; y < pairs; ++y)
+            for (int x = 0; x < pairs; ++x)
+                shadow += wx[x] * wy[y] * virtualCompareGathered(faces, poolFromTexel, vec2(px[x], py[y]), uvDepth, u, g,
+                                                                 perTexelPlane);
+        return shadow;
+    }
+    // Across a page border (few receivers): the per-texel lookups, kept a loop. Unrolled, its 16 blocks of
+    // 4 page-table walks were most of the lit shader's code (minutes of compiling on a CPU device).
+    [[dont_unroll]] for (int i = 0; i < pairs * pairs; ++i) {
+        int x = i % pairs, y = i / pairs;
+        shadow += wx[x] * wy[y] * virtualCompareBilinear(data, level, vec2(px[x], py[y]), uvDepth, u, g, perTexelPlane);
+    }
     return shadow;
 }
 
@@ -167,7 +175,7 @@ float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup l
     float z = lookup.uvDepth.z;
     float searchRadius = clamp(0.5 * pcssPenumbraTexels(light, z, 0.0), 1.0, kPcssMaxRadiusTexels);
     float blockerSum = 0.0, blockers = 0.0;
-    for (int i = 0; i < kPcssSearchSamples; ++i) {
+    [[dont_unroll]] for (int i = 0; i < kPcssSearchSamples; ++i) {
         vec2 texel = floor(u + pcssDisk(i, kPcssSearchSamples) * searchRadius);
         float stored;
         if (!virtualShadowTexelDepth(data, level, ivec2(texel), stored)) continue;
@@ -178,15 +186,17 @@ float virtualShadowPcss(VirtualShadowLookupData data, uint level, ShadowLookup l
     if (blockers == 0.0) return 1.0;
     float radius = clamp(0.5 * pcssPenumbraTexels(light, z, blockerSum / blockers), 0.5, kPcssMaxRadiusTexels);
     float lit = 0.0;
-    for (int i = 0; i < kPcssFilterSamples; ++i)
+    [[dont_unroll]] for (int i = 0; i < kPcssFilterSamples; ++i)
         lit += virtualCompareBilinear(data, level, u + pcssDisk(i, kPcssFilterSamples) * radius, lookup.uvDepth, u, g, true);
     return lit / float(kPcssFilterSamples);
 }
 
 // The shadow term (1 lit, 0 shadowed; before strength and fades) of directional shadow slot `slot` at
-// a receiver `viewDepth` from the camera; `level` is the level that served it (-1: none, lit).
+// a receiver `viewDepth` from the camera; `level` is the level that served it (-1: none, lit). filterMode:
+// the light's (or the specialized constant); pcssCompiled: a constant, false where no light uses pcss
+// (its blocker search and disk are then not compiled).
 float sampleDirectionalVirtual(uint slot, DirectionalShadowLight light, uint biasMode, ShadowReceiver receiver,
-                               float viewDepth, out int level) {
+                               float viewDepth, uint filterMode, bool pcssCompiled, out int level) {
     level = -1;
     if (slot >= virtualShadows.mapCount) return 1.0;  // a light with no map this frame: nothing cast
     VirtualShadowLookupData data = virtualShadows.maps[slot];
@@ -199,11 +209,11 @@ float sampleDirectionalVirtual(uint slot, DirectionalShadowLight light, uint bia
     vec3 wsToLight = light.wsToLight.xyz;
     vec3 wsLookup = biasedLookupPosition(receiver, wsToLight, bias);
     ShadowLookup lookup = shadowLookup(virtualLevelFromWorld(data, uint(level)), receiver, wsLookup, wsToLight, bias, 1.0);
-    if (light.pcssTanRadius > 0.0) {  // metres per unit of depth: 1 / depthPerMetre
+    if (pcssCompiled && light.pcssTanRadius > 0.0) {  // metres per unit of depth: 1 / depthPerMetre
         PcssLight pcss = PcssLight(0.0, vec4(1.0 / data.depthPerMetre, light.pcssTanRadius, wsTexel, 0.0));
         return virtualShadowPcss(data, uint(level), lookup, pcss);
     }
-    return virtualShadowFiltered(data, uint(level), lookup.uvDepth, light.filterMode, lookup.depthGradient,
+    return virtualShadowFiltered(data, uint(level), lookup.uvDepth, filterMode, lookup.depthGradient,
                                  lookup.perTexelPlane);
 }
 #endif
