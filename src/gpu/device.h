@@ -149,8 +149,7 @@ public:
     std::vector<uint8_t> readExternalBuffer(uint64_t vkBuffer, uint64_t offset, uint64_t size);
     // Level 0, layer 0 of a 2D VkImage made with TRANSFER_SRC usage, in `vkImageLayout` (left so), as
     // tightly packed RGBA8 (R8's value becomes the alpha of white; BGRA is swizzled). Formats: R8_UNORM,
-    // R8G8B8A8_UNORM / _SRGB, B8G8R8A8_UNORM / _SRGB (readsExternalFormat).
-    static bool readsExternalFormat(uint32_t vkFormat);
+    // R8G8B8A8_UNORM / _SRGB, B8G8R8A8_UNORM / _SRGB.
     std::vector<uint8_t> readExternalImageRgba8(uint64_t vkImage, uint32_t vkFormat, uint32_t width, uint32_t height,
                                                 uint32_t vkImageLayout);
 

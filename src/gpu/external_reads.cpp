@@ -49,8 +49,6 @@ std::vector<uint8_t> Device::readExternalBuffer(uint64_t vkBuffer, uint64_t offs
     });
 }
 
-bool Device::readsExternalFormat(uint32_t vkFormat) { return externalTexelBytes(VkFormat(vkFormat)) != 0; }
-
 std::vector<uint8_t> Device::readExternalImageRgba8(uint64_t vkImage, uint32_t vkFormat, uint32_t width, uint32_t height,
                                                     uint32_t vkImageLayout) {
     const VkFormat format = VkFormat(vkFormat);

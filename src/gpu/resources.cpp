@@ -365,22 +365,8 @@ TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> tex
 }
 
 std::vector<uint8_t> Device::readBuffer(BufferHandle handle) {
-    Impl& d = *impl_;
-    const uint64_t size = d.buffers.at(handle.id).size;
-    const BufferHandle readback = createBuffer(size, kBufferTransferDst, MemoryKind::HostVisible, nullptr, "readback");
-    d.immediate([&](VkCommandBuffer cb) {
-        recordMemoryBarrier(cb, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
-        const VkBufferCopy copy{0, 0, size};
-        vkCmdCopyBuffer(cb, d.buffers.at(handle.id).buffer, d.buffers.at(readback.id).buffer, 1, &copy);
-        recordMemoryBarrier(cb, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    });
-    const auto* mapped = static_cast<const uint8_t*>(d.buffers.at(readback.id).mapped);
-    std::vector<uint8_t> bytes(mapped, mapped + size);
-    BufferResource readbackResource = d.buffers.remove(readback.id);
-    d.destroyNow(readbackResource);
-    return bytes;
+    const BufferResource& buffer = impl_->buffers.at(handle.id);
+    return readExternalBuffer(reinterpret_cast<uint64_t>(buffer.buffer), 0, buffer.size);  // the same copy through the host
 }
 
 }  // namespace penumbra::gpu

@@ -10,7 +10,7 @@ namespace penumbra {
 
 namespace {
 
-// `count` elements of `components` floats at offset + i x stride of the caller's buffer.
+// `count` values of type Vec (tightly packed floats) at offset + i x stride of the caller's buffer.
 template <typename Vec>
 std::vector<Vec> readStream(gpu::Device& device, uint64_t vkBuffer, uint64_t offset, uint32_t stride, uint32_t count) {
     std::vector<Vec> values(count);
