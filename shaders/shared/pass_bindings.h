@@ -110,6 +110,14 @@ PENUMBRA_CONST(uint, kResolveBindingDepth, 21u)      // float per pixel, copied 
 PENUMBRA_CONST(uint, kPyramidBindingVisibility, 0u)
 PENUMBRA_CONST(uint, kPyramidBindingTexels, 1u)
 
+// Scattered scene updates (scene_scatter.comp): the changed instances' packed records from the
+// frame's staging to their places.
+PENUMBRA_CONST(uint, kScatterBindingIndices, 0u)       // uint per changed instance: its index in the scene
+PENUMBRA_CONST(uint, kScatterBindingInstanceData, 1u)  // InstanceData per changed instance (staging)
+PENUMBRA_CONST(uint, kScatterBindingCullData, 2u)      // CullInstance per changed instance (staging)
+PENUMBRA_CONST(uint, kScatterBindingInstances, 3u)     // the scene's InstanceData[]
+PENUMBRA_CONST(uint, kScatterBindingCullInstances, 4u) // the scene's CullInstance[]
+
 // The visible-surface depth subsample (depth_subsample.comp).
 PENUMBRA_CONST(uint, kSubsampleBindingDepth, 0u)   // sampler2D, the prepass's depth
 PENUMBRA_CONST(uint, kSubsampleBindingDepths, 1u)  // float per output texel
@@ -168,6 +176,12 @@ struct ScreenShadowConstants {  // screen_space_shadows.frag
     uint lightSlot;             // the main light's shadowed directional slot
 };
 PENUMBRA_CHECK_SIZE(ScreenShadowConstants, 4)
+
+struct ScatterConstants {  // scene_scatter.comp
+    uint first;             // the first changed instance of this dispatch
+    uint count;             // changed instances in all
+};
+PENUMBRA_CHECK_SIZE(ScatterConstants, 8)
 
 struct SubsampleConstants {  // depth_subsample.comp
     uint width;              // output size

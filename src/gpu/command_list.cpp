@@ -2,6 +2,7 @@
 #include "gpu/command_list.h"
 
 #include <algorithm>
+#include <cstddef>
 
 #include "gpu/vk_internal.h"
 
@@ -206,6 +207,9 @@ void CommandList::drawIndexed(uint32_t indexCount, uint32_t instanceCount, uint3
     vkCmdDrawIndexed(native(*this), indexCount, instanceCount, firstIndex, vertexOffset, firstInstance);
 }
 
+static_assert(sizeof(IndexedDrawCommand) == sizeof(VkDrawIndexedIndirectCommand));
+static_assert(offsetof(IndexedDrawCommand, firstInstance) == offsetof(VkDrawIndexedIndirectCommand, firstInstance));
+
 void CommandList::drawIndexedIndirectCount(BufferHandle commands, uint64_t offset, BufferHandle count,
                                            uint64_t countOffset, uint32_t maxDraws) {
     Device::Impl& d = impl(*this);
@@ -304,6 +308,17 @@ void CommandList::copyBuffer(const BufferSlice& source, BufferHandle destination
     Device::Impl& d = impl(*this);
     const VkBufferCopy copy{source.offset, destinationOffset, source.size};
     vkCmdCopyBuffer(native(*this), d.buffers.at(source.buffer.id).buffer, d.buffers.at(destination.id).buffer, 1, &copy);
+}
+
+static_assert(sizeof(BufferCopyRegion) == sizeof(VkBufferCopy) && offsetof(BufferCopyRegion, sourceOffset) == offsetof(VkBufferCopy, srcOffset) &&
+              offsetof(BufferCopyRegion, destinationOffset) == offsetof(VkBufferCopy, dstOffset) &&
+              offsetof(BufferCopyRegion, size) == offsetof(VkBufferCopy, size));
+
+void CommandList::copyBufferRegions(BufferHandle source, BufferHandle destination, std::span<const BufferCopyRegion> regions) {
+    if (regions.empty()) return;
+    Device::Impl& d = impl(*this);
+    vkCmdCopyBuffer(native(*this), d.buffers.at(source.id).buffer, d.buffers.at(destination.id).buffer,
+                    uint32_t(regions.size()), reinterpret_cast<const VkBufferCopy*>(regions.data()));
 }
 
 void CommandList::copyTextureToBuffer(TextureHandle texture, BufferHandle destination) {

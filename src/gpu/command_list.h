@@ -13,6 +13,18 @@ namespace penumbra::gpu {
 
 class Device;
 
+// One region of a buffer-to-buffer copy (a VkBufferCopy).
+struct BufferCopyRegion {
+    uint64_t sourceOffset = 0, destinationOffset = 0, size = 0;
+};
+
+// One VkDrawIndexedIndirectCommand, as indirect draws read it from a buffer (20 bytes).
+struct IndexedDrawCommand {
+    uint32_t indexCount = 0, instanceCount = 0, firstIndex = 0;
+    int32_t vertexOffset = 0;
+    uint32_t firstInstance = 0;
+};
+
 class CommandList {
 public:
     // Declares the next pass of the frame graph: the resources it uses and how. Records the barriers
@@ -57,6 +69,8 @@ public:
     void clearDepthRects(std::span<const Rect> rects, float depth);
     void clearBuffer(BufferHandle buffer, uint32_t value);
     void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
+    // Many regions of `source` into `destination` in one command (a scattered update).
+    void copyBufferRegions(BufferHandle source, BufferHandle destination, std::span<const BufferCopyRegion> regions);
     // Copies level 0 of `texture` (declared TransferRead) tightly packed into `destination`.
     void copyTextureToBuffer(TextureHandle texture, BufferHandle destination);
     // Blits `source` (declared TransferRead) onto an imported external image, converting the format:

@@ -234,6 +234,10 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderInt64 = bufferInt64Atomics;
+    // Indirect draws that name their instance (firstInstance) and many draws per call: the GPU-culled
+    // shadow draws and the forward main pass's opaque draws.
+    features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
+    features.features.multiDrawIndirect = supported.multiDrawIndirect;
     // Arrays of storage buffers indexed per workgroup or dispatch: the culling lists split over buffers
     // (render/gpu_scene.h splitVisibleLists), where supported.
     storageBufferArrayIndexing = supported.shaderStorageBufferArrayDynamicIndexing;
@@ -411,6 +415,11 @@ uint32_t Device::maxImageSize() const {
 uint64_t Device::maxStorageBufferRange() const {
     const uint64_t real = impl_->properties.limits.maxStorageBufferRange;
     const uint64_t injected = impl_->options.faults.maxStorageBufferRange;
+    return injected > 0 ? std::min(real, injected) : real;
+}
+uint32_t Device::maxDrawIndirectCount() const {
+    const uint32_t real = impl_->properties.limits.maxDrawIndirectCount;
+    const uint32_t injected = impl_->options.faults.maxDrawIndirectCount;
     return injected > 0 ? std::min(real, injected) : real;
 }
 bool Device::lost() const { return impl_->lost; }

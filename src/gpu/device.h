@@ -40,6 +40,7 @@ public:
     static std::vector<DeviceInfo> listDevices();
     uint32_t maxImageSize() const;            // maxImageDimension2D (or the fault injection's smaller one)
     uint64_t maxStorageBufferRange() const;   // the largest storage buffer a shader may bind (or the fault injection's)
+    uint32_t maxDrawIndirectCount() const;    // draws one indirect multi-draw may issue (1 without multiDrawIndirect)
     bool lost() const;                        // a submission or wait returned VK_ERROR_DEVICE_LOST
     bool hasTimestamps() const;
     // shaderInt64 + shaderBufferInt64Atomics enabled (the visibility-buffer main view needs them).
@@ -97,7 +98,9 @@ public:
     uint64_t nextFrameIndex() const;  // the index the next beginFrame gives its frame
     CommandList beginFrame();
     // Host-visible memory for this frame's data (uniforms, lights, staging), valid while it is in
-    // flight; only between beginFrame and submitFrame.
+    // flight; only between beginFrame and submitFrame. Record what reads an allocation (its copy, its
+    // descriptor) before the next allocation: that one may grow the ring, and the slice's buffer handle
+    // is stale from then on (the memory stays alive until the frame is done).
     FrameAllocation allocateFrameData(uint64_t size, uint64_t alignment = 256);
     // Ends and submits the frame with its fence (one vkQueueSubmit); `sync` adds the caller's
     // semaphores. Returns the frame's index.

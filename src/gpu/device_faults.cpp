@@ -24,10 +24,12 @@ DeviceFaultInjection faultInjectionFromEnvironment() {
         else if (number && key == "wait") faults.loseDeviceAtWait = value;
         else if (number && key == "max-image-size" && value <= UINT32_MAX) faults.maxImageSize = uint32_t(value);
         else if (number && key == "max-storage-buffer-range") faults.maxStorageBufferRange = value;
+        else if (number && key == "max-draw-indirect-count" && value >= 1 && value <= UINT32_MAX)
+            faults.maxDrawIndirectCount = uint32_t(value);
         else if (number && key == "garbage" && value >= 1 && value <= 255) faults.garbageByte = uint32_t(value);
         else
             throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
-                        "' is not allocation=N, submit=N, wait=N, max-image-size=N, max-storage-buffer-range=N or garbage=1..255");
+                        "' is not allocation=N, submit=N, wait=N, max-image-size=N, max-storage-buffer-range=N, max-draw-indirect-count=N or garbage=1..255");
     }
     return faults;
 }

@@ -16,6 +16,7 @@ struct DeviceFaultInjection {
     uint64_t loseDeviceAtWait = 0;    // the Nth wait for a submission returns VK_ERROR_DEVICE_LOST
     uint32_t maxImageSize = 0;        // the device's maxImageDimension2D seems to be this (if smaller)
     uint64_t maxStorageBufferRange = 0;  // the device's maxStorageBufferRange seems to be this (if smaller)
+    uint32_t maxDrawIndirectCount = 0;   // the device's maxDrawIndirectCount seems to be this (if smaller)
     // Every allocation's memory starts as this byte repeated (1..255; 0 = left as the driver gives it),
     // where the memory is host-visible (all of it on lavapipe). A discrete GPU hands out memory with old
     // contents, lavapipe fresh zero pages: this makes a pass that reads what nothing wrote fail on
@@ -24,7 +25,7 @@ struct DeviceFaultInjection {
 };
 
 // PENUMBRA_FAULT_INJECTION, e.g. "allocation=3" or "submit=2,max-image-size=512" or
-// "max-storage-buffer-range=1048576" or "garbage=165" (unset or empty:
+// "max-storage-buffer-range=1048576" or "max-draw-indirect-count=1" or "garbage=165" (unset or empty:
 // none). Throws penumbra::Error naming the variable when an item is not key=N of a known key.
 DeviceFaultInjection faultInjectionFromEnvironment();
 

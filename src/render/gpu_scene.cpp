@@ -6,6 +6,8 @@
 
 #include "core/error.h"
 #include "cull_structs.h"
+#include "pass_bindings.h"
+#include "render/pass_layouts.h"
 #include "penumbra/image.h"
 #include "scene/meshlets.h"
 #include "scene_structs.h"
@@ -72,15 +74,18 @@ gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshS
 
 // Sorted, deduplicated indices grouped into runs of consecutive entries: one copy per run.
 template <typename Visit>
-void forEachRun(std::vector<uint32_t>& indices, Visit&& visit) {
-    std::sort(indices.begin(), indices.end());
-    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-    for (size_t begin = 0; begin < indices.size();) {
+void forEachRun(const std::vector<uint32_t>& sortedUnique, Visit&& visit) {
+    for (size_t begin = 0; begin < sortedUnique.size();) {
         size_t end = begin + 1;
-        while (end < indices.size() && indices[end] == indices[end - 1] + 1) ++end;
-        visit(indices[begin], uint32_t(end - begin));
+        while (end < sortedUnique.size() && sortedUnique[end] == sortedUnique[end - 1] + 1) ++end;
+        visit(uint32_t(begin), sortedUnique[begin], uint32_t(end - begin));
         begin = end;
     }
+}
+
+void sortUnique(std::vector<uint32_t>& indices) {
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
 }
 
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
@@ -176,6 +181,12 @@ void GpuScene::create(const Scene& scene) {
                         device_.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u);
 
     gpu::Device& device = device_;
+    gpu::ComputePipelineDesc scatter;
+    scatter.shader = "scene_scatter.comp";
+    scatter.bindings = sceneScatterBindings();
+    scatter.pushConstantSize = sizeof(gpu_data::ScatterConstants);
+    scatter.debugName = "scene scatter";
+    scatter_ = device.createComputePipeline(scatter);
     std::vector<gpu_data::VertexData> vertices;
     std::vector<uint32_t> indices;
     struct MeshRange { uint32_t firstIndex, indexCount; int32_t vertexOffset; };
@@ -240,6 +251,7 @@ void GpuScene::create(const Scene& scene) {
     if (meshlets.empty()) meshlets.push_back({});
     if (cullInstances.empty()) cullInstances.push_back({});
     instanceCount_ = uint32_t(scene.instances.size());
+    instanceDirty_.assign(scene.instances.size(), 0);
     meshSlotCount_ = uint32_t(cullMeshes.size());
 
     std::vector<gpu_data::MaterialData> materials;
@@ -303,6 +315,8 @@ void GpuScene::destroyAll() {
     for (gpu::TextureHandle t : textures_) device_.destroy(t);
     for (gpu::BufferHandle b : {vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshlets_})
         device_.destroy(b);
+    device_.destroy(scatter_);
+    scatter_ = {};
     textureTable_ = {};
     samplers_.clear();
     textures_.clear();
@@ -312,6 +326,7 @@ void GpuScene::destroyAll() {
 GpuScene::~GpuScene() { destroyAll(); }
 
 void GpuScene::updatesSubmitted() {
+    for (uint32_t instance : dirtyInstances_) instanceDirty_[instance] = 0;
     dirtyInstances_.clear();
     dirtyMaterials_.clear();
 }
@@ -323,36 +338,67 @@ uint64_t GpuScene::recordUpdates(gpu::CommandList& commands, const Scene& scene)
     gpu::ResourceUse writes[3];
     size_t count = 0;
     if (!dirtyInstances_.empty()) {
-        writes[count++] = gpu::use(instances_, gpu::Usage::TransferWrite);
-        writes[count++] = gpu::use(cullInstances_, gpu::Usage::TransferWrite);
+        writes[count++] = gpu::use(instances_, gpu::Usage::ComputeWrite);
+        writes[count++] = gpu::use(cullInstances_, gpu::Usage::ComputeWrite);
     }
     if (!dirtyMaterials_.empty()) writes[count++] = gpu::use(materials_, gpu::Usage::TransferWrite);
     commands.pass("scene updates", std::span<const gpu::ResourceUse>(writes, count));
-    forEachRun(dirtyInstances_, [&](uint32_t first, uint32_t count) {
-        const uint64_t size = uint64_t(count) * sizeof(gpu_data::InstanceData);
-        const gpu::FrameAllocation staging = device_.allocateFrameData(size, 16);
-        auto* out = static_cast<gpu_data::InstanceData*>(staging.mapped);
-        for (uint32_t i = 0; i < count; ++i) out[i] = packInstance(scene, scene.instances[first + i]);
-        commands.copyBuffer(staging.slice, instances_, uint64_t(first) * sizeof(gpu_data::InstanceData));
-        const uint64_t cullSize = uint64_t(count) * sizeof(gpu_data::CullInstance);
-        const gpu::FrameAllocation cullStaging = device_.allocateFrameData(cullSize, 16);
-        auto* cullOut = static_cast<gpu_data::CullInstance*>(cullStaging.mapped);
-        for (uint32_t i = 0; i < count; ++i) {
-            const Instance& instance = scene.instances[first + i];
-            cullOut[i] = packCullInstance(instance, meshSlotOfMesh_[instance.meshIndex]);
-        }
-        commands.copyBuffer(cullStaging.slice, cullInstances_, uint64_t(first) * sizeof(gpu_data::CullInstance));
-        bytes += size + cullSize;
-    });
-    forEachRun(dirtyMaterials_, [&](uint32_t first, uint32_t count) {
-        const uint64_t size = uint64_t(count) * sizeof(gpu_data::MaterialData);
-        const gpu::FrameAllocation staging = device_.allocateFrameData(size, 16);
+    if (!dirtyInstances_.empty()) bytes += scatterInstances(commands, scene);
+    if (!dirtyMaterials_.empty()) {
+        sortUnique(dirtyMaterials_);
+        const gpu::FrameAllocation staging =
+            device_.allocateFrameData(dirtyMaterials_.size() * sizeof(gpu_data::MaterialData), 16);
         auto* out = static_cast<gpu_data::MaterialData*>(staging.mapped);
-        for (uint32_t i = 0; i < count; ++i) out[i] = packMaterial(scene.materials[first + i]);
-        commands.copyBuffer(staging.slice, materials_, uint64_t(first) * sizeof(gpu_data::MaterialData));
-        bytes += size;
-    });
+        materialCopies_.clear();
+        forEachRun(dirtyMaterials_, [&](uint32_t at, uint32_t first, uint32_t count) {
+            for (uint32_t i = 0; i < count; ++i) out[at + i] = packMaterial(scene.materials[first + i]);
+            materialCopies_.push_back({staging.slice.offset + uint64_t(at) * sizeof(gpu_data::MaterialData),
+                                       uint64_t(first) * sizeof(gpu_data::MaterialData),
+                                       uint64_t(count) * sizeof(gpu_data::MaterialData)});
+        });
+        commands.copyBufferRegions(staging.slice.buffer, materials_, materialCopies_);
+        bytes += dirtyMaterials_.size() * sizeof(gpu_data::MaterialData);
+    }
     return bytes;
+}
+
+// The changed instances' indices and packed records in one staging allocation (each part at a
+// 256-byte offset, as descriptors bind them), written to their places by scene_scatter.comp: the CPU
+// packs each changed entry once and records one dispatch, however scattered the entries are.
+uint64_t GpuScene::scatterInstances(gpu::CommandList& commands, const Scene& scene) {
+    const uint64_t changed = dirtyInstances_.size();
+    auto aligned = [](uint64_t bytes) { return (bytes + gpu::kPortableBufferOffsetAlignment - 1) & ~(gpu::kPortableBufferOffsetAlignment - 1); };
+    const uint64_t indexBytes = changed * sizeof(uint32_t), instanceBytes = changed * sizeof(gpu_data::InstanceData);
+    const uint64_t cullBytes = changed * sizeof(gpu_data::CullInstance);
+    const uint64_t instanceOffset = aligned(indexBytes), cullOffset = instanceOffset + aligned(instanceBytes);
+    const gpu::FrameAllocation staging = device_.allocateFrameData(cullOffset + cullBytes, gpu::kPortableBufferOffsetAlignment);
+    auto* base = static_cast<uint8_t*>(staging.mapped);
+    std::memcpy(base, dirtyInstances_.data(), indexBytes);
+    auto* instanceOut = reinterpret_cast<gpu_data::InstanceData*>(base + instanceOffset);
+    auto* cullOut = reinterpret_cast<gpu_data::CullInstance*>(base + cullOffset);
+    for (uint64_t i = 0; i < changed; ++i) {
+        const Instance& instance = scene.instances[dirtyInstances_[i]];
+        instanceOut[i] = packInstance(scene, instance);
+        cullOut[i] = packCullInstance(instance, meshSlotOfMesh_[instance.meshIndex]);
+    }
+    using gpu::DescriptorWrite;
+    const gpu::BufferSlice& slice = staging.slice;
+    const DescriptorWrite writes[5] = {
+        DescriptorWrite(gpu_data::kScatterBindingIndices, {slice.buffer, slice.offset, indexBytes}),
+        DescriptorWrite(gpu_data::kScatterBindingInstanceData, {slice.buffer, slice.offset + instanceOffset, instanceBytes}),
+        DescriptorWrite(gpu_data::kScatterBindingCullData, {slice.buffer, slice.offset + cullOffset, cullBytes}),
+        DescriptorWrite(gpu_data::kScatterBindingInstances, instances_, {}, {}),
+        DescriptorWrite(gpu_data::kScatterBindingCullInstances, cullInstances_, {}, {})};
+    commands.bindPipeline(scatter_);
+    commands.pushDescriptors(writes);
+    // A dispatch covers at most 65535 groups of 64 (Vulkan's guaranteed maxComputeWorkGroupCount).
+    constexpr uint64_t kPerDispatch = 65535ull * 64ull;
+    for (uint64_t first = 0; first < changed; first += kPerDispatch) {
+        const gpu_data::ScatterConstants constants{uint32_t(first), uint32_t(changed)};
+        commands.pushConstants(&constants, sizeof(constants));
+        commands.dispatch(uint32_t((std::min(changed - first, kPerDispatch) + 63) / 64), 1);
+    }
+    return changed * (sizeof(uint32_t) + sizeof(gpu_data::InstanceData) + sizeof(gpu_data::CullInstance));
 }
 
 void GpuScene::addSceneReads(std::vector<gpu::ResourceUse>& uses, gpu::Usage usage) const {
@@ -360,11 +406,13 @@ void GpuScene::addSceneReads(std::vector<gpu::ResourceUse>& uses, gpu::Usage usa
 }
 
 uint32_t GpuScene::viewInstanceCount(const Scene& scene) const {
+    if (viewInstances_) return *viewInstances_;
     uint32_t count = 0;
     for (const Instance& instance : scene.instances) {
         const Mesh& mesh = scene.meshes[instance.meshIndex];
         count += meshSlotOfMesh_[instance.meshIndex] != ~0u && scene.materials[mesh.materialIndex].alphaMode != AlphaMode::Blend;
     }
+    viewInstances_ = count;
     return count;
 }
 

@@ -2,8 +2,10 @@
 // The scene on the GPU: one vertex storage buffer, one index buffer, the instance and material
 // buffers and the base-colour texture table. Draws are recorded from DrawItems (one per Instance),
 // which any pass (main view, shadow tiles, a future compute rasterizer) can filter. Instances and
-// materials may change between frames: only the changed entries are copied, through the frame's
-// upload ring, at the start of the next frame.
+// materials may change between frames: only the changed entries go through the frame's upload ring at
+// the start of the next frame (instances packed with their indices and written to their places by
+// scene_scatter.comp, one dispatch however scattered; materials by copy regions).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -85,13 +87,21 @@ public:
     // (visibility_structs.h); visibilityIdsFit() says whether instance and triangle fit 32 bits.
     uint32_t triangleIdBits() const { return triangleIdBits_; }
     // The instances the visibility buffer may draw: with geometry and an opaque or alpha-tested material.
+    // Counted once and again only after a material changed (not a walk over the instances per frame).
     uint32_t viewInstanceCount(const Scene& scene) const;
     bool visibilityIdsFit() const { return visibilityIdsFit_; }
     const std::vector<std::string>& warnings() const { return warnings_; }
 
     // Marks an instance or material as changed; recordUpdates uploads it.
-    void instanceChanged(uint32_t instance) { dirtyInstances_.push_back(instance); }
-    void materialChanged(uint32_t material) { dirtyMaterials_.push_back(material); }
+    void instanceChanged(uint32_t instance) {
+        if (instance >= instanceDirty_.size() || instanceDirty_[instance]) return;  // listed once, unsorted
+        instanceDirty_[instance] = 1;
+        dirtyInstances_.push_back(instance);
+    }
+    void materialChanged(uint32_t material) {
+        dirtyMaterials_.push_back(material);
+        viewInstances_.reset();  // its alpha mode may have moved instances in or out of the visibility buffer
+    }
     bool hasPendingUpdates() const { return !dirtyInstances_.empty() || !dirtyMaterials_.empty(); }
     // Copies the changed entries of `scene` (between beginFrame and submitFrame); returns the bytes
     // copied. They stay marked until updatesSubmitted(), so a frame abandoned after an error loses none.
@@ -100,6 +110,7 @@ public:
 
 private:
     void create(const Scene& scene);
+    uint64_t scatterInstances(gpu::CommandList& commands, const Scene& scene);
     void destroyAll();
 
     gpu::Device& device_;
@@ -113,6 +124,10 @@ private:
     std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler
     gpu::TextureTableHandle textureTable_;
     std::vector<uint32_t> dirtyInstances_, dirtyMaterials_;
+    std::vector<uint8_t> instanceDirty_;  // per instance: in dirtyInstances_ (no sort per frame to drop repeats)
+    std::vector<gpu::BufferCopyRegion> materialCopies_;  // recordUpdates' scratch
+    gpu::PipelineHandle scatter_;  // scene_scatter.comp: the changed instances to their places
+    mutable std::optional<uint32_t> viewInstances_;  // viewInstanceCount's last count
     std::vector<std::string> warnings_;
 };
 

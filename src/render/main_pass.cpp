@@ -29,8 +29,11 @@ void addShadingReads(std::vector<gpu::ResourceUse>& uses, const GpuScene& scene,
 
 MainPass::~MainPass() {
     for (auto& [key, set] : pipelineSets_)
-        for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]}) device_.destroy(p);
+        for (auto& byBlend : set.pipelines)
+            for (gpu::PipelineHandle p : byBlend) device_.destroy(p);
     for (auto& [format, pipeline] : backgrounds_) device_.destroy(pipeline);
+    device_.destroy(opaqueCommands_);
+    device_.destroy(opaqueCounts_);
 }
 
 bool MainPass::VariantLess::operator()(const MainPassVariant& a, const MainPassVariant& b) const {
@@ -42,9 +45,18 @@ bool MainPass::VariantLess::operator()(const MainPassVariant& a, const MainPassV
 }
 
 MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool async) {
-    PipelineSet set;
-    for (int doubleSided = 0; doubleSided < 2; ++doubleSided) {
-        for (int blended = 0; blended < (variant.drawBlended ? 2 : 1); ++blended) {
+    PipelineSet& set = pipelineSets_.emplace(variant, PipelineSet{}).first->second;
+    completeSet(variant, set, async);
+    // The colour output's sets come with the background of their format (built alongside, so a
+    // change of render.background builds nothing).
+    if (variant.drawBlended) backgroundPipeline(variant.colorFormat, async);
+    return set;
+}
+
+void MainPass::completeSet(const MainPassVariant& variant, PipelineSet& set, bool async) {
+    for (int blended = 0; blended < (variant.drawBlended ? 2 : 1); ++blended) {
+        for (int doubleSided = 0; doubleSided < 2; ++doubleSided) {
+            if (!slotsUsed_[blended][doubleSided] || set.pipelines[blended][doubleSided]) continue;
             gpu::GraphicsPipelineDesc desc;
             desc.vertexShader = "mesh.vert";
             desc.fragmentShader = variant.fragmentShader;
@@ -60,14 +72,10 @@ MainPass::PipelineSet& MainPass::create(const MainPassVariant& variant, bool asy
             desc.specialization.insert(desc.specialization.end(), variant.specialization.begin(),
                                        variant.specialization.end());
             desc.debugName = variant.fragmentShader + (blended ? " blended" : "") + (doubleSided ? " double-sided" : "");
-            (blended ? set.blended : set.opaque)[doubleSided] =
+            set.pipelines[blended][doubleSided] =
                 async ? device_.createGraphicsPipelineAsync(desc) : device_.createGraphicsPipeline(desc);
         }
     }
-    // The colour output's sets come with the background of their format (built alongside, so a
-    // change of render.background builds nothing).
-    if (variant.drawBlended) backgroundPipeline(variant.colorFormat, async);
-    return pipelineSets_.emplace(variant, set).first->second;
 }
 
 gpu::PipelineHandle MainPass::backgroundPipeline(gpu::Format colorFormat, bool async) {
@@ -99,14 +107,16 @@ void MainPass::drawBackground(gpu::CommandList& commands, const Target& target,
 }
 
 bool MainPass::setReady(const PipelineSet& set) {
-    for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]})
-        if (p && !device_.pipelineReady(p)) return false;
+    for (const auto& byBlend : set.pipelines)
+        for (gpu::PipelineHandle p : byBlend)
+            if (p && !device_.pipelineReady(p)) return false;
     return true;
 }
 
 void MainPass::waitFor(const PipelineSet& set) {
-    for (gpu::PipelineHandle p : {set.opaque[0], set.opaque[1], set.blended[0], set.blended[1]})
-        if (p) device_.waitForPipeline(p);
+    for (const auto& byBlend : set.pipelines)
+        for (gpu::PipelineHandle p : byBlend)
+            if (p) device_.waitForPipeline(p);
 }
 
 void MainPass::request(const MainPassVariant& variant) {
@@ -121,6 +131,7 @@ bool MainPass::ready(const MainPassVariant& variant) {
 const MainPass::PipelineSet& MainPass::pipelinesFor(const Target& target) {
     request(target.variant);
     PipelineSet& wanted = pipelineSets_.at(target.variant);
+    completeSet(target.variant, wanted, false);  // only after a material made a new combination appear
     if (setReady(wanted)) return wanted;
     // A CPU device (lavapipe) compiles a fragment shader when it is first drawn, not when its pipeline is
     // made: drawing the generic stand-in would not spare this frame a wait but add the largest compile of
@@ -130,11 +141,20 @@ const MainPass::PipelineSet& MainPass::pipelinesFor(const Target& target) {
         generic.specialization = target.genericSpecialization;
         request(generic);
         PipelineSet& fallback = pipelineSets_.at(generic);
+        completeSet(generic, fallback, false);
         waitFor(fallback);  // only before the generic set's first build has finished
         return fallback;
     }
     waitFor(wanted);
     return wanted;
+}
+
+void MainPass::bindDrawState(gpu::CommandList& commands, gpu::PipelineHandle pipeline,
+                             const std::vector<gpu::DescriptorWrite>& writes) {
+    commands.bindPipeline(pipeline);
+    commands.pushDescriptors(writes);
+    commands.bindTextureTable(scene_.textureTable());
+    commands.bindIndexBuffer(scene_.indexBuffer());
 }
 
 void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const DrawItem*>& items, const PipelineSet& set,
@@ -143,30 +163,71 @@ void MainPass::drawItems(gpu::CommandList& commands, const std::vector<const Dra
     for (const DrawItem* item : items) {
         const int doubleSided = scene.materials.at(item->materialIndex).doubleSided ? 1 : 0;
         if (doubleSided != boundVariant) {
-            commands.bindPipeline((blended ? set.blended : set.opaque)[doubleSided]);
-            commands.pushDescriptors(writes);
-            commands.bindTextureTable(scene_.textureTable());
-            commands.bindIndexBuffer(scene_.indexBuffer());
+            bindDrawState(commands, set.pipelines[blended ? 1 : 0][doubleSided], writes);
             boundVariant = doubleSided;
         }
         commands.drawIndexed(item->indexCount, 1, item->firstIndex, item->vertexOffset, item->instanceIndex);
     }
 }
 
+void MainPass::drawOpaque(gpu::CommandList& commands, const PipelineSet& set, const std::vector<gpu::DescriptorWrite>& writes) {
+    uint32_t first = 0;
+    for (int doubleSided = 0; doubleSided < 2; ++doubleSided) {
+        const uint32_t count = opaqueCountBySide_[doubleSided];
+        if (count == 0) continue;
+        bindDrawState(commands, set.pipelines[0][doubleSided], writes);
+        commands.drawIndexedIndirectCount(opaqueCommands_, uint64_t(first) * sizeof(gpu::IndexedDrawCommand),
+                                          opaqueCounts_, uint64_t(doubleSided) * sizeof(uint32_t), count);
+        first += count;
+    }
+}
+
 void MainPass::partitionDraws(const Scene& scene) {
     opaqueDraws_.clear();
     blendedDraws_.clear();
-    for (const DrawItem& item : scene_.draws())
-        (scene.materials.at(item.materialIndex).alphaMode == AlphaMode::Blend ? blendedDraws_ : opaqueDraws_).push_back(&item);
-    partitioned_ = true;
+    for (const DrawItem& item : scene_.draws()) {
+        const Material& material = scene.materials.at(item.materialIndex);
+        const bool blended = material.alphaMode == AlphaMode::Blend;
+        (blended ? blendedDraws_ : opaqueDraws_).push_back(&item);
+        slotsUsed_[blended ? 1 : 0][material.doubleSided ? 1 : 0] = true;  // never unset: the pipeline stays
+    }
+    auto singleSided = [&](const DrawItem* item) { return !scene.materials[item->materialIndex].doubleSided; };
+    const auto split = std::stable_partition(opaqueDraws_.begin(), opaqueDraws_.end(), singleSided);
+    uploadOpaqueCommands({uint32_t(split - opaqueDraws_.begin()), uint32_t(opaqueDraws_.end() - split)});
+}
+
+void MainPass::uploadOpaqueCommands(std::array<uint32_t, 2> countBySide) {
+    gpu::BufferHandle commands, counts;
+    if (!opaqueDraws_.empty()) {
+        std::vector<gpu::IndexedDrawCommand> data;
+        data.reserve(opaqueDraws_.size());
+        for (const DrawItem* item : opaqueDraws_)
+            data.push_back({item->indexCount, 1, item->firstIndex, item->vertexOffset, item->instanceIndex});
+        using gpu::MemoryKind;
+        commands = device_.createBuffer(data.size() * sizeof(data[0]), gpu::kBufferIndirect, MemoryKind::DeviceLocal,
+                                        data.data(), "main pass opaque draws");
+        try {
+            counts = device_.createBuffer(sizeof(countBySide), gpu::kBufferIndirect, MemoryKind::DeviceLocal,
+                                          countBySide.data(), "main pass opaque draw counts");
+        } catch (...) {
+            device_.destroy(commands);  // this pass's destructor does not run when its constructor throws
+            throw;
+        }
+    }
+    device_.destroy(opaqueCommands_);  // deferred: a frame in flight may still read them
+    device_.destroy(opaqueCounts_);
+    opaqueCommands_ = commands;
+    opaqueCounts_ = counts;
+    opaqueCountBySide_ = countBySide;  // with the buffers: a failed upload keeps the last ones and their counts
 }
 
 void MainPass::record(gpu::CommandList& commands, const Scene& scene, const CameraView& view,
                       const MainPassInputs& inputs, const Target& target) {
     const PipelineSet& set = pipelinesFor(target);
-    if (!partitioned_) partitionDraws(scene);
+    // The opaque draws by two indirect multi-draws where the device allows that many draws per call.
+    const bool multiDraw = device_.maxDrawIndirectCount() >= std::max(opaqueCountBySide_[0], opaqueCountBySide_[1]);
     static const std::vector<const DrawItem*> none;
-    const std::vector<const DrawItem*>& opaque = target.opaqueDone ? none : opaqueDraws_;
+    const std::vector<const DrawItem*>& opaque = target.opaqueDone || multiDraw ? none : opaqueDraws_;
     std::vector<const DrawItem*>& blended = blended_;  // a member: its storage is reused frame to frame
     blended.clear();
     if (target.variant.drawBlended) blended.assign(blendedDraws_.begin(), blendedDraws_.end());
@@ -197,9 +258,14 @@ void MainPass::record(gpu::CommandList& commands, const Scene& scene, const Came
         uses = {gpu::discard(target.color, Usage::ColorTarget), gpu::discard(target.depth, Usage::DepthTarget)};
     }
     uses.push_back(gpu::use(scene_.indexBuffer(), Usage::IndexBuffer));
+    if (!target.opaqueDone && multiDraw && opaqueCommands_) {
+        uses.push_back(gpu::use(opaqueCommands_, Usage::IndirectArguments));
+        uses.push_back(gpu::use(opaqueCounts_, Usage::IndirectArguments));
+    }
     addShadingReads(uses, scene_, inputs, false);
     commands.pass(target.passName, uses);
     commands.beginRendering(rendering);
+    if (!target.opaqueDone && multiDraw) drawOpaque(commands, set, inputs.writes);
     drawItems(commands, opaque, set, false, scene, inputs.writes);
     if (target.background) drawBackground(commands, target, inputs.writes);
     drawItems(commands, blended, set, true, scene, inputs.writes);

@@ -54,8 +54,11 @@ struct MainPassVariant {
 
 class MainPass {
 public:
-    MainPass(gpu::Device& device, const GpuScene& gpuScene, PipelineWarmup warmup)
-        : device_(device), scene_(gpuScene), warmup_(warmup) {}
+    // `scene` is the one gpuScene was made from: its materials say which pipelines a variant needs.
+    MainPass(gpu::Device& device, const GpuScene& gpuScene, const Scene& scene, PipelineWarmup warmup)
+        : device_(device), scene_(gpuScene), warmup_(warmup) {
+        partitionDraws(scene);
+    }
     ~MainPass();
     MainPass(const MainPass&) = delete;
     MainPass& operator=(const MainPass&) = delete;
@@ -76,18 +79,20 @@ public:
     // Records the pass into target.color / target.depth (cleared unless opaqueDone).
     void record(gpu::CommandList& commands, const Scene& scene, const CameraView& view, const MainPassInputs& inputs,
                 const Target& target);
-    // A material changed: the draws are sorted into opaque and blended again before the next record
-    // (until then each record reuses the partition: no walk over the scene's draws per frame).
-    void materialsChanged() { partitioned_ = false; }
+    // A material changed: the draws are sorted into opaque and blended again (between changes each
+    // record reuses the partition: no walk over the scene's draws per frame). A material that makes a
+    // new (blended, double-sided) combination appear builds that pipeline of each variant when next used.
+    void materialsChanged(const Scene& scene) { partitionDraws(scene); }
     // Starts building a variant (Background: on the worker thread; OnDemand: now) unless it exists.
     void request(const MainPassVariant& variant);
     bool ready(const MainPassVariant& variant);
     const GpuScene& scene() const { return scene_; }
 
 private:
+    // A variant's pipelines by [blended][doubleSided]; only the combinations the scene's materials use
+    // are built (each lit-pass pipeline is a large compile on a CPU device).
     struct PipelineSet {
-        gpu::PipelineHandle opaque[2];   // [doubleSided]
-        gpu::PipelineHandle blended[2];
+        gpu::PipelineHandle pipelines[2][2];
     };
     // Orders variants by format, fragment shader, blended flag and specialization (id, value): the
     // sets are found by the variant itself, with no key built per frame.
@@ -95,6 +100,8 @@ private:
         bool operator()(const MainPassVariant& a, const MainPassVariant& b) const;
     };
     PipelineSet& create(const MainPassVariant& variant, bool async);
+    // Builds the set's missing pipelines among the combinations the draws use (slotsUsed_).
+    void completeSet(const MainPassVariant& variant, PipelineSet& set, bool async);
     bool setReady(const PipelineSet& set);
     void waitFor(const PipelineSet& set);
     const PipelineSet& pipelinesFor(const Target& target);
@@ -109,9 +116,17 @@ private:
     std::map<MainPassVariant, PipelineSet, VariantLess> pipelineSets_;
     std::map<gpu::Format, gpu::PipelineHandle> backgrounds_;  // by colour format
     void partitionDraws(const Scene& scene);
-    // The scene's draws by alpha mode (scene order), kept until materialsChanged().
+    void uploadOpaqueCommands(std::array<uint32_t, 2> countBySide);
+    void drawOpaque(gpu::CommandList& commands, const PipelineSet& set, const std::vector<gpu::DescriptorWrite>& writes);
+    void bindDrawState(gpu::CommandList& commands, gpu::PipelineHandle pipeline, const std::vector<gpu::DescriptorWrite>& writes);
+    // The scene's draws by alpha mode, kept until materialsChanged(): the opaque and alpha-tested ones
+    // single-sided first (scene order within each), the blended ones in scene order.
     std::vector<const DrawItem*> opaqueDraws_, blendedDraws_;
-    bool partitioned_ = false;
+    // The opaque draws as VkDrawIndexedIndirectCommands in that order, and per sidedness their count
+    // ({n0, n1}): a record issues two indirect multi-draws, however many objects the scene has.
+    gpu::BufferHandle opaqueCommands_, opaqueCounts_;
+    std::array<uint32_t, 2> opaqueCountBySide_ = {};
+    bool slotsUsed_[2][2] = {};  // [blended][doubleSided]: some draw has that combination
     // Per-record scratch, kept so that a steady frame allocates nothing.
     std::vector<const DrawItem*> blended_;
     std::vector<gpu::ResourceUse> uses_;

@@ -165,6 +165,14 @@ std::vector<BindingDesc> depthSubsampleBindings() {
             {"SubsampleBlock", kSubsampleBindingDepths, kStorage, kC}};
 }
 
+std::vector<BindingDesc> sceneScatterBindings() {
+    return {{"ScatterIndexBlock", kScatterBindingIndices, kStorage, kC},
+            {"ScatterInstanceBlock", kScatterBindingInstanceData, kStorage, kC},
+            {"ScatterCullBlock", kScatterBindingCullData, kStorage, kC},
+            {"SceneInstanceBlock", kScatterBindingInstances, kStorage, kC},
+            {"SceneCullInstanceBlock", kScatterBindingCullInstances, kStorage, kC}};
+}
+
 std::vector<BindingDesc> virtualPageMarkBindings() {
     return {{"PageMarkBlock", kPageMarkBindingFrame, kUniform, kC},
             {"sceneDepth", kPageMarkBindingDepth, kSampled, kC},

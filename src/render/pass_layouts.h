@@ -26,6 +26,7 @@ std::vector<gpu::BindingDesc> visibilityResolveBindings(gpu::ShaderStage shading
 std::vector<gpu::BindingDesc> depthPyramidBindings();    // depth_pyramid.comp
 std::vector<gpu::BindingDesc> lightClusterBindings();    // light_cluster.comp
 std::vector<gpu::BindingDesc> depthSubsampleBindings();  // depth_subsample.comp
+std::vector<gpu::BindingDesc> sceneScatterBindings();    // scene_scatter.comp
 std::vector<gpu::BindingDesc> virtualPageMarkBindings();  // virtual_page_mark.comp
 std::vector<gpu::BindingDesc> virtualPageMarkVisibilityBindings();  // virtual_page_mark_visibility.comp
 // virtual_face_mark.comp, or virtual_face_mark_visibility.comp when `visibility`.

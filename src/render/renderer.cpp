@@ -15,7 +15,7 @@ namespace penumbra {
 
 Renderer::State::State(gpu::Device& d, Scene s, const RendererOptions& o)
     : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
-      mainPass(d, gpuScene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
+      mainPass(d, gpuScene, scene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
       visiblePass(d, gpuScene, mainPass),
       computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue, o.rasterWorkQueue), virtualShadows(d, gpuScene, computeRaster),
       virtualFaces(d, gpuScene, computeRaster),
@@ -134,9 +134,11 @@ const Scene& Renderer::scene() const { return state_->scene; }
 
 void Renderer::State::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {
     const bool exists = instance < scene.instances.size();
-    if (exists) casterChanged(scene.instances[instance].wsBounds);  // where it was
+    const Aabb wsOldBounds = exists ? scene.instances[instance].wsBounds : Aabb{};
+    if (exists) casterChanged(wsOldBounds);  // where it was
     setInstanceWorldTransform(scene, instance, worldFromObject);
     casterChanged(scene.instances[instance].wsBounds);  // and is now
+    planWorkspace.instanceMoved(scene, instance, wsOldBounds);
     ++sceneVersion;
     gpuScene.instanceChanged(instance);
 }
@@ -149,6 +151,7 @@ void Renderer::State::setInstanceCastShadows(uint32_t instance, bool castShadows
     casterChanged(scene.instances[instance].wsBounds);
     gpuScene.instanceChanged(instance);  // the GPU culling reads the flag
     ++sceneVersion;
+    ++casterSetVersion;
 }
 
 void Renderer::State::setLight(uint32_t light, const Light& value) {
@@ -159,9 +162,10 @@ void Renderer::State::setLight(uint32_t light, const Light& value) {
 void Renderer::State::setMaterial(uint32_t material, const Material& value) {
     replaceMaterial(scene, material, value);
     gpuScene.materialChanged(material);
-    mainPass.materialsChanged();  // its alpha mode may move its draws between opaque and blended
+    mainPass.materialsChanged(scene);  // its alpha mode may move its draws between opaque and blended
     invalidateVirtualMaps();  // its casters' cut-outs or cast flag may differ
     ++sceneVersion;
+    ++casterSetVersion;
 }
 
 void Renderer::setInstanceTransform(uint32_t instance, const glm::mat4& worldFromObject) {

@@ -94,7 +94,7 @@ void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings,
                                   const std::optional<VisibleSurfaces>& visibleNow) {
     PlanOptions planOptions;
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
-    planOptions.sceneVersion = sceneVersion + 1;  // the casters and receivers change only with it (never 0)
+    planOptions.sceneVersion = casterSetVersion + 1;  // the caster set changes only with it (never 0); moves are reported
     // Virtual shadow maps fit no cascades: they plan with no visible surfaces.
     const bool tight = settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(settings);
     const VisibleSurfaces* planVisible = !tight ? nullptr : visibleNow ? &*visibleNow : &*latestVisible;

@@ -124,6 +124,9 @@ struct Renderer::State {
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
     uint64_t sceneVersion = 0;  // bumped by every change to the casters (transforms, cast flags, materials)
+    // Bumped by the changes that can add or remove casters or receivers (cast flags, materials): the
+    // planner's workspace follows moves itself (ShadowPlanWorkspace::instanceMoved).
+    uint64_t casterSetVersion = 0;
     uint64_t lightVersion = 0;  // bumped by every change to a light
     // Shadow frames on a caller's depth so far: the virtual pages' settling counts each as new inputs
     // (the caller's geometry may move with nothing else changing), so none settles.

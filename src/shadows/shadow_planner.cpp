@@ -141,6 +141,26 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
 
 }  // namespace
 
+void ShadowPlanWorkspace::instanceMoved(const Scene& scene, uint32_t instance, const Aabb& wsOldBounds) {
+    if (sceneVersion == 0) return;  // the next plan walks anyway
+    const Instance& moved = scene.instances.at(instance);
+    const Aabb& wsNewBounds = moved.wsBounds;
+    if (wsOldBounds.valid() != wsNewBounds.valid()) {  // it joins or leaves the casters and receivers
+        sceneVersion = 0;
+        return;
+    }
+    if (!wsNewBounds.valid() || !isShadowReceiver(scene, moved)) return;
+    for (int axis = 0; axis < 3; ++axis) {
+        const bool leftMin = wsOldBounds.min[axis] <= wsReceiverBounds.min[axis] && wsNewBounds.min[axis] > wsReceiverBounds.min[axis];
+        const bool leftMax = wsOldBounds.max[axis] >= wsReceiverBounds.max[axis] && wsNewBounds.max[axis] < wsReceiverBounds.max[axis];
+        if (leftMin || leftMax) {  // the union may shrink: only a walk knows by how much
+            sceneVersion = 0;
+            return;
+        }
+    }
+    wsReceiverBounds.extend(wsNewBounds);
+}
+
 void ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                          const VisibleSurfaces* visible, const PlanOptions& options, ShadowFrame& frame,
                          ShadowPlanWorkspace& workspace) {

@@ -116,10 +116,11 @@ struct PlanOptions {
     // renderer culls on the GPU (render/shadow_culling_pass) and turns this off; tests keep it as the
     // reference the GPU lists are compared with.
     bool cullCasters = true;
-    // The scene's version when the caller keeps one, bumped by every change to its instances or
-    // materials (the renderer's edits do): the workspace then keeps the caster list and the receivers'
-    // bounds of the last plan of the same version instead of walking every instance again. 0: unknown,
-    // walk them every time.
+    // The version of the scene's casters and receivers when the caller keeps one, bumped by every change
+    // to its instances or materials except the moves it reports with ShadowPlanWorkspace::instanceMoved
+    // (the renderer's edits do): the workspace then keeps the caster list and the receivers' bounds of
+    // the last plan of the same version instead of walking every instance again. 0: unknown, walk them
+    // every time.
     uint64_t sceneVersion = 0;
 };
 
@@ -131,6 +132,13 @@ struct ShadowPlanWorkspace {
     std::vector<Aabb> receivers;        // the receivers' union, as blend culling reads it
     std::vector<Aabb> rsCasterBounds;   // one light's rotated caster bounds (PlanOptions::cullCasters)
     OtherLightReservation reservation;  // the spot and point lights' reservation
+
+    // Instance `instance` of `scene` moved from `wsOldBounds` (scene holds its new bounds): keeps the
+    // caster list and the receivers' union exact in O(1) where it can - the union grows by the new
+    // bounds, and the caster set changes only when the bounds become valid or invalid. Where it cannot
+    // (the old bounds reached a face of the union that the new ones leave, or the set changes), the
+    // next plan walks the instances again.
+    void instanceMoved(const Scene& scene, uint32_t instance, const Aabb& wsOldBounds);
 };
 
 class ShadowPlanner {

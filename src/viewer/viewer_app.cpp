@@ -80,7 +80,10 @@ void announce(const std::string& message) {
 
 std::unique_ptr<Renderer> makeRenderer(Device& device, Scene scene) {
     RendererOptions options;
-    options.warmup = PipelineWarmup::Background;  // a setting change never stalls a frame
+    // On a GPU a setting change never stalls a frame: every variant it can reach is built ahead on the
+    // worker thread. A CPU device (lavapipe) builds on demand: its frames wait for their own variant
+    // anyway (see PipelineWarmup), and a background build would take the cores that draw.
+    options.warmup = device.info().isCpu ? PipelineWarmup::OnDemand : PipelineWarmup::Background;
     return std::make_unique<Renderer>(device, std::move(scene), options);
 }
 

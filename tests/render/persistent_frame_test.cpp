@@ -106,21 +106,24 @@ TEST_F(PersistentFrameTest, TargetsAreRemadeOnlyWhenTheirSizeChanges) {
     EXPECT_EQ(device().liveObjects().objectsCreated, made + 2);
 }
 
-TEST_F(PersistentFrameTest, TwoHundredChangingFramesLeaveNoDeviceObjectOnceTheRendererIsGone) {
+// Every frame changes the settings (atlas sizes, cascades, filters, blend, screen-space shadows) and
+// the shadowed lights; each setting comes back several times in 60 frames (every lit-pass variant they
+// reach is a compile of seconds on lavapipe, so more frames would test the same objects at length).
+TEST_F(PersistentFrameTest, SixtyChangingFramesLeaveNoDeviceObjectOnceTheRendererIsGone) {
     const DeviceObjectCounts before = device().liveObjects();
     {
         Renderer renderer(device(), makeDemoScene());
         const CameraView view = resolveCameraView(renderer.scene(), 48, 27);
         const std::vector<Light> lights = renderer.scene().lights;
-        for (uint32_t i = 0; i < 200; ++i) {
+        for (uint32_t i = 0; i < 60; ++i) {
             // The number of shadowed lights changes too: lights drop in and out of the shadow budget.
             for (uint32_t l = 0; l < lights.size(); ++l) {
                 Light light = lights[l];
-                if ((i / 10 + l) % 3 == 0) light.shadows = LightShadows::None;
-                if ((i / 20 + l) % 4 == 1) light.shadows = LightShadows::Hard;
+                if ((i / 5 + l) % 3 == 0) light.shadows = LightShadows::None;
+                if ((i / 10 + l) % 4 == 1) light.shadows = LightShadows::Hard;
                 renderer.setLight(l, light);
             }
-            if (i % 50 == 49) renderer.render(request(OutputMode::ShadowAov, 48, 27), varyingSettings(i));
+            if (i % 20 == 19) renderer.render(request(OutputMode::ShadowAov, 48, 27), varyingSettings(i));
             else renderer.submitFrame(request(OutputMode(i % 3), 48, 27), varyingSettings(i), view);
         }
     }
@@ -165,6 +168,28 @@ TEST_F(SceneUpdateTest, MovedCasterRendersAsAFreshSceneWithItMoved) {
     EXPECT_FALSE(after.pixels == before.pixels);
 }
 
+// Ten thousand scattered moves in one frame (scene_scatter.comp writes them to their places): their
+// staging (1.2 MB) outgrows the frame's first upload ring (1 MiB), which grows while the frame records.
+TEST_F(SceneUpdateTest, TenThousandScatteredMovesInOneFrameRenderAsAFreshSceneWithThemMoved) {
+    Scene scene = makeBoxesScene(20000);
+    Settings settings;
+    settings.shadows.maxDistance = 500.0f;  // the camera sees the field from 180 to 383 m
+    Renderer renderer(device(), scene);
+    const Image before = renderer.render(shadowAov(0, 96), settings).image;
+    for (uint32_t instance = 1; instance < scene.instances.size(); instance += 2) {  // every other box: 10k runs
+        // 30 m up: its shadow lands tens of metres away.
+        const glm::mat4 moved = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 30.0f, 0.0f)) * scene.instances[instance].worldFromObject;
+        renderer.setInstanceTransform(instance, moved);
+        scene.instances[instance].worldFromObject = moved;
+        scene.instances[instance].wsBounds = scene.meshes[scene.instances[instance].meshIndex].osBounds.transformed(moved);
+    }
+    const RenderResult after = renderer.render(shadowAov(0, 96), settings);
+    EXPECT_GT(after.stats.sceneBytesUploaded, 1ull << 20);
+    Renderer fresh(device(), scene);
+    EXPECT_TRUE(after.image.pixels == fresh.render(shadowAov(0, 96), settings).image.pixels);
+    EXPECT_GT(shareOfPixelsOver(after.image, before, 64), 0.005) << "the boxes' shadows must have moved";
+}
+
 // The tight cascade fit of a one-shot render reads the view's depth before the frame: drawn from the
 // instances as they are after the edit, not as the GPU held them before it.
 TEST_F(SceneUpdateTest, AOneShotRenderAfterAnEditFitsTheCascadesToTheEditedScene) {
@@ -190,7 +215,8 @@ TEST_F(SceneUpdateTest, OnlyTheChangedInstanceIsUploaded) {
     const RenderResult first = renderer.render(shadowAov(0, 32), {});
     EXPECT_EQ(first.stats.sceneBytesUploaded, 0u);
     renderer.setInstanceTransform(2, glm::translate(glm::mat4(1.0f), glm::vec3(1, 0.75f, 1)));
-    EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 64u + 48u);  // one InstanceData and its CullInstance
+    // One InstanceData, its CullInstance and its index (where scene_scatter.comp writes them).
+    EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 64u + 48u + 4u);
     EXPECT_EQ(renderer.render(shadowAov(0, 32), {}).stats.sceneBytesUploaded, 0u);
 }
 

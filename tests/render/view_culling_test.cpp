@@ -77,6 +77,19 @@ TEST_F(ViewCullingTest, FrustumCullingSkipsTheInstancesBehindTheCamera) {
     EXPECT_EQ(shareOfPixelsOver(frame.image, unculled.image, 0), 0.0);
 }
 
+TEST_F(ViewCullingTest, AMaterialTurnedBlendedTakesItsInstancesOutOfTheVisibilityBuffer) {
+    const Scene scene = wallScene();
+    Renderer renderer(device(), scene);
+    EXPECT_EQ(renderFrames(renderer, ViewCulling::Frustum, frontView(scene), 1).stats.viewInstances,
+              kShown + kHiddenBoxes + kBoxesBehindTheCamera);
+    Material blended = scene.materials[0];  // every instance's
+    blended.alphaMode = AlphaMode::Blend;
+    blended.baseColorFactor.a = 0.5f;
+    renderer.setMaterial(0, blended);
+    EXPECT_EQ(renderFrames(renderer, ViewCulling::Frustum, frontView(scene), 1).stats.viewInstances, 0u)
+        << "blended materials are drawn forward, after the visibility buffer";
+}
+
 TEST_F(ViewCullingTest, NoCullingDrawsEveryInstance) {
     const Scene scene = wallScene();
     Renderer renderer(device(), scene);

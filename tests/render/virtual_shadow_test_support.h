@@ -66,7 +66,7 @@ struct SceneDepth {
 
 inline SceneDepth renderSceneDepth(gpu::Device& gpu, const Scene& scene, const CameraView& view) {
     GpuScene gpuScene(gpu, scene);
-    MainPass mainPass(gpu, gpuScene, PipelineWarmup::OnDemand);
+    MainPass mainPass(gpu, gpuScene, scene, PipelineWarmup::OnDemand);
     const gpu_data::FrameData frame = cameraFrameData(view);
     const gpu::BufferHandle frameBuffer = gpu.createBuffer(sizeof(frame), gpu::kBufferUniform,
                                                              gpu::MemoryKind::HostVisible, &frame, "test frame");
