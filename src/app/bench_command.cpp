@@ -402,9 +402,9 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     // reaches every lit-pass variant, so on a GPU those are all built first, on the worker thread. A CPU
     // device builds on demand: its frames wait for their own variant anyway, and a background build
     // would take the cores that draw.
-    const bool varies = bench.varyPeriod > 0;
+    const bool warmAllVariants = bench.varyPeriod > 0 && !device.info().isCpu;
     RendererOptions rendererOptions;
-    rendererOptions.warmup = varies && !device.info().isCpu ? PipelineWarmup::Background : PipelineWarmup::OnDemand;
+    rendererOptions.warmup = warmAllVariants ? PipelineWarmup::Background : PipelineWarmup::OnDemand;
     Renderer renderer(device, loadSceneFor(options), rendererOptions);
     const Scene& scene = renderer.scene();
     RenderRequest request = makeRenderRequest(options);
@@ -416,8 +416,7 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
 
     uint64_t frame = 0;
     for (uint32_t i = 0; i < bench.warmup; ++i) submitBenchFrame(renderer, bench, loop, settings, frame++);
-    // On a GPU the timed frames use the specialized variants (a CPU device builds each when first needed).
-    if (varies && !device.info().isCpu) renderer.buildAllPipelines();
+    if (warmAllVariants) renderer.buildAllPipelines();  // the timed frames use the specialized variants
     renderer.waitIdle();
     renderer.takeCompletedFrames();
     const TimedRun run = runTimedFrames(device, renderer, bench, loop, settings, frame);

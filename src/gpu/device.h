@@ -98,9 +98,8 @@ public:
     uint64_t nextFrameIndex() const;  // the index the next beginFrame gives its frame
     CommandList beginFrame();
     // Host-visible memory for this frame's data (uniforms, lights, staging), valid while it is in
-    // flight; only between beginFrame and submitFrame. Record what reads an allocation (its copy, its
-    // descriptor) before the next allocation: that one may grow the ring, and the slice's buffer handle
-    // is stale from then on (the memory stays alive until the frame is done).
+    // flight; only between beginFrame and submitFrame. An allocation that grows the ring leaves the
+    // earlier slices' buffer valid until the frame is submitted (its memory until the frame is done).
     FrameAllocation allocateFrameData(uint64_t size, uint64_t alignment = 256);
     // Ends and submits the frame with its fence (one vkQueueSubmit); `sync` adds the caller's
     // semaphores. Returns the frame's index.

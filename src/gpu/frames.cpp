@@ -120,6 +120,7 @@ void Device::Impl::createUploadRings(Device& owner) {
 
 void Device::Impl::destroyFrames() {
     for (FrameContext& frame : frames) {
+        retireOutgrownUploads(frame);  // a frame still recording when the device goes
         destroyGarbage(frame.garbage);
         if (frame.uploadBuffer) {
             BufferResource upload = buffers.remove(frame.uploadBuffer.id);
@@ -259,10 +260,9 @@ FrameAllocation Device::allocateFrameData(uint64_t size, uint64_t alignment) {
         uint64_t capacity = std::max(kInitialUploadBytes, frame.uploadCapacity * 2);
         while (capacity < offset + size) capacity *= 2;
         if (!frame.readbackRanges.empty()) throw Error("internal: the upload ring grew after a frame readback");
-        if (frame.uploadBuffer) {
-            // Data written earlier in this frame lives in the old buffer; keep it until the frame is done.
-            frame.garbage.buffers.push_back(d.buffers.remove(frame.uploadBuffer.id));
-        }
+        // Data written earlier in this frame lives in the old buffer, and slices of it may still be bound
+        // or copied: it keeps its handle until the frame is closed and its memory until the frame is done.
+        if (frame.uploadBuffer) frame.outgrownUploads.push_back(frame.uploadBuffer);
         frame.uploadBuffer = createBuffer(capacity, kUploadRingUsage,
                                           MemoryKind::HostVisible, nullptr, "frame upload ring");
         frame.uploadCapacity = capacity;
@@ -300,7 +300,13 @@ void Device::Impl::endSlotCommands(FrameContext& frame, CommandList& commands) {
 
 // The slot is in flight: it takes back its timers, and the objects destroyed since the last frame go
 // when it is done (frames before it may still use them).
+void Device::Impl::retireOutgrownUploads(FrameContext& frame) {
+    for (BufferHandle outgrown : frame.outgrownUploads) frame.garbage.buffers.push_back(buffers.remove(outgrown.id));
+    frame.outgrownUploads.clear();
+}
+
 void Device::Impl::closeSlot(FrameContext& frame, CommandList& commands) {
+    retireOutgrownUploads(frame);
     frame.submitTime = std::chrono::steady_clock::now();
     frame.inFlight = true;
     frame.timerNames.swap(commands.timerNames);
@@ -381,6 +387,7 @@ void Device::abandonFrame(CommandList& commands) {
     if (!frame.external) vkResetCommandPool(d.device, frame.commandPool, 0);
     d.frameGraph.abandonFrame();  // none of its barriers and transitions happened
     frame.readbackRanges.clear();
+    d.retireOutgrownUploads(frame);
     Garbage& garbage = frame.garbage;
     auto append = [](auto& to, auto& from) {
         to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));

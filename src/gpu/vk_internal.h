@@ -109,6 +109,9 @@ struct FrameContext {
     uint64_t uploadCapacity = 0;
     uint64_t uploadUsed = 0;
     std::vector<std::pair<uint64_t, uint64_t>> readbackRanges;  // (offset, size) in the upload ring
+    // Ring buffers this frame outgrew: their handles stay valid (earlier allocations' slices name them)
+    // until the frame is submitted or abandoned, then they go with the frame's garbage.
+    std::vector<BufferHandle> outgrownUploads;
     // Recorded into a caller's command buffer (beginExternalFrame): done once the Device's timeline
     // semaphore reaches timelineValue (the caller's submission signals it), not when the fence signals.
     bool external = false;
@@ -236,6 +239,7 @@ struct Device::Impl {
     CommandList beginSlot(Device& owner, VkCommandBuffer external);
     void endSlotCommands(FrameContext& frame, CommandList& commands);
     void closeSlot(FrameContext& frame, CommandList& commands);
+    void retireOutgrownUploads(FrameContext& frame);  // into frame.garbage
     // Waits for an external frame's timeline value: an error names a command buffer never submitted.
     void waitForTimeline(uint64_t value, const SubmissionName& what);
     // Scratch of CommandList::pushDescriptors (capacity kept: no allocation per pass once warm).

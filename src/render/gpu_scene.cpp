@@ -72,7 +72,8 @@ gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshS
     return data;
 }
 
-// Sorted, deduplicated indices grouped into runs of consecutive entries: one copy per run.
+// Sorted, deduplicated indices (sortUnique) as runs of consecutive entries: visit(position of the
+// run's first index in the list, that index, run length), one copy region per run.
 template <typename Visit>
 void forEachRun(const std::vector<uint32_t>& sortedUnique, Visit&& visit) {
     for (size_t begin = 0; begin < sortedUnique.size();) {

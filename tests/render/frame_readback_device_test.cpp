@@ -49,5 +49,27 @@ TEST_F(FrameReadbackDeviceTest, EachPieceArrivesAtTheOffsetItsCallReturned) {
     for (gpu::BufferHandle handle : {a, b, c}) gpu.destroy(handle);
 }
 
+// A frame allocation larger than the upload ring makes the ring grow: the slices handed out before stay
+// usable (bound or copied later in the frame) until the frame is submitted.
+TEST_F(FrameReadbackDeviceTest, SlicesAllocatedBeforeTheRingGrowsStayUsableInTheFrame) {
+    gpu::Device& gpu = gpu::backend(device());
+    const std::vector<uint32_t> values = {7, 11, 13, 17};
+    const gpu::BufferHandle target = gpu.createBuffer(values.size() * 4, gpu::kBufferStorage | gpu::kBufferTransferDst |
+                                                      gpu::kBufferTransferSrc, gpu::MemoryKind::DeviceLocal, nullptr, "grown ring target");
+    gpu::CommandList commands = gpu.beginFrame();
+    const gpu::FrameAllocation early = gpu.allocateFrameData(values.size() * 4);
+    std::memcpy(early.mapped, values.data(), values.size() * 4);
+    const gpu::FrameAllocation large = gpu.allocateFrameData(64ull << 20);  // more than any ring so far
+    EXPECT_NE(large.slice.buffer.id, early.slice.buffer.id) << "the ring did not grow: the test tests nothing";
+    commands.pass("copy from the outgrown ring", {gpu::use(target, gpu::Usage::TransferWrite)});
+    commands.copyBuffer(early.slice, target, 0);
+    gpu.waitFrame(gpu.submitFrame(commands));
+    gpu.takeCompletedFrames();
+    const std::vector<uint8_t> bytes = gpu.readBuffer(target);
+    ASSERT_EQ(bytes.size(), values.size() * 4);
+    EXPECT_EQ(std::memcmp(bytes.data(), values.data(), bytes.size()), 0);
+    gpu.destroy(target);
+}
+
 }  // namespace
 }  // namespace penumbra::test
