@@ -4,8 +4,9 @@ bench/performance_sweep.sh (docs/bench/<device>/*.json).
 
     /usr/bin/python3 scripts/plot_performance.py docs/bench/h200 docs/bench/lavapipe
 
-Writes docs/performance_<device>_triangles.png and docs/performance_<device>_objects.png and prints
-the markdown tables. Needs Debian's python3-matplotlib (apt install python3-matplotlib); it is a
+Writes docs/performance_<device>_triangles.png, docs/performance_<device>_objects.png and (for
+`moving_N_F.json` runs: gen:boxes:N with --move-objects F) docs/performance_<device>_moving.png, and
+prints the markdown tables. Needs Debian's python3-matplotlib (apt install python3-matplotlib); it is a
 documentation tool, so scripts/setup.sh does not install it.
 """
 import glob
@@ -27,7 +28,7 @@ def load(folder):
     runs = {}
     for path in glob.glob(os.path.join(folder, "*.json")):
         name = os.path.basename(path)[:-5]
-        if re.fullmatch(r"(field_\d+_\d+|boxes_\d+)", name):
+        if re.fullmatch(r"(field_\d+_\d+|boxes_\d+|moving_\d+_[0-9.]+)", name):
             with open(path) as f:
                 runs[name] = json.load(f)
     return runs
@@ -47,6 +48,14 @@ def cpu(run, name):
     return run["cpu"].get(name, {}).get("median_ms", 0.0)
 
 
+def cpu_total(run):
+    return sum(cpu(run, name) for name in PHASES)
+
+
+def moved_fraction(name):
+    return float(name.split("_")[2])
+
+
 def finish(fig, axes, label, xlabel, path):
     for ax, title in ((axes[0], "GPU ms per pass"), (axes[1], "CPU ms per phase")):
         ax.set_xscale("log")
@@ -61,6 +70,12 @@ def finish(fig, axes, label, xlabel, path):
 
 
 def plot(runs, label, out_prefix):
+    if any(name.startswith("field_") for name in runs):
+        plot_triangles(runs, label, out_prefix)
+    plot_objects(runs, label, out_prefix)
+
+
+def plot_triangles(runs, label, out_prefix):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
     for spots, style in (("16", "-"), ("0", "--")):
         rows = [r for r in series(runs, "field_") if r[2].endswith("_" + spots)]
@@ -73,6 +88,8 @@ def plot(runs, label, out_prefix):
             axes[1].plot(x, [cpu(r[3], name) for r in rows], style, marker="o", label=f"{name} ({spots} spots)")
     finish(fig, axes, label, "triangles (millions), gen:field:N[:16]", out_prefix + "_triangles.png")
 
+
+def plot_objects(runs, label, out_prefix):
     rows = series(runs, "boxes_")
     if not rows:
         return
@@ -82,7 +99,21 @@ def plot(runs, label, out_prefix):
         axes[0].plot(x, [gpu(r[3], name) for r in rows], marker="o", label=name)
     for name in PHASES:
         axes[1].plot(x, [cpu(r[3], name) for r in rows], marker="o", label=name)
+    axes[1].plot(x, [cpu_total(r[3]) for r in rows], "k-", marker="s", label="CPU total")
     finish(fig, axes, label, "objects (instances), gen:boxes:N", out_prefix + "_objects.png")
+
+    moving = sorted((moved_fraction(name), r) for name, r in runs.items() if name.startswith("moving_"))
+    if not moving:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
+    x = [fraction for fraction, _ in moving]
+    for name in PASSES[:1] + PASSES[2:]:
+        axes[0].plot(x, [gpu(r, name) for _, r in moving], marker="o", label=name)
+    for name in PHASES:
+        axes[1].plot(x, [cpu(r, name) for _, r in moving], marker="o", label=name)
+    axes[1].plot(x, [cpu_total(r) for _, r in moving], "k-", marker="s", label="CPU total")
+    objects = moving[0][1]["scene"]["instances"]
+    finish(fig, axes, label, f"fraction of {objects} objects moved per frame (--move-objects)", out_prefix + "_moving.png")
 
 
 def table(runs, prefix):
@@ -101,6 +132,18 @@ def table(runs, prefix):
     return "\n".join(lines)
 
 
+def moving_table(runs):
+    lines = ["| objects | moved per frame | CPU plan | CPU upload | CPU record | CPU total median / phases' p95 summed | GPU directional | "
+             "GPU frame median / p95 |", "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for fraction, r in sorted((moved_fraction(name), r) for name, r in runs.items() if name.startswith("moving_")):
+        objects = r["scene"]["instances"]
+        p95 = sum(r["cpu"].get(name, {}).get("p95_ms", 0.0) for name in PHASES)
+        lines.append("| %d | %g (%d) | %.3f | %.3f | %.3f | %.3f / %.3f | %.2f | %.2f / %.2f |" % (
+            objects, fraction, int(round(fraction * objects)), cpu(r, "plan"), cpu(r, "upload"), cpu(r, "record"),
+            cpu_total(r), p95, gpu(r, PASSES[0]), r["gpuFrame"]["median_ms"], r["gpuFrame"]["p95_ms"]))
+    return "\n".join(lines)
+
+
 def main():
     for folder in sys.argv[1:]:
         runs = load(folder)
@@ -112,6 +155,8 @@ def main():
         print(f"### {label}\n")
         print(table(runs, "field_") + "\n")
         print(table(runs, "boxes_") + "\n")
+        if any(name.startswith("moving_") for name in runs):
+            print(moving_table(runs) + "\n")
 
 
 if __name__ == "__main__":

@@ -31,6 +31,11 @@ layout(set = kPassSet, binding = kShadowRasterBindingRasterList, std430) readonl
     uint rasterEntries[];  // culling tile of each entry
 };
 
+// The culling pass's visible lists (cull_structs.h): how many instances each (tile, mesh) kept, and the lists.
+layout(set = kPassSet, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
+layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint entries[]; }
+    visibleLists[kVisibleListBuffers];  // split over buffers: index by a workgroup-uniform list
+
 // Culling tile drawn by entry `i` of the raster list; false past its count (the dispatch's z is the count).
 bool rasterTile(uint i, out uint tile) {
     tile = i < rasterList.count ? rasterEntries[i] : 0u;
@@ -46,10 +51,8 @@ bool alphaKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
     return true;
 }
 
-void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
-    ivec2 p = texelCentre(x, y);
-    if (!insideEdge(t.p[1], t.p[2], p) || !insideEdge(t.p[2], t.p[0], p) || !insideEdge(t.p[0], t.p[1], p)) return;
-    vec3 weights = planeWeights(t, x, y);
+// Texel (x, y), whose centre the piece covers with barycentric `weights`: its depth, if the material keeps it.
+void coveredTexel(RasterTriangleSetup t, float slopeBias, int x, int y, vec3 weights) {
     if (t.alphaTested && !alphaKeeps(t, weights, x, y)) return;
     float z = dot(weights, t.z) + slopeBias * max(abs(t.depthSlope.x), abs(t.depthSlope.y));
     z = clamp(z, 0.0, 1.0);
@@ -58,6 +61,65 @@ void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
     uint texel = uint(y) * raster.depthSide + uint(x), bits = floatBitsToUint(z);
     if (bits < atlasDepth[texel]) atomicMin(atlasDepth[texel], bits);
 }
+
+void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
+    ivec2 p = texelCentre(x, y);
+    if (insideEdge(t.p[1], t.p[2], p) && insideEdge(t.p[2], t.p[0], p) && insideEdge(t.p[0], t.p[1], p))
+        coveredTexel(t, slopeBias, x, y, planeWeights(t, x, y));
+}
+
+// Texels of a piece walked by one thread: the texels of `rect` (inclusive, inside the piece's bounds).
+// The edge functions are exact in 32-bit integers when the triangle is small enough: a texel centre of
+// the bounds lies at most 257 sub-texels outside the vertices' box, so with that box's extent (X, Y)
+// every value is below X (Y + 257) + Y (X + 257) (< 2^31 for any unclipped piece of up to ~16K texels);
+// they are then stepped by one addition per texel (Pineda, "A parallel algorithm for polygon
+// rasterization", 1988). Else each texel takes insideEdge's exact 64-bit products.
+bool edgesFitInt32(RasterTriangleSetup t) {
+    ivec2 extent = max(max(t.p[0], t.p[1]), t.p[2]) - min(min(t.p[0], t.p[1]), t.p[2]);
+    return float(extent.x) * float(extent.y + 257) + float(extent.y) * float(extent.x + 257) < 2.0e9;
+}
+
+// Edge a->b at sub-texel point p, less one where the top-left rule leaves the edge out.
+int edgeAt(ivec2 a, ivec2 b, ivec2 p) {
+    int value = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+    return topLeft(a, b) ? value : value - 1;
+}
+
+// insideEdge's three edges ((p1, p2), (p2, p0), (p0, p1)) at p: covered <=> all >= 0. Exact when edgesFitInt32.
+ivec3 edgesAt(RasterTriangleSetup t, ivec2 p) {
+    return ivec3(edgeAt(t.p[1], t.p[2], p), edgeAt(t.p[2], t.p[0], p), edgeAt(t.p[0], t.p[1], p));
+}
+ivec3 edgeStepX(RasterTriangleSetup t) { return ivec3(t.p[1].y - t.p[2].y, t.p[2].y - t.p[0].y, t.p[0].y - t.p[1].y) * 256; }
+ivec3 edgeStepY(RasterTriangleSetup t) { return ivec3(t.p[2].x - t.p[1].x, t.p[0].x - t.p[2].x, t.p[1].x - t.p[0].x) * 256; }
+
+void rasterizeRect(RasterTriangleSetup t, float slopeBias, ivec4 rect) {
+    if (!edgesFitInt32(t)) {
+        for (int y = rect.y; y <= rect.w; ++y)
+            for (int x = rect.x; x <= rect.z; ++x) rasterizeTexel(t, slopeBias, x, y);
+        return;
+    }
+    ivec3 rowEdge = edgesAt(t, texelCentre(rect.x, rect.y)), stepX = edgeStepX(t), stepY = edgeStepY(t);
+    for (int y = rect.y; y <= rect.w; ++y, rowEdge += stepY) {
+        ivec3 edge = rowEdge;
+        for (int x = rect.x; x <= rect.z; ++x, edge += stepX)
+            if (all(greaterThanEqual(edge, ivec3(0)))) coveredTexel(t, slopeBias, x, y, planeWeights(t, x, y));
+    }
+}
+
+// Whether `rect` lies wholly outside one of the piece's edges (its four corner centres do: the edge
+// function is linear), so that it holds no covered texel. Only when edgesFitInt32.
+bool rectOutside(RasterTriangleSetup t, ivec4 rect) {
+    ivec3 corner = edgesAt(t, texelCentre(rect.x, rect.y));
+    ivec3 acrossX = edgeStepX(t) * (rect.z - rect.x), acrossY = edgeStepY(t) * (rect.w - rect.y);
+    ivec3 highest = max(max(corner, corner + acrossX), max(corner + acrossY, corner + acrossX + acrossY));
+    return any(lessThan(highest, ivec3(0)));
+}
+
+// Pass 1's sizes (shadow_raster.comp): a piece whose bounds cover at most kShadowSmallArea texels is
+// rasterized by its thread, at most kShadowMediumArea by its workgroup in blocks of kShadowBlock^2
+// texels, more in chunks.
+const uint kShadowSmallArea = 32u, kShadowMediumArea = 2048u;
+const int kShadowBlock = 4;
 
 bool isAlphaTested(CullMesh mesh) { return materials[mesh.materialIndex].shadowMode != kShadowModeOn; }
 

@@ -2,16 +2,14 @@
 // Compute rasterizer, pass 0b (shadow_raster.glsl): the work of pass 1. One invocation per slot of a
 // drawn tile's culled list (tile = the raster list's entry in z): a slot its culling filled turns
 // into work items (RasterWorkItem) of at most kRasterMeshletsPerItem of the instance's meshlets,
-// appended to the work queue. Pass 1 then runs one workgroup per item, so its dispatch holds only the
-// meshlets a tile draws, not every meshlet of the scene per tile.
+// appended to the work queue; the instances of a mesh of one small meshlet share packed items
+// instead (CullMesh.packedInstances to an item). Pass 1 then runs one workgroup per item, so its
+// dispatch holds only the meshlets a tile draws, not every meshlet of the scene per tile.
 #include "pass_bindings.h"
 #include "shadow_raster.glsl"
 
 layout(local_size_x = kRasterExpandGroup) in;
 
-layout(set = kPassSet, binding = kRasterBindingListCounts, std430) readonly buffer ListCountBlock { uint listCounts[]; };
-layout(set = kPassSet, binding = kRasterBindingVisibleInstances, std430) readonly buffer VisibleBlock { uint entries[]; }
-    visibleLists[kVisibleListBuffers];  // cull_structs.h: the lists split over buffers
 layout(set = kPassSet, binding = kShadowRasterBindingWork, std430) writeonly buffer WorkBlock { RasterWorkItem work[]; };
 
 void main() {
@@ -20,7 +18,16 @@ void main() {
     if (slot >= instanceCount || meshCount == 0u || !rasterTile(gl_WorkGroupID.z, tileIndex)) return;
     uint meshSlot = meshOfRun(slot, meshCount, true);
     CullMesh mesh = cullMeshes[meshSlot];
-    if (slot - mesh.firstListSlot >= listCounts[tileIndex * meshCount + meshSlot] || mesh.meshletCount == 0u) return;
+    uint listed = listCounts[tileIndex * meshCount + meshSlot], local = slot - mesh.firstListSlot;
+    if (local >= listed || mesh.meshletCount == 0u) return;
+    uint packed = mesh.packedInstances;
+    if (packed > 1u) {  // one item for this slot and the next packed - 1 of the list
+        if (local % packed != 0u) return;
+        uint item = atomicAdd(counters.workQueued, 1u);
+        if (item < raster.workCapacity) work[item] = RasterWorkItem(slot, tileIndex, meshSlot, kRasterPackedItem | min(packed, listed - local));
+        else atomicAdd(counters.workDropped, 1u);
+        return;
+    }
     // tileIndex is the workgroup's: a uniform index into the buffer array.
     uint instance = visibleLists[visibleListBuffer(tileIndex, raster.listsPerBuffer)]
                         .entries[visibleListStart(tileIndex, raster.listsPerBuffer, instanceCount) + slot];

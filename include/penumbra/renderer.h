@@ -100,9 +100,10 @@ struct FrameStats {
     // outside their tile; in the visibility buffer, those outside the view and those facing away.
     uint64_t shadowMeshletsOutside = 0, viewMeshletsOutside = 0, viewMeshletsFacingAway = 0;
     // The compute rasterizer (both atlases and the virtual pages): its work items (a few meshlets of one
-    // instance in one tile or page), large triangle pieces split into chunks, the chunks, and what its
-    // queues could not hold (drawn incompletely, then drawn again: a warning names it).
-    uint64_t rasterWorkItems = 0, rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
+    // instance, or several small instances, in one tile or page), the medium triangle pieces a workgroup
+    // rasterized together, large pieces split into chunks, the chunks, and what its queues could not hold
+    // (drawn incompletely, then drawn again: a warning names it).
+    uint64_t rasterWorkItems = 0, rasterMediumTriangles = 0, rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
     // Shadow tiles drawn this frame and kept from earlier frames (shadows.cacheTiles).
     uint32_t tilesRendered = 0, tilesReused = 0;
     // Clustered light culling (render.lightCulling): the spot and point lights per cluster, mean over

@@ -84,7 +84,7 @@ struct CullMesh {
     uint firstRasterItem;  // its first compute-raster work item
     uint meshletCount;     // its meshlets (work items per instance)
     uint firstMeshlet;
-    uint reserved0;
+    uint packedInstances;  // > 1: a one-meshlet mesh whose instances the rasterizers take this many to a work item
     uint reserved1;
     uint reserved2;
 };
@@ -243,11 +243,18 @@ PENUMBRA_CONST(uint, kRasterChunk, 16u)
 PENUMBRA_CONST(uint, kRasterBatch, 128u)
 PENUMBRA_CONST(uint, kRasterMeshletsPerItem, 8u)
 PENUMBRA_CONST(uint, kRasterInitialWork, 65536u)
+// A mesh of one meshlet of T triangles is packed instead: one item holds up to kRasterPackTriangles / T
+// (at most kRasterPackInstances) of the tile's instances of it (a box's 12 triangles: 21), so a million
+// small objects are not a million workgroups of 12 busy threads.
+PENUMBRA_CONST(uint, kRasterPackTriangles, 256u)
+PENUMBRA_CONST(uint, kRasterPackInstances, 64u)
+PENUMBRA_CONST(uint, kRasterPackedItem, 0x80000000u)
 struct RasterWorkItem {
-    uint instance;
+    uint instance;      // packed: the first of its slots in the tile's visible list
     uint tile;          // culling tile index
     uint meshSlot;      // CullMesh index
-    uint firstMeshlet;  // of the mesh's meshlets; the item holds up to kRasterMeshletsPerItem from there
+    uint firstMeshlet;  // of the mesh's meshlets; the item holds up to kRasterMeshletsPerItem from there.
+                        // Packed: kRasterPackedItem | the number of instances
 };
 PENUMBRA_CHECK_SIZE(RasterWorkItem, 16)
 // The queues of large pieces and chunks start at these capacities and grow when a frame overflows
@@ -283,8 +290,12 @@ struct RasterCounters {
     uint workQueued;    // shadow rasterizer's pass-1 work items (RasterWorkItem) queued
     uint workDropped;   // and not drawn: the queue was full
     uvec4 workDispatch;
+    uint mediumQueued;  // shadow rasterizer: pieces a pass-1 workgroup rasterized together (shadow_raster.comp)
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
-PENUMBRA_CHECK_SIZE(RasterCounters, 80)
+PENUMBRA_CHECK_SIZE(RasterCounters, 96)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, largeDispatch, 16)
 PENUMBRA_CHECK_LAYOUT(RasterCounters, meshletsOutside, 48)
 

@@ -57,6 +57,13 @@ gpu_data::Meshlet packMeshlet(const Meshlet& meshlet) {
     return packed;
 }
 
+// The instances a rasterizer work item takes of a mesh (cull_structs.h kRasterPackTriangles): many of a
+// mesh of one small meshlet, else 1 (its items are meshlets of one instance).
+uint32_t packedInstances(const MeshletMesh& mesh) {
+    if (mesh.meshlets.size() != 1 || mesh.meshlets[0].triangleCount == 0) return 1;
+    return std::clamp(gpu_data::kRasterPackTriangles / mesh.meshlets[0].triangleCount, 1u, gpu_data::kRasterPackInstances);
+}
+
 gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshSlot) {
     gpu_data::CullInstance data{};
     // Every instance with geometry keeps its slot and bounds (the main view's rasterizer and resolve
@@ -226,6 +233,7 @@ void GpuScene::create(const Scene& scene) {
         mesh.materialIndex = scene.meshes[m].materialIndex;
         mesh.firstMeshlet = uint32_t(meshlets.size());
         mesh.meshletCount = uint32_t(meshletMeshes[m].meshlets.size());
+        mesh.packedInstances = packedInstances(meshletMeshes[m]);
         for (const Meshlet& meshlet : meshletMeshes[m].meshlets) meshlets.push_back(packMeshlet(meshlet));
         cullMeshes.push_back(mesh);
     }
@@ -241,7 +249,9 @@ void GpuScene::create(const Scene& scene) {
         mesh.firstListSlot = firstSlot;
         firstSlot += mesh.instanceCount;
         mesh.firstRasterItem = rasterWorkItems_;
-        rasterWorkItems_ += mesh.instanceCount * mesh.meshletCount;
+        hasPackedMeshes_ |= mesh.packedInstances > 1 && mesh.instanceCount > 0;
+        rasterWorkItems_ += mesh.packedInstances > 1 ? (mesh.instanceCount + mesh.packedInstances - 1) / mesh.packedInstances
+                                                     : mesh.instanceCount * mesh.meshletCount;
     }
     uint32_t maxTriangles = 1;
     for (const gpu_data::CullMesh& mesh : cullMeshes) maxTriangles = std::max(maxTriangles, mesh.indexCount / 3);

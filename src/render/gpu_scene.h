@@ -82,6 +82,8 @@ public:
     uint32_t meshletCount() const { return meshletCount_; }
     // The compute rasterizer's pass 1 work items per tile: every instance x its mesh's meshlets.
     uint32_t rasterWorkItems() const { return rasterWorkItems_; }
+    // Whether some mesh's instances are rasterized several to a work item (CullMesh.packedInstances > 1).
+    bool hasPackedMeshes() const { return hasPackedMeshes_; }
     uint64_t triangleCount() const { return triangles_; }
     // The main view's compute rasterizer: the bits a triangle index takes in a visibility payload
     // (visibility_structs.h); visibilityIdsFit() says whether instance and triangle fit 32 bits.
@@ -119,7 +121,7 @@ private:
     gpu::BufferHandle vertices_, indices_, instances_, materials_, cullInstances_, cullMeshes_, meshlets_;
     std::vector<uint32_t> meshSlotOfMesh_;  // per Scene::meshes entry: its CullMesh slot, ~0u without geometry
     uint32_t instanceCount_ = 0, meshSlotCount_ = 0, meshletCount_ = 0, rasterWorkItems_ = 0, triangleIdBits_ = 0;
-    bool visibilityIdsFit_ = true;
+    bool visibilityIdsFit_ = true, hasPackedMeshes_ = false;
     std::vector<gpu::TextureHandle> textures_;
     std::vector<gpu::SamplerHandle> samplers_;  // one per distinct glTF sampler
     gpu::TextureTableHandle textureTable_;

@@ -48,8 +48,8 @@ void VisibilityPass::create() {
     desc.bindings = visibilityRasterBindings();
     desc.pushConstantSize = sizeof(gpu_data::VisibilityConstants);
     desc.textureTable = scene_.textureTable();
-    for (auto [pipeline, shader] : {std::pair{&raster_, "visibility_raster.comp"}, std::pair{&bin_, "visibility_raster_bin.comp"},
-                                    std::pair{&chunks_, "visibility_raster_chunks.comp"}}) {
+    for (auto [pipeline, shader] : {std::pair{&raster_, "visibility_raster.comp"}, std::pair{&rasterPacked_, "visibility_raster_packed.comp"},
+                                    std::pair{&bin_, "visibility_raster_bin.comp"}, std::pair{&chunks_, "visibility_raster_chunks.comp"}}) {
         desc.shader = shader;
         desc.debugName = shader;
         *pipeline = device_.createComputePipeline(desc);
@@ -71,7 +71,7 @@ void VisibilityPass::create() {
 }
 
 void VisibilityPass::destroyAll() {
-    for (gpu::PipelineHandle p : {raster_, bin_, chunks_, args_, pyramid_}) device_.destroy(p);
+    for (gpu::PipelineHandle p : {raster_, rasterPacked_, bin_, chunks_, args_, pyramid_}) device_.destroy(p);
     for (ResolvePipeline& resolve : resolve_) device_.destroy(resolve.pipeline);
     resolve_.clear();
     for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_})
@@ -213,9 +213,13 @@ void VisibilityPass::recordRaster(gpu::CommandList& commands, std::string_view n
     const uint32_t items = std::max(scene_.rasterWorkItems(), 1u);
     pass("", {gpu::use(visibility_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                 gpu::use(large_, Usage::ComputeWrite)});
-    bind(raster_);
-    commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
-                      (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
+    // Two pipelines over the same items: meshlet items, then (if the scene has any) packed ones.
+    for (const bool packed : {false, true}) {
+        if (packed && !scene_.hasPackedMeshes()) continue;
+        bind(packed ? rasterPacked_ : raster_);
+        commands.dispatch(std::min(items, gpu_data::kRasterDispatchWidth),
+                          (items + gpu_data::kRasterDispatchWidth - 1) / gpu_data::kRasterDispatchWidth);
+    }
     sizeDispatch("/bin size", gpu_data::kRasterArgsLarge);
     pass("/bin", {gpu::use(large_, Usage::ComputeRead), gpu::use(counters_, Usage::IndirectArguments),
                          gpu::use(counters_, Usage::ComputeWrite), gpu::use(chunkList_, Usage::ComputeWrite)});

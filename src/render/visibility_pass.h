@@ -94,7 +94,7 @@ private:
 
     gpu::Device& device_;
     const GpuScene& scene_;
-    gpu::PipelineHandle raster_, bin_, chunks_, args_, pyramid_;
+    gpu::PipelineHandle raster_, rasterPacked_, bin_, chunks_, args_, pyramid_;
     // The resolve pipelines, one per lit-pass specialization (and colour format for the fragment
     // resolve): a handful, found by a linear search that builds no key.
     struct ResolvePipeline {

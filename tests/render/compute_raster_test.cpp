@@ -64,7 +64,11 @@ TEST_F(ComputeRasterTest, AtlasDepthMatchesTheHardwarePathTexelForTexel) {
     settings.shadows.directional.atlasSize = 512;
     settings.shadows.spot.atlasSize = 512;
     const Image hw = render(renderer, ShadowRaster::Hw, 0, settings, true).atlas;
-    const Image compute = render(renderer, ShadowRaster::Compute, 0, settings, true).atlas;
+    const RenderResult computed = render(renderer, ShadowRaster::Compute, 0, settings, true);
+    const Image& compute = computed.atlas;
+    // Every level of the compute rasterizer drew some of it: its threads, its workgroups, the chunk passes.
+    EXPECT_GT(computed.stats.rasterMediumTriangles, 0u) << "pieces rasterized by their workgroup in blocks";
+    EXPECT_GT(computed.stats.rasterLargeTriangles, 0u) << "pieces rasterized in chunks";
     ASSERT_EQ(hw.pixels.size(), compute.pixels.size());
     size_t differ = 0, written = 0;
     for (size_t i = 0; i < hw.pixels.size(); ++i) {
@@ -85,6 +89,23 @@ TEST_F(ComputeRasterTest, BuiltInFieldMatchesTheHardwarePath) {
                                                   render(renderer, ShadowRaster::Compute, light, settings).image);
         EXPECT_LT(difference, 0.0005) << "light " << light;
     }
+}
+
+// Boxes (one meshlet of 12 triangles each) share work items: a million small objects must not cost a
+// million workgroups of 12 busy threads. The packed items draw what the hardware draws.
+TEST_F(ComputeRasterTest, SmallObjectsShareWorkItemsAndMatchTheHardwarePath) {
+    Renderer renderer(device(), loadScene("gen:boxes:3000"));
+    Settings settings;
+    settings.shadows.directional.atlasSize = 512;
+    const RenderResult compute = render(renderer, ShadowRaster::Compute, 0, settings);
+    const RenderResult hw = render(renderer, ShadowRaster::Hw, 0, settings);
+    uint64_t boxesInTiles = 0;
+    for (const AtlasDrawStats& atlas : compute.stats.atlases) boxesInTiles += atlas.triangles / 12;
+    ASSERT_GT(boxesInTiles, 2000u);
+    std::printf("%llu boxes in tiles, %llu work items\n", (unsigned long long)boxesInTiles,
+                (unsigned long long)compute.stats.rasterWorkItems);
+    EXPECT_LT(compute.stats.rasterWorkItems * 10, boxesInTiles) << "21 boxes to an item, but for each tile's last";
+    EXPECT_LT(classDifference(hw.image, compute.image), 0.0005);
 }
 
 // Frames of the demo scene with shadows.raster = auto, the camera moved by `step` metres per frame.
@@ -161,31 +182,47 @@ Scene quadOnTexelCentres(const std::array<int, 4>& window, const CameraView& vie
                   worldAt(window[0], window[3])});
 }
 
+// Quads of three sizes reach the compute rasterizer's three levels: triangles walked by their thread
+// (bounds of at most 32 texels), by their workgroup in blocks (up to 2048) and in chunks.
 TEST_F(ComputeRasterTest, BothRasterizersFollowTheTopLeftRuleOnTexelCentres) {
     Settings settings;
     settings.shadows.directional.atlasSize = 256;
     settings.shadows.directional.cascadeCount = 1;
     Camera camera = makeLookAtCamera(glm::vec3(0, 6, 6), glm::vec3(0), 0.9f);
     const CameraView view = makeCameraView(camera, 64, 64);
-    const std::array<int, 4> window = {100, 90, 140, 150};  // texel centres (i0, j0) .. (i1, j1)
-    Scene scene = quadOnTexelCentres(window, view, settings);
-    scene.camera = camera;
-    Renderer renderer(device(), scene);
-    for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
-        settings.shadows.raster = raster;
-        RenderRequest request;
-        request.width = request.height = 64;
-        request.captureAtlas = true;
-        const Image atlas = renderer.render(request, settings).atlas;
-        size_t covered = 0, outside = 0;
-        for (uint32_t y = 0; y < 256; ++y)
-            for (uint32_t x = 0; x < 256; ++x) {
-                if (atlas.at(x, y) == 255) continue;
-                const bool inside = int(x) >= window[0] && int(x) < window[2] && int(y) >= window[1] && int(y) < window[3];
-                (inside ? covered : outside)++;
-            }
-        EXPECT_EQ(covered, size_t(window[2] - window[0]) * size_t(window[3] - window[1])) << shadowRasterName(raster);
-        EXPECT_EQ(outside, 0u) << shadowRasterName(raster);
+    struct Case {
+        const char* level;
+        std::array<int, 4> window;  // texel centres (i0, j0) .. (i1, j1)
+    };
+    for (const Case& c : {Case{"thread", {101, 91, 103, 94}}, Case{"workgroup", {100, 90, 125, 121}},
+                          Case{"chunks", {100, 90, 140, 150}}}) {
+        Scene scene = quadOnTexelCentres(c.window, view, settings);
+        scene.camera = camera;
+        for (ShadowRaster raster : {ShadowRaster::Hw, ShadowRaster::Compute}) {
+            // A renderer each: a second frame's tight fit would follow the first frame's depth (read back
+            // when it is ready), moving the cascade off the texel grid the quad was placed on.
+            Renderer renderer(device(), scene);
+            settings.shadows.raster = raster;
+            RenderRequest request;
+            request.width = request.height = 64;
+            request.captureAtlas = true;
+            const RenderResult result = renderer.render(request, settings);
+            size_t covered = 0, outside = 0;
+            for (uint32_t y = 0; y < 256; ++y)
+                for (uint32_t x = 0; x < 256; ++x) {
+                    if (result.atlas.at(x, y) == 255) continue;
+                    const bool inside = int(x) >= c.window[0] && int(x) < c.window[2] && int(y) >= c.window[1] &&
+                                        int(y) < c.window[3];
+                    (inside ? covered : outside)++;
+                }
+            const std::string name = std::string(shadowRasterName(raster)) + ", " + c.level;
+            EXPECT_EQ(covered, size_t(c.window[2] - c.window[0]) * size_t(c.window[3] - c.window[1])) << name;
+            EXPECT_EQ(outside, 0u) << name;
+            if (raster != ShadowRaster::Compute) continue;
+            const std::string level = c.level;
+            EXPECT_EQ(result.stats.rasterMediumTriangles > 0, level == "workgroup") << name;
+            EXPECT_EQ(result.stats.rasterLargeTriangles > 0, level == "chunks") << name;
+        }
     }
 }
 

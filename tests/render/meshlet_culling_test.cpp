@@ -120,6 +120,30 @@ TEST_F(MeshletCullingTest, MeshletsOutsideTheViewAndOutsideShadowTilesAreSkipped
     EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
 }
 
+// Small one-meshlet objects are drawn several to a work item (packed): each instance's meshlet is still
+// tested. Single-sided quads, 40 turned towards the camera and 40 away: 40 meshlets skipped, same image.
+TEST_F(MeshletCullingTest, PackedSmallObjectsFacingAwayAreSkippedOneByOne) {
+    SceneBuilder builder;
+    Material white;
+    white.metallic = 0.0f;
+    const uint32_t quad = builder.addMesh(makePlaneMesh({0.3f, 0.3f}, builder.addMaterial(white)));
+    for (int i = 0; i < 80; ++i) {
+        // Upright quads in a row across the view; the plane mesh faces +y, turned to face +z or -z.
+        const float facing = i % 2 == 0 ? 1.0f : -1.0f;
+        glm::mat4 place = glm::translate(glm::mat4(1.0f), {-4.0f + 0.1f * float(i), 1.0f, 0.0f});
+        place = glm::rotate(place, facing * glm::half_pi<float>(), {1.0f, 0.0f, 0.0f});
+        builder.addInstance(quad, place);
+    }
+    builder.addLight(makeDirectionalLight({-0.3f, -1.0f, -0.4f}, 3.0f));
+    builder.setCamera(makeLookAtCamera({0.0f, 1.0f, 5.0f}, {0.0f, 1.0f, 0.0f}, 0.9f));
+    Renderer renderer(device(), builder.build());
+    const RenderResult culled = renderer.render(smallRequest(), computeSettings(true));
+    const RenderResult unculled = renderer.render(smallRequest(), computeSettings(false));
+    EXPECT_EQ(culled.stats.viewMeshletsFacingAway, 40u);
+    EXPECT_EQ(unculled.stats.viewMeshletsFacingAway, 0u);
+    EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
+}
+
 // The compute rasterizers' objects (both raster passes, the visibility buffer, the meshlets) go with
 // their renderer: what the device holds afterwards is what it held before. (The asan preset's leak
 // check leaves lavapipe's own allocations out, tests/lsan.supp; this is the check of ours.)

@@ -156,6 +156,16 @@ TEST_F(VisibilityViewTest, BackFacesShowOnlyForDoubleSidedMaterials) {
     EXPECT_LE(shareOfPixelsOver(renderWith(renderer, settingsFor(MainView::Forward), OutputMode::Color).image, image, 2), 0.005);
 }
 
+// Boxes (one meshlet of 12 triangles each) are rasterized 21 to a workgroup, not one workgroup each:
+// the same image as the forward pass.
+TEST_F(VisibilityViewTest, SmallObjectsPackedIntoWorkItemsEqualTheForwardPass) {
+    const Scene scene = loadScene("gen:boxes:3000");
+    GpuScene gpuScene(gpu::backend(device()), scene);
+    EXPECT_LT(gpuScene.rasterWorkItems() * 10, uint32_t(scene.instances.size())) << "packed work items";
+    const double over = colourDifference(scene, "boxes");
+    std::printf("3000 boxes: %.4f %% of pixels differ by more than 2 levels\n", 100.0 * over);
+}
+
 TEST_F(VisibilityViewTest, InstanceAndTriangleIdsOfTheCanonicalScenesFit32Bits) {
     for (const CanonicalSceneInfo& info : canonicalScenes()) {
         const Scene scene = makeCanonicalScene(info.name);
