@@ -230,9 +230,11 @@ struct CullTileStats {
 PENUMBRA_CHECK_SIZE(CullTileStats, 16)
 
 // ---- compute rasterizer of shadow depth (shadow_raster.glsl)
-// Triangle pieces whose clamped bounding box covers more than kRasterSmallArea texels are not
-// rasterized by the thread that set them up but queued (already set up), split into kRasterChunk x
-// kRasterChunk chunks, and rasterized one workgroup per chunk, kRasterChunk^2 / 256 texels a thread.
+// Large triangle pieces are not rasterized by the thread that set them up but queued (already set
+// up), split into kRasterChunk x kRasterChunk chunks, and rasterized one workgroup per chunk,
+// kRasterChunk^2 / 256 texels a thread. The visibility rasterizer queues those whose clamped bounding
+// box covers more than kRasterSmallArea texels; the shadow rasterizer keeps pieces of up to 2048 for
+// its workgroups (shadow_raster.glsl, kShadowMediumArea) and queues only larger ones.
 PENUMBRA_CONST(uint, kRasterSmallArea, 64u)
 PENUMBRA_CONST(uint, kRasterChunk, 16u)
 // Pass 1 works in meshlets of at most kRasterBatch triangles of one instance, so a mesh of many
