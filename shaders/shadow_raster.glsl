@@ -51,8 +51,9 @@ bool alphaKeeps(RasterTriangleSetup t, vec3 weights, int x, int y) {
     return true;
 }
 
-// Texel (x, y), whose centre the piece covers with barycentric `weights`: its depth, if the material keeps it.
-void coveredTexel(RasterTriangleSetup t, float slopeBias, int x, int y, vec3 weights) {
+// Texel (x, y), whose centre the piece covers: its depth, if the material keeps it.
+void coveredTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
+    vec3 weights = planeWeights(t, x, y);
     if (t.alphaTested && !alphaKeeps(t, weights, x, y)) return;
     float z = dot(weights, t.z) + slopeBias * max(abs(t.depthSlope.x), abs(t.depthSlope.y));
     z = clamp(z, 0.0, 1.0);
@@ -65,7 +66,7 @@ void coveredTexel(RasterTriangleSetup t, float slopeBias, int x, int y, vec3 wei
 void rasterizeTexel(RasterTriangleSetup t, float slopeBias, int x, int y) {
     ivec2 p = texelCentre(x, y);
     if (insideEdge(t.p[1], t.p[2], p) && insideEdge(t.p[2], t.p[0], p) && insideEdge(t.p[0], t.p[1], p))
-        coveredTexel(t, slopeBias, x, y, planeWeights(t, x, y));
+        coveredTexel(t, slopeBias, x, y);
 }
 
 // Texels of a piece walked by one thread: the texels of `rect` (inclusive, inside the piece's bounds).
@@ -102,7 +103,7 @@ void rasterizeRect(RasterTriangleSetup t, float slopeBias, ivec4 rect) {
     for (int y = rect.y; y <= rect.w; ++y, rowEdge += stepY) {
         ivec3 edge = rowEdge;
         for (int x = rect.x; x <= rect.z; ++x, edge += stepX)
-            if (all(greaterThanEqual(edge, ivec3(0)))) coveredTexel(t, slopeBias, x, y, planeWeights(t, x, y));
+            if (all(greaterThanEqual(edge, ivec3(0)))) coveredTexel(t, slopeBias, x, y);
     }
 }
 

@@ -52,14 +52,8 @@ bool skipMeshlet(Meshlet meshlet, uint instance, mat4 clipFromInstance, bool dou
     return true;
 }
 
-#ifdef PENUMBRA_PACKED_ITEMS
-// A packed item's instances whose meshlet is drawn (not skipped by render.meshletCulling), with their matrices.
-shared uint packedDrawn;
-shared uint packedInstance[kRasterPackInstances];
-shared mat4 packedClipFromObject[kRasterPackInstances];
-
-// One triangle of a packed item's instance: culled if it faces away, else set up (clipped where it
-// must be) and rasterized or queued, as main's loop does for a meshlet item.
+// One triangle of an instance: culled if it faces away, else set up (clipped where it must be) and
+// rasterized or queued. Both pipelines' loops call it.
 void rasterizeTriangle(CullMesh mesh, uint triangle, uint instance, mat4 clipFromInstance, bool doubleSided) {
     vec4 viewport = vec4(0.0, 0.0, float(viewWidth()), float(viewHeight()));
     uvec4 scissor = uvec4(0u, 0u, viewWidth(), viewHeight());
@@ -78,6 +72,12 @@ void rasterizeTriangle(CullMesh mesh, uint triangle, uint instance, mat4 clipFro
         if (setupTriangle(viewport, scissor, polygon[0], polygon[i], polygon[i + 1], t))
             rasterizeOrQueue(t, mesh.materialIndex, payload);
 }
+
+#ifdef PENUMBRA_PACKED_ITEMS
+// A packed item's instances whose meshlet is drawn (not skipped by render.meshletCulling), with their matrices.
+shared uint packedDrawn;
+shared uint packedInstance[kRasterPackInstances];
+shared mat4 packedClipFromObject[kRasterPackInstances];
 
 // A packed item (CullMesh.packedInstances > 1): up to that many instances of a one-meshlet mesh from
 // list slot `first`. A thread per instance tests its meshlet (as a meshlet item's first thread does)
@@ -137,25 +137,9 @@ void main() {
     }
     barrier();
     if (meshletSkipped) return;
-    vec4 viewport = vec4(0.0, 0.0, float(viewWidth()), float(viewHeight()));
-    uvec4 scissor = uvec4(0u, 0u, viewWidth(), viewHeight());
     uint lastTriangle = meshlet.firstTriangle + meshlet.triangleCount;
-    for (uint triangle = meshlet.firstTriangle + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u) {
-        RasterVertex v[3];
-        fetchTriangle(mesh, triangle, clipFromObject, v);
-        if (!facesShown(v, doubleSided)) continue;
-        uint payload = ((instance << raster.triangleBits) | triangle) + 1u;
-        RasterTriangleSetup t;
-        if (!needsClipping(v, kViewClipPlanes)) {
-            if (setupTriangle(viewport, scissor, v[0], v[1], v[2], t)) rasterizeOrQueue(t, mesh.materialIndex, payload);
-            continue;
-        }
-        RasterVertex polygon[kMaxClipped];
-        int vertexCount = clipTriangle(v, kViewClipPlanes, polygon);
-        for (int i = 1; i + 1 < vertexCount; ++i)
-            if (setupTriangle(viewport, scissor, polygon[0], polygon[i], polygon[i + 1], t))
-                rasterizeOrQueue(t, mesh.materialIndex, payload);
-    }
+    for (uint triangle = meshlet.firstTriangle + gl_LocalInvocationID.x; triangle < lastTriangle; triangle += 64u)
+        rasterizeTriangle(mesh, triangle, instance, clipFromObject, doubleSided);
 }
 #endif
 
