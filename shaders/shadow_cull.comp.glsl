@@ -1,10 +1,11 @@
 #version 460
 // GPU shadow-caster culling (cull_structs.h): one invocation per (instance, tile). The tests are the CPU
-// planner's, operation for operation: the cascade's caster box and cascade blend culling
-// (shadows/caster_culling.cpp, after Unity's per-split culling) for directional tiles, the frustum planes and
+// planner's, operation for operation: the cascade's caster box, cascade blend culling (after Unity's
+// per-split culling) and receiver culling (shadows/caster_culling.cpp) for directional tiles, the frustum planes and
 // bounds (shadows/spot_culling.cpp) for spot and point faces. Survivors are appended to their (tile, mesh)
 // list. The main view's two phases (cull_structs.h) use the same lists after the tiles': the camera frustum,
 // then occlusion by the depth pyramid of what the early list drew.
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "pass_bindings.h"
 #include "cull_structs.h"
 #include "scene_structs.h"
@@ -35,15 +36,17 @@ bool insideScaledSphere(vec3 wsMin, vec3 wsMax, vec4 sphere, float factor) {
     return dot(farthest, farthest) <= radius * radius;
 }
 
-// caster_culling.cpp shadowOnReceiver + shadowInsideScaledSphere with the receivers' common bounds:
-// everything the caster's shadow can reach lies inside the scaled sphere.
-bool shadowInsideScaledSphere(vec3 casterMin, vec3 casterMax, vec3 direction, vec4 sphere, float factor) {
+// caster_culling.cpp shadowOnReceiver with the receivers' common bounds: the box the caster's shadow can
+// reach on them, false when it reaches none.
+bool shadowOnReceivers(vec3 casterMin, vec3 casterMax, vec3 direction, out vec3 clippedMin, out vec3 clippedMax) {
     vec3 receiverMin = cull.wsReceiverMin.xyz, receiverMax = cull.wsReceiverMax.xyz;
+    clippedMin = vec3(0.0);
+    clippedMax = vec3(0.0);
     float t0 = 0.0, t1 = uintBitsToFloat(0x7f800000u);  // +infinity
     for (int axis = 0; axis < 3; ++axis) {
         float d = direction[axis];
         if (abs(d) < 1e-12) {
-            if (casterMin[axis] > receiverMax[axis] || casterMax[axis] < receiverMin[axis]) return true;  // no shadow there
+            if (casterMin[axis] > receiverMax[axis] || casterMax[axis] < receiverMin[axis]) return false;
             continue;
         }
         float enter = (receiverMin[axis] - casterMax[axis]) / d;
@@ -52,14 +55,46 @@ bool shadowInsideScaledSphere(vec3 casterMin, vec3 casterMax, vec3 direction, ve
         t0 = max(t0, enter);
         t1 = min(t1, leave);
     }
-    if (!(t0 <= t1)) return true;
+    if (!(t0 <= t1)) return false;
     vec3 sweptMin = min(casterMin + t0 * direction, casterMin + t1 * direction);
     sweptMin = min(sweptMin, min(casterMax + t0 * direction, casterMax + t1 * direction));
     vec3 sweptMax = max(casterMin + t0 * direction, casterMin + t1 * direction);
     sweptMax = max(sweptMax, max(casterMax + t0 * direction, casterMax + t1 * direction));
-    vec3 clippedMin = max(sweptMin, receiverMin), clippedMax = min(sweptMax, receiverMax);
-    if (any(greaterThan(clippedMin, clippedMax))) return true;
-    return insideScaledSphere(clippedMin, clippedMax, sphere, factor);
+    clippedMin = max(sweptMin, receiverMin);
+    clippedMax = min(sweptMax, receiverMax);
+    return all(lessThanEqual(clippedMin, clippedMax));
+}
+
+// caster_culling.cpp shadowInsideScaledSphere: everything the caster's shadow can reach lies inside the scaled sphere.
+bool shadowInsideScaledSphere(vec3 casterMin, vec3 casterMax, vec3 direction, vec4 sphere, float factor) {
+    vec3 shadowMin, shadowMax;
+    return !shadowOnReceivers(casterMin, casterMax, direction, shadowMin, shadowMax) ||
+           insideScaledSphere(shadowMin, shadowMax, sphere, factor);
+}
+
+// The box corner farthest along `normal`.
+vec3 farthestCorner(vec3 boxMin, vec3 boxMax, vec3 normal) {
+    return vec3(normal.x >= 0.0 ? boxMax.x : boxMin.x, normal.y >= 0.0 ? boxMax.y : boxMin.y, normal.z >= 0.0 ? boxMax.z : boxMin.z);
+}
+
+// caster_culling.cpp shadowMeetsReceiverVolume: the caster grown by the lookups' reach, swept over the
+// receivers, meets the camera's sides, the cascade's depth range and its culling sphere (if any).
+bool shadowMeetsReceiverVolume(CullTile tile, vec3 casterMin, vec3 casterMax) {
+    float reach = tile.receiverDepth.z;
+    vec3 boxMin, boxMax;
+    if (!shadowOnReceivers(casterMin - reach, casterMax + reach, tile.wsLightDirection.xyz, boxMin, boxMax)) return false;
+    for (int i = 0; i < 4; ++i) {
+        vec4 plane = tile.planes[i];
+        if (dot(plane.xyz, farthestCorner(boxMin, boxMax, plane.xyz)) + plane.w < 0.0) return false;
+    }
+    vec4 depthPlane = tile.planes[4];
+    float deepest = dot(depthPlane.xyz, farthestCorner(boxMin, boxMax, depthPlane.xyz)) + depthPlane.w;
+    float shallowest = dot(depthPlane.xyz, farthestCorner(boxMin, boxMax, -depthPlane.xyz)) + depthPlane.w;
+    if (deepest < tile.receiverDepth.x || shallowest > tile.receiverDepth.y) return false;
+    vec4 sphere = tile.receiverSphere;
+    if (sphere.w < 0.0) return true;
+    vec3 closest = clamp(sphere.xyz, boxMin, boxMax);
+    return dot(closest - sphere.xyz, closest - sphere.xyz) <= sphere.w * sphere.w;
 }
 
 // caster_culling.cpp cullTileCasters for one caster and cascade.
@@ -79,7 +114,7 @@ bool directionalKeeps(CullTile tile, vec3 wsMin, vec3 wsMax) {
             shadowInsideScaledSphere(wsMin, wsMax, tile.wsLightDirection.xyz, cull.spheres[j], factor))
             return false;  // a smaller cascade holds the caster and all of its shadow
     }
-    return true;
+    return tile.receiverDepth.w == 0.0 || shadowMeetsReceiverVolume(tile, wsMin, wsMax);
 }
 
 // spot_culling.cpp frustumCasters for one caster and tile.
@@ -170,19 +205,31 @@ bool boxInCameraFrustum(vec4 corners[8]) {
 }
 
 // Appends `instance` to its mesh's part of list `list` (a tile's or the main view's); the list is the
-// same for the whole workgroup, as indexing the buffer array needs.
-void appendToList(uint list, uint instance, CullMesh mesh, uint meshSlot) {
-    uint slot = atomicAdd(listCounts[list * cull.meshCount + meshSlot], 1u);
+// same for the whole workgroup, as indexing the buffer array needs. The invocations of a subgroup that
+// append to one mesh share one atomic (a million boxes of one mesh would otherwise queue a million
+// atomics on one counter): each round takes the mesh of the first invocation still pending. With
+// `countStats`, the list's instance and triangle counts grow the same way.
+void appendToList(uint list, uint instance, CullMesh mesh, uint meshSlot, bool countStats) {
     uint listsPerBuffer = constants.listsPerBuffer;
-    visibleLists[visibleListBuffer(list, listsPerBuffer)]
-        .entries[visibleListStart(list, listsPerBuffer, cull.instanceCount) + mesh.firstListSlot + slot] = instance;
+    for (bool pending = true; pending;) {
+        if (meshSlot != subgroupBroadcastFirst(meshSlot)) continue;
+        uvec4 sharing = subgroupBallot(true);
+        uint count = subgroupBallotBitCount(sharing), first = 0u;
+        if (subgroupElect()) {
+            first = atomicAdd(listCounts[list * cull.meshCount + meshSlot], count);
+            if (countStats) {
+                atomicAdd(tileStats[list].instances, count);
+                atomicAdd(tileStats[list].triangles, count * (mesh.indexCount / 3u));
+            }
+        }
+        uint slot = subgroupBroadcastFirst(first) + subgroupBallotExclusiveBitCount(sharing);
+        visibleLists[visibleListBuffer(list, listsPerBuffer)]
+            .entries[visibleListStart(list, listsPerBuffer, cull.instanceCount) + mesh.firstListSlot + slot] = instance;
+        pending = false;
+    }
 }
 
-void appendToView(uint list, uint instance, CullMesh mesh, uint meshSlot) {
-    appendToList(list, instance, mesh, meshSlot);
-    atomicAdd(tileStats[list].instances, 1u);
-    atomicAdd(tileStats[list].triangles, mesh.indexCount / 3u);
-}
+void appendToView(uint list, uint instance, CullMesh mesh, uint meshSlot) { appendToList(list, instance, mesh, meshSlot, true); }
 
 // The early phase: the frustum's instances visible last frame (every one in frustum without
 // occlusion culling, every one without it at all); the late phase: the frustum's instances the
@@ -225,5 +272,5 @@ void main() {
     CullTile tile = tiles[tileIndex];
     bool keep = tile.kind == kCullTileDirectional ? directionalKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz)
                                                                : perspectiveKeeps(tile, caster.wsMin.xyz, caster.wsMax.xyz);
-    if (keep) appendToList(tileIndex, instance, mesh, caster.meshSlot);
+    if (keep) appendToList(tileIndex, instance, mesh, caster.meshSlot, false);
 }

@@ -36,5 +36,7 @@ CullTile pageTile(VirtualPageDraw draw) {
     tile.blendCullingFactor = 0.0;
     tile.wsLightDirection = vec3(0.0);
     tile.slopeBias = constants.slopeBias;
+    tile.receiverDepth = vec4(0.0);  // directional tiles' only
+    tile.receiverSphere = vec4(0.0, 0.0, 0.0, -1.0);
     return tile;
 }

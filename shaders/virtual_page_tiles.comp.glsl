@@ -28,5 +28,7 @@ CullTile pageTile(VirtualPageDraw draw) {
     tile.wsLightDirection = -vec3(rotation[0][2], rotation[1][2], rotation[2][2]);
     tile.slopeBias = constants.slopeBias;
     tile.clipFromWorld = clipFromLight * rotation;
+    tile.receiverDepth = vec4(0.0);  // no receiver culling: the page was asked for by what the view shows
+    tile.receiverSphere = vec4(0.0, 0.0, 0.0, -1.0);
     return tile;
 }

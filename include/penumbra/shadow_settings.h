@@ -46,6 +46,9 @@ struct DirectionalShadowSettings {
     CascadeFit fit = CascadeFit::Tight;                   // measured best (docs/fidelity.md)
     CascadeSplitMode cascadeSplits = CascadeSplitMode::Log;  // measured best (docs/fidelity.md)
     float splitLambda = 0.75f;  // practical splits: weight of the logarithmic split, 0..1
+    // Cull casters whose shadow cannot reach a receiver that samples the cascade (inside the camera's
+    // frustum, the cascade's depth range or culling sphere): the image is the same.
+    bool receiverCulling = true;
     bool operator==(const DirectionalShadowSettings&) const = default;
 };
 

@@ -61,6 +61,7 @@ struct DirectionalShadowStats {
     uint32_t atlasSize = 0, tiles = 0, split = 0, tileSize = 0;
     double occupancy = 0.0;  // share of the atlas's area its tiles cover
     uint32_t skippedByCascadeBlendCulling = 0;
+    uint32_t skippedByReceiverCulling = 0;  // caster/tile pairs whose shadow cannot reach the cascade's receivers
     bool tightFit = false;   // shadows.directional.fit = tight (else the culling spheres)
     InlineList<glm::vec4, kMaxCascades> cullingSpheres;  // per cascade: world centre (xyz), radius (w)
     InlineList<float, kMaxCascades> cascadeSplits;       // per cascade: its far view distance, metres

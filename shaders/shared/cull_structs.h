@@ -129,8 +129,13 @@ struct CullTile {
     mat4 clipFromWorld;
     vec4 viewport;        // x, y, width, height in atlas texels
     uvec4 scissor;        // x0, y0, x1, y1 (exclusive) in atlas texels
+    // Directional receiver culling (shadows/caster_culling.h ReceiverVolume): planes[0..3] the camera's
+    // unit side planes, planes[4] its view depth (dot(xyz, p) + w); receiverDepth.xy the depth range,
+    // .z the lookups' reach in world units, .w 1 when on; receiverSphere the culling sphere (w < 0: none).
+    vec4 receiverDepth;
+    vec4 receiverSphere;
 };
-PENUMBRA_CHECK_SIZE(CullTile, 304)
+PENUMBRA_CHECK_SIZE(CullTile, 336)
 PENUMBRA_CHECK_LAYOUT(CullTile, planes, 64)
 PENUMBRA_CHECK_LAYOUT(CullTile, frustumMin, 144)
 PENUMBRA_CHECK_LAYOUT(CullTile, kind, 156)
@@ -140,6 +145,7 @@ PENUMBRA_CHECK_LAYOUT(CullTile, blendCullingFactor, 188)
 PENUMBRA_CHECK_LAYOUT(CullTile, slopeBias, 204)
 PENUMBRA_CHECK_LAYOUT(CullTile, clipFromWorld, 208)
 PENUMBRA_CHECK_LAYOUT(CullTile, viewport, 272)
+PENUMBRA_CHECK_LAYOUT(CullTile, receiverDepth, 304)
 
 // The main view as its culling sees it. The depth pyramid (a float buffer, reversed Z) has `levels`
 // levels, level 0 of (width + 1) / 2 x (height + 1) / 2 texels, each level half the previous one

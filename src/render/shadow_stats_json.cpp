@@ -32,6 +32,7 @@ void fillDirectional(const ShadowFrame& plan, DirectionalShadowStats& stats) {
     stats.tileSize = directional.atlas.tileSize;
     stats.occupancy = occupancy(directional.atlas);
     stats.skippedByCascadeBlendCulling = plan.stats.skippedByBlendCulling;
+    stats.skippedByReceiverCulling = plan.stats.skippedByReceiverCulling;
     stats.tightFit = directional.tight;
     stats.cullingSpheres.clear();
     stats.cascadeSplits.clear();
@@ -115,6 +116,7 @@ nlohmann::json atlasJson(const AtlasStats& stats) {
 nlohmann::json directionalJson(const DirectionalShadowStats& stats) {
     nlohmann::json json = atlasJson(stats);
     json["skippedByCascadeBlendCulling"] = stats.skippedByCascadeBlendCulling;
+    json["skippedByReceiverCulling"] = stats.skippedByReceiverCulling;
     nlohmann::json spheres = nlohmann::json::array(), boxes = nlohmann::json::array();
     for (const glm::vec4& sphere : stats.cullingSpheres) spheres.push_back({sphere.x, sphere.y, sphere.z, sphere.w});
     std::vector<float> depthRange, pancakedDepth, texelSize;

@@ -4,6 +4,10 @@ namespace penumbra {
 
 namespace {
 
+void append(TileSignature& signature, const glm::vec4& v) {
+    for (int i = 0; i < 4; ++i) signature.push_back(v[i]);
+}
+
 void append(TileSignature& signature, const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) signature.push_back(m[c][r]);
@@ -31,6 +35,12 @@ TileSignature directionalTileSignature(const ShadowTile& tile, const Directional
         signature.push_back(sphere.radius);
     }
     signature.push_back(plan.blendCullingFactor);
+    // Receiver culling follows the camera: a tile whose square stays while the view turns has other casters.
+    const ReceiverVolume& receivers = tile.receiverVolume;
+    for (const glm::vec4& plane : receivers.wsSidePlanes) append(signature, plane);
+    append(signature, receivers.wsDepthPlane);
+    append(signature, glm::vec4(receivers.vsDepthRange, tile.wsReceiverReach, receivers.valid ? 1.0f : 0.0f));
+    append(signature, receivers.wsSphere);
     for (int i = 0; i < 3; ++i) {
         signature.push_back(plan.wsReceiverBounds.min[i]);
         signature.push_back(plan.wsReceiverBounds.max[i]);

@@ -15,9 +15,9 @@ namespace penumbra {
 
 // Everything that decides the depth a tile holds, as numbers to compare; held inline (no heap): the
 // projection (16), viewport and scissor (4), bias (1), and for a directional tile the cascade spheres
-// (4 x 4), the blend culling factor (1) and the receiver bounds (6).
+// (4 x 4), the blend culling factor (1), the receiver bounds (6) and the receiver volume (8 x 4).
 struct TileSignature {
-    static constexpr uint32_t kCapacity = 16 + 4 + 1 + 4 * 4 + 1 + 6;
+    static constexpr uint32_t kCapacity = 16 + 4 + 1 + 4 * 4 + 1 + 6 + 8 * 4;
     std::array<float, kCapacity> values{};  // unused values stay 0
     uint32_t size = 0;
 
@@ -28,8 +28,8 @@ struct TileSignature {
     bool operator==(const TileSignature&) const = default;
 };
 
-// The signature of a directional tile includes the plan's cascade spheres and blend culling factor
-// (which decide its casters); of a spot/point tile, its projection alone.
+// The signature of a directional tile includes the plan's cascade spheres, blend culling factor and
+// the tile's receiver volume (which decide its casters); of a spot/point tile, its projection alone.
 TileSignature directionalTileSignature(const ShadowTile& tile, const DirectionalShadowPlan& plan);
 TileSignature otherTileSignature(const ShadowTile& tile);
 

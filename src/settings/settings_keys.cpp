@@ -152,6 +152,10 @@ std::vector<SettingKey> makeTable() {
     t.push_back(ranged("shadows.directional.splitLambda", SettingType::Number, 0.0, 1.0, "0..1",
                        PENUMBRA_FIELD(shadows.directional.splitLambda),
                        "With `cascadeSplits: \"practical\"`: the weight of the logarithmic split."));
+    t.push_back(flag("shadows.directional.receiverCulling", PENUMBRA_FIELD(shadows.directional.receiverCulling),
+                     "Cascades leave out casters whose shadow cannot reach a surface that samples them: one inside the "
+                     "camera's frustum and the cascade's depth range (tight fit) or culling sphere (sphere fit), within "
+                     "the filter's reach. The image is the same; off draws every caster that meets a cascade's box."));
     t.push_back(choice("shadows.spot.mode", {"atlas", "virtual"}, PENUMBRA_FIELD(shadows.spot.mode),
                        "How spot and point lights are shadowed: `atlas` in tiles of the spot atlas (the keys below), or "
                        "`virtual`: a virtual shadow map per spot light and six per point light (one per cube face), "

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shadows/spot_culling.h"
 
 namespace penumbra {
 
@@ -123,10 +124,48 @@ bool shadowInsideScaledSphere(const Aabb& wsCaster, const glm::vec3& wsLightDire
     return true;
 }
 
+ReceiverVolume cameraReceiverVolume(const CameraView& camera) {
+    ReceiverVolume volume;
+    const std::array<glm::vec4, 5> clip = clipFrustumPlanes(camera.clipFromWorld);
+    for (int i = 0; i < 4; ++i) {  // the sides; clip's fifth plane is reversed Z's near plane
+        const float length = glm::length(glm::vec3(clip[i]));
+        if (!(length > 0.0f) || !std::isfinite(length)) return volume;
+        volume.wsSidePlanes[i] = clip[i] / length;
+    }
+    const glm::vec3 forward = glm::normalize(camera.wsForward);
+    volume.wsDepthPlane = glm::vec4(forward, -glm::dot(forward, camera.wsPosition));
+    volume.valid = true;
+    return volume;
+}
+
+bool boxMeetsReceiverVolume(const Aabb& wsBounds, const ReceiverVolume& volume) {
+    if (!wsBounds.valid()) return false;
+    // The box corner farthest along (or against) a plane's normal decides whether the box lies wholly outside.
+    const auto farthest = [&](const glm::vec3& normal) {
+        return glm::vec3(normal.x >= 0.0f ? wsBounds.max.x : wsBounds.min.x, normal.y >= 0.0f ? wsBounds.max.y : wsBounds.min.y,
+                         normal.z >= 0.0f ? wsBounds.max.z : wsBounds.min.z);
+    };
+    for (const glm::vec4& plane : volume.wsSidePlanes)
+        if (glm::dot(glm::vec3(plane), farthest(glm::vec3(plane))) + plane.w < 0.0f) return false;
+    const glm::vec3 depthNormal(volume.wsDepthPlane);
+    const float deepest = glm::dot(depthNormal, farthest(depthNormal)) + volume.wsDepthPlane.w;
+    const float shallowest = glm::dot(depthNormal, farthest(-depthNormal)) + volume.wsDepthPlane.w;
+    if (deepest < volume.vsDepthRange.x || shallowest > volume.vsDepthRange.y) return false;
+    if (volume.wsSphere.w < 0.0f) return true;
+    const glm::vec3 centre(volume.wsSphere), closest = glm::clamp(centre, wsBounds.min, wsBounds.max);
+    return glm::dot(closest - centre, closest - centre) <= volume.wsSphere.w * volume.wsSphere.w;
+}
+
+bool shadowMeetsReceiverVolume(const Aabb& wsCaster, float wsReach, const glm::vec3& wsLightDirection,
+                               const Aabb& wsReceivers, const ReceiverVolume& volume) {
+    const Aabb grown{wsCaster.min - wsReach, wsCaster.max + wsReach};
+    return boxMeetsReceiverVolume(shadowOnReceiver(grown, wsLightDirection, wsReceivers), volume);
+}
+
 TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& casters,
                             const std::vector<Aabb>& rsBounds, const CascadeLightView& view,
                             const std::vector<CascadeSphere>& spheres, uint32_t cascadeIndex,
-                            const BlendCulling& blendCulling) {
+                            const BlendCulling& blendCulling, const ReceiverCulling& receiverCulling) {
     PENUMBRA_ASSERT(casters.size() == rsBounds.size() && cascadeIndex < spheres.size());
     // lightFromWorld = translate(t) * rotation, so light-view bounds are the rotated bounds shifted by t.
     const glm::vec3 translation(view.lightFromWorld[3]);
@@ -148,6 +187,11 @@ TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& cas
         }
         if (coveredBySmaller) {
             ++result.skippedByBlendCulling;
+            continue;
+        }
+        if (receiverCulling.enabled() && !shadowMeetsReceiverVolume(ws, receiverCulling.wsReach, wsLightDirection,
+                                                                    *receiverCulling.wsReceivers, *receiverCulling.volume)) {
+            ++result.skippedByReceiverCulling;
             continue;
         }
         result.instances.push_back(casters[i]);

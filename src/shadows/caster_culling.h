@@ -1,12 +1,14 @@
 #pragma once
 // Which instances cast into which shadow tile (the CPU side of Unity's per-split culling as Catlike Coding
 // "Directional Shadows" uses it: GetShadowCasterBounds, splitData, shadowCascadeBlendCullingFactor).
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "penumbra/camera.h"
 #include "penumbra/scene.h"
 #include "shadows/cascades.h"
 
@@ -56,9 +58,43 @@ Aabb shadowOnReceiver(const Aabb& wsCaster, const glm::vec3& wsLightDirection, c
 bool shadowInsideScaledSphere(const Aabb& wsCaster, const glm::vec3& wsLightDirection,
                               const std::vector<Aabb>& wsReceivers, const CascadeSphere& sphere, float factor);
 
+// Where the receivers that sample one cascade can be: inside the camera's frustum (four unit side
+// planes, dot(plane.xyz, p) + plane.w >= 0 inside), within a range of view depth (the tight fit selects
+// cascades by depth), and, for the sphere fit, inside the cascade's culling sphere (what selects it). A
+// caster whose shadow cannot land there shades no pixel through this cascade, however much of the
+// cascade's square it covers: receiver-based caster culling as in Bittner et al., "Shadow Caster Culling
+// for Efficient Shadow Mapping" (I3D 2011), with the camera's frustum standing in for the visible receivers.
+inline constexpr float kAnyDepth = 3.0e38f;  // a depth range's open end (finite: the GPU reads it too)
+struct ReceiverVolume {
+    std::array<glm::vec4, 4> wsSidePlanes{};   // left, right, bottom, top
+    glm::vec4 wsDepthPlane{0.0f};              // view depth of p: dot(xyz, p) + w
+    glm::vec2 vsDepthRange{-kAnyDepth, kAnyDepth};
+    glm::vec4 wsSphere{0.0f, 0.0f, 0.0f, -1.0f};  // centre, radius; radius < 0: no sphere
+    bool valid = false;
+};
+// The camera's sides and view depth, any depth, no sphere (the caller narrows them per cascade).
+ReceiverVolume cameraReceiverVolume(const CameraView& camera);
+// Whether the box meets the volume (conservative near its edges, like every box-against-planes test).
+bool boxMeetsReceiverVolume(const Aabb& wsBounds, const ReceiverVolume& volume);
+
+// Whether a caster can shade a receiver inside the volume: its bounds grown by wsReach on every side (the
+// lit pass's lookups reach that far from a receiver: filter taps, normal offset) and swept along the light
+// over the receivers' common bounds (shadowOnReceiver) meet the volume.
+bool shadowMeetsReceiverVolume(const Aabb& wsCaster, float wsReach, const glm::vec3& wsLightDirection,
+                               const Aabb& wsReceivers, const ReceiverVolume& volume);
+
+// What receiver culling needs for one cascade; off (nothing culled) without a volume or receivers.
+struct ReceiverCulling {
+    const ReceiverVolume* volume = nullptr;
+    const Aabb* wsReceivers = nullptr;  // the receivers' common bounds
+    float wsReach = 0.0f;               // the cascade's lookup reach (shadow_gpu_packing.h lookupReachTexels)
+    bool enabled() const { return volume && volume->valid && wsReceivers && wsReceivers->valid(); }
+};
+
 struct TileCasters {
     std::vector<uint32_t> instances;  // indices into Scene::instances, scene order
     uint32_t skippedByBlendCulling = 0;
+    uint32_t skippedByReceiverCulling = 0;
     float lsMaxZ = -INFINITY;  // highest light-view z (closest to the light) of the kept casters
 };
 
@@ -70,11 +106,12 @@ struct BlendCulling {
 
 // Casters of cascade `cascadeIndex` of one light: those meeting the cascade's caster box, minus those
 // that, with all of their shadow (shadowInsideScaledSphere), lie inside a smaller cascade's culling
-// sphere scaled by the blend-culling factor (Unity's culling bias, made safe for long shadows).
+// sphere scaled by the blend-culling factor (Unity's culling bias, made safe for long shadows), minus
+// those whose shadow cannot reach the receiver volume (shadowMeetsReceiverVolume).
 // rsBounds[i] are the rotated bounds of casters[i] (rotatedCasterBounds with the light's rotation).
 TileCasters cullTileCasters(const Scene& scene, const std::vector<uint32_t>& casters,
                             const std::vector<Aabb>& rsBounds, const CascadeLightView& view,
                             const std::vector<CascadeSphere>& spheres, uint32_t cascadeIndex,
-                            const BlendCulling& blendCulling);
+                            const BlendCulling& blendCulling, const ReceiverCulling& receiverCulling = {});
 
 }  // namespace penumbra

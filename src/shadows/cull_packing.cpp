@@ -31,6 +31,11 @@ gpu_data::CullTile directionalTile(const ShadowTile& tile, float blendCullingFac
     packed.blendCullingFactor = blendCullingFactor;
     // The light travels along -Z of its view: the third row of the rotation, negated (as caster_culling.cpp).
     packed.wsLightDirection = -glm::vec3(tile.lightFromWorld[0][2], tile.lightFromWorld[1][2], tile.lightFromWorld[2][2]);
+    const ReceiverVolume& receivers = tile.receiverVolume;
+    for (size_t i = 0; i < receivers.wsSidePlanes.size(); ++i) packed.planes[i] = receivers.wsSidePlanes[i];
+    packed.planes[4] = receivers.wsDepthPlane;
+    packed.receiverDepth = glm::vec4(receivers.vsDepthRange, tile.wsReceiverReach, receivers.valid ? 1.0f : 0.0f);
+    packed.receiverSphere = receivers.wsSphere;
     packRaster(packed, tile);
     return packed;
 }

@@ -23,6 +23,8 @@ struct TileInputs {
     const VisibleSurfaces* visible;  // the tight fit's receivers; null = the sphere fit
     float cascadeFade;
     bool cullCasters;
+    const ReceiverVolume& cameraReceivers;  // invalid: receiver culling off
+    const Aabb& wsReceivers;                // the receivers' common bounds
 };
 
 // How far toward the light the lit pass may look up a receiver of this cascade: the normal bias moves
@@ -48,14 +50,30 @@ CascadeLightView fitLightView(const TileInputs& in, const ReservedDirectionalLig
     return fitTightLightView(lightRotation, rsBounds, in.atlas.tileSize, reachTexels);
 }
 
+// Where the receivers that sample cascade `cascadeIndex` lie: the camera's frustum narrowed to the slice's
+// view depth, reaching back over the previous cascade's blend band (tight fit: cascades selected by depth,
+// as selectDirectionalCascade), or to its culling sphere (sphere fit: cascades selected by sphere).
+ReceiverVolume cascadeReceiverVolume(const TileInputs& in, uint32_t cascadeIndex) {
+    ReceiverVolume volume = in.cameraReceivers;
+    const CascadeSphere& sphere = in.spheres[cascadeIndex];
+    if (!volume.valid) return volume;
+    if (in.visible) volume.vsDepthRange = {cascadeIndex == 0 ? -kAnyDepth : sphere.vsNear * (1.0f - in.cascadeFade), sphere.vsFar};
+    else volume.wsSphere = glm::vec4(sphere.wsCenter, sphere.radius);
+    return volume;
+}
+
 ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light, const glm::mat4& lightRotation,
                     uint32_t slot, uint32_t cascadeIndex, ShadowStats& stats) {
     const CascadeLightView view = fitLightView(in, light, lightRotation, cascadeIndex);
+    const ReceiverVolume receivers = cascadeReceiverVolume(in, cascadeIndex);
+    const float wsReach = view.wsTexelSize * lookupReachTexels(light.normalBias, light.pcssTanRadius > 0.0f, in.filter);
     const Stopwatch cullingTime;
     TileCasters casters;
     if (in.cullCasters)
-        casters = cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling);
+        casters = cullTileCasters(in.scene, in.casters, in.rsBounds, view, in.spheres, cascadeIndex, in.blendCulling,
+                                  ReceiverCulling{&receivers, &in.wsReceivers, wsReach});
     stats.cullingMilliseconds += cullingTime.milliseconds();
+    stats.skippedByReceiverCulling += casters.skippedByReceiverCulling;
     stats.skippedByBlendCulling += casters.skippedByBlendCulling;
 
     ShadowTile tile;
@@ -66,6 +84,8 @@ ShadowTile planTile(const TileInputs& in, const ReservedDirectionalLight& light,
     tile.lightFromWorld = view.lightFromWorld;
     tile.lsHalfExtent = view.halfExtent;
     tile.wsTexelSize = view.wsTexelSize;
+    tile.receiverVolume = receivers;
+    tile.wsReceiverReach = wsReach;
     // The depth range fits the receivers, whatever the casters: from the sphere's (or the
     // tight box's) side toward the light, plus what the normal bias may add, to its far side; nothing
     // outside it is sampled. Casters in front of the near plane are pancaked onto it by depth clamp, per
@@ -115,6 +135,8 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
     directional.wsReceiverBounds = workspace.wsReceiverBounds;
     directional.blendCullingFactor = tight ? 0.0f : cascadeBlendCullingFactor(config.cascadeFade);
     workspace.receivers.assign(1, directional.wsReceiverBounds);
+    workspace.cameraReceivers = config.receiverCulling && directional.wsReceiverBounds.valid() ? cameraReceiverVolume(camera)
+                                                                                               : ReceiverVolume{};
     const BlendCulling blendCulling{directional.blendCullingFactor,
                                     directional.wsReceiverBounds.valid() ? &workspace.receivers : nullptr};
     directional.specializationMode = 0;
@@ -133,7 +155,7 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
         if (options.cullCasters) workspace.rsCasterBounds = rotatedCasterBounds(scene, casters, rotation);
         const TileInputs inputs{scene,         casters, workspace.rsCasterBounds, directional.cascades, directional.atlas,
                                 blendCulling,  config.filter, tight ? visible : nullptr, config.cascadeFade,
-                                options.cullCasters};
+                                options.cullCasters, workspace.cameraReceivers, directional.wsReceiverBounds};
         for (uint32_t cascade = 0; cascade < tilesPerLight; ++cascade)
             directional.tiles.push_back(planTile(inputs, light, rotation, slot, cascade, frame.stats));
     }

@@ -24,6 +24,7 @@
 #include "shadow_structs.h"
 #include "shadows/atlas_layout.h"
 #include "shadows/cascades.h"
+#include "shadows/caster_culling.h"
 #include "shadows/light_reservation.h"
 #include "penumbra/shadow_settings.h"
 #include "shadows/spot_atlas_layout.h"
@@ -53,6 +54,10 @@ struct ShadowTile {
     bool depthClamp = true;          // pancaking: draw with depthClampEnable
     bool perspective = false;        // spot / point face (else a directional cascade)
     float lsHalfExtent = 0.0f;       // directional: the ortho box is [-h, h]^2 in light view
+    // Directional: where the receivers that sample this cascade lie (invalid: receiver culling off) and
+    // how far from a receiver its lookups reach (world units); the GPU culling pass tests the same.
+    ReceiverVolume receiverVolume;
+    float wsReceiverReach = 0.0f;
     glm::vec3 wsApex{0.0f};          // perspective: the light's position
     // Indices into Scene::instances, scene order; empty when the plan leaves culling to the GPU
     // (PlanOptions::cullCasters false).
@@ -66,6 +71,7 @@ struct ShadowStats {
     std::vector<uint32_t> castersPerTile;    // = tiles[i].casterInstances.size()
     uint32_t casterDraws = 0;                // sum over tiles
     uint32_t skippedByBlendCulling = 0;      // caster/tile pairs removed by the culling factor
+    uint32_t skippedByReceiverCulling = 0;   // ... whose shadow cannot reach the cascade's receivers
     double cullingMilliseconds = 0.0;        // CPU time spent culling casters per tile (both atlases)
 };
 
@@ -130,6 +136,7 @@ struct ShadowPlanWorkspace {
     std::vector<uint32_t> casters;      // shadowCasterInstances
     Aabb wsReceiverBounds;              // shadowReceiverUnion
     std::vector<Aabb> receivers;        // the receivers' union, as blend culling reads it
+    ReceiverVolume cameraReceivers;     // the frame's cameraReceiverVolume (invalid: receiver culling off)
     std::vector<Aabb> rsCasterBounds;   // one light's rotated caster bounds (PlanOptions::cullCasters)
     OtherLightReservation reservation;  // the spot and point lights' reservation
 

@@ -11,6 +11,7 @@
 #include "render_test_support.h"
 #include "scene/canonical_scenes.h"
 #include "shadows/cull_packing.h"
+#include "shadows/visible_surfaces.h"
 
 namespace penumbra::test {
 namespace {
@@ -22,11 +23,11 @@ protected:
         std::vector<std::vector<uint32_t>> gpu, cpu;
         uint32_t visibleBuffers = 0;  // the storage buffers the GPU's lists were split over
     };
-    Lists cull(const Scene& scene, const Settings& settings, Device* on = nullptr) {
-        constexpr uint32_t width = 160, height = 90;
+    static constexpr uint32_t kWidth = 160, kHeight = 90;
+    Lists cull(const Scene& scene, const Settings& settings, Device* on = nullptr, const VisibleSurfaces* visible = nullptr) {
         gpu::Device& gpu = gpu::backend(on ? *on : device());
-        const CameraView view = resolveCameraView(scene, width, height);
-        const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows);  // CPU lists kept
+        const CameraView view = resolveCameraView(scene, kWidth, kHeight);
+        const ShadowFrame plan = ShadowPlanner::plan(scene, view, settings.shadows, visible);  // CPU lists kept
         GpuScene gpuScene(gpu, scene);
         ShadowCullingPass culling(gpu, gpuScene);
         const gpu_data::CullFrame packed = packCullFrame(plan, gpuScene.instanceCount(), gpuScene.meshSlotCount());
@@ -55,8 +56,9 @@ protected:
     }
 
     // Leaves the lists compared in last_.
-    void expectSameLists(const Scene& scene, const Settings& settings, const std::string& what, Device* on = nullptr) {
-        last_ = cull(scene, settings, on);
+    void expectSameLists(const Scene& scene, const Settings& settings, const std::string& what, Device* on = nullptr,
+                         const VisibleSurfaces* visible = nullptr) {
+        last_ = cull(scene, settings, on, visible);
         const Lists& lists = last_;
         ASSERT_EQ(lists.gpu.size(), lists.cpu.size()) << what;
         ASSERT_FALSE(lists.cpu.empty()) << what << ": no shadow tile to compare";
@@ -75,6 +77,30 @@ TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsOnEveryCanonicalScene) {
         Settings settings;
         settings.shadows.maxDistance = 150.0f;
         expectSameLists(makeCanonicalScene(info.name), settings, info.name);
+    }
+}
+
+// The tight fit narrows receiver culling to each slice's view depth (the sphere fit above: to its
+// sphere): with the ground plane y = 0 as the visible surfaces, the GPU keeps what the CPU keeps.
+TEST_F(ShadowCullingTest, GpuListsEqualTheCpuListsWithTightCascades) {
+    for (const CanonicalSceneInfo& info : canonicalScenes()) {
+        const Scene scene = makeCanonicalScene(info.name);
+        const CameraView view = resolveCameraView(scene, kWidth, kHeight);
+        Image depth(kWidth, kHeight, 4, 0);
+        for (uint32_t y = 0; y < kHeight; ++y)
+            for (uint32_t x = 0; x < kWidth; ++x) {
+                const glm::vec3 dir = wsRayDirection(view, float(x) + 0.5f, float(y) + 0.5f);
+                if (dir.y >= -1e-4f) continue;
+                const glm::vec4 clip = view.clipFromWorld * glm::vec4(view.wsPosition + dir * (-view.wsPosition.y / dir.y), 1.0f);
+                const float d = clip.z / clip.w;
+                std::memcpy(&depth.pixels[(size_t(y) * kWidth + x) * 4], &d, sizeof(float));
+            }
+        const VisibleSurfaces visible = visibleSurfacesFromDepth(depth, view);
+        if (visible.empty()) continue;
+        Settings settings;
+        settings.shadows.maxDistance = 150.0f;
+        settings.shadows.directional.fit = CascadeFit::Tight;
+        expectSameLists(scene, settings, info.name + ", tight", nullptr, &visible);
     }
 }
 
