@@ -2,6 +2,7 @@
 // A Vulkan device for Penumbra: one of the machine's (a GPU, or lavapipe on a machine without one),
 // or the caller's own VkDevice (see <penumbra/vulkan.h>). Renderers render on it. No Vulkan header
 // is needed to use this one.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -62,6 +63,7 @@ struct DeviceObjectCounts {
     // pipeline of the same description left behind; the kept ones are not counted as live.
     uint64_t pipelinesCompiled = 0, pipelinesReused = 0;
     uint32_t pipelinesParked = 0;   // compiled pipelines kept for reuse now
+    std::array<char, 48> lastObjectName{};  // the debug name of the last object made (truncated), "" if none
     uint32_t total() const {
         return buffers + textures + samplers + pipelines + textureTables + memoryBlocks + pendingDestroys;
     }

@@ -378,8 +378,12 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                 measured.lightsPerClusterMax);
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,
                 run.deviceLast);
-    std::printf("after warm-up: %llu GPU objects made, %llu vkAllocateMemory calls\n",
-                (unsigned long long)(run.after.objectsCreated - run.before.objectsCreated),
+    const uint64_t made = run.after.objectsCreated - run.before.objectsCreated;
+    std::printf("after warm-up: %llu GPU objects made (%llu pipelines compiled, %llu reused; last \"%s\"), "
+                "%llu vkAllocateMemory calls\n",
+                (unsigned long long)made, (unsigned long long)(run.after.pipelinesCompiled - run.before.pipelinesCompiled),
+                (unsigned long long)(run.after.pipelinesReused - run.before.pipelinesReused),
+                made > 0 ? run.after.lastObjectName.data() : "",
                 (unsigned long long)(run.after.memoryAllocations - run.before.memoryAllocations));
     if (bench.varyPeriod > 0 && !run.samples.empty()) {
         const nlohmann::json vary = variationJson(bench.varyPeriod, run.samples);

@@ -462,6 +462,7 @@ ObjectCounts Device::objectCounts() const {
     counts.pendingDestroys = d.pendingGarbage.count();
     for (const FrameContext& frame : d.frames) counts.pendingDestroys += frame.garbage.count();
     counts.objectsCreated = d.objectsCreated;
+    counts.lastObjectName = d.lastObjectName;
     counts.submits = d.submits;
     counts.deviceWaits = d.deviceWaits;
     counts.debugNamesSet = d.debugNamesSet;

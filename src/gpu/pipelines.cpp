@@ -229,7 +229,7 @@ PipelineHandle Device::createGraphicsPipeline(const GraphicsPipelineDesc& desc) 
         }
     }
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    ++d.objectsCreated;
+    d.noteCreated(desc.debugName.empty() ? desc.fragmentShader : desc.debugName);
     return PipelineHandle{d.pipelines.insert(std::move(p))};
 }
 
@@ -241,7 +241,7 @@ PipelineHandle Device::createGraphicsPipelineAsync(const GraphicsPipelineDesc& d
     const std::string key = Impl::reuseKey(desc, textureCount);
     p.bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     p.pushStages = pushConstantStages(desc);
-    ++d.objectsCreated;
+    d.noteCreated(desc.debugName.empty() ? desc.fragmentShader : desc.debugName);
     if (d.takeParkedPipeline(key, p)) {  // compiled already: ready at once
         p.bindings = desc.bindings;
         return PipelineHandle{d.pipelines.insert(std::move(p))};
@@ -391,7 +391,7 @@ PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     if (d.takeParkedPipeline(key, p)) {
         p.bindings = desc.bindings;
         p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
-        ++d.objectsCreated;
+        d.noteCreated(desc.debugName.empty() ? desc.shader : desc.debugName);
         return PipelineHandle{d.pipelines.insert(std::move(p))};
     }
     createLayout(d, p, desc.bindings, desc.pushConstantSize, desc.textureTable);
@@ -413,7 +413,7 @@ PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
     }
     d.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), desc.debugName.empty() ? desc.shader : desc.debugName);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
-    ++d.objectsCreated;
+    d.noteCreated(desc.debugName.empty() ? desc.shader : desc.debugName);
     return PipelineHandle{d.pipelines.insert(std::move(p))};
 }
 

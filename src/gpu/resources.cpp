@@ -59,7 +59,7 @@ BufferHandle Device::createBuffer(size_t size, uint32_t usage, MemoryKind memory
     }
     resource.mapped = resource.memory.mapped;
     d.setDebugName(VK_OBJECT_TYPE_BUFFER, uint64_t(resource.buffer), debugName);
-    ++d.objectsCreated;
+    d.noteCreated(debugName);
     const BufferHandle handle{d.buffers.insert(resource)};
     d.frameGraph.forget({handle.id, false});  // a reused id starts unused
     d.frameGraph.setName({handle.id, false}, debugName);
@@ -164,7 +164,7 @@ TextureHandle Device::createTexture(const TextureDesc& desc) {
     }
     d.setDebugName(VK_OBJECT_TYPE_IMAGE, uint64_t(resource.image), desc.debugName);
     d.setDebugName(VK_OBJECT_TYPE_IMAGE_VIEW, uint64_t(resource.view), desc.debugName);
-    ++d.objectsCreated;
+    d.noteCreated(desc.debugName);
     const TextureHandle handle{d.textures.insert(resource)};
     d.frameGraph.forget({handle.id, true});  // a reused id starts unused (VK_IMAGE_LAYOUT_UNDEFINED)
     d.frameGraph.setName({handle.id, true}, desc.debugName);
@@ -180,7 +180,7 @@ TextureHandle Device::importTexture(const ExternalTarget& target, const std::str
     resource.imported = true;
     resource.format = VkFormat(target.format);
     resource.desc = {target.width, target.height, Format::Undefined, kTextureTransferDst, 1, debugName};
-    ++d.objectsCreated;
+    d.noteCreated(debugName);
     const TextureHandle handle{d.textures.insert(resource)};
     d.frameGraph.forget({handle.id, true});
     d.frameGraph.setName({handle.id, true}, debugName);
@@ -198,7 +198,7 @@ TextureHandle Device::importDepthTexture(uint64_t vkImage, uint64_t vkImageView,
     resource.imported = resource.importedView = true;
     resource.format = VK_FORMAT_D32_SFLOAT;
     resource.desc = {width, height, Format::D32Float, kTextureSampled | kTextureDepthTarget, 1, debugName};
-    ++d.objectsCreated;
+    d.noteCreated(debugName);
     const TextureHandle handle{d.textures.insert(resource)};
     d.frameGraph.forget({handle.id, true});
     d.frameGraph.setName({handle.id, true}, debugName);
@@ -302,7 +302,7 @@ SamplerHandle Device::createSampler(const SamplerDesc& desc) {
     info.compareOp = toVkCompareOp(desc.compareOp);
     VkSampler sampler = VK_NULL_HANDLE;
     VK_CHECK(vkCreateSampler(d.device, &info, nullptr, &sampler));
-    ++d.objectsCreated;
+    d.noteCreated("sampler");
     return SamplerHandle{d.samplers.insert(sampler)};
 }
 
@@ -360,7 +360,7 @@ TextureTableHandle Device::createTextureTable(std::span<const TextureHandle> tex
     write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     write.pImageInfo = images.data();
     vkUpdateDescriptorSets(d.device, 1, &write, 0, nullptr);
-    ++d.objectsCreated;
+    d.noteCreated("texture table");
     return TextureTableHandle{d.tables.insert(table)};
 }
 

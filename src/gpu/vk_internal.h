@@ -1,5 +1,7 @@
 #pragma once
 // Internal to src/gpu/: the Vulkan side of the Device. Nothing outside src/gpu/ includes this.
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -160,6 +162,7 @@ struct Device::Impl {
     HandlePool<PipelineResource> pipelines;
     HandlePool<TextureTableResource> tables;
     uint64_t objectsCreated = 0;
+    std::array<char, 48> lastObjectName{};  // noteCreated's last
     uint64_t submits = 0;
     uint64_t deviceWaits = 0;
     uint64_t debugNamesSet = 0;
@@ -260,6 +263,13 @@ struct Device::Impl {
     void endImmediate(VkCommandBuffer commandBuffer);
     VkShaderModule loadShader(const std::string& name);
     void setDebugName(VkObjectType type, uint64_t handle, const std::string& name);
+    // Counts an object made (DeviceObjectCounts::objectsCreated) and keeps its name as the last one's.
+    void noteCreated(std::string_view name) {
+        ++objectsCreated;
+        const size_t length = std::min(name.size(), lastObjectName.size() - 1);
+        std::copy_n(name.data(), length, lastObjectName.data());
+        lastObjectName[length] = '\0';
+    }
     Garbage& garbageList() { return recordingSlot >= 0 ? frames[recordingSlot].garbage : pendingGarbage; }
     void destroyGarbage(Garbage& garbage);
     void destroyNow(BufferResource& resource);
