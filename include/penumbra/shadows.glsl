@@ -128,15 +128,17 @@ struct CascadeChoice {
 
 // "Directional Shadows", Sampling Cascades and Fading Cascades: the first culling sphere that holds the
 // point, faded over the sphere's outer band (squared distances); or, for tight cascades, the first slice
-// whose split lies beyond the point's view depth, faded over the slice's last cascadeFade of view depth.
+// whose split lies beyond the point's view depth, faded over the slice's last cascadeFade of view depth
+// (the last slice: over the last cascadeFade of the shadow distance, where its sphere would end).
 CascadeChoice selectDirectionalCascade(vec3 wsPosition, float viewDepth) {
     int cascadeCount = int(directionalShadows.cascadeCount);
     bool tight = directionalShadows.cascadeFit == kCascadeFitTight;
     for (int cascade = 0; cascade < cascadeCount; ++cascade) {
         DirectionalCascade data = directionalShadows.cascades[cascade];
-        if (tight) {
+        if (tight) {  // the last one fades toward the shadow distance, not its own end (shadow_fade.cpp)
+            float scale = cascade + 1 == cascadeCount ? directionalShadows.invShadowDistance : 1.0 / data.vsSplit;
             if (viewDepth < data.vsSplit)
-                return CascadeChoice(cascade, fadedShadowStrength(viewDepth, 1.0 / data.vsSplit, directionalShadows.invCascadeFade));
+                return CascadeChoice(cascade, fadedShadowStrength(viewDepth, scale, directionalShadows.invCascadeFade));
             continue;
         }
         vec3 offset = wsPosition - data.cullingSphere.xyz;

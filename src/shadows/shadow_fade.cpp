@@ -35,8 +35,11 @@ std::pair<uint32_t, float> cascadeAndFade(const gpu_data::DirectionalShadowData&
     for (uint32_t i = 0; i < count; ++i) {
         const gpu_data::DirectionalCascade& cascade = data.cascades[i];
         if (tight) {
-            const float split = cascade.vsSplit;
-            if (viewDepth < split) return {i, fadedShadowStrength(viewDepth, 1.0f / split, data.invCascadeFade)};
+            // The last tight cascade ends at the farthest visible surface, short of the shadow distance in a
+            // shallow view: it fades toward the shadow distance, as the sphere fit's last cascade does, not
+            // toward its own end (which faded the back of every shallow view, a top-down one wholly).
+            const float split = cascade.vsSplit, scale = i + 1 == count ? data.invShadowDistance : 1.0f / split;
+            if (viewDepth < split) return {i, fadedShadowStrength(viewDepth, scale, data.invCascadeFade)};
             continue;
         }
         const glm::vec4 sphere = cascade.cullingSphere;

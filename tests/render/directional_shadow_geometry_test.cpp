@@ -169,3 +169,21 @@ TEST_F(DirectionalShadowTest, CasterFarTowardTheLightAndOutOfViewStillCastsItsSh
     EXPECT_EQ(metrics.interiorFalseShadow + metrics.interiorFalseLit, 0u) << toText(metrics);
     EXPECT_LT(metrics.misclassifiedPercent, 1.0) << toText(metrics);
 }
+
+// Looking straight down, every visible point lies about 10 m deep: the last tight cascade ends there,
+// far short of the shadow distance, and must not fade the ground's shadows as if that were its end.
+TEST_F(DirectionalShadowTest, TopDownViewWithTightCascadesKeepsItsShadows) {
+    SceneBuilder builder;
+    const uint32_t material = builder.addMaterial(matteMaterial());
+    addGround(builder, 60.0f, material);
+    addBox(builder, {{-1.0f, 0.0f, -1.0f}, {1.0f, 1.5f, 1.0f}}, material);
+    builder.addLight(makeDirectionalLight(kSun, 3.0f));
+    builder.setCamera(makeLookAtCamera({0.0f, 10.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, glm::radians(60.0f)));
+    const Scene scene = builder.build();
+    Settings settings;  // the defaults: tight fit, 100 m shadow distance
+    const Image aov = renderShadowAov(scene, settings, kSize);
+    const CompareMetrics m = compareWithReference(scene, aov, settings);
+    EXPECT_GT(m.edgePixels, 40u) << "the box's shadow must show beside it";
+    EXPECT_LT(m.misclassifiedPercent, 0.5) << toText(m);
+    EXPECT_EQ(m.interiorFalseLit, 0u) << toText(m);
+}

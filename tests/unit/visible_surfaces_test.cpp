@@ -1,4 +1,5 @@
 // The depth reduction of the tight cascade fit (shadows/visible_surfaces.h) and the plan it drives.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -107,4 +108,31 @@ TEST(ShadowFade, SquaredFadeRunsFromTheBandsStartToTheShadowDistanceInSquaredDis
     const float midSquared = 0.5f * (80.0f * 80.0f + 100.0f * 100.0f);
     EXPECT_NEAR(distanceFadeStrength(ShadowFadeMode::Squared, 100.0f, 0.2f, 1.0f, midSquared), 0.5f, 1e-5f);
     EXPECT_NEAR(distanceFadeStrength(ShadowFadeMode::Linear, 100.0f, 0.2f, 90.0f, 0.0f), 0.5f, 1e-5f);
+}
+
+// A camera looking nearly straight down at flat ground sees every point 8-13 m deep: the last tight
+// cascade ends there, far short of the 100 m shadow distance. Its fade runs toward the shadow distance,
+// where the sphere fit's last cascade would end, so the ground keeps its full shadow strength.
+TEST(TightFit, AShallowViewKeepsFullShadowStrengthToItsBack) {
+    Scene scene = baseScene();
+    addBox(scene, {-60, -0.1f, -60}, {60, 0, 60});
+    addDirectionalLight(scene, {0.4f, -1.0f, 0.3f});
+    const CameraView view = cameraLookingAt({0, 10, 0}, {0, 0, -3}, 1000.0f, 64, 48);
+    const VisibleSurfaces visible = visibleSurfacesFromDepth(groundDepth(view), view);
+    ASSERT_FALSE(visible.empty());
+    ASSERT_LT(visible.vsMaxDepth, 15.0f);
+    ASSERT_GT(visible.vsMaxDepth - visible.vsMinDepth, 2.0f);
+    ShadowSettings settings;  // tight fit, 100 m shadow distance, cascade fade 0.1
+    const ShadowFrame frame = ShadowPlanner::plan(scene, view, settings, &visible);
+    ASSERT_TRUE(frame.directional.tight);
+    float weakest = 1.0f;
+    uint32_t inLast = 0;
+    for (size_t i = 0; i < visible.wsPoints.size(); ++i) {
+        const CascadeSelection selection = selectCascade(frame.directional.gpu, visible.wsPoints[i], visible.vsDepths[i]);
+        ASSERT_LT(selection.cascadeIndex, 4u);
+        inLast += selection.cascadeIndex == 3u;
+        weakest = std::min(weakest, selection.strength);
+    }
+    ASSERT_GT(inLast, 0u);
+    EXPECT_FLOAT_EQ(weakest, 1.0f) << "the back of the view faded as if the shadow distance ended there";
 }
