@@ -72,7 +72,7 @@ bool shadowInsideScaledSphere(vec3 casterMin, vec3 casterMax, vec3 direction, ve
            insideScaledSphere(shadowMin, shadowMax, sphere, factor);
 }
 
-// The box corner farthest along `normal`.
+// The box corner farthest along `normal` (spot_culling.cpp farthestCorner).
 vec3 farthestCorner(vec3 boxMin, vec3 boxMax, vec3 normal) {
     return vec3(normal.x >= 0.0 ? boxMax.x : boxMin.x, normal.y >= 0.0 ? boxMax.y : boxMin.y, normal.z >= 0.0 ? boxMax.z : boxMin.z);
 }
@@ -122,9 +122,7 @@ bool perspectiveKeeps(CullTile tile, vec3 wsMin, vec3 wsMax) {
     if (any(greaterThan(wsMin, tile.frustumMax.xyz)) || any(lessThan(wsMax, tile.frustumMin.xyz))) return false;
     for (int i = 0; i < 5; ++i) {
         vec4 plane = tile.planes[i];
-        vec3 corner = vec3(plane.x >= 0.0 ? wsMax.x : wsMin.x, plane.y >= 0.0 ? wsMax.y : wsMin.y,
-                           plane.z >= 0.0 ? wsMax.z : wsMin.z);
-        if (dot(plane.xyz, corner) + plane.w < 0.0) return false;
+        if (dot(plane.xyz, farthestCorner(wsMin, wsMax, plane.xyz)) + plane.w < 0.0) return false;
     }
     return true;
 }

@@ -411,9 +411,10 @@ PipelineHandle Device::createComputePipeline(const ComputePipelineDesc& desc) {
         d.destroyNow(p);
         VK_CHECK(result);
     }
-    d.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), desc.debugName.empty() ? desc.shader : desc.debugName);
+    const std::string& name = desc.debugName.empty() ? desc.shader : desc.debugName;
+    d.setDebugName(VK_OBJECT_TYPE_PIPELINE, uint64_t(p.pipeline), name);
     p.bindPoint = VK_PIPELINE_BIND_POINT_COMPUTE;
-    d.noteCreated(desc.debugName.empty() ? desc.shader : desc.debugName);
+    d.noteCreated(name);
     return PipelineHandle{d.pipelines.insert(std::move(p))};
 }
 

@@ -139,17 +139,10 @@ ReceiverVolume cameraReceiverVolume(const CameraView& camera) {
 }
 
 bool boxMeetsReceiverVolume(const Aabb& wsBounds, const ReceiverVolume& volume) {
-    if (!wsBounds.valid()) return false;
-    // The box corner farthest along (or against) a plane's normal decides whether the box lies wholly outside.
-    const auto farthest = [&](const glm::vec3& normal) {
-        return glm::vec3(normal.x >= 0.0f ? wsBounds.max.x : wsBounds.min.x, normal.y >= 0.0f ? wsBounds.max.y : wsBounds.min.y,
-                         normal.z >= 0.0f ? wsBounds.max.z : wsBounds.min.z);
-    };
-    for (const glm::vec4& plane : volume.wsSidePlanes)
-        if (glm::dot(glm::vec3(plane), farthest(glm::vec3(plane))) + plane.w < 0.0f) return false;
+    if (!aabbMeetsPlanes(wsBounds, volume.wsSidePlanes)) return false;  // false for an invalid box too
     const glm::vec3 depthNormal(volume.wsDepthPlane);
-    const float deepest = glm::dot(depthNormal, farthest(depthNormal)) + volume.wsDepthPlane.w;
-    const float shallowest = glm::dot(depthNormal, farthest(-depthNormal)) + volume.wsDepthPlane.w;
+    const float deepest = glm::dot(depthNormal, farthestCorner(wsBounds, depthNormal)) + volume.wsDepthPlane.w;
+    const float shallowest = glm::dot(depthNormal, farthestCorner(wsBounds, -depthNormal)) + volume.wsDepthPlane.w;
     if (deepest < volume.vsDepthRange.x || shallowest > volume.vsDepthRange.y) return false;
     if (volume.wsSphere.w < 0.0f) return true;
     const glm::vec3 centre(volume.wsSphere), closest = glm::clamp(centre, wsBounds.min, wsBounds.max);

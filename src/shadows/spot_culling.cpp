@@ -9,14 +9,17 @@ std::array<glm::vec4, 5> clipFrustumPlanes(const glm::mat4& clipFromWorld) {
     return {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 - r2};
 }
 
-bool aabbMeetsPlanes(const Aabb& wsBounds, const std::array<glm::vec4, 5>& planes) {
+glm::vec3 farthestCorner(const Aabb& wsBounds, const glm::vec3& normal) {
+    return glm::vec3(normal.x >= 0.0f ? wsBounds.max.x : wsBounds.min.x, normal.y >= 0.0f ? wsBounds.max.y : wsBounds.min.y,
+                     normal.z >= 0.0f ? wsBounds.max.z : wsBounds.min.z);
+}
+
+bool aabbMeetsPlanes(const Aabb& wsBounds, std::span<const glm::vec4> planes) {
     if (!wsBounds.valid()) return false;
     for (const glm::vec4& plane : planes) {
         // The box corner farthest along the plane normal: if even it is outside, the whole box is.
-        const glm::vec3 corner(plane.x >= 0.0f ? wsBounds.max.x : wsBounds.min.x,
-                               plane.y >= 0.0f ? wsBounds.max.y : wsBounds.min.y,
-                               plane.z >= 0.0f ? wsBounds.max.z : wsBounds.min.z);
-        if (glm::dot(glm::vec3(plane), corner) + plane.w < 0.0f) return false;
+        const glm::vec3 normal(plane);
+        if (glm::dot(normal, farthestCorner(wsBounds, normal)) + plane.w < 0.0f) return false;
     }
     return true;
 }

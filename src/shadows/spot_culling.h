@@ -4,6 +4,7 @@
 // between the light and the near plane are pancaked onto it (depth clamp) rather than lost.
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -16,8 +17,10 @@ namespace penumbra {
 // far), each (normal, d) with dot(normal, p) + d >= 0 inside; not normalized.
 std::array<glm::vec4, 5> clipFrustumPlanes(const glm::mat4& clipFromWorld);
 
+// The box corner farthest along `normal` (the one a plane test decides by).
+glm::vec3 farthestCorner(const Aabb& wsBounds, const glm::vec3& normal);
 // Whether the box meets all of the planes (conservative: may accept boxes near frustum corners).
-bool aabbMeetsPlanes(const Aabb& wsBounds, const std::array<glm::vec4, 5>& planes);
+bool aabbMeetsPlanes(const Aabb& wsBounds, std::span<const glm::vec4> planes);
 
 // World bounds of a perspective frustum from its apex (the light) to its far plane.
 Aabb perspectiveFrustumBounds(const glm::mat4& clipFromWorld, const glm::vec3& wsApex);

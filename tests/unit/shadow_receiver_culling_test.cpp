@@ -89,25 +89,6 @@ TEST(ReceiverCulling, ACasterWhoseShadowMissesEveryReceiverIsSkipped) {
     EXPECT_FALSE(shadowMeetsReceiverVolume(besideTheGround, 0.1f, kStraightDown, kGround, volume));
 }
 
-// The ground y = 0 as the camera's depth reduction gives it: a point per pixel whose ray meets it
-// within 60 m.
-VisibleSurfaces visibleGround(const CameraView& camera) {
-    VisibleSurfaces visible;
-    for (uint32_t y = 0; y < camera.height; ++y)
-        for (uint32_t x = 0; x < camera.width; ++x) {
-            const glm::vec3 dir = wsRayDirection(camera, float(x) + 0.5f, float(y) + 0.5f);
-            if (dir.y >= -1e-4f) continue;
-            const glm::vec3 p = camera.wsPosition + dir * (-camera.wsPosition.y / dir.y);
-            if (glm::length(p - camera.wsPosition) > 60.0f) continue;
-            const float depth = -(camera.viewFromWorld * glm::vec4(p, 1.0f)).z;
-            visible.wsPoints.push_back(p);
-            visible.vsDepths.push_back(depth);
-            visible.vsMinDepth = std::min(visible.vsMinDepth, depth);
-            visible.vsMaxDepth = std::max(visible.vsMaxDepth, depth);
-        }
-    return visible;
-}
-
 // The planner: a box beside the view whose shadow stays beside it is in no cascade's list with receiver
 // culling on, and in some with it off (the sphere fit's squares reach far past the view's sides; the
 // tight fit's hug it, and TightCascadesReachOnlyTheirSliceOfViewDepth checks their volumes); the box in
@@ -144,7 +125,7 @@ TEST(ReceiverCulling, TightCascadesReachOnlyTheirSliceOfViewDepth) {
     addBox(scene, {-50, -1, -50}, {50, 0, 50});
     addDirectionalLight(scene, {0.0f, -1, 0.05f});
     const CameraView camera = cameraLookingAt({0, 3, 0}, {0, 0, -10});
-    const VisibleSurfaces visible = visibleGround(camera);
+    const VisibleSurfaces visible = visibleSurfacesFromDepth(groundDepth(camera), camera);
     ShadowSettings settings;  // tight fit, log splits, 4 cascades
     settings.maxDistance = 30.0f;
     const ShadowFrame frame = ShadowPlanner::plan(scene, camera, settings, &visible);

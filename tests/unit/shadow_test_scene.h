@@ -1,8 +1,12 @@
 #pragma once
-// In-memory scenes for the shadow planner tests: boxes (bounds only, no vertices), lights, cameras.
+// In-memory scenes for the shadow planner tests: boxes (bounds only, no vertices), lights, cameras, and
+// the depth a view has of the ground plane.
+#include <cstring>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "penumbra/camera.h"
+#include "penumbra/image.h"
 #include "penumbra/scene.h"
 #include "penumbra/shadow_settings.h"
 #include "shadows/shadow_planner.h"
@@ -76,6 +80,22 @@ inline ShadowFrame groundAndBoxPlan(uint32_t cascades) {
     settings.maxDistance = 40.0f;
     settings.directional.cascadeCount = cascades;
     return ShadowPlanner::plan(scene, cameraLookingAt({0, 6, 15}, {0, 0, 0}), settings);
+}
+
+// The reversed-Z depth image of the ground plane y = 0 (up to 60 m) seen by `view`; 0 elsewhere.
+inline Image groundDepth(const CameraView& view) {
+    Image depth(view.width, view.height, 4, 0);
+    for (uint32_t y = 0; y < view.height; ++y)
+        for (uint32_t x = 0; x < view.width; ++x) {
+            const glm::vec3 dir = wsRayDirection(view, float(x) + 0.5f, float(y) + 0.5f);
+            if (dir.y >= -1e-4f) continue;
+            const glm::vec3 p = view.wsPosition + dir * (-view.wsPosition.y / dir.y);
+            if (glm::length(p - view.wsPosition) > 60.0f) continue;
+            const glm::vec4 clip = view.clipFromWorld * glm::vec4(p, 1.0f);
+            const float d = clip.z / clip.w;
+            std::memcpy(&depth.pixels[(size_t(y) * view.width + x) * 4], &d, sizeof(float));
+        }
+    return depth;
 }
 
 }  // namespace penumbra::shadow_test

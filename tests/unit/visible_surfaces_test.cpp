@@ -13,26 +13,6 @@
 using namespace penumbra;
 using namespace penumbra::shadow_test;
 
-namespace {
-
-// The reversed-Z depth image of the ground plane y = 0 (up to 60 m) seen by `view`; 0 elsewhere.
-Image groundDepth(const CameraView& view) {
-    Image depth(view.width, view.height, 4, 0);
-    for (uint32_t y = 0; y < view.height; ++y)
-        for (uint32_t x = 0; x < view.width; ++x) {
-            const glm::vec3 dir = wsRayDirection(view, float(x) + 0.5f, float(y) + 0.5f);
-            if (dir.y >= -1e-4f) continue;
-            const glm::vec3 p = view.wsPosition + dir * (-view.wsPosition.y / dir.y);
-            if (glm::length(p - view.wsPosition) > 60.0f) continue;
-            const glm::vec4 clip = view.clipFromWorld * glm::vec4(p, 1.0f);
-            const float d = clip.z / clip.w;
-            std::memcpy(&depth.pixels[(size_t(y) * view.width + x) * 4], &d, sizeof(float));
-        }
-    return depth;
-}
-
-}  // namespace
-
 TEST(VisibleSurfaces, ReconstructsTheVisiblePointsAndTheirDepthRange) {
     const CameraView view = cameraLookingAt({0, 3, 0}, {0, 0, -10}, 1000.0f, 64, 48);
     const VisibleSurfaces visible = visibleSurfacesFromDepth(groundDepth(view), view);
