@@ -89,7 +89,7 @@ struct Instance {
 };
 
 enum class LightType { Directional, Spot, Point };
-// Soft: the settings' filter; Hard: one hardware 2x2 PCF tap; Pcss: contact-hardening soft shadows
+// Soft: the settings' filter; Hard: one bilinear 2x2 PCF tap; Pcss: contact-hardening soft shadows
 // sized by shadowLightSize ("Percentage-Closer Soft Shadows", Fernando).
 enum class LightShadows { None, Hard, Soft, Pcss };
 

@@ -46,10 +46,8 @@ layout(PENUMBRA_SHADOW_BINDING(kShadowBindingLights), std430) readonly buffer Pe
 layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectional), std140) uniform DirectionalShadowBlock {
     DirectionalShadowData directionalShadows;
 };
-layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas)) uniform sampler2DShadow directionalShadowAtlas;
-// The same atlases read as raw depth (nearest): the receiver-plane compare and blocker searches.
-layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalDepth)) uniform sampler2D directionalShadowDepth;
-layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOtherDepth)) uniform sampler2D otherShadowDepth;
+// The atlases hold raw depth (R32F, nearest): the filters gather texels and compare (shadows/tent.glsl).
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas)) uniform sampler2D directionalShadowAtlas;
 
 #ifdef PENUMBRA_SHADOW_CONSTANT_ID
 layout(constant_id = PENUMBRA_SHADOW_CONSTANT_ID + 2) const uint kDirectionalShadowMode = kDirectionalShadowsAll;
@@ -89,7 +87,7 @@ vec4 directionalTileBounds(uint tile) {
 }
 
 // "Directional Shadows", Normal Bias and PCF Filtering: sample one cascade of a light, biased as
-// shadows.bias says (bias.glsl), with the light's filter: one hardware 2x2 PCF tap or a tent
+// shadows.bias says (bias.glsl), with the light's filter: one bilinear 2x2 PCF tap or a tent
 // (tent.glsl).
 float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) {
     DirectionalShadowLight light = directionalShadows.lights[slot];
@@ -108,10 +106,10 @@ float sampleDirectionalCascade(uint slot, int cascade, ShadowReceiver receiver) 
     if (kDirectionalPcssCompiled && light.pcssTanRadius > 0.0) {  // pcss: the depth range in metres is 1 / |d depth / d world|
         float metresPerDepth = 1.0 / length(vec3(atlasFromWorld[0][2], atlasFromWorld[1][2], atlasFromWorld[2][2]));
         PcssLight pcss = PcssLight(0.0, vec4(metresPerDepth, light.pcssTanRadius, wsTexel, 0.0));
-        return pcssShadow(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth, lookup.depthGradient, texelSize,
+        return pcssShadow(directionalShadowAtlas, lookup.uvDepth, lookup.depthGradient, texelSize,
                           directionalTileBounds(tile), pcss);
     }
-    return sampleShadowFiltered(directionalShadowAtlas, directionalShadowDepth, lookup.uvDepth,
+    return sampleShadowFiltered(directionalShadowAtlas, lookup.uvDepth,
                                 texelSize, filterMode, lookup.depthGradient, lookup.perTexelPlane);
 }
 
@@ -232,7 +230,7 @@ const uint kOtherShadowFilter = kShadowFilterFromData;
 #endif
 const bool kOtherShadowsFromFaces = (kOtherShadowMode & kOtherShadowsVirtual) != 0u;  // shadows.spot.mode = virtual
 layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOther), std140) uniform OtherShadowBlock { OtherShadowData otherShadows; };
-layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOtherAtlas)) uniform sampler2DShadow otherShadowAtlas;
+layout(PENUMBRA_SHADOW_BINDING(kShadowBindingOtherAtlas)) uniform sampler2D otherShadowAtlas;
 
 // HardShadowAttenuation / SoftShadowAttenuation ("Spotlight Shadows", Soft Shadows), the soft one with
 // spot.filter's tent.
@@ -241,9 +239,9 @@ float filterOtherShadow(ShadowLookup lookup, bool soft) {
     vec4 texelSize = shadowTexelSize(otherShadows.atlasSize, otherShadows.invAtlasSize);
     uint filterMode = kOtherShadowFilter == kShadowFilterFromData ? otherShadows.filterMode : kOtherShadowFilter;
     if (useSoft)
-        return sampleShadowFiltered(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, filterMode,
+        return sampleShadowFiltered(otherShadowAtlas, lookup.uvDepth, texelSize, filterMode,
                                     lookup.depthGradient, lookup.perTexelPlane);
-    return sampleShadowPcf2x2(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, texelSize, lookup.depthGradient,
+    return sampleShadowPcf2x2(otherShadowAtlas, lookup.uvDepth, texelSize, lookup.depthGradient,
                               lookup.perTexelPlane);
 }
 
@@ -300,7 +298,7 @@ ShadowSample otherShadow(uint shadowSlot, ShadowReceiver receiver, vec3 wsToLigh
     if (any(lessThan(lookup.uvDepth.xy, bounds.xy)) || any(greaterThan(lookup.uvDepth.xy, bounds.zw)))
         return ShadowSample(1.0, -1);
     float shadow = light.pcssRadius > 0.0
-        ? pcssShadow(otherShadowAtlas, otherShadowDepth, lookup.uvDepth, lookup.depthGradient,
+        ? pcssShadow(otherShadowAtlas, lookup.uvDepth, lookup.depthGradient,
                      shadowTexelSize(otherShadows.atlasSize, otherShadows.invAtlasSize), bounds,
                      PcssLight(1.0, vec4(light.pcssRadius, light.nearDistance, light.farDistance, light.wsTexelPerDistance)))
         : filterOtherShadow(lookup, soft);

@@ -321,6 +321,17 @@ struct ShadowRasterConstants {
 };
 PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 32)
 
+// Push constants of shadow_atlas_copy.comp / shadow_atlas_resolve.comp: the rect of atlas texels a
+// dispatch copies (kAtlasCopyGroup^2 threads per group, one texel each).
+PENUMBRA_CONST(uint, kAtlasCopyGroup, 8u)
+struct AtlasCopyConstants {
+    uint originX, originY;  // the rect's first texel
+    uint width, height;     // its size in texels
+    uint depthSide;         // texels along a row of the depth buffer (shadow_atlas_copy.comp)
+    uint reserved0, reserved1, reserved2;
+};
+PENUMBRA_CHECK_SIZE(AtlasCopyConstants, 32)
+
 // Push constants of shadow_raster_args.comp, which sizes both rasterizers' indirect dispatches.
 PENUMBRA_CONST(uint, kRasterArgsLarge, 0u)   // the large-piece pass (2)
 PENUMBRA_CONST(uint, kRasterArgsChunks, 1u)  // the chunk pass (3)

@@ -41,10 +41,8 @@ PENUMBRA_CONST(uint, kLitShadowBindingBase, 32u)
 PENUMBRA_CONST(uint, kLitBindingShadowView, kLitShadowBindingBase + kShadowBindingView)
 PENUMBRA_CONST(uint, kLitBindingDirectionalShadows, kLitShadowBindingBase + kShadowBindingDirectional)
 PENUMBRA_CONST(uint, kLitBindingDirectionalAtlas, kLitShadowBindingBase + kShadowBindingDirectionalAtlas)
-PENUMBRA_CONST(uint, kLitBindingDirectionalDepth, kLitShadowBindingBase + kShadowBindingDirectionalDepth)
 PENUMBRA_CONST(uint, kLitBindingOtherShadows, kLitShadowBindingBase + kShadowBindingOther)
 PENUMBRA_CONST(uint, kLitBindingOtherAtlas, kLitShadowBindingBase + kShadowBindingOtherAtlas)
-PENUMBRA_CONST(uint, kLitBindingOtherDepth, kLitShadowBindingBase + kShadowBindingOtherDepth)
 // The directional lights' virtual shadow maps (shadows.directional.mode = virtual).
 PENUMBRA_CONST(uint, kLitBindingVirtualShadows, kLitShadowBindingBase + kShadowBindingVirtual)
 PENUMBRA_CONST(uint, kLitBindingVirtualPool, kLitShadowBindingBase + kShadowBindingVirtualPool)
@@ -95,6 +93,12 @@ PENUMBRA_CONST(uint, kShadowRasterBindingAtlasDepth, 8u)  // depthSide^2 float b
 PENUMBRA_CONST(uint, kShadowRasterBindingTiles, 15u)      // the culling pass's CullTileListHeader + CullTile[]
 PENUMBRA_CONST(uint, kShadowRasterBindingRasterList, 16u) // RasterTileListHeader + the tiles this pass draws
 PENUMBRA_CONST(uint, kShadowRasterBindingWork, 17u)       // RasterWorkItem[] (pass 1's work, shadow_raster_expand.comp's)
+
+// shadow_atlas_copy.comp (the compute rasterizer's depth buffer) and shadow_atlas_resolve.comp (the
+// hardware rasterizer's depth image) -> the sampled R32F atlas, one rect per dispatch.
+PENUMBRA_CONST(uint, kAtlasCopyBindingDepth, 0u)   // depthSide^2 float bits (shadow_atlas_copy.comp)
+PENUMBRA_CONST(uint, kAtlasCopyBindingSource, 1u)  // sampler2D of the D32 depth target (shadow_atlas_resolve.comp)
+PENUMBRA_CONST(uint, kAtlasCopyBindingAtlas, 2u)   // the atlas's R32F image (storage)
 // The visibility rasterizer (visibility_raster.glsl).
 PENUMBRA_CONST(uint, kVisibilityRasterBindingVisibility, 8u)  // uint64 per pixel
 

@@ -86,21 +86,37 @@ void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue, uint32_
     using gpu::MemoryKind;
     counters_ = device.createBuffer(sizeof(gpu_data::RasterCounters), gpu::kBufferStorage | gpu::kBufferIndirect,
                                     MemoryKind::DeviceLocal, nullptr, "shadow raster counters");
-    reserve(largeQueue ? largeQueue : gpu_data::kRasterInitialLarge, chunkQueue ? chunkQueue : gpu_data::kRasterInitialChunks,
-            workQueue ? workQueue : gpu_data::kRasterInitialWork);
+    // Exactly the asked sizes (tests ask for small queues to see them overflow); later growth doubles.
+    const uint32_t large = largeQueue ? largeQueue : gpu_data::kRasterInitialLarge;
+    const uint32_t chunks = chunkQueue ? chunkQueue : gpu_data::kRasterInitialChunks;
+    const uint32_t work = workQueue ? workQueue : gpu_data::kRasterInitialWork;
+    resizeQueues(std::min(large, maxLargeCapacity()), std::min(chunks, maxChunkCapacity()), std::min(work, kMaxWorkCapacity));
+}
+
+uint32_t ComputeRasterPass::queueCapacityFor(uint32_t capacity, uint32_t needed, uint32_t limit) {
+    if (needed <= capacity) return std::min(capacity, limit);
+    return uint32_t(std::min<uint64_t>(2 * uint64_t(needed), limit));
+}
+
+uint32_t ComputeRasterPass::maxLargeCapacity() const {
+    return uint32_t(std::min<uint64_t>(kMaxLargeCapacity, device_.maxStorageBufferRange() / sizeof(gpu_data::RasterPiece)));
+}
+
+uint32_t ComputeRasterPass::maxChunkCapacity() const {
+    return uint32_t(std::min<uint64_t>(kMaxChunkCapacity, device_.maxStorageBufferRange() / kChunkBytes));
 }
 
 void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems) {
-    // Queues as large as the most a frame asked for (capped: 4M pieces = 448 MB), grown by 2x steps, and
-    // each within the device's largest storage buffer (a pass binds each whole; 1.2M pieces of 128 MiB): a
-    // frame that needs more gets the warning that the queues were full, as one past the caps always did.
-    const uint64_t range = device_.maxStorageBufferRange();
-    const uint32_t maxLarge = uint32_t(std::min<uint64_t>(kMaxLargeCapacity, range / sizeof(gpu_data::RasterPiece)));
-    const uint32_t maxChunks = uint32_t(std::min<uint64_t>(kMaxChunkCapacity, range / kChunkBytes));
-    const uint32_t large = std::min(std::max(largeCapacity_, largePieces), maxLarge);
-    const uint32_t chunkCount = std::min(std::max(chunkCapacity_, chunks), maxChunks);
-    // Work items of 16 bytes: the 8M cap is 128 MiB, the storage buffer range every Vulkan device offers.
-    const uint32_t workCount = std::min(std::max(workCapacity_, workItems), kMaxWorkCapacity);
+    // Queues of twice the most a frame asked for (capped: 4M pieces = 448 MB), each within the device's
+    // largest storage buffer (a pass binds each whole; 1.2M pieces of 128 MiB): a frame that needs more
+    // gets the warning that the queues were full, as one past the caps always did. Work items of 16
+    // bytes: the 8M cap is 128 MiB, the storage buffer range every Vulkan device offers.
+    resizeQueues(queueCapacityFor(largeCapacity_, largePieces, maxLargeCapacity()),
+                 queueCapacityFor(chunkCapacity_, chunks, maxChunkCapacity()),
+                 queueCapacityFor(workCapacity_, workItems, kMaxWorkCapacity));
+}
+
+void ComputeRasterPass::resizeQueues(uint32_t large, uint32_t chunkCount, uint32_t workCount) {
     if (workCount != workCapacity_ || !work_) {
         device_.destroy(work_);
         work_ = device_.createBuffer(uint64_t(workCount) * sizeof(gpu_data::RasterWorkItem), gpu::kBufferStorage,
@@ -200,12 +216,11 @@ void ComputeRasterPass::recordDraw(gpu::CommandList& commands, std::string_view 
 
 void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                const RasterTileLists& lists, const ShadowCullingPass& culling, const AtlasTiles& tiles,
-                               gpu::TextureHandle atlas, uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling,
-                               std::string_view timerPrefix) {
+                               uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix) {
     using gpu::Usage;
     // Step names: timerPrefix + step in the command list's scratch (a timer keeps its own copy).
     auto stepName = [&](std::string_view step) { return commands.joinName(timerPrefix, step); };
-    if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the atlas stays as it is
+    if (tiles.rects.empty() && !tiles.freshAtlas) {  // every tile cached: the depth stays as it is
         commands.pass(stepName("/clear"), {gpu::use(counters_, Usage::TransferWrite)});
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
         return;
@@ -220,14 +235,6 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
     if (!tiles.freshAtlas && !tiles.rects.empty()) recordClearTiles(commands, timerPrefix, depth);
     commands.endTimer();
     if (!tiles.rects.empty()) recordDraw(commands, timerPrefix, depth);
-    commands.beginTimer(stepName("/copy"));
-    // A fresh atlas is copied whole; else only the drawn tiles (the cached ones keep their depth).
-    commands.pass(stepName("/copy"), {gpu::use(depth, Usage::TransferRead),
-                                      tiles.freshAtlas ? gpu::discard(atlas, Usage::TransferWrite)
-                                                       : gpu::use(atlas, Usage::TransferWrite)});
-    if (tiles.freshAtlas) commands.copyBufferToTexture(depth, atlas);
-    else commands.copyBufferToTextureRects(depth, atlas, tiles.rects);
-    commands.endTimer();
 }
 
 void ComputeRasterPass::recordTiles(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,

@@ -55,13 +55,13 @@ public:
         std::vector<gpu::Rect> rects;
         bool freshAtlas = false;  // the atlas and its depth hold nothing yet: clear and copy all of it
     };
-    // Draws the tiles into `depth` (atlasSize^2 uints, kept across frames for the cached tiles) and
-    // copies them into `atlas` (D32, left in ShaderRead). `writes`: the scene bindings 0-4.
-    // meshletCulling: skip the meshlets whose box lies outside their tile (render.meshletCulling). Its
-    // steps are timed as PREFIX/clear, /instances, /chunks, /copy.
+    // Draws the tiles into `depth` (atlasSize^2 uints, kept across frames for the cached tiles; the
+    // caller copies the drawn rects into the sampled atlas, AtlasCopyPass). `writes`: the scene bindings
+    // 0-4. meshletCulling: skip the meshlets whose box lies outside their tile (render.meshletCulling).
+    // Its steps are timed as PREFIX/clear, /instances, /chunks.
     void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
-                const ShadowCullingPass& culling, const AtlasTiles& tiles, gpu::TextureHandle atlas, uint32_t atlasSize,
-                gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix);
+                const ShadowCullingPass& culling, const AtlasTiles& tiles, uint32_t atlasSize, gpu::BufferHandle depth,
+                bool meshletCulling, std::string_view timerPrefix);
     // Clears the raster list's tiles (their viewports) in `depth` (depthSide^2 uints) to far and draws
     // them, nothing known to the CPU but the lists' buffers (the virtual pages' GPU-written lists). Timed
     // as PREFIX/clear, /instances, /chunks.
@@ -71,12 +71,20 @@ public:
     // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles and
     // skipped meshlets.
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
-    // Grows the queues to hold a frame that asked for this many (what its counters said).
+    // Grows the queues to hold a frame that asked for this many (what its counters said): a queue that is
+    // too small grows to twice the ask (queueCapacityFor), so a moving camera's slowly rising needs cost a
+    // few allocations, not one per new maximum.
     void reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems = 0);
+    // A queue's capacity after a frame asked for `needed` entries: unchanged while it holds them, else twice
+    // the ask, never above `limit`.
+    static uint32_t queueCapacityFor(uint32_t capacity, uint32_t needed, uint32_t limit);
     static constexpr uint32_t kMaxLargeCapacity = 4u << 20, kMaxChunkCapacity = 32u << 20, kMaxWorkCapacity = 8u << 20;
 
 private:
     void create(uint32_t largeQueue, uint32_t chunkQueue, uint32_t workQueue);
+    void resizeQueues(uint32_t large, uint32_t chunks, uint32_t work);  // remakes the queues whose size changes
+    uint32_t maxLargeCapacity() const;
+    uint32_t maxChunkCapacity() const;
     void destroyAll();
     // The pieces both records share: the writes and constants, the list's clear, passes 1-3.
     void prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists, const ShadowCullingPass& culling,

@@ -78,6 +78,7 @@ FrameTargetSizes frameTargetSizes(const ShadowFrame& plan, const CameraView& vie
     sizes.height = view.height;
     sizes.colorFormat = colorFormatOf(output);
     sizes.computeRaster = shadows.raster != ShadowRaster::Hw;
+    sizes.hardwareRaster = shadows.raster != ShadowRaster::Compute;
     return sizes;
 }
 

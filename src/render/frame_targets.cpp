@@ -7,7 +7,9 @@
 namespace penumbra {
 
 FrameTargets::~FrameTargets() {
-    for (gpu::TextureHandle t : {directionalAtlas, otherAtlas, colorSrgb_, colorUnorm_, depth}) device_.destroy(t);
+    for (gpu::TextureHandle t : {directionalAtlas, otherAtlas, directionalHardwareDepth, otherHardwareDepth, colorSrgb_,
+                                 colorUnorm_, depth})
+        device_.destroy(t);
     for (gpu::BufferHandle b : {colorReadback_, directionalReadback_, otherReadback_, directionalRasterDepth, otherRasterDepth})
         device_.destroy(b);
 }
@@ -20,20 +22,39 @@ void FrameTargets::replace(gpu::TextureHandle& texture, const gpu::TextureDesc& 
 void FrameTargets::ensure(const FrameTargetSizes& sizes) {
     PENUMBRA_ASSERT(sizes.colorFormat == gpu::Format::RGBA8Srgb || sizes.colorFormat == gpu::Format::RGBA8Unorm);
     if (made_ && sizes == sizes_) return;
-    const uint32_t depthUsage = gpu::kTextureDepthTarget | gpu::kTextureSampled;
+    // The atlases: R32F that compute passes write (AtlasCopyPass) and the lit pass gathers; copied out
+    // when a test or the viewer captures them.
+    const uint32_t atlasUsage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferSrc;
     if (!made_ || sizes.directionalAtlas != sizes_.directionalAtlas) {
-        replace(directionalAtlas,
-                {sizes.directionalAtlas, sizes.directionalAtlas, gpu::Format::D32Float, depthUsage, 1, "directional atlas"});
+        replace(directionalAtlas, {sizes.directionalAtlas, sizes.directionalAtlas, gpu::Format::R32Float, atlasUsage, 1,
+                                   "directional atlas"});
         ++directionalGeneration;
         device_.destroy(directionalReadback_);
         directionalReadback_ = {};
     }
     if (!made_ || sizes.otherAtlas != sizes_.otherAtlas) {
-        replace(otherAtlas, {sizes.otherAtlas, sizes.otherAtlas, gpu::Format::D32Float, depthUsage, 1, "spot/point atlas"});
+        replace(otherAtlas, {sizes.otherAtlas, sizes.otherAtlas, gpu::Format::R32Float, atlasUsage, 1, "spot/point atlas"});
         ++otherGeneration;
         device_.destroy(otherReadback_);
         otherReadback_ = {};
     }
+    // The hardware rasterizer's depth targets (D32, kept across frames with the atlases: cached tiles keep
+    // their depth there too), made only while it draws.
+    auto hardwareDepth = [&](gpu::TextureHandle& texture, uint32_t size, uint32_t madeSize, uint64_t& generation,
+                             const char* name) {
+        if (!sizes.hardwareRaster || size != madeSize || !(made_ && sizes_.hardwareRaster)) {
+            if (texture) ++generation;
+            device_.destroy(texture);
+            texture = {};
+        }
+        if (sizes.hardwareRaster && !texture) {
+            texture = device_.createTexture({size, size, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, name});
+            ++generation;
+        }
+    };
+    hardwareDepth(directionalHardwareDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, directionalGeneration,
+                  "directional hardware depth");
+    hardwareDepth(otherHardwareDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, otherGeneration, "spot/point hardware depth");
     auto rasterDepth = [&](gpu::BufferHandle& buffer, uint32_t size, uint32_t madeSize, uint64_t& generation,
                            const char* name) {
         if (!sizes.computeRaster || size != madeSize || !(made_ && sizes_.computeRaster)) {

@@ -12,6 +12,7 @@ struct FrameTargetSizes {
     uint32_t width = 1, height = 1;
     gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
     bool computeRaster = false;     // the compute rasterizer's depth buffers
+    bool hardwareRaster = true;     // the hardware rasterizer's depth targets (shadows.raster hw or auto)
     bool operator==(const FrameTargetSizes&) const = default;
 };
 
@@ -29,7 +30,10 @@ public:
     gpu::BufferHandle otherReadback();
 
     const FrameTargetSizes& sizes() const { return sizes_; }
-    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;  // color: the one of sizes().colorFormat
+    // The atlases are R32F (sampled, written by compute passes); color: the one of sizes().colorFormat.
+    gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;
+    // sizes().hardwareRaster: the hardware rasterizer's D32 depth target of each atlas, copied into it.
+    gpu::TextureHandle directionalHardwareDepth, otherHardwareDepth;
     // sizes().computeRaster: the compute rasterizer's depth (uint per texel) of each atlas; kept across
     // frames with the atlases, since cached tiles keep their depth there too.
     gpu::BufferHandle directionalRasterDepth, otherRasterDepth;

@@ -112,6 +112,13 @@ std::vector<BindingDesc> shadowDrawsBindings() {
             {"CullTileBlock", kCullBindingTiles, kStorage, kC}};
 }
 
+std::vector<BindingDesc> atlasCopyBindings(const std::string& shader) {
+    const BindingDesc atlas{"atlas", kAtlasCopyBindingAtlas, gpu::DescriptorType::StorageTexture, kC};
+    if (shader == "shadow_atlas_copy.comp") return {{"DepthBlock", kAtlasCopyBindingDepth, kStorage, kC}, atlas};
+    if (shader == "shadow_atlas_resolve.comp") return {{"source", kAtlasCopyBindingSource, gpu::DescriptorType::SampledTexture, kC}, atlas};
+    throw Error("internal: no atlas copy bindings for '" + shader + "'");
+}
+
 std::vector<BindingDesc> shadowRasterBindings() {
     std::vector<BindingDesc> bindings = {{"CullFrameBlock", kShadowRasterBindingCullFrame, kUniform, kC},
                                          {"DepthBlock", kShadowRasterBindingAtlasDepth, kStorage, kC},

@@ -17,6 +17,7 @@ std::vector<gpu::BindingDesc> shadowCasterBindings();    // shadow_caster.vert (
 std::vector<gpu::BindingDesc> screenSpaceShadowBindings();  // fullscreen.vert + screen_space_shadows.frag
 std::vector<gpu::BindingDesc> shadowCullBindings();      // shadow_cull.comp
 std::vector<gpu::BindingDesc> shadowDrawsBindings();     // shadow_draws.comp
+std::vector<gpu::BindingDesc> atlasCopyBindings(const std::string& shader);  // shadow_atlas_{copy,resolve}.comp
 std::vector<gpu::BindingDesc> shadowRasterBindings();    // shadow_raster{_clear,,_bin,_chunks}.comp
 std::vector<gpu::BindingDesc> visibilityRasterBindings();  // visibility_raster{,_bin,_chunks}.comp
 std::vector<gpu::BindingDesc> rasterArgsBindings();      // shadow_raster_args.comp

@@ -15,16 +15,14 @@ namespace penumbra {
 
 Renderer::State::State(gpu::Device& d, Scene s, const RendererOptions& o)
     : device(d), scene(std::move(s)), options(o), gpuScene(d, scene), culling(d, gpuScene),
-      mainPass(d, gpuScene, scene, o.warmup), casterPass(d, gpuScene), screenSpacePass(d, mainPass),
+      mainPass(d, gpuScene, scene, o.warmup), casterPass(d, gpuScene), atlasCopy(d), screenSpacePass(d, mainPass),
       visiblePass(d, gpuScene, mainPass),
       computeRaster(d, gpuScene, o.rasterLargeQueue, o.rasterChunkQueue, o.rasterWorkQueue), virtualShadows(d, gpuScene, computeRaster),
       virtualFaces(d, gpuScene, computeRaster),
       lightClusters(d), rasterChoice(d.hasTimestamps(), d.info().name),
       mainViewChoice(d.hasTimestamps(), d.info().name, {"forward", "visibility", "main view"}), targets(d) {
     try {
-        // Hardware 2x2 PCF: "fragment depth <= stored depth -> lit"; outside the atlas counts as lit.
-        shadowSampler = d.createSampler({gpu::Filter::Linear, false, gpu::AddressMode::ClampToBorderWhite, true,
-                                         gpu::CompareOp::LessOrEqual});
+        // The atlases and pools are read texel by texel (textureGather, texelFetch): the filters compare.
         pointSampler = d.createSampler({gpu::Filter::Nearest, false, gpu::AddressMode::ClampToEdge});
         noScreenShadows = d.createTexture(
             {1, 1, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureColorTarget, 1, "no screen shadows"});
@@ -50,10 +48,9 @@ void Renderer::State::destroyOwnObjects() {
     device.destroy(callerDepth.texture);
     callerDepth = ImportedImage{};
     device.destroy(noScreenShadows);
-    device.destroy(shadowSampler);
     device.destroy(pointSampler);
     noScreenShadows = {};
-    shadowSampler = pointSampler = {};
+    pointSampler = {};
 }
 
 void Renderer::State::requestAllVariants() {

@@ -196,36 +196,39 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
     commands.beginTimer("shadows.culling");
     culling.record(commands, recording.cullSlice, recording.cullTileSlice);
     commands.endTimer();
-    // Twice what a frame asked for: a moving camera rarely needs another growth (each is one allocation).
-    // The virtual pages draw with the compute rasterizer whatever the atlases use.
-    computeRaster.reserve(2 * rasterNeeded.x, 2 * rasterNeeded.y, 2 * rasterNeeded.z);
+    // The most a frame asked for (a queue too small grows to twice that: few allocations in motion). The
+    // virtual pages draw with the compute rasterizer whatever the atlases use.
+    computeRaster.reserve(rasterNeeded.x, rasterNeeded.y, rasterNeeded.z);
     frame.readback.cullTiles = device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));
-    auto drawAtlas = [&](size_t pass, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& drawn,
-                         bool fresh, uint32_t firstTile, gpu::TextureHandle atlas, uint32_t size, gpu::BufferHandle rasterDepth) {
+    auto drawAtlas = [&](size_t pass, const std::vector<ShadowTile>& tiles, const std::vector<uint32_t>& drawn, bool fresh,
+                         uint32_t firstTile, gpu::TextureHandle atlas, uint32_t size, gpu::BufferHandle rasterDepth,
+                         gpu::TextureHandle hardwareDepth) {
         const char* name = kAtlasPassNames[pass];
         recording.stage = name;
         commands.beginTimer(name);
+        ComputeRasterPass::AtlasTiles& atlasTiles = atlasTilesScratch;  // its rects' storage is reused
+        atlasTiles.freshAtlas = fresh;
+        atlasTiles.rects.clear();
+        for (uint32_t i : drawn)
+            atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y), tiles[i].rect.size,
+                                        tiles[i].rect.size});
         if (frame.computeRaster) {
-            ComputeRasterPass::AtlasTiles& atlasTiles = atlasTilesScratch;  // its rects' storage is reused
-            atlasTiles.freshAtlas = fresh;
-            atlasTiles.rects.clear();
-            for (uint32_t i : drawn)
-                atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y),
-                                            tiles[i].rect.size, tiles[i].rect.size});
             const RasterTileLists lists{recording.cullSlice, recording.cullTileSlice, recording.rasterListSlices[pass]};
-            computeRaster.record(commands, recording.casterWrites, lists, culling, atlasTiles, atlas, size, rasterDepth,
+            computeRaster.record(commands, recording.casterWrites, lists, culling, atlasTiles, size, rasterDepth,
                                  recording.settings.render.meshletCulling, name);
             frame.readback.rasterCounters[pass] = device.readBackAtFrameEnd(commands, computeRaster.counters());
+            atlasCopy.copyFromBuffer(commands, commands.joinName(name, "/copy"), rasterDepth, atlas, size, atlasTiles.rects, fresh);
         } else {
-            casterPass.record(commands, tiles, drawn, fresh, firstTile, atlas, size, recording.casterWrites, culling, name);
+            casterPass.record(commands, tiles, drawn, fresh, firstTile, hardwareDepth, size, recording.casterWrites, culling, name);
+            atlasCopy.copyFromImage(commands, commands.joinName(name, "/copy"), hardwareDepth, atlas, size, atlasTiles.rects, fresh);
         }
         commands.endTimer();
     };
     const FrameTargetSizes& sizes = recording.sizes;
     drawAtlas(0, plan.directional.tiles, draw.directional, draw.freshDirectional, 0, targets.directionalAtlas,
-              sizes.directionalAtlas, targets.directionalRasterDepth);
+              sizes.directionalAtlas, targets.directionalRasterDepth, targets.directionalHardwareDepth);
     drawAtlas(1, plan.other.tiles, draw.other, draw.freshOther, directionalTiles, targets.otherAtlas, sizes.otherAtlas,
-              targets.otherRasterDepth);
+              targets.otherRasterDepth, targets.otherHardwareDepth);
     std::vector<AtlasDrawStats>& atlases = frame.stats.atlases;  // recycled: names keep their storage
     atlases.resize(2);
     const uint32_t tilesOf[2] = {directionalTiles, cullTiles - directionalTiles};
@@ -251,12 +254,10 @@ MainPassInputs& Renderer::State::recordLightingInputs(FrameRecording& recording)
     inputs.writes.push_back({kLitBindingClusterMasks, lightClusters.masks(), {}, {}});
     inputs.writes.push_back({kLitBindingShadowView, recording.shadowViewSlice});
     inputs.writes.push_back({kLitBindingDirectionalShadows, recording.directionalSlice});
-    inputs.writes.push_back({kLitBindingDirectionalAtlas, {}, targets.directionalAtlas, shadowSampler});
+    // The atlases as raw depth, nearest: the filters compare textureGather's texels (penumbra/shadows/tent.glsl).
+    inputs.writes.push_back({kLitBindingDirectionalAtlas, {}, targets.directionalAtlas, pointSampler});
     inputs.writes.push_back({kLitBindingOtherShadows, recording.otherSlice});
-    inputs.writes.push_back({kLitBindingOtherAtlas, {}, targets.otherAtlas, shadowSampler});
-    // The same atlases as raw depth (receiver-plane compare, blocker search; penumbra/shadows.glsl).
-    inputs.writes.push_back({kLitBindingDirectionalDepth, {}, targets.directionalAtlas, pointSampler});
-    inputs.writes.push_back({kLitBindingOtherDepth, {}, targets.otherAtlas, pointSampler});
+    inputs.writes.push_back({kLitBindingOtherAtlas, {}, targets.otherAtlas, pointSampler});
     inputs.sampled = {targets.directionalAtlas, targets.otherAtlas, noScreenShadows};
     virtualShadows.appendLitInputs(inputs, pointSampler);  // its pool goes before noScreenShadows
     virtualFaces.appendLitInputs(inputs, pointSampler);    // and so does this one
@@ -392,13 +393,17 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
                                             virtualFaces.poolPressureSteps()});
     frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
     frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
-    const FrameTargetSizes sizes = frameTargetSizes(plan, view, output, settings.shadows);
+    frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
+    FrameTargetSizes sizes = frameTargetSizes(plan, view, output, settings.shadows);
+    if (settings.shadows.raster == ShadowRaster::Auto && rasterChoice.decided()) {  // only the chosen path's depth
+        sizes.computeRaster = frame.computeRaster;
+        sizes.hardwareRaster = !frame.computeRaster;
+    }
     try {
         targets.ensure(sizes);
     } catch (const Error& error) {
         throw frameFailure(frameIndex, "render targets and shadow atlases", error);
     }
-    frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
     frame.autoRaster = settings.shadows.raster == ShadowRaster::Auto && !rasterChoice.decided();
     frame.rasterSetting = settings.shadows.raster;
     stats.shadowRaster = frame.computeRaster ? "compute" : "hw";

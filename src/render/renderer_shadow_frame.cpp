@@ -18,7 +18,7 @@ namespace penumbra {
 
 namespace {
 
-static_assert(kShadowBindingCount == 14 && gpu_data::kLitBindingShadowView == gpu_data::kLitShadowBindingBase);
+static_assert(kShadowBindingCount == 12 && gpu_data::kLitBindingShadowView == gpu_data::kLitShadowBindingBase);
 
 // The light table of penumbraShadow(light, ...): per scene light its kind and slot in the plan.
 void packShadowLightTable(const Scene& scene, const ShadowFrame& plan, std::vector<gpu_data::ShadowLightSlot>& table) {

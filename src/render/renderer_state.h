@@ -12,6 +12,7 @@
 #include "gpu/device.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
+#include "render/atlas_copy_pass.h"
 #include "render/compute_raster_pass.h"
 #include "render/frame_readback.h"
 #include "render/frame_targets.h"
@@ -106,6 +107,7 @@ struct Renderer::State {
     ShadowCullingPass culling;
     MainPass mainPass;
     ShadowCasterPass casterPass;
+    AtlasCopyPass atlasCopy;  // either rasterizer's depth -> the sampled R32F atlases
     ScreenSpaceShadowPass screenSpacePass;
     VisibleSurfacePass visiblePass;
     ComputeRasterPass computeRaster;
@@ -133,7 +135,7 @@ struct Renderer::State {
     uint64_t callerDepthFrames = 0;
     VirtualSettling virtualSettling;
     FrameTargets targets;
-    gpu::SamplerHandle shadowSampler, pointSampler;
+    gpu::SamplerHandle pointSampler;
     gpu::TextureHandle noScreenShadows;  // bound at binding 9 when the screen-space resolve is off
     std::vector<ImportedImage> imported;
     ImportedImage callerDepth;  // a ShadowSystem caller's depth image, imported once

@@ -82,7 +82,7 @@ SettingKey filterKey(const char* key, double (*get)(const Settings&, size_t), vo
                      const char* lights) {
     return choice(key, kFilters, get, set,
                   std::string("The filter of ") + lights +
-                      " with `shadows: \"soft\"`: one hardware 2x2 PCF tap, or a 3x3, 5x5 or 7x7 tent filter.");
+                      " with `shadows: \"soft\"`: one bilinear 2x2 PCF tap, or a 3x3, 5x5 or 7x7 tent filter.");
 }
 
 // The shadow keys first, then "render"; validation reports the first bad one in this order, and

@@ -18,7 +18,7 @@ struct ReservedDirectionalLight {
     uint32_t firstTile = 0;        // slot x cascade count: the light's cascades are consecutive tiles
     float normalBias = 1.0f;       // Light::shadowNormalBias, in units of the cascade's filter texel
     float slopeScaleBias = 0.0f;   // Light::shadowBias: slope-scale bias, applied by the lit pass
-    bool soft = true;              // LightShadows::Soft: directional.filter; Hard: one hardware 2x2 PCF tap
+    bool soft = true;              // LightShadows::Soft: directional.filter; Hard: one bilinear 2x2 PCF tap
     float pcssTanRadius = 0.0f;    // LightShadows::Pcss: tan(shadowLightSize / 2), the sun's angular radius
     float nearPlaneOffset = 0.0f;  // Light::shadowNearPlane: pulls the near plane toward the light
     glm::vec3 wsDirection{0.0f, 0.0f, -1.0f};  // unit direction the light travels

@@ -24,7 +24,7 @@ namespace penumbra {
 struct ReservedOtherLight {
     uint32_t sceneLightIndex = 0;
     bool point = false;       // 6 tiles (cube faces) instead of 1
-    bool soft = true;         // LightShadows::Soft: spot.filter; Hard: one hardware 2x2 PCF tap
+    bool soft = true;         // LightShadows::Soft: spot.filter; Hard: one bilinear 2x2 PCF tap
     float pcssRadius = 0.0f;  // LightShadows::Pcss: the emitter's radius (shadowLightSize), else 0
     float strength = 1.0f;
     float normalBias = 1.0f;      // Light::shadowNormalBias, in filter texels at the fragment's distance

@@ -9,7 +9,7 @@
 
 namespace penumbra {
 
-// Filter reach in texels beyond the sample point: 1 for the hardware 2x2 tap, else filterSize + 1
+// Filter reach in texels beyond the sample point: 1 for the bilinear 2x2 tap, else filterSize + 1
 // (the tent's outermost bilinear fetch reads that far).
 float otherShadowFilterReach(bool soft, ShadowFilter filter);
 

@@ -48,10 +48,13 @@ TEST(CliBench, JsonHasEveryDocumentedKey) {
         expectStatistics(json["passes"][pass], {"median_ms", "p95_ms", "min_ms"}, pass);
         EXPECT_LE(json["passes"][pass]["min_ms"].get<double>(), json["passes"][pass]["median_ms"].get<double>());
     }
-    for (const char* phase : {"plan", "culling", "upload", "record", "submit"}) {
+    for (const char* phase : {"plan", "culling", "upload", "record", "submit", "total"}) {
         ASSERT_TRUE(json["cpu"].contains(phase)) << phase;
         expectStatistics(json["cpu"][phase], {"median_ms", "p95_ms"}, phase);
     }
+    // The total is its own series: at least each phase's median (every frame's sum holds every phase).
+    for (const char* phase : {"plan", "culling", "upload", "record", "submit"})
+        EXPECT_GE(json["cpu"]["total"]["median_ms"].get<double>(), json["cpu"][phase]["median_ms"].get<double>()) << phase;
     expectStatistics(json["frame"], {"median_ms", "p95_ms"}, "frame");
     EXPECT_GT(json["frame"]["median_ms"].get<double>(), 0.0);
     // GPU timestamps of whole frames (lavapipe has them): commands first to last, and the period.

@@ -152,7 +152,7 @@ TEST_F(DirectionalShadowTest, SquaredFadeMatchesTheReference) {
 }
 
 // URP's per-light soft flag (_MainLightShadowParams.y) for directional lights too: a "hard" light takes
-// one hardware 2x2 PCF tap whatever directional.filter says.
+// one bilinear 2x2 PCF tap whatever directional.filter says.
 TEST_F(DirectionalShadowTest, HardDirectionalLightUsesOneTapWhateverTheFilter) {
     Scene scene = boxesInDepthScene();
     Settings settings = shadowSettings(40.0f, 4, 1024, ShadowFilter::PCF7x7);

@@ -9,6 +9,7 @@
 #include "penumbra/error.h"
 
 #include "penumbra/scene_loading.h"
+#include "render/raster_choice.h"
 #include "render_test_support.h"
 #include "spot_render_scenes.h"
 
@@ -102,12 +103,45 @@ TEST_F(PersistentFrameTest, TargetsAreRemadeOnlyWhenTheirSizeChanges) {
     EXPECT_EQ(device().liveObjects().objectsCreated, made);
     settings.shadows.directional.atlasSize = 2048;
     renderer.render(request(OutputMode::Color), settings);
-    // The directional atlas and the compute rasterizer's depth buffer, sized by the larger atlas.
+    // The directional atlas and both rasterizers' depth, sized by the larger atlas (shadows.raster auto,
+    // still measuring: the compute one's buffer and the hardware one's D32 target).
     const DeviceObjectCounts counts = device().liveObjects();
-    EXPECT_EQ(counts.objectsCreated, made + 2);
+    EXPECT_EQ(counts.objectsCreated, made + 3);
     // The counts name the last one made (what `penumbra bench` prints when a steady state makes any).
     const std::string last(counts.lastObjectName.data());
     EXPECT_TRUE(last.find("atlas") != std::string::npos || last.find("depth") != std::string::npos) << last;
+}
+
+// shadows.raster = auto measures both rasterizers, each with its own tile depth (a 4096² atlas's is 64 MiB),
+// then keeps only the chosen one's: the live buffers and textures are those of that rasterizer set outright.
+TEST_F(PersistentFrameTest, AutoRasterKeepsOnlyTheChosenRasterizersDepthOnceDecided) {
+    struct Live {
+        uint32_t buffers, textures;
+        std::string raster;
+    };
+    auto liveAfterAMovingRun = [&](ShadowRaster raster) {
+        Renderer renderer(device(), makeDemoScene());
+        Settings settings;
+        settings.shadows.raster = raster;
+        const CameraView still = resolveCameraView(renderer.scene(), 48, 27);
+        std::vector<FrameStats> finished;
+        std::string lastRaster;
+        for (int i = 0; i < 2 * (RasterChoice::kWarmup + RasterChoice::kSamples) + 6; ++i) {  // every frame draws
+            renderer.submitFrame(request(OutputMode::Color, 48, 27), settings,
+                                 translatedCameraView(still, 0.05f * float(i) * wsCameraRight(still)));
+            renderer.takeCompletedFrames(finished);
+        }
+        renderer.waitIdle();
+        renderer.takeCompletedFrames(finished);
+        if (!finished.empty()) lastRaster = finished.back().shadowRaster;
+        const DeviceObjectCounts counts = device().liveObjects();
+        return Live{counts.buffers, counts.textures, lastRaster};
+    };
+    const Live automatic = liveAfterAMovingRun(ShadowRaster::Auto);
+    ASSERT_TRUE(automatic.raster == "hw" || automatic.raster == "compute") << automatic.raster;
+    const Live chosen = liveAfterAMovingRun(automatic.raster == "hw" ? ShadowRaster::Hw : ShadowRaster::Compute);
+    EXPECT_EQ(automatic.buffers, chosen.buffers);
+    EXPECT_EQ(automatic.textures, chosen.textures);
 }
 
 // Every frame changes the settings (atlas sizes, cascades, filters, blend, screen-space shadows) and

@@ -16,18 +16,16 @@ namespace penumbra {
 PENUMBRA_SHADOW_BINDING(kShadowBindingView, 0u)                // uniform ShadowViewData: the camera
 PENUMBRA_SHADOW_BINDING(kShadowBindingLights, 1u)              // ShadowLightSlot[]: each light's kind and shadow slot
 PENUMBRA_SHADOW_BINDING(kShadowBindingDirectional, 2u)         // uniform DirectionalShadowData: cascades, lights
-PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas, 3u)    // sampler2DShadow, compare LESS_OR_EQUAL, linear
-PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalDepth, 4u)    // sampler2D, the same atlas, nearest
-PENUMBRA_SHADOW_BINDING(kShadowBindingOther, 5u)               // uniform OtherShadowData: spot and point lights
-PENUMBRA_SHADOW_BINDING(kShadowBindingOtherAtlas, 6u)          // sampler2DShadow, compare LESS_OR_EQUAL, linear
-PENUMBRA_SHADOW_BINDING(kShadowBindingOtherDepth, 7u)          // sampler2D, the same atlas, nearest
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtual, 8u)             // uniform VirtualDirectionalShadowData
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPool, 9u)         // sampler2D (R32F), nearest
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPages, 10u)       // VirtualPageEntry[]: the page tables
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFaces, 11u)       // uniform VirtualFaceShadowData
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePool, 12u)    // sampler2D (R32F), nearest
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePages, 13u)   // VirtualPageEntry[]: the faces' page table
-PENUMBRA_SHADOW_BINDING(kShadowBindingCount, 14u)
+PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas, 3u)    // sampler2D (R32F depth), nearest
+PENUMBRA_SHADOW_BINDING(kShadowBindingOther, 4u)               // uniform OtherShadowData: spot and point lights
+PENUMBRA_SHADOW_BINDING(kShadowBindingOtherAtlas, 5u)          // sampler2D (R32F depth), nearest
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtual, 6u)             // uniform VirtualDirectionalShadowData
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPool, 7u)         // sampler2D (R32F depth), nearest
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPages, 8u)        // VirtualPageEntry[]: the page tables
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFaces, 9u)        // uniform VirtualFaceShadowData
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePool, 10u)    // sampler2D (R32F depth), nearest
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePages, 11u)   // VirtualPageEntry[]: the faces' page table
+PENUMBRA_SHADOW_BINDING(kShadowBindingCount, 12u)
 
 #undef PENUMBRA_SHADOW_BINDING
 
@@ -48,10 +46,8 @@ inline constexpr ShadowDescriptor kShadowDescriptors[kShadowBindingCount] = {
     {kShadowBindingLights, ShadowDescriptorType::StorageBuffer, "PenumbraShadowLightBlock"},
     {kShadowBindingDirectional, ShadowDescriptorType::UniformBuffer, "DirectionalShadowBlock"},
     {kShadowBindingDirectionalAtlas, ShadowDescriptorType::CombinedImageSampler, "directionalShadowAtlas"},
-    {kShadowBindingDirectionalDepth, ShadowDescriptorType::CombinedImageSampler, "directionalShadowDepth"},
     {kShadowBindingOther, ShadowDescriptorType::UniformBuffer, "OtherShadowBlock"},
     {kShadowBindingOtherAtlas, ShadowDescriptorType::CombinedImageSampler, "otherShadowAtlas"},
-    {kShadowBindingOtherDepth, ShadowDescriptorType::CombinedImageSampler, "otherShadowDepth"},
     {kShadowBindingVirtual, ShadowDescriptorType::UniformBuffer, "VirtualShadowBlock"},
     {kShadowBindingVirtualPool, ShadowDescriptorType::CombinedImageSampler, "virtualShadowPool"},
     {kShadowBindingVirtualPages, ShadowDescriptorType::StorageBuffer, "VirtualPageBlock"},

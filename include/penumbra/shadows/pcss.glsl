@@ -44,11 +44,11 @@ float pcssPenumbraTexels(PcssLight light, float zReceiver, float zBlocker) {
 
 // The mean depth of the blockers within searchRadius texels of u (texel units; z = the receiver plane's
 // depth at u, g its gradient), or -1 when there is none.
-float pcssBlockerDepth(sampler2D depthAtlas, vec2 u, float z, vec2 g, vec4 texelSize, vec4 uvBounds, float searchRadius) {
+float pcssBlockerDepth(sampler2D atlas, vec2 u, float z, vec2 g, vec4 texelSize, vec4 uvBounds, float searchRadius) {
     float blockerSum = 0.0, blockers = 0.0;
     for (int i = 0; i < kPcssSearchSamples; ++i) {
         vec2 uv = clamp((u + pcssDisk(i, kPcssSearchSamples) * searchRadius) * texelSize.xy, uvBounds.xy, uvBounds.zw);
-        float stored = textureLod(depthAtlas, uv, 0.0).r;
+        float stored = textureLod(atlas, uv, 0.0).r;
         vec2 texelCentre = floor(uv * texelSize.zw) + 0.5;  // the plane's depth where that texel was drawn
         float isBlocker = stored < z + dot(g, texelCentre - u) ? 1.0 : 0.0;
         blockerSum += isBlocker * stored;
@@ -59,20 +59,20 @@ float pcssBlockerDepth(sampler2D depthAtlas, vec2 u, float z, vec2 g, vec4 texel
 
 // Visibility in [0, 1] of the receiver at uvDepth (atlas u, v, biased depth; g = the plane's depth
 // gradient per texel), taps kept inside uvBounds (the tile).
-float pcssShadow(sampler2DShadow atlas, sampler2D depthAtlas, vec3 uvDepth, vec2 g, vec4 texelSize, vec4 uvBounds,
+float pcssShadow(sampler2D atlas, vec3 uvDepth, vec2 g, vec4 texelSize, vec4 uvBounds,
                  PcssLight light) {
     vec2 u = uvDepth.xy * texelSize.zw;
     float z = uvDepth.z;
     // Blockers can lie anywhere between the receiver and the light: search the width a blocker at the
     // near plane would give, within kPcssMaxRadiusTexels.
     float searchRadius = clamp(0.5 * pcssPenumbraTexels(light, z, 0.0), 1.0, kPcssMaxRadiusTexels);
-    float blocker = pcssBlockerDepth(depthAtlas, u, z, g, texelSize, uvBounds, searchRadius);
+    float blocker = pcssBlockerDepth(atlas, u, z, g, texelSize, uvBounds, searchRadius);
     if (blocker < 0.0) return 1.0;
     float radius = clamp(0.5 * pcssPenumbraTexels(light, z, blocker), 0.5, kPcssMaxRadiusTexels);
     float lit = 0.0;
     for (int i = 0; i < kPcssFilterSamples; ++i) {
         vec2 uv = clamp((u + pcssDisk(i, kPcssFilterSamples) * radius) * texelSize.xy, uvBounds.xy, uvBounds.zw);
-        lit += penumbraCompareBilinear(atlas, depthAtlas, uv * texelSize.zw, uvDepth, u, texelSize, g, true);
+        lit += penumbraCompareBilinear(atlas, uv * texelSize.zw, uvDepth, u, texelSize, g, true);
     }
     return lit / float(kPcssFilterSamples);
 }

@@ -2,11 +2,12 @@
 // Catlike Coding "Directional Shadows", PCF Filtering and URP's SampleShadowmapFiltered use it): the GPU twin
 // of src/shadows/tent_filter.cpp, whose unit tests check the math. A tent of radius 1.5 / 2.5 / 3.5 texels
 // around the sample point is integrated over each texel, and each 2 x 2 block of texels becomes one
-// hardware-PCF fetch (bilinear compare) placed so that the bilinear weights reproduce the block's texel
-// weights: 4 / 9 / 16 fetches for PCF3x3 / PCF5x5 / PCF7x7.
+// bilinear compare (a textureGather of its 4 depths, each compared, weighted bilinearly: what hardware PCF
+// does) placed so that the bilinear weights reproduce the block's texel weights: 4 / 9 / 16 fetches for
+// PCF3x3 / PCF5x5 / PCF7x7.
 //
-// Inputs: a sampler2DShadow with compare op LESS_OR_EQUAL and linear filtering, and a sampler2D of the
-// same atlas (raw depth, for the receiver-plane compare); uvDepth = (atlas u,
+// Inputs: a sampler2D of the atlas (R32F depth, nearest: the compare is the shader's, so the atlas is a
+// colour image that compute passes write directly); uvDepth = (atlas u,
 // atlas v, fragment depth) as DirectionalShadowData.atlasFromWorld gives them; texelSize =
 // (1 / width, 1 / height, width, height) of the atlas (shadowTexelSize in shadows.glsl).
 #ifndef PENUMBRA_SHADOW_TENT_GLSL
@@ -40,27 +41,29 @@ void penumbraTentFetches1D(float u, int pairs, out vec4 position, out vec4 weigh
     }
 }
 
-// The depth test of one bilinear block of 2 x 2 texels at fetch position q (texel units), weighted
+// The depth test of one bilinear block of 2 x 2 texels at fetch position q (texel units): a textureGather
+// of the 4 raw depths, each compared LESS_OR_EQUAL ("receiver depth <= stored depth -> lit"), weighted
 // bilinearly, one of two ways (shadows.bias):
-// - hardware PCF: the 4 texels against one depth, uvDepth.z;
-// - receiver plane (planeGradient = the receiver's depth per texel along u, v): a textureGather of the
-//   4 raw depths, each compared with the depth the receiver's plane has at that texel's centre, so a
-//   plane never shadows itself whatever its slope.
-// u = the sample position in texels, where the plane's depth is uvDepth.z. textureLod / textureGather:
-// no implicit derivatives, so safe in non-uniform control flow.
-float penumbraCompareBilinear(sampler2DShadow atlas, sampler2D depthAtlas, vec2 q, vec3 uvDepth, vec2 u,
-                              vec4 texelSize, vec2 planeGradient, bool perTexelPlane) {
-    if (!perTexelPlane) return textureLod(atlas, vec3(q * texelSize.xy, uvDepth.z), 0.0);
+// - hardware-PCF style: the 4 texels against one depth, uvDepth.z;
+// - receiver plane (planeGradient = the receiver's depth per texel along u, v): each texel against the
+//   depth the receiver's plane has at that texel's centre, so a plane never shadows itself whatever its slope.
+// u = the sample position in texels, where the plane's depth is uvDepth.z. textureGather: no implicit
+// derivatives, so safe in non-uniform control flow.
+float penumbraCompareBilinear(sampler2D atlas, vec2 q, vec3 uvDepth, vec2 u, vec4 texelSize, vec2 planeGradient,
+                              bool perTexelPlane) {
     vec2 first = floor(q - 0.5);  // texel (i0, j0); the block is i0..i0+1, j0..j0+1
     vec2 f = q - 0.5 - first;
-    vec4 stored = textureGather(depthAtlas, (first + 1.0) * texelSize.xy, 0);  // (i0,j1) (i1,j1) (i1,j0) (i0,j0)
-    float plane00 = uvDepth.z + dot(planeGradient, first + 0.5 - u);
-    vec4 plane = plane00 + vec4(planeGradient.y, planeGradient.x + planeGradient.y, planeGradient.x, 0.0);
-    vec4 lit = vec4(lessThanEqual(plane, stored));
+    vec4 stored = textureGather(atlas, (first + 1.0) * texelSize.xy, 0);  // (i0,j1) (i1,j1) (i1,j0) (i0,j0)
+    vec4 receiver = vec4(uvDepth.z);
+    if (perTexelPlane) {
+        float plane00 = uvDepth.z + dot(planeGradient, first + 0.5 - u);
+        receiver = plane00 + vec4(planeGradient.y, planeGradient.x + planeGradient.y, planeGradient.x, 0.0);
+    }
+    vec4 lit = vec4(lessThanEqual(receiver, stored));
     return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
 }
 
-float penumbraSampleShadowTent(sampler2DShadow atlas, sampler2D depthAtlas, vec3 uvDepth, vec4 texelSize, int pairs,
+float penumbraSampleShadowTent(sampler2D atlas, vec3 uvDepth, vec4 texelSize, int pairs,
                                vec2 planeGradient, bool perTexelPlane) {
     vec2 u = uvDepth.xy * texelSize.zw;
     vec4 px, wx, py, wy;
@@ -71,27 +74,27 @@ float penumbraSampleShadowTent(sampler2DShadow atlas, sampler2D depthAtlas, vec3
         if (y >= pairs) break;
         for (int x = 0; x < 4; ++x) {
             if (x >= pairs) break;
-            shadow += wx[x] * wy[y] * penumbraCompareBilinear(atlas, depthAtlas, vec2(px[x], py[y]), uvDepth, u, texelSize,
+            shadow += wx[x] * wy[y] * penumbraCompareBilinear(atlas, vec2(px[x], py[y]), uvDepth, u, texelSize,
                                                               planeGradient, perTexelPlane);
         }
     }
     return shadow;
 }
 
-// One bilinear block at the sample point: the hardware 2 x 2 PCF tap (PCF2x2) or its per-texel
-// receiver-plane twin.
-float sampleShadowPcf2x2(sampler2DShadow atlas, sampler2D depthAtlas, vec3 uvDepth, vec4 texelSize, vec2 planeGradient,
+// One bilinear block at the sample point: the 2 x 2 PCF tap (PCF2x2), against one depth or the
+// receiver's plane.
+float sampleShadowPcf2x2(sampler2D atlas, vec3 uvDepth, vec4 texelSize, vec2 planeGradient,
                          bool perTexelPlane) {
     vec2 u = uvDepth.xy * texelSize.zw;
-    return penumbraCompareBilinear(atlas, depthAtlas, u, uvDepth, u, texelSize, planeGradient, perTexelPlane);
+    return penumbraCompareBilinear(atlas, u, uvDepth, u, texelSize, planeGradient, perTexelPlane);
 }
 
 // filterMode: kShadowFilterPcf2x2 .. kShadowFilterPcf7x7 = 0..3. Pass a constant (specialization
 // constant) to let the compiler drop the other branches.
-float sampleShadowFiltered(sampler2DShadow atlas, sampler2D depthAtlas, vec3 uvDepth, vec4 texelSize, uint filterMode,
+float sampleShadowFiltered(sampler2D atlas, vec3 uvDepth, vec4 texelSize, uint filterMode,
                            vec2 planeGradient, bool perTexelPlane) {
-    if (filterMode == 0u) return sampleShadowPcf2x2(atlas, depthAtlas, uvDepth, texelSize, planeGradient, perTexelPlane);
-    return penumbraSampleShadowTent(atlas, depthAtlas, uvDepth, texelSize, int(filterMode) + 1, planeGradient,
+    if (filterMode == 0u) return sampleShadowPcf2x2(atlas, uvDepth, texelSize, planeGradient, perTexelPlane);
+    return penumbraSampleShadowTent(atlas, uvDepth, texelSize, int(filterMode) + 1, planeGradient,
                                     perTexelPlane);
 }
 
