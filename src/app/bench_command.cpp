@@ -401,10 +401,32 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
     std::printf("validation messages: %u\n", device.validationMessageCount());
 }
 
+// One row per timed frame, in order: what the medians and p95s summarize, for a plot of a run or a look
+// at its slowest frames.
+std::string frameTimesCsv(const Measurements& measured) {
+    static const char* const kPhases[] = {"plan", "culling", "upload", "record", "submit", "total"};
+    std::string csv = "frame,gpuFrameMs,submitToFenceMs";
+    for (const char* phase : kPhases) csv += std::string(",cpu_") + phase + "Ms";
+    csv += "\n";
+    char cell[32];
+    for (size_t i = 0; i < measured.gpuFrame.values.size(); ++i) {
+        csv += std::to_string(i);
+        std::snprintf(cell, sizeof(cell), ",%.4f,%.4f", measured.gpuFrame.values[i], measured.frame.values[i]);
+        csv += cell;
+        for (const char* phase : kPhases) {
+            std::snprintf(cell, sizeof(cell), ",%.4f", measured.cpu.at(phase).values[i]);
+            csv += cell;
+        }
+        csv += "\n";
+    }
+    return csv;
+}
+
 }  // namespace
 
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     checkWritable(bench.jsonPath);
+    checkWritable(bench.frameTimesPath);
     const Settings userSettings = loadSettings(options);
     Device device = openDevice(options);
     // The warm-up frames build the pipelines that fixed settings need (on demand); --vary-settings
@@ -436,6 +458,7 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
         if (bench.jsonPath == "-") std::printf("%s\n", json.c_str());
         else writeTextFile(bench.jsonPath, json + "\n");
     }
+    if (!bench.frameTimesPath.empty()) writeTextFile(bench.frameTimesPath, frameTimesCsv(run.measured));
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
     return 0;

@@ -46,6 +46,7 @@ struct BenchOptions {
     uint32_t warmup = 10;
     std::string camera = "static";  // static | orbit
     std::string jsonPath;           // "" = none, "-" = stdout
+    std::string frameTimesPath;     // --frame-times: one CSV row per timed frame ("" = none)
     bool vary = false;              // --vary-settings
     uint32_t varyEvery = 100;       // --vary-every
     uint32_t varyPeriod = 0;        // frames between changes of --vary-settings (0 = no changes)

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -185,6 +186,30 @@ TEST(CliBench, VarySettingsChangesSettingsAndShadowedLightsEveryPeriodAndSamples
 
 TEST(CliBench, WithoutVarySettingsThereIsNoVaryBlock) {
     EXPECT_FALSE(runBenchJson("--frames 2 --warmup 1").contains("vary"));
+}
+
+// --frame-times: a header and one row per timed frame, each frame's CPU total the sum of its phases.
+TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("penumbra_frames_" + std::to_string(::getpid()) + ".csv")).string();
+    const CliRun run = runPenumbra("bench --device cpu --width 64 --height 48 --frames 5 --warmup 1 --camera orbit --frame-times " + path);
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    std::ifstream file(path);
+    std::string line;
+    ASSERT_TRUE(std::getline(file, line));
+    EXPECT_EQ(line, "frame,gpuFrameMs,submitToFenceMs,cpu_planMs,cpu_cullingMs,cpu_uploadMs,cpu_recordMs,cpu_submitMs,cpu_totalMs");
+    int rows = 0;
+    while (std::getline(file, line)) {
+        std::vector<double> cells;
+        std::stringstream row(line);
+        for (std::string cell; std::getline(row, cell, ',');) cells.push_back(std::stod(cell));
+        ASSERT_EQ(cells.size(), 9u) << line;
+        EXPECT_EQ(cells[0], rows);
+        EXPECT_NEAR(cells[8], cells[3] + cells[4] + cells[5] + cells[6] + cells[7], 5e-4) << line;
+        ++rows;
+    }
+    EXPECT_EQ(rows, 5);
+    std::filesystem::remove(path);
 }
 
 TEST(CliBench, RejectsAnUnknownCameraMode) {
