@@ -38,39 +38,31 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
         device_.destroy(otherReadback_);
         otherReadback_ = {};
     }
-    // The hardware rasterizer's depth targets (D32, kept across frames with the atlases: cached tiles keep
-    // their depth there too), made only while it draws.
-    auto hardwareDepth = [&](gpu::TextureHandle& texture, uint32_t size, uint32_t madeSize, uint64_t& generation,
-                             const char* name) {
+    // Each rasterizer's own depth (the compute one's buffer of float bits, the hardware one's D32 target),
+    // kept across frames with the atlases and made only while that rasterizer may draw. Neither holds the
+    // cached tiles for the lit pass (the atlas does: only drawn rects are copied into it), so making or
+    // dropping one leaves the atlas's tiles valid (a switch of rasterizer redraws every tile anyway,
+    // TileCache).
+    auto hardwareDepth = [&](gpu::TextureHandle& texture, uint32_t size, uint32_t madeSize, const char* name) {
         if (!sizes.hardwareRaster || size != madeSize || !(made_ && sizes_.hardwareRaster)) {
-            if (texture) ++generation;
             device_.destroy(texture);
             texture = {};
         }
-        if (sizes.hardwareRaster && !texture) {
+        if (sizes.hardwareRaster && !texture)
             texture = device_.createTexture({size, size, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, name});
-            ++generation;
-        }
     };
-    hardwareDepth(directionalHardwareDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, directionalGeneration,
-                  "directional hardware depth");
-    hardwareDepth(otherHardwareDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, otherGeneration, "spot/point hardware depth");
-    auto rasterDepth = [&](gpu::BufferHandle& buffer, uint32_t size, uint32_t madeSize, uint64_t& generation,
-                           const char* name) {
+    hardwareDepth(directionalHardwareDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, "directional hardware depth");
+    hardwareDepth(otherHardwareDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, "spot/point hardware depth");
+    auto rasterDepth = [&](gpu::BufferHandle& buffer, uint32_t size, uint32_t madeSize, const char* name) {
         if (!sizes.computeRaster || size != madeSize || !(made_ && sizes_.computeRaster)) {
-            if (buffer) ++generation;
             device_.destroy(buffer);
             buffer = {};
         }
-        if (sizes.computeRaster && !buffer) {
-            buffer = device_.createBuffer(uint64_t(size) * size * 4, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal,
-                                          nullptr, name);
-            ++generation;
-        }
+        if (sizes.computeRaster && !buffer)
+            buffer = device_.createBuffer(uint64_t(size) * size * 4, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal, nullptr, name);
     };
-    rasterDepth(directionalRasterDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, directionalGeneration,
-                "directional raster depth");
-    rasterDepth(otherRasterDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, otherGeneration, "spot/point raster depth");
+    rasterDepth(directionalRasterDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, "directional raster depth");
+    rasterDepth(otherRasterDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, "spot/point raster depth");
     const bool resized = !made_ || sizes.width != sizes_.width || sizes.height != sizes_.height;
     if (resized) {
         device_.destroy(colorSrgb_);

@@ -37,7 +37,7 @@ public:
     // sizes().computeRaster: the compute rasterizer's depth (uint per texel) of each atlas; kept across
     // frames with the atlases, since cached tiles keep their depth there too.
     gpu::BufferHandle directionalRasterDepth, otherRasterDepth;
-    // Bumped whenever the atlas (or its raster depth) is re-made: its cached tiles are gone.
+    // Bumped whenever the atlas is re-made: its cached tiles are gone.
     uint64_t directionalGeneration = 0, otherGeneration = 0;
 
 private:
