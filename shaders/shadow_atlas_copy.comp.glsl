@@ -5,7 +5,7 @@
 #include "pass_bindings.h"
 #include "cull_structs.h"
 
-layout(local_size_x = kAtlasCopyGroup, local_size_y = kAtlasCopyGroup) in;
+layout(local_size_x = kAtlasCopyGroupX, local_size_y = kAtlasCopyGroupY) in;
 
 layout(set = kPassSet, binding = kAtlasCopyBindingDepth, std430) readonly buffer DepthBlock { uint depthBits[]; };
 layout(set = kPassSet, binding = kAtlasCopyBindingAtlas, r32f) uniform writeonly image2D atlas;

@@ -322,8 +322,10 @@ struct ShadowRasterConstants {
 PENUMBRA_CHECK_SIZE(ShadowRasterConstants, 32)
 
 // Push constants of shadow_atlas_copy.comp / shadow_atlas_resolve.comp: the rect of atlas texels a
-// dispatch copies (kAtlasCopyGroup^2 threads per group, one texel each).
-PENUMBRA_CONST(uint, kAtlasCopyGroup, 8u)
+// dispatch copies, one texel per thread in groups of kAtlasCopyGroupX x kAtlasCopyGroupY (a subgroup's
+// threads along one row: its buffer reads are contiguous).
+PENUMBRA_CONST(uint, kAtlasCopyGroupX, 32u)
+PENUMBRA_CONST(uint, kAtlasCopyGroupY, 8u)
 struct AtlasCopyConstants {
     uint originX, originY;  // the rect's first texel
     uint width, height;     // its size in texels

@@ -63,11 +63,11 @@ void AtlasCopyPass::dispatchRects(gpu::CommandList& commands, const Target& targ
     const uint32_t atlasSize = target.atlasSize;
     const gpu::Rect whole{0, 0, atlasSize, atlasSize};
     const std::span<const gpu::Rect> copied = target.fresh ? std::span(&whole, 1) : target.rects;
-    constexpr uint32_t group = gpu_data::kAtlasCopyGroup;
+    constexpr uint32_t groupX = gpu_data::kAtlasCopyGroupX, groupY = gpu_data::kAtlasCopyGroupY;
     for (const gpu::Rect& rect : copied) {
         const gpu_data::AtlasCopyConstants constants{uint32_t(rect.x), uint32_t(rect.y), rect.width, rect.height, atlasSize, 0, 0, 0};
         commands.pushConstants(&constants, sizeof(constants));
-        commands.dispatch((rect.width + group - 1) / group, (rect.height + group - 1) / group);
+        commands.dispatch((rect.width + groupX - 1) / groupX, (rect.height + groupY - 1) / groupY);
     }
 }
 

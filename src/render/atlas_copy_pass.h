@@ -3,7 +3,7 @@
 // and the lit pass reads with textureGather (penumbra/shadows/tent.glsl compares each texel itself). The
 // compute rasterizer draws into a buffer of float bits, the hardware one into a D32 depth target; either
 // way only the drawn tiles' rects are copied (cached tiles keep theirs), or the whole atlas when it is fresh.
-// One thread per texel, kAtlasCopyGroup^2 per workgroup, one dispatch per rect.
+// One thread per texel, one dispatch per rect.
 #include <span>
 #include <string_view>
 
