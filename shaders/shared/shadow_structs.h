@@ -5,8 +5,8 @@
 // - Shadow-map clip space is Vulkan's: x right, y DOWN in NDC, z in [0, 1]. Light view space looks along
 //   -Z with +Y up (like the camera), so light-space +Y lands at the top of a tile.
 // - Standard depth: 0 at the near plane (closest to the light), 1 at the far plane. Clear to 1, render
-//   casters with compare op LESS (or LESS_OR_EQUAL), sample with a sampler2DShadow whose compare op is
-//   LESS_OR_EQUAL: "fragment depth <= stored depth -> lit (1)".
+//   casters with compare op LESS (or LESS_OR_EQUAL); the atlases are R32F, sampled as a sampler2D whose
+//   gathered texels the shader compares LESS_OR_EQUAL: "fragment depth <= stored depth -> lit (1)".
 // - atlasFromWorld maps a world position (w = 1) straight to (atlas u, atlas v, depth, 1): u, v in [0, 1]
 //   over the whole atlas with v = 0 at the top row (texel row 0); orthographic, so no divide by w needed.
 #ifndef PENUMBRA_SHADOW_STRUCTS_H

@@ -94,8 +94,8 @@ void ComputeRasterPass::create(uint32_t largeQueue, uint32_t chunkQueue, uint32_
 }
 
 uint32_t ComputeRasterPass::queueCapacityFor(uint32_t capacity, uint32_t needed, uint32_t limit) {
-    if (needed <= capacity) return std::min(capacity, limit);
-    return uint32_t(std::min<uint64_t>(2 * uint64_t(needed), limit));
+    if (2 * uint64_t(needed) <= capacity) return std::min(capacity, limit);
+    return uint32_t(std::min<uint64_t>(std::max(2 * uint64_t(capacity), 2 * uint64_t(needed)), limit));
 }
 
 uint32_t ComputeRasterPass::maxLargeCapacity() const {
@@ -107,7 +107,7 @@ uint32_t ComputeRasterPass::maxChunkCapacity() const {
 }
 
 void ComputeRasterPass::reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems) {
-    // Queues of twice the most a frame asked for (capped: 4M pieces = 448 MB), each within the device's
+    // Queues of at least twice the most a frame asked for (capped: 4M pieces = 448 MB), each within the device's
     // largest storage buffer (a pass binds each whole; 1.2M pieces of 128 MiB): a frame that needs more
     // gets the warning that the queues were full, as one past the caps always did. Work items of 16
     // bytes: the 8M cap is 128 MiB, the storage buffer range every Vulkan device offers.

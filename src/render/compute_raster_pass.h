@@ -53,7 +53,7 @@ public:
     // `rects` (the copy's); the atlas's other tiles are cached.
     struct AtlasTiles {
         std::vector<gpu::Rect> rects;
-        bool freshAtlas = false;  // the atlas and its depth hold nothing yet: clear and copy all of it
+        bool freshAtlas = false;  // the atlas and its depth hold nothing yet: clear all of it (and copy all)
     };
     // Draws the tiles into `depth` (atlasSize^2 uints, kept across frames for the cached tiles; the
     // caller copies the drawn rects into the sampled atlas, AtlasCopyPass). `writes`: the scene bindings
@@ -71,12 +71,12 @@ public:
     // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles and
     // skipped meshlets.
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
-    // Grows the queues to hold a frame that asked for this many (what its counters said): a queue that is
-    // too small grows to twice the ask (queueCapacityFor), so a moving camera's slowly rising needs cost a
-    // few allocations, not one per new maximum.
+    // Grows the queues to hold a frame that asked for this many (what its counters said): a queue more
+    // than half full doubles (queueCapacityFor), before a frame overflows it, and a moving camera's slowly
+    // rising needs cost a few allocations, not one per new maximum.
     void reserve(uint32_t largePieces, uint32_t chunks, uint32_t workItems = 0);
-    // A queue's capacity after a frame asked for `needed` entries: unchanged while it holds them, else twice
-    // the ask, never above `limit`.
+    // A queue's capacity after a frame asked for `needed` entries: unchanged while it holds twice that, else
+    // twice the larger of itself and the ask, never above `limit`.
     static uint32_t queueCapacityFor(uint32_t capacity, uint32_t needed, uint32_t limit);
     static constexpr uint32_t kMaxLargeCapacity = 4u << 20, kMaxChunkCapacity = 32u << 20, kMaxWorkCapacity = 8u << 20;
 

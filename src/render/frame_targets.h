@@ -34,8 +34,8 @@ public:
     gpu::TextureHandle directionalAtlas, otherAtlas, color, depth;
     // sizes().hardwareRaster: the hardware rasterizer's D32 depth target of each atlas, copied into it.
     gpu::TextureHandle directionalHardwareDepth, otherHardwareDepth;
-    // sizes().computeRaster: the compute rasterizer's depth (uint per texel) of each atlas; kept across
-    // frames with the atlases, since cached tiles keep their depth there too.
+    // sizes().computeRaster: the compute rasterizer's depth (uint per texel) of each atlas. Neither
+    // rasterizer's depth holds the cached tiles for the lit pass: the atlas does (drawn rects are copied).
     gpu::BufferHandle directionalRasterDepth, otherRasterDepth;
     // Bumped whenever the atlas is re-made: its cached tiles are gone.
     uint64_t directionalGeneration = 0, otherGeneration = 0;

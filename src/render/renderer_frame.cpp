@@ -196,7 +196,7 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
     commands.beginTimer("shadows.culling");
     culling.record(commands, recording.cullSlice, recording.cullTileSlice);
     commands.endTimer();
-    // The most a frame asked for (a queue too small grows to twice that: few allocations in motion). The
+    // The most a frame asked for (a queue more than half full doubles: few allocations in motion). The
     // virtual pages draw with the compute rasterizer whatever the atlases use.
     computeRaster.reserve(rasterNeeded.x, rasterNeeded.y, rasterNeeded.z);
     frame.readback.cullTiles = device.readBackAtFrameEnd(commands, culling.tileStats(cullTiles));

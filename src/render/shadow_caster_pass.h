@@ -1,5 +1,6 @@
 #pragma once
-// Renders the shadow tiles of a plan into a depth atlas: one viewport + scissor per tile, the light's
+// Renders the shadow tiles of a plan into a D32 depth target laid out as the atlas (the renderer copies
+// the drawn rects into the sampled R32F atlas, AtlasCopyPass): one viewport + scissor per tile, the light's
 // slope-scale bias as dynamic depth-bias state, depth clamp for pancaking, and per tile two indirect draw
 // lists (opaque, alpha-tested) that the GPU culling pass wrote (after Catlike Coding "Directional Shadows":
 // Rendering Shadows, Configurable Biases, Shadow Pancaking, Transparency).
@@ -22,7 +23,7 @@ public:
     ShadowCasterPass(const ShadowCasterPass&) = delete;
     ShadowCasterPass& operator=(const ShadowCasterPass&) = delete;
 
-    // Clears `atlas` (depth 1 = far, nothing cast) and draws every tile, tile i from the culling pass's
+    // Clears `atlas` (that D32 target; depth 1 = far, nothing cast) and draws every tile, tile i from the culling pass's
     // lists of culling tile firstCullTile + i, as the frame graph pass `passName`. `writes`: the scene
     // bindings 0-4.
     // Only the tiles `draw` lists (indices into `tiles`) are drawn; with freshAtlas false the others

@@ -35,7 +35,7 @@ struct ShadowBiasParams {
 struct ShadowLookup {
     vec3 uvDepth;        // atlas u, v and the depth to compare, biases applied
     vec2 depthGradient;  // the receiver plane's depth per texel along u, v
-    bool perTexelPlane;  // receiverPlane mode: compare each texel with the plane (else the hardware compare)
+    bool perTexelPlane;  // receiverPlane mode: compare each texel with the plane (else one depth for all 4 gathered texels)
     float w;             // the projection's w (perspective tiles); <= 0: behind the light
 };
 

@@ -17,7 +17,7 @@
 //   serves, never a hole (Unreal Engine's "Virtual Shadow Maps" documentation: the clipmap falls back to a
 //   coarser resident page; Timberdoodle, GPU Zen 3 "Virtual Shadow Maps");
 // - the compare: the 2 x 2 texels around the receiver at that level, each compared with the receiver's
-//   depth (lit when depth <= stored, as the cascades' LESS_OR_EQUAL sampler) and weighted bilinearly, what
+//   depth (lit when depth <= stored, as the cascades' compare) and weighted bilinearly, what
 //   hardware 2 x 2 PCF does; the pool is R32F, so each texel is fetched and compared here. Each texel looks
 //   up its own page, so the four may come from different pages (a filter reads across page borders); a
 //   texel whose page is not ready reads the texel of the first coarser ready level holding its centre;
