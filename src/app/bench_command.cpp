@@ -426,7 +426,7 @@ std::string frameTimesCsv(const Measurements& measured) {
 
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     checkWritable(bench.jsonPath);
-    checkWritable(bench.frameTimesPath);
+    if (bench.frameTimesPath != "-") checkWritable(bench.frameTimesPath);
     const Settings userSettings = loadSettings(options);
     Device device = openDevice(options);
     // The warm-up frames build the pipelines that fixed settings need (on demand); --vary-settings
@@ -458,7 +458,8 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
         if (bench.jsonPath == "-") std::printf("%s\n", json.c_str());
         else writeTextFile(bench.jsonPath, json + "\n");
     }
-    if (!bench.frameTimesPath.empty()) writeTextFile(bench.frameTimesPath, frameTimesCsv(run.measured));
+    if (bench.frameTimesPath == "-") std::printf("%s", frameTimesCsv(run.measured).c_str());
+    else if (!bench.frameTimesPath.empty()) writeTextFile(bench.frameTimesPath, frameTimesCsv(run.measured));
     if (options.validation && device.validationMessageCount() > 0)
         throw Error(std::to_string(device.validationMessageCount()) + " Vulkan validation messages (see above)");
     return 0;

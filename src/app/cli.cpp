@@ -120,7 +120,7 @@ int runCli(int argc, char** argv) {
         ->check(CLI::IsMember({"orbit", "static"}));
     bench->add_option("--json", benchSettings.jsonPath, "write the results as JSON to FILE ('-' = stdout)");
     bench->add_option("--frame-times", benchSettings.frameTimesPath,
-                      "write each timed frame's GPU frame and CPU phase milliseconds to FILE as CSV");
+                      "write each timed frame's GPU frame and CPU phase milliseconds to FILE as CSV ('-' = stdout)");
     bench->add_flag("--vary-settings", benchSettings.vary,
                     "long run: change atlas sizes, cascades, filters and the shadowed lights every --vary-every frames");
     bench->add_option("--vary-every", benchSettings.varyEvery, "frames between changes of --vary-settings (default 100)")

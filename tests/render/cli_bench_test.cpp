@@ -212,6 +212,16 @@ TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
     std::filesystem::remove(path);
 }
 
+TEST(CliBench, FrameTimesDashPrintsTheCsvAfterTheReport) {
+    const CliRun run = runPenumbra("bench --device cpu --width 64 --height 48 --frames 3 --warmup 1 --frame-times -");
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const size_t header = run.out.find("frame,gpuFrameMs,");
+    ASSERT_NE(header, std::string::npos) << run.out;
+    EXPECT_GT(header, run.out.find("validation messages")) << "the CSV follows the report";
+    EXPECT_NE(run.out.find("\n2,", header), std::string::npos) << "rows 0, 1, 2";
+    EXPECT_FALSE(std::filesystem::exists("-"));
+}
+
 TEST(CliBench, RejectsAnUnknownCameraMode) {
     const CliRun run = runPenumbra("bench --camera sideways --device cpu");
     EXPECT_EQ(run.exitCode, 1);
