@@ -250,7 +250,7 @@ PENUMBRA_CONST(uint, kRasterChunk, 16u)
 // many tiles or pages a pass draws and however many instances the scene has.
 PENUMBRA_CONST(uint, kRasterBatch, 128u)
 PENUMBRA_CONST(uint, kRasterMeshletsPerItem, 8u)
-PENUMBRA_CONST(uint, kRasterInitialWork, 65536u)
+PENUMBRA_CONST(uint, kRasterInitialWork, 262144u)  // 4 MiB: a million boxes ask ~73k in a 1080p orbit
 // A mesh of one meshlet of T triangles is packed instead: one item holds up to kRasterPackTriangles / T
 // (at most kRasterPackInstances) of the tile's instances of it (a box's 12 triangles: 21), so a million
 // small objects are not a million workgroups of 12 busy threads.
