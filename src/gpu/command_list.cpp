@@ -246,26 +246,6 @@ void CommandList::copyBufferToTexture(BufferHandle source, TextureHandle texture
                            &copy);
 }
 
-void CommandList::copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects) {
-    Device::Impl& d = impl(*this);
-    const TextureResource& t = d.textures.at(texture.id);
-    std::vector<VkBufferImageCopy>& copies = d.scratchCopies;
-    copies.clear();
-    for (const Rect& r : rects) {
-        VkBufferImageCopy copy{};
-        copy.bufferOffset = (uint64_t(r.y) * t.desc.width + uint64_t(r.x)) * bytesPerPixel(t.desc.format);
-        copy.bufferRowLength = t.desc.width;
-        copy.bufferImageHeight = t.desc.height;
-        copy.imageSubresource = {aspectOf(t), 0, 0, 1};
-        copy.imageOffset = {r.x, r.y, 0};
-        copy.imageExtent = {r.width, r.height, 1};
-        copies.push_back(copy);
-    }
-    if (!copies.empty())
-        vkCmdCopyBufferToImage(native(*this), d.buffers.at(source.id).buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               uint32_t(copies.size()), copies.data());
-}
-
 void CommandList::clearDepthRects(std::span<const Rect> rects, float depth) {
     if (rects.empty()) return;
     VkClearAttachment attachment{};

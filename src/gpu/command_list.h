@@ -62,9 +62,6 @@ public:
     // Copies a tightly packed buffer into level 0 of `texture` (depth aspect for depth formats), which
     // its pass declared TransferWrite.
     void copyBufferToTexture(BufferHandle source, TextureHandle texture);
-    // Copies the rectangles `rects` of a tightly packed texture-sized buffer into them in `texture`
-    // (declared TransferWrite).
-    void copyBufferToTextureRects(BufferHandle source, TextureHandle texture, std::span<const Rect> rects);
     // Inside beginRendering: sets the depth of `rects` to `depth` (the rest of the target is kept).
     void clearDepthRects(std::span<const Rect> rects, float depth);
     void clearBuffer(BufferHandle buffer, uint32_t value);

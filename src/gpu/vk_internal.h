@@ -177,7 +177,6 @@ struct Device::Impl {
     std::vector<CompletedFrame> completed;
     size_t completedCount = 0;
     // Scratch of CommandList's copy, clear and rendering commands (kept to reuse their memory).
-    std::vector<VkBufferImageCopy> scratchCopies;
     std::vector<VkClearRect> scratchClears;
     std::vector<VkRenderingAttachmentInfo> scratchAttachments;
     std::vector<FrameContext*> scratchInFlight;

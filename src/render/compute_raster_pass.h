@@ -55,8 +55,8 @@ public:
         std::vector<gpu::Rect> rects;
         bool freshAtlas = false;  // the atlas and its depth hold nothing yet: clear all of it (and copy all)
     };
-    // Draws the tiles into `depth` (atlasSize^2 uints, kept across frames for the cached tiles; the
-    // caller copies the drawn rects into the sampled atlas, AtlasCopyPass). `writes`: the scene bindings
+    // Draws the tiles into `depth` (atlasSize^2 uints; the caller copies the drawn rects into the sampled
+    // atlas, AtlasCopyPass, which keeps the cached tiles). `writes`: the scene bindings
     // 0-4. meshletCulling: skip the meshlets whose box lies outside their tile (render.meshletCulling).
     // Its steps are timed as PREFIX/clear, /instances, /chunks.
     void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,

@@ -43,26 +43,33 @@ void FrameTargets::ensure(const FrameTargetSizes& sizes) {
     // cached tiles for the lit pass (the atlas does: only drawn rects are copied into it), so making or
     // dropping one leaves the atlas's tiles valid (a switch of rasterizer redraws every tile anyway,
     // TileCache).
-    auto hardwareDepth = [&](gpu::TextureHandle& texture, uint32_t size, uint32_t madeSize, const char* name) {
-        if (!sizes.hardwareRaster || size != madeSize || !(made_ && sizes_.hardwareRaster)) {
-            device_.destroy(texture);
-            texture = {};
+    // (handle: the texture or buffer; wanted, wasWanted: this and the last ensure's sizes ask for it.)
+    auto keepStorage = [&](auto& handle, bool wanted, bool wasWanted, uint32_t size, uint32_t madeSize, auto make) {
+        if (!wanted || size != madeSize || !(made_ && wasWanted)) {
+            device_.destroy(handle);
+            handle = {};
         }
-        if (sizes.hardwareRaster && !texture)
-            texture = device_.createTexture({size, size, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, name});
+        if (wanted && !handle) handle = make(size);
     };
-    hardwareDepth(directionalHardwareDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, "directional hardware depth");
-    hardwareDepth(otherHardwareDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, "spot/point hardware depth");
-    auto rasterDepth = [&](gpu::BufferHandle& buffer, uint32_t size, uint32_t madeSize, const char* name) {
-        if (!sizes.computeRaster || size != madeSize || !(made_ && sizes_.computeRaster)) {
-            device_.destroy(buffer);
-            buffer = {};
-        }
-        if (sizes.computeRaster && !buffer)
-            buffer = device_.createBuffer(uint64_t(size) * size * 4, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal, nullptr, name);
+    const uint32_t madeDirectional = made_ ? sizes_.directionalAtlas : 0, madeOther = made_ ? sizes_.otherAtlas : 0;
+    auto hardwareDepth = [&](const char* name) {
+        return [this, name](uint32_t size) {
+            return device_.createTexture({size, size, gpu::Format::D32Float, gpu::kTextureDepthTarget | gpu::kTextureSampled, 1, name});
+        };
     };
-    rasterDepth(directionalRasterDepth, sizes.directionalAtlas, made_ ? sizes_.directionalAtlas : 0, "directional raster depth");
-    rasterDepth(otherRasterDepth, sizes.otherAtlas, made_ ? sizes_.otherAtlas : 0, "spot/point raster depth");
+    auto rasterDepth = [&](const char* name) {
+        return [this, name](uint32_t size) {
+            return device_.createBuffer(uint64_t(size) * size * 4, gpu::kBufferStorage, gpu::MemoryKind::DeviceLocal, nullptr, name);
+        };
+    };
+    keepStorage(directionalHardwareDepth, sizes.hardwareRaster, sizes_.hardwareRaster, sizes.directionalAtlas, madeDirectional,
+                hardwareDepth("directional hardware depth"));
+    keepStorage(otherHardwareDepth, sizes.hardwareRaster, sizes_.hardwareRaster, sizes.otherAtlas, madeOther,
+                hardwareDepth("spot/point hardware depth"));
+    keepStorage(directionalRasterDepth, sizes.computeRaster, sizes_.computeRaster, sizes.directionalAtlas, madeDirectional,
+                rasterDepth("directional raster depth"));
+    keepStorage(otherRasterDepth, sizes.computeRaster, sizes_.computeRaster, sizes.otherAtlas, madeOther,
+                rasterDepth("spot/point raster depth"));
     const bool resized = !made_ || sizes.width != sizes_.width || sizes.height != sizes_.height;
     if (resized) {
         device_.destroy(colorSrgb_);

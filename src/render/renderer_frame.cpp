@@ -209,9 +209,7 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
         ComputeRasterPass::AtlasTiles& atlasTiles = atlasTilesScratch;  // its rects' storage is reused
         atlasTiles.freshAtlas = fresh;
         atlasTiles.rects.clear();
-        for (uint32_t i : drawn)
-            atlasTiles.rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y), tiles[i].rect.size,
-                                        tiles[i].rect.size});
+        for (uint32_t i : drawn) atlasTiles.rects.push_back(atlasRect(tiles[i]));
         if (frame.computeRaster) {
             const RasterTileLists lists{recording.cullSlice, recording.cullTileSlice, recording.rasterListSlices[pass]};
             computeRaster.record(commands, recording.casterWrites, lists, culling, atlasTiles, size, rasterDepth,

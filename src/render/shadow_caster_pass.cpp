@@ -50,9 +50,7 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
     if (!freshAtlas) {
         std::vector<gpu::Rect>& rects = rects_;
         rects.clear();
-        for (uint32_t i : draw)
-            rects.push_back({int32_t(tiles[i].rect.offset.x), int32_t(tiles[i].rect.offset.y), tiles[i].rect.size,
-                             tiles[i].rect.size});
+        for (uint32_t i : draw) rects.push_back(atlasRect(tiles[i]));
         commands.clearDepthRects(rects, 1.0f);
     }
     std::vector<gpu::DescriptorWrite>& casterWrites = writes_;
@@ -71,7 +69,7 @@ void ShadowCasterPass::record(gpu::CommandList& commands, const std::vector<Shad
                 commands.pushDescriptors(casterWrites);
             }
             const ShadowTile& tile = tiles[i];
-            const gpu::Rect rect{int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
+            const gpu::Rect rect = atlasRect(tile);
             // Other-light tiles keep an empty border: casters are drawn through a smaller scissor, so a
             // filter near the tile's edge never reads a neighbour's depth.
             const uint32_t inset = tile.scissorInset;

@@ -16,6 +16,11 @@
 
 namespace penumbra {
 
+// A tile's square in its atlas, as a viewport, clear or copy rect.
+inline gpu::Rect atlasRect(const ShadowTile& tile) {
+    return {int32_t(tile.rect.offset.x), int32_t(tile.rect.offset.y), tile.rect.size, tile.rect.size};
+}
+
 class ShadowCasterPass {
 public:
     ShadowCasterPass(gpu::Device& device, const GpuScene& gpuScene);
