@@ -46,6 +46,8 @@ struct CpuPhaseTimes {
     double upload = 0.0;   // frame data and scene changes into the upload ring
     double record = 0.0;   // command recording
     double submit = 0.0;   // vkQueueSubmit
+    double readback = 0.0; // the finished frame's results on the host (tight-fit depth bounds, virtual page
+                           // requests, timings), done when a later call collects the frame
 };
 
 // What one shadow atlas pass drew.

@@ -122,9 +122,10 @@ PENUMBRA_CONST(uint, kScatterBindingCullData, 2u)      // CullInstance per chang
 PENUMBRA_CONST(uint, kScatterBindingInstances, 3u)     // the scene's InstanceData[]
 PENUMBRA_CONST(uint, kScatterBindingCullInstances, 4u) // the scene's CullInstance[]
 
-// The visible-surface depth subsample (depth_subsample.comp).
-PENUMBRA_CONST(uint, kSubsampleBindingDepth, 0u)   // sampler2D, the prepass's depth
-PENUMBRA_CONST(uint, kSubsampleBindingDepths, 1u)  // float per output texel
+// The tight fit's visible-surface bounds (visible_bounds.comp, visible_bounds_structs.h).
+PENUMBRA_CONST(uint, kVisibleBoundsBindingData, 0u)   // uniform VisibleBoundsData
+PENUMBRA_CONST(uint, kVisibleBoundsBindingDepth, 1u)  // sampler2D, the view's depth
+PENUMBRA_CONST(uint, kVisibleBoundsBindingWords, 2u)  // the kVisibleBoundsWords keys (atomics)
 
 // Virtual shadow map page marking (virtual_page_mark.comp).
 PENUMBRA_CONST(uint, kPageMarkBindingFrame, 0u)     // uniform VirtualPageMarkData
@@ -186,13 +187,6 @@ struct ScatterConstants {  // scene_scatter.comp
     uint count;             // changed instances in all
 };
 PENUMBRA_CHECK_SIZE(ScatterConstants, 8)
-
-struct SubsampleConstants {  // depth_subsample.comp
-    uint width;              // output size
-    uint height;
-    uint stride;             // output texel (x, y) reads pixel (x, y) * stride
-};
-PENUMBRA_CHECK_SIZE(SubsampleConstants, 12)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

@@ -170,9 +170,11 @@ struct Measurements {
         cpu["upload"].values.push_back(stats.cpu.upload);
         cpu["record"].values.push_back(stats.cpu.record);
         cpu["submit"].values.push_back(stats.cpu.submit);
+        cpu["readback"].values.push_back(stats.cpu.readback);
         // The frame's whole CPU cost, whose p95 the steady-frame target bounds (its own series: the p95
         // of a sum is not the sum of the p95s).
-        cpu["total"].values.push_back(stats.cpu.plan + stats.cpu.culling + stats.cpu.upload + stats.cpu.record + stats.cpu.submit);
+        cpu["total"].values.push_back(stats.cpu.plan + stats.cpu.culling + stats.cpu.upload + stats.cpu.record + stats.cpu.submit +
+                                     stats.cpu.readback);
         frame.values.push_back(stats.submitToFenceMilliseconds);
         gpuFrame.values.push_back(stats.gpuFrameMilliseconds);
         if (stats.gpuFramePeriodMilliseconds > 0.0) gpuPeriod.values.push_back(stats.gpuFramePeriodMilliseconds);
@@ -404,7 +406,7 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
 // One row per timed frame, in order: what the medians and p95s summarize, for a plot of a run or a look
 // at its slowest frames.
 std::string frameTimesCsv(const Measurements& measured) {
-    static const char* const kPhases[] = {"plan", "culling", "upload", "record", "submit", "total"};
+    static const char* const kPhases[] = {"plan", "culling", "upload", "record", "submit", "readback", "total"};
     std::string csv = "frame,gpuFrameMs,submitToFenceMs";
     for (const char* phase : kPhases) csv += std::string(",cpu_") + phase + "Ms";
     csv += "\n";

@@ -12,7 +12,8 @@ std::string toJson(const FrameStats& frame) {
     stats["gpuMs"] = gpuMs;
     stats["cpuPlanMs"] = frame.cpu.plan + frame.cpu.culling;
     stats["cpuMs"] = {{"plan", frame.cpu.plan}, {"culling", frame.cpu.culling}, {"upload", frame.cpu.upload},
-                      {"record", frame.cpu.record}, {"submit", frame.cpu.submit}};
+                      {"record", frame.cpu.record}, {"submit", frame.cpu.submit},
+                      {"readback", frame.cpu.readback}};
     stats["shadows"] = nlohmann::json::parse(toJson(frame.shadows));
     stats["warnings"] = frame.warnings;
     stats["shadowRaster"] = {{"used", frame.shadowRaster}, {"choice", frame.shadowRasterChoice}};

@@ -167,9 +167,10 @@ std::vector<BindingDesc> lightClusterBindings() {
             {"ClusterStatsBlock", kClusterBindingStats, kStorage, kC}};
 }
 
-std::vector<BindingDesc> depthSubsampleBindings() {
-    return {{"sceneDepth", kSubsampleBindingDepth, kSampled, kC},
-            {"SubsampleBlock", kSubsampleBindingDepths, kStorage, kC}};
+std::vector<BindingDesc> visibleBoundsBindings() {
+    return {{"VisibleBoundsBlock", kVisibleBoundsBindingData, kUniform, kC},
+            {"sceneDepth", kVisibleBoundsBindingDepth, kSampled, kC},
+            {"VisibleBoundsWords", kVisibleBoundsBindingWords, kStorage, kC}};
 }
 
 std::vector<BindingDesc> sceneScatterBindings() {

@@ -26,7 +26,7 @@ std::vector<gpu::BindingDesc> rasterArgsBindings();      // shadow_raster_args.c
 std::vector<gpu::BindingDesc> visibilityResolveBindings(gpu::ShaderStage shading);
 std::vector<gpu::BindingDesc> depthPyramidBindings();    // depth_pyramid.comp
 std::vector<gpu::BindingDesc> lightClusterBindings();    // light_cluster.comp
-std::vector<gpu::BindingDesc> depthSubsampleBindings();  // depth_subsample.comp
+std::vector<gpu::BindingDesc> visibleBoundsBindings();  // visible_bounds.comp
 std::vector<gpu::BindingDesc> sceneScatterBindings();    // scene_scatter.comp
 std::vector<gpu::BindingDesc> virtualPageMarkBindings();  // virtual_page_mark.comp
 std::vector<gpu::BindingDesc> virtualPageMarkVisibilityBindings();  // virtual_page_mark_visibility.comp

@@ -1,6 +1,8 @@
 // Renderer::State's frame: checked, planned, recorded in steps (shadow atlases, lighting inputs, main
 // view, outputs), submitted, and collected once the GPU is done (renderer_state.h).
 #include <algorithm>
+#include <array>
+#include <span>
 #include <string>
 
 #include "core/error.h"
@@ -13,6 +15,7 @@
 #include "render/renderer_state.h"
 #include "scene/scene_validation.h"
 #include "scene_structs.h"
+#include "shadows/cascades.h"
 #include "shadows/cull_packing.h"
 
 namespace penumbra {
@@ -299,10 +302,20 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
     if (recording.settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(recording.settings) &&
-        !oneShot) {
-        frame.readback.visibleSurfaces = visiblePass.recordSubsample(commands, targets.depth, view);
-        frame.view = view;
-    }
+        !oneShot)
+        recordVisibleBounds(recording, targets.depth);
+}
+
+void Renderer::State::recordVisibleBounds(FrameRecording& recording, gpu::TextureHandle depth) {
+    // Each directional light's bounds in its own space (the next frames' lights are most likely these).
+    std::array<glm::mat4, gpu_data::kVisibleBoundsSpaces - 1> lightRotations;
+    const std::vector<ReservedDirectionalLight>& lights = recording.frame.plan.directional.lights;
+    const size_t count = std::min(lights.size(), lightRotations.size());
+    for (size_t i = 0; i < count; ++i) lightRotations[i] = lightRotationFromWorld(lights[i].wsDirection);
+    const float vsShadowDistance = shadowDistance(recording.view, recording.settings.shadows.maxDistance);
+    recording.frame.visibleBounds = visiblePass.recordBounds(recording.commands, depth, recording.view,
+                                                             std::span(lightRotations.data(), count), vsShadowDistance);
+    recording.frame.readback.visibleSurfaces = recording.frame.visibleBounds.readbackOffset;
 }
 
 gpu::ExternalTarget Renderer::State::recordOutputs(FrameRecording& recording, const ExternalImage* target,
@@ -503,11 +516,12 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
         otherCache.invalidate();
         invalidateVirtualMaps();
     }
-    if (const uint8_t* depths = readbackPiece(done.readback, finished.readback.visibleSurfaces,
-                                              VisibleSurfacePass::readbackBytes(finished.view))) {
+    if (const uint8_t* words = readbackPiece(done.readback, finished.readback.visibleSurfaces,
+                                             VisibleSurfacePass::kReadbackBytes)) {
         if (!latestVisible) latestVisible.emplace();
-        VisibleSurfacePass::fromReadback(depths, finished.view, *latestVisible);
-        latestVisibleSize = glm::uvec2(finished.view.width, finished.view.height);
+        const gpu_data::VisibleBoundsData& recorded = finished.visibleBounds.data;
+        VisibleSurfacePass::fromReadback(words, recorded, *latestVisible);
+        latestVisibleSize = glm::uvec2(recorded.width, recorded.height);
     }
     stats.gpuTimings.resize(done.timings.size());  // the elements' strings keep their storage
     for (size_t i = 0; i < done.timings.size(); ++i) {
@@ -543,7 +557,9 @@ void Renderer::State::collectCompleted() {
     for (gpu::CompletedFrame& done : device.completedFrames()) {
         while (!pending.empty() && pending.front().frameIndex < done.frameIndex) pending.popFront();  // not ours
         if (pending.empty() || pending.front().frameIndex != done.frameIndex) continue;
+        const Stopwatch readbackTime;
         finishFrame(done, pending.front());
+        pending.front().stats.cpu.readback = readbackTime.milliseconds();
         // Swapped, not moved: the pending slot takes the completed slot's storage for a later frame.
         std::swap(completed.pushBack(), pending.front().stats);
         pending.popFront();
@@ -573,7 +589,7 @@ void Renderer::State::resetPendingFrame(PendingFrame& frame) {
     frame.readback = FrameReadbackLayout{};
     frame.computeRaster = frame.autoRaster = frame.visibilityView = frame.autoMainView = false;
     frame.virtualSettled = frame.facesSettled = false;
-    frame.view = CameraView{};
+    frame.visibleBounds = VisibleSurfacePass::BoundsRecord{};
     frame.rasterSetting = ShadowRaster::Auto;
     frame.mainViewSetting = MainView::Auto;
 }

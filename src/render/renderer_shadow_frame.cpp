@@ -40,11 +40,9 @@ void Renderer::State::recordShadowFitDepth(FrameRecording& recording, MainPassIn
     // own, a shadow frame draws the depth prepass for it (virtual maps drew one already, or need none).
     const Settings& settings = recording.settings;
     if (settings.shadows.directional.fit != CascadeFit::Tight || virtualDirectional(settings)) return;
-    gpu::CommandList& commands = recording.commands;
     recording.stage = "depth prepass (tight fit)";
     const gpu::TextureHandle depth = recording.callerDepth ? recording.callerDepth : prepassDepthOf(recording, inputs);
-    recording.frame.readback.visibleSurfaces = visiblePass.recordSubsample(commands, depth, recording.view);
-    recording.frame.view = recording.view;
+    recordVisibleBounds(recording, depth);
 }
 
 gpu::TextureHandle Renderer::State::importedDepth(const ShadowViewDepth& depth, const CameraView& view) {

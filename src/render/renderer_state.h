@@ -56,7 +56,8 @@ struct PendingFrame {
     bool autoMainView = false;    // render.mainView = auto and still measuring: its main pass time feeds the choice
     // The page update of the directional maps / the faces was skipped (render/virtual_settling.h).
     bool virtualSettled = false, facesSettled = false;
-    CameraView view;              // for the tight fit's depth subsample
+    // What the tight fit's reduction of this frame's depth was recorded with (readback.visibleSurfaces).
+    VisibleSurfacePass::BoundsRecord visibleBounds;
     ShadowRaster rasterSetting = ShadowRaster::Auto;
     MainView mainViewSetting = MainView::Auto;
 };
@@ -248,6 +249,8 @@ private:
     gpu::TextureHandle importedDepth(const ShadowViewDepth& depth, const CameraView& view);
     void uploadShadowHandOver(FrameRecording& recording);
     void recordShadowFitDepth(FrameRecording& recording, MainPassInputs& inputs);
+    // The tight fit's reduction of the view's depth, read back for the next frames' plans.
+    void recordVisibleBounds(FrameRecording& recording, gpu::TextureHandle depth);
     void handOverShadowBindings(FrameRecording& recording, const MainPassInputs& inputs, ShadowFrameWrites& writes);
 };
 

@@ -1,11 +1,115 @@
 #include "shadows/visible_surfaces.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
 #include "core/error.h"
+#include "visible_bounds_structs.h"
 
 namespace penumbra {
+
+static_assert(VisibleDepthBins::kBins == gpu_data::kVisibleDepthBins);
+static_assert(VisibleDepthBins::kMaxSpaces == gpu_data::kVisibleBoundsSpaces);
+
+namespace {
+
+// The float of a key of visible_bounds.comp (visibleBoundsKey: keys order as their floats).
+float floatFromKey(uint32_t key) {
+    const uint32_t bits = (key & 0x80000000u) != 0u ? key & 0x7fffffffu : ~key;
+    float value = 0.0f;
+    std::memcpy(&value, &bits, sizeof(value));
+    return value;
+}
+
+uint32_t binOf(const VisibleDepthBins& bins, float vsDepth) {
+    return gpu_data::visibleDepthBin(vsDepth, bins.vsBinNear, bins.binsPerLogDepth);
+}
+
+// The bounds in space `space` of the bins that [vsNear, vsFar] meets, and one more bin on either side.
+Aabb binnedBounds(const VisibleDepthBins& bins, uint32_t space, float vsNear, float vsFar) {
+    Aabb bounds;
+    if (!(vsNear <= vsFar)) return bounds;
+    const uint32_t first = std::max(binOf(bins, vsNear), 1u) - 1u;
+    const uint32_t last = std::min(binOf(bins, vsFar) + 1u, VisibleDepthBins::kBins - 1u);
+    const Aabb* rsBins = bins.rsBounds.data() + size_t(space) * VisibleDepthBins::kBins;
+    for (uint32_t bin = first; bin <= last; ++bin) bounds.extend(rsBins[bin]);
+    return bounds;
+}
+
+Aabb binnedRotatedBounds(const VisibleDepthBins& bins, const glm::mat4& lightRotation, float vsNear, float vsFar) {
+    if (bins.spaceCount == 0) return {};
+    const glm::mat3 rotation(lightRotation);
+    uint32_t closest = 0;
+    float closestCosine = -2.0f;
+    for (uint32_t space = 0; space < bins.spaceCount; ++space) {
+        const glm::mat3& spaceFromWorld = bins.spaceFromWorld[space];
+        if (spaceFromWorld == rotation) return binnedBounds(bins, space, vsNear, vsFar);
+        // trace(R S^T) = 1 + 2 cos(the angle between the two rotations)
+        const glm::mat3 relative = rotation * glm::transpose(spaceFromWorld);
+        const float cosine = 0.5f * (relative[0][0] + relative[1][1] + relative[2][2] - 1.0f);
+        if (cosine > closestCosine) {
+            closestCosine = cosine;
+            closest = space;
+        }
+    }
+    const Aabb rsBounds = binnedBounds(bins, closest, vsNear, vsFar);
+    if (!rsBounds.valid()) return rsBounds;
+    return rsBounds.transformed(glm::mat4(rotation * glm::transpose(bins.spaceFromWorld[closest])));
+}
+
+}  // namespace
+
+float visibleBinsPerLogDepth(float vsBinNear, float vsBinFar) {
+    PENUMBRA_ASSERT(vsBinNear > 0.0f && vsBinFar > vsBinNear);
+    return float(VisibleDepthBins::kBins) / std::log(vsBinFar / vsBinNear);
+}
+
+void visibleSurfacesFromBoundsWords(const uint32_t* words, float vsBinNear, float binsPerLogDepth,
+                                    std::span<const glm::mat4> spaceFromWorld, VisibleSurfaces& visible) {
+    PENUMBRA_ASSERT(spaceFromWorld.size() <= VisibleDepthBins::kMaxSpaces);
+    const uint32_t* minima = words;
+    const uint32_t* maxima = words + gpu_data::kVisibleBoundsMinWords;
+    constexpr uint32_t kNone = 0xffffffffu;  // a minimum no surface lowered
+    visible.wsPoints.clear();
+    visible.vsDepths.clear();
+    visible.vsMinDepth = minima[0] == kNone ? std::numeric_limits<float>::infinity() : floatFromKey(minima[0]);
+    visible.vsMaxDepth = minima[0] == kNone ? 0.0f : floatFromKey(maxima[0]);
+    VisibleDepthBins& bins = visible.bins;
+    bins.vsBinNear = vsBinNear;
+    bins.binsPerLogDepth = binsPerLogDepth;
+    bins.spaceCount = uint32_t(spaceFromWorld.size());
+    for (uint32_t space = 0; space < bins.spaceCount; ++space) bins.spaceFromWorld[space] = glm::mat3(spaceFromWorld[space]);
+    bins.rsBounds.resize(size_t(bins.spaceCount) * VisibleDepthBins::kBins);
+    for (size_t i = 0; i < bins.rsBounds.size(); ++i) {
+        const uint32_t* lo = minima + 1 + i * 3;
+        const uint32_t* hi = maxima + 1 + i * 3;
+        bins.rsBounds[i] = lo[0] == kNone ? Aabb{}
+                                          : Aabb{{floatFromKey(lo[0]), floatFromKey(lo[1]), floatFromKey(lo[2])},
+                                                 {floatFromKey(hi[0]), floatFromKey(hi[1]), floatFromKey(hi[2])}};
+    }
+}
+
+VisibleSurfaces binVisibleSurfaces(const VisibleSurfaces& points, std::span<const glm::mat4> spaceFromWorld,
+                                   float vsBinNear, float vsBinFar) {
+    PENUMBRA_ASSERT(spaceFromWorld.size() <= VisibleDepthBins::kMaxSpaces);
+    VisibleSurfaces binned;
+    binned.vsMinDepth = points.vsMinDepth;
+    binned.vsMaxDepth = points.vsMaxDepth;
+    VisibleDepthBins& bins = binned.bins;
+    bins.vsBinNear = vsBinNear;
+    bins.binsPerLogDepth = visibleBinsPerLogDepth(vsBinNear, vsBinFar);
+    bins.spaceCount = uint32_t(spaceFromWorld.size());
+    for (uint32_t space = 0; space < bins.spaceCount; ++space) bins.spaceFromWorld[space] = glm::mat3(spaceFromWorld[space]);
+    bins.rsBounds.assign(size_t(bins.spaceCount) * VisibleDepthBins::kBins, Aabb{});
+    for (size_t i = 0; i < points.wsPoints.size(); ++i) {
+        const uint32_t bin = binOf(bins, points.vsDepths[i]);
+        for (uint32_t space = 0; space < bins.spaceCount; ++space)
+            bins.rsBounds[size_t(space) * VisibleDepthBins::kBins + bin].extend(bins.spaceFromWorld[space] * points.wsPoints[i]);
+    }
+    return binned;
+}
 
 void visibleSurfacesFromDepths(const uint8_t* depths, uint32_t width, uint32_t height, const CameraView& view,
                                uint32_t stride, VisibleSurfaces& visible) {
@@ -55,6 +159,7 @@ glm::vec3 wsPositionFromDepth(const glm::mat4& worldFromClip, const CameraView& 
 }
 
 Aabb rotatedVisibleBounds(const VisibleSurfaces& visible, const glm::mat4& lightRotation, float vsNear, float vsFar) {
+    if (visible.wsPoints.empty()) return binnedRotatedBounds(visible.bins, lightRotation, vsNear, vsFar);
     const glm::mat3 rotation(lightRotation);
     Aabb bounds;
     for (size_t i = 0; i < visible.wsPoints.size(); ++i) {

@@ -212,7 +212,7 @@ void drawStatsPanel(PanelContext& c) {
         ImGui::EndTable();
     }
     ImGui::Text("CPU ms: plan %.2f  culling %.2f  upload %.2f", last.cpu.plan, last.cpu.culling, last.cpu.upload);
-    ImGui::Text("        record %.2f  submit %.2f", last.cpu.record, last.cpu.submit);
+    ImGui::Text("        record %.2f  submit %.2f  readback %.2f", last.cpu.record, last.cpu.submit, last.cpu.readback);
     ImGui::Text("frame (submit to fence) %.2f ms", last.submitToFenceMilliseconds);
     ImGui::Text("shadow raster %s; tiles drawn %u, reused %u", last.shadowRaster.c_str(), last.tilesRendered, last.tilesReused);
     drawVirtualPageView(last);

@@ -49,12 +49,12 @@ TEST(CliBench, JsonHasEveryDocumentedKey) {
         expectStatistics(json["passes"][pass], {"median_ms", "p95_ms", "min_ms"}, pass);
         EXPECT_LE(json["passes"][pass]["min_ms"].get<double>(), json["passes"][pass]["median_ms"].get<double>());
     }
-    for (const char* phase : {"plan", "culling", "upload", "record", "submit", "total"}) {
+    for (const char* phase : {"plan", "culling", "upload", "record", "submit", "readback", "total"}) {
         ASSERT_TRUE(json["cpu"].contains(phase)) << phase;
         expectStatistics(json["cpu"][phase], {"median_ms", "p95_ms"}, phase);
     }
     // The total is its own series: at least each phase's median (every frame's sum holds every phase).
-    for (const char* phase : {"plan", "culling", "upload", "record", "submit"})
+    for (const char* phase : {"plan", "culling", "upload", "record", "submit", "readback"})
         EXPECT_GE(json["cpu"]["total"]["median_ms"].get<double>(), json["cpu"][phase]["median_ms"].get<double>()) << phase;
     expectStatistics(json["frame"], {"median_ms", "p95_ms"}, "frame");
     EXPECT_GT(json["frame"]["median_ms"].get<double>(), 0.0);
@@ -197,15 +197,15 @@ TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
     std::ifstream file(path);
     std::string line;
     ASSERT_TRUE(std::getline(file, line));
-    EXPECT_EQ(line, "frame,gpuFrameMs,submitToFenceMs,cpu_planMs,cpu_cullingMs,cpu_uploadMs,cpu_recordMs,cpu_submitMs,cpu_totalMs");
+    EXPECT_EQ(line, "frame,gpuFrameMs,submitToFenceMs,cpu_planMs,cpu_cullingMs,cpu_uploadMs,cpu_recordMs,cpu_submitMs,cpu_readbackMs,cpu_totalMs");
     int rows = 0;
     while (std::getline(file, line)) {
         std::vector<double> cells;
         std::stringstream row(line);
         for (std::string cell; std::getline(row, cell, ',');) cells.push_back(std::stod(cell));
-        ASSERT_EQ(cells.size(), 9u) << line;
+        ASSERT_EQ(cells.size(), 10u) << line;
         EXPECT_EQ(cells[0], rows);
-        EXPECT_NEAR(cells[8], cells[3] + cells[4] + cells[5] + cells[6] + cells[7], 5e-4) << line;
+        EXPECT_NEAR(cells[9], cells[3] + cells[4] + cells[5] + cells[6] + cells[7] + cells[8], 6e-4) << line;
         ++rows;
     }
     EXPECT_EQ(rows, 5);

@@ -55,7 +55,7 @@ std::vector<PassCase> everyPass() {
          sizeof(VisibilityConstants), true},
         {"pyramid", {compute("depth_pyramid.comp")}, depthPyramidBindings(), sizeof(PyramidConstants)},
         {"clusters", {compute("light_cluster.comp")}, lightClusterBindings()},
-        {"subsample", {compute("depth_subsample.comp")}, depthSubsampleBindings(), sizeof(SubsampleConstants)},
+        {"visible bounds", {compute("visible_bounds.comp")}, visibleBoundsBindings()},
         {"virtual page mark", {compute("virtual_page_mark.comp")}, virtualPageMarkBindings()},
     };
     for (const char* shader : {"virtual_page_reset.comp", "virtual_page_invalidate.comp", "virtual_page_update.comp",
