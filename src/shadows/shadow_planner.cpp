@@ -164,6 +164,7 @@ void planDirectional(const Scene& scene, const CameraView& camera, const ShadowS
 }  // namespace
 
 void ShadowPlanWorkspace::instanceMoved(const Scene& scene, uint32_t instance, const Aabb& wsOldBounds) {
+    ++casterEpoch;  // a caster's bounds changed: the lights' reservations look again (their witnesses first)
     if (sceneVersion == 0) return;  // the next plan walks anyway
     const Instance& moved = scene.instances.at(instance);
     const Aabb& wsNewBounds = moved.wsBounds;
@@ -193,6 +194,7 @@ void ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const Sha
         shadowCasterInstances(scene, workspace.casters);
         workspace.wsReceiverBounds = shadowReceiverUnion(scene);
         workspace.sceneVersion = options.sceneVersion;
+        ++workspace.casterEpoch;
     }
     planDirectional(scene, camera, settings, visible, options, frame, workspace);
 
@@ -207,8 +209,9 @@ void ShadowPlanner::plan(const Scene& scene, const CameraView& camera, const Sha
     }
     const float distance = shadowDistance(camera, settings.maxDistance);
     frame.directional.gpu = packDirectionalShadowData(directional, settings, distance);
+    // Without a scene version nothing says whether the casters changed: every light's answer is found again.
     planOtherShadows(scene, camera, settings, workspace.casters, distance, options.cullCasters, frame.other,
-                     workspace.reservation);
+                     workspace.reservation, options.sceneVersion == 0 ? 0 : workspace.casterEpoch);
     stats.cullingMilliseconds += frame.other.cullingMilliseconds;
 }
 

@@ -139,6 +139,7 @@ struct ShadowPlanWorkspace {
     ReceiverVolume cameraReceivers;     // the frame's cameraReceiverVolume (invalid: receiver culling off)
     std::vector<Aabb> rsCasterBounds;   // one light's rotated caster bounds (PlanOptions::cullCasters)
     OtherLightReservation reservation;  // the spot and point lights' reservation
+    uint64_t casterEpoch = 1;           // changes with the caster set and with every move (reserveOtherShadows)
 
     // Instance `instance` of `scene` moved from `wsOldBounds` (scene holds its new bounds): keeps the
     // caster list and the receivers' union exact in O(1) where it can - the union grows by the new

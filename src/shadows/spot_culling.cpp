@@ -39,7 +39,7 @@ namespace {
 
 // Calls keep(index) for each listed caster meeting the frustum until keep returns false.
 template <typename Keep>
-void forEachFrustumCaster(const Scene& scene, const std::vector<uint32_t>& casters, const glm::mat4& clipFromWorld,
+void forEachFrustumCaster(const Scene& scene, std::span<const uint32_t> casters, const glm::mat4& clipFromWorld,
                           const glm::vec3& wsApex, Keep&& keep) {
     const std::array<glm::vec4, 5> planes = clipFrustumPlanes(clipFromWorld);
     const Aabb frustum = perspectiveFrustumBounds(clipFromWorld, wsApex);
@@ -63,11 +63,11 @@ std::vector<uint32_t> frustumCasters(const Scene& scene, const std::vector<uint3
     return inside;
 }
 
-bool anyFrustumCaster(const Scene& scene, const std::vector<uint32_t>& casters, const glm::mat4& clipFromWorld,
-                      const glm::vec3& wsApex) {
-    bool found = false;
-    forEachFrustumCaster(scene, casters, clipFromWorld, wsApex, [&](uint32_t) {
-        found = true;
+uint32_t firstFrustumCaster(const Scene& scene, std::span<const uint32_t> casters, const glm::mat4& clipFromWorld,
+                            const glm::vec3& wsApex) {
+    uint32_t found = kNoFrustumCaster;
+    forEachFrustumCaster(scene, casters, clipFromWorld, wsApex, [&](uint32_t index) {
+        found = index;
         return false;
     });
     return found;

@@ -30,8 +30,10 @@ Aabb perspectiveFrustumBounds(const glm::mat4& clipFromWorld, const glm::vec3& w
 // plane behind the light) that pass every plane separately.
 std::vector<uint32_t> frustumCasters(const Scene& scene, const std::vector<uint32_t>& casters,
                                      const glm::mat4& clipFromWorld, const glm::vec3& wsApex);
-// Whether frustumCasters would keep any: stops at the first (light reservation needs no list).
-bool anyFrustumCaster(const Scene& scene, const std::vector<uint32_t>& casters, const glm::mat4& clipFromWorld,
-                      const glm::vec3& wsApex);
+// The first instance frustumCasters would keep, kNoFrustumCaster when none: stops there (light
+// reservation needs no list).
+inline constexpr uint32_t kNoFrustumCaster = ~0u;
+uint32_t firstFrustumCaster(const Scene& scene, std::span<const uint32_t> casters, const glm::mat4& clipFromWorld,
+                            const glm::vec3& wsApex);
 
 }  // namespace penumbra

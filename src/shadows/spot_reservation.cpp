@@ -6,6 +6,7 @@
 
 #include "core/reuse.h"
 
+#include "shadows/caster_culling.h"
 #include "shadows/spot_atlas_layout.h"
 #include "shadows/spot_culling.h"
 #include "shadows/spot_projection.h"
@@ -52,22 +53,45 @@ float screenInfluence(const glm::vec3& wsCenter, float radius, const CameraView&
 
 namespace {
 
-bool anyCasterInShadowFrustum(const Scene& scene, const std::vector<uint32_t>& casters, const Light& light,
-                              float near, float far) {
+// The first of `casters` whose bounds meet the light's shadow volume, kNoFrustumCaster when none.
+uint32_t firstCasterInShadowVolume(const Scene& scene, std::span<const uint32_t> casters, const Light& light,
+                                   float near, float far) {
     if (light.type == LightType::Point) {
         // The six faces together cover every direction: casters meeting the range cube.
         const Aabb cube{light.wsPosition - glm::vec3(far), light.wsPosition + glm::vec3(far)};
         for (uint32_t index : casters) {
             const Aabb& b = scene.instances[index].wsBounds;
             if (glm::all(glm::lessThanEqual(b.min, cube.max)) && glm::all(glm::greaterThanEqual(b.max, cube.min)))
-                return true;
+                return index;
         }
-        return false;
+        return kNoFrustumCaster;
     }
     const float tanHalf = std::tan(std::min(light.outerConeAngle, kMaxShadowedSpotHalfAngle));
     const glm::mat4 clipFromWorld = perspectiveClipFromLight(tanHalf, near, far) *
                                     perspectiveLightFromWorld(light.wsPosition, light.wsDirection);
-    return anyFrustumCaster(scene, casters, clipFromWorld, light.wsPosition);
+    return firstFrustumCaster(scene, casters, clipFromWorld, light.wsPosition);
+}
+
+// Whether any caster meets the light's shadow volume: the memo's answer while the light and the casters'
+// epoch are those it was found with; else its witness if that is still a caster in the volume; else a
+// walk over the casters.
+bool anyCasterInShadowVolume(const Scene& scene, const std::vector<uint32_t>& casters, const Light& light, float near,
+                             float far, uint64_t casterEpoch, ShadowVolumeMemo& memo, uint32_t& walks) {
+    const bool sameLight = memo.type == light.type && memo.wsPosition == light.wsPosition &&
+                           memo.wsDirection == light.wsDirection && memo.outerConeAngle == light.outerConeAngle &&
+                           memo.nearDistance == near && memo.farDistance == far;
+    if (sameLight && casterEpoch != 0 && memo.casterEpoch == casterEpoch) return memo.anyCaster;
+    uint32_t found = kNoFrustumCaster;
+    const uint32_t witness = memo.witness;
+    if (witness < scene.instances.size() && isShadowCaster(scene, scene.instances[witness]))
+        found = firstCasterInShadowVolume(scene, std::span(&witness, 1), light, near, far);
+    if (found == kNoFrustumCaster) {
+        found = firstCasterInShadowVolume(scene, casters, light, near, far);
+        ++walks;
+    }
+    memo = {casterEpoch, light.type, light.wsPosition, light.wsDirection, light.outerConeAngle, near, far, found,
+            found != kNoFrustumCaster};
+    return memo.anyCaster;
 }
 
 constexpr uint32_t kNotKept = ~0u;  // a candidate's firstTile until the tile budget keeps it
@@ -79,11 +103,15 @@ std::string lightName(const Scene& scene, uint32_t index) {
 }  // namespace
 
 void reserveOtherShadows(const Scene& scene, const CameraView& camera, const std::vector<uint32_t>& casters,
-                         OtherLightReservation& result) {
+                         OtherLightReservation& result, uint64_t casterEpoch) {
+    std::vector<ShadowVolumeMemo> memos = std::move(result.memos);  // kept with their contents
     resetKeepingStorage(result, &OtherLightReservation::lights, &OtherLightReservation::droppedLights,
                         &OtherLightReservation::warnings, &OtherLightReservation::candidates,
                         &OtherLightReservation::order);
     std::vector<ReservedOtherLight>& candidates = result.candidates;
+    result.memos = std::move(memos);
+    result.memos.resize(scene.lights.size());  // a new light starts with no memo
+    result.casterWalks = 0;
     for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = scene.lights[i];
         if (light.type == LightType::Directional) continue;
@@ -99,7 +127,9 @@ void reserveOtherShadows(const Scene& scene, const CameraView& camera, const std
         entry.slopeScaleBias = light.shadowBias;
         entry.nearDistance = std::max(light.shadowNearPlane, kMinOtherNearPlane);
         entry.farDistance = otherShadowFarDistance(light, scene.wsBounds);
-        if (!anyCasterInShadowFrustum(scene, casters, light, entry.nearDistance, entry.farDistance)) continue;
+        if (!anyCasterInShadowVolume(scene, casters, light, entry.nearDistance, entry.farDistance, casterEpoch,
+                                     result.memos[i], result.casterWalks))
+            continue;
         entry.influence = screenInfluence(light.wsPosition, entry.farDistance, camera);
         if (entry.influence <= 0.0f) continue;  // lights nothing in view
         entry.firstTile = kNotKept;

@@ -36,6 +36,22 @@ struct ReservedOtherLight {
     uint32_t tileCount() const { return point ? 6u : 1u; }
 };
 
+// What a reservation found about one light's shadow volume and its casters, kept for the next frames
+// (OtherLightReservation::memos): while neither the light nor the casters changed (the caller's caster
+// epoch) the answer stands; after a change the caster found last (`witness`) is tested first, so a
+// light keeps its place without a walk over every caster.
+struct ShadowVolumeMemo {
+    uint64_t casterEpoch = 0;  // the casters' epoch of the answer (0: none)
+    LightType type = LightType::Spot;
+    glm::vec3 wsPosition{0.0f};
+    glm::vec3 wsDirection{0.0f};
+    float outerConeAngle = 0.0f;
+    float nearDistance = 0.0f;
+    float farDistance = 0.0f;
+    uint32_t witness = ~0u;  // a caster found in the volume (~0u: none)
+    bool anyCaster = false;
+};
+
 struct OtherLightReservation {
     std::vector<ReservedOtherLight> lights;  // scene order; firstTile assigned consecutively
     std::vector<uint32_t> droppedLights;     // scene indices that qualified but did not fit, scene order
@@ -46,6 +62,8 @@ struct OtherLightReservation {
     // so that reserving into the same object again allocates nothing.
     std::vector<ReservedOtherLight> candidates;
     std::vector<uint32_t> order;
+    std::vector<ShadowVolumeMemo> memos;  // per scene light, across reservations into this object
+    uint32_t casterWalks = 0;             // lights whose casters were walked by the last reservation
 };
 
 inline constexpr float kMinOtherNearPlane = 0.01f;
@@ -61,8 +79,10 @@ float screenInfluence(const glm::vec3& wsCenter, float radius, const CameraView&
 
 OtherLightReservation reserveOtherShadows(const Scene& scene, const CameraView& camera,
                                           const std::vector<uint32_t>& casters);
-// The same into `result` (replaced; its storage reused).
+// The same into `result` (replaced; its storage and memos reused). casterEpoch: a number that changes
+// whenever the casters or their bounds may have changed since the last call into `result` (0: unknown,
+// every light's answer is found again, its witness first).
 void reserveOtherShadows(const Scene& scene, const CameraView& camera, const std::vector<uint32_t>& casters,
-                         OtherLightReservation& result);
+                         OtherLightReservation& result, uint64_t casterEpoch = 0);
 
 }  // namespace penumbra

@@ -119,12 +119,12 @@ void planVirtualFaces(const Scene& scene, const ShadowSettings& settings, OtherS
 
 void planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                       const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters, OtherShadowPlan& plan,
-                      OtherLightReservation& reservation) {
+                      OtherLightReservation& reservation, uint64_t casterEpoch) {
     resetKeepingStorage(plan, &OtherShadowPlan::lights, &OtherShadowPlan::tiles, &OtherShadowPlan::slotOfSceneLight,
                         &OtherShadowPlan::droppedLights, &OtherShadowPlan::warnings, &OtherShadowPlan::faces,
                         &OtherShadowPlan::faceLights);
     plan.virtualFaces = settings.spot.mode == SpotShadowMode::Virtual;
-    reserveOtherShadows(scene, camera, casters, reservation);
+    reserveOtherShadows(scene, camera, casters, reservation, casterEpoch);
     plan.lights.assign(reservation.lights.begin(), reservation.lights.end());
     plan.droppedLights.assign(reservation.droppedLights.begin(), reservation.droppedLights.end());
     plan.warnings.assign(reservation.warnings.begin(), reservation.warnings.end());

@@ -21,6 +21,6 @@ OtherShadowPlan planOtherShadows(const Scene& scene, const CameraView& camera, c
 // planning again into the same two allocates nothing once they are warm.
 void planOtherShadows(const Scene& scene, const CameraView& camera, const ShadowSettings& settings,
                       const std::vector<uint32_t>& casters, float shadowDistance, bool cullCasters, OtherShadowPlan& plan,
-                      OtherLightReservation& reservation);
+                      OtherLightReservation& reservation, uint64_t casterEpoch = 0);
 
 }  // namespace penumbra

@@ -85,3 +85,28 @@ TEST(ShadowPlanMoves, BoundsThatBecomeInvalidAskForAWalk) {
     f.plan();
     f.expectFreshPlan();
 }
+
+// The spot lights' reservation follows moves too (its answers are kept while nothing moves): the
+// light whose only caster moved out of its cone has no tile in the next plan, as a fresh plan has it.
+TEST(ShadowPlanMoves, ASpotLightWhoseOnlyCasterMovedAwayLosesItsTileInTheNextPlan) {
+    Scene scene = test::spotGridScene(1);
+    scene.instances[0].castShadows = false;  // the ground: the box is the light's only caster
+    const CameraView camera = resolveCameraView(scene, 96, 54);
+    const ShadowSettings settings = shadow_test::sphereCascadeSettings();
+    PlanOptions options;
+    options.sceneVersion = 1;
+    ShadowFrame frame;
+    ShadowPlanWorkspace workspace;
+    ShadowPlanner::plan(scene, camera, settings, nullptr, options, frame, workspace);
+    ASSERT_EQ(frame.other.lights.size(), 1u);
+    ShadowPlanner::plan(scene, camera, settings, nullptr, options, frame, workspace);
+    EXPECT_EQ(workspace.reservation.casterWalks, 0u) << "nothing moved: the answer stands";
+    const Aabb wsOld = scene.instances[1].wsBounds;
+    glm::mat4 transform(1.0f);
+    transform[3] = glm::vec4(15.0f, 1.0f, 0.0f, 1.0f);
+    setInstanceWorldTransform(scene, 1, transform);
+    workspace.instanceMoved(scene, 1, wsOld);
+    ShadowPlanner::plan(scene, camera, settings, nullptr, options, frame, workspace);
+    EXPECT_TRUE(frame.other.lights.empty());
+    EXPECT_EQ(ShadowPlanner::plan(scene, camera, settings).other.lights.size(), 0u);
+}

@@ -109,3 +109,80 @@ TEST(SpotReservation, InfiniteRangeUsesTheSceneBoundsAsFarPlane) {
     light.range = 7.0f;
     EXPECT_FLOAT_EQ(otherShadowFarDistance(light, bounds), 7.0f);
 }
+
+// Reserving again into the same result: a light's answer stands while neither it nor the casters
+// changed (the caller's caster epoch), and after a change the caster it found last is tested first.
+namespace {
+
+struct Reserving {
+    Scene scene;
+    CameraView view;
+    std::vector<uint32_t> casters;
+    OtherLightReservation result;
+    explicit Reserving(Scene s) : scene(std::move(s)), view(resolveCameraView(scene, 128, 128)) {
+        casters = shadowCasterInstances(scene);
+    }
+    void reserve(uint64_t casterEpoch) { reserveOtherShadows(scene, view, casters, result, casterEpoch); }
+};
+
+// One spot light whose only caster is its box (instance 1): the ground casts no shadow.
+Scene oneBoxSpotScene() {
+    Scene scene = spotGridScene(1);
+    scene.instances[0].castShadows = false;
+    return scene;
+}
+
+void moveAside(Scene& scene, uint32_t instance) {
+    scene.instances[instance].wsBounds.min.x += 20.0f;
+    scene.instances[instance].wsBounds.max.x += 20.0f;
+}
+
+}  // namespace
+
+TEST(SpotReservation, TheSameLightsAndCasterEpochWalkNoCasterList) {
+    Reserving r(spotGridScene(4));
+    r.reserve(7);
+    EXPECT_EQ(r.result.casterWalks, 4u);
+    ASSERT_EQ(r.result.lights.size(), 4u);
+    r.reserve(7);
+    EXPECT_EQ(r.result.casterWalks, 0u);
+    EXPECT_EQ(r.result.lights.size(), 4u);
+}
+
+TEST(SpotReservation, AfterACasterChangeEachLightTestsTheCasterItFoundLastFirst) {
+    Reserving r(spotGridScene(4));
+    r.reserve(7);
+    r.reserve(8);
+    EXPECT_EQ(r.result.casterWalks, 0u) << "every light's witness is still in its cone";
+    EXPECT_EQ(r.result.lights.size(), 4u);
+}
+
+TEST(SpotReservation, ALightWhoseOnlyCasterLeftItsConeIsDroppedInTheNextEpoch) {
+    Reserving r(oneBoxSpotScene());
+    r.reserve(7);
+    ASSERT_EQ(r.result.lights.size(), 1u);
+    moveAside(r.scene, 1);
+    r.reserve(7);
+    EXPECT_EQ(r.result.lights.size(), 1u) << "the same epoch: the caller said nothing changed";
+    r.reserve(8);
+    EXPECT_EQ(r.result.casterWalks, 1u);
+    EXPECT_TRUE(r.result.lights.empty());
+}
+
+TEST(SpotReservation, ATurnedLightIsLookedAtAgainInTheSameEpoch) {
+    Reserving r(oneBoxSpotScene());
+    r.reserve(7);
+    ASSERT_EQ(r.result.lights.size(), 1u);
+    r.scene.lights[0].wsDirection = glm::vec3(0.0f, 1.0f, 0.0f);  // at the sky
+    r.reserve(7);
+    EXPECT_TRUE(r.result.lights.empty());
+}
+
+TEST(SpotReservation, WithoutACasterEpochEveryAnswerIsFoundAgain) {
+    Reserving r(oneBoxSpotScene());
+    r.reserve(0);
+    ASSERT_EQ(r.result.lights.size(), 1u);
+    moveAside(r.scene, 1);
+    r.reserve(0);
+    EXPECT_TRUE(r.result.lights.empty());
+}
