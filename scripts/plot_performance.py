@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 PASSES = ["shadows.directional", "shadows.other", "main"]
-PHASES = ["plan", "culling", "upload", "record", "submit"]
+PHASES = ["plan", "culling", "upload", "record", "submit", "readback"]  # readback: absent (0) in older runs
 
 
 def load(folder):
