@@ -38,8 +38,8 @@ PENUMBRA_CHECK_LAYOUT(VisibleBoundsData, binsPerLogDepth, 416)
 // The bin of a view depth: the first bin takes everything nearer, the last everything farther.
 PENUMBRA_INLINE uint visibleDepthBin(float vsDepth, float vsBinNear, float binsPerLogDepth) {
     const float ratio = vsDepth > vsBinNear ? vsDepth / vsBinNear : 1.0f;
-    const float bin = log(ratio) * binsPerLogDepth;
-    return bin < float(kVisibleDepthBins - 1u) ? uint(bin) : kVisibleDepthBins - 1u;
+    const float bin = log(ratio) * binsPerLogDepth;  // >= 0 but for log's rounding just above a ratio of 1
+    return bin < float(kVisibleDepthBins - 1u) ? (bin > 0.0f ? uint(bin) : 0u) : kVisibleDepthBins - 1u;
 }
 
 PENUMBRA_GPU_NAMESPACE_END

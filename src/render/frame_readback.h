@@ -20,7 +20,7 @@ struct FrameReadbackLayout {
     // RasterCounters of the directional and spot/point atlas, then of each directional virtual map's pages,
     // then of the spot and point lights' faces' pages.
     uint64_t rasterCounters[7] = {kAbsent, kAbsent, kAbsent, kAbsent, kAbsent, kAbsent, kAbsent};
-    uint64_t visibleSurfaces = kAbsent;                 // the tight fit's depth subsample (VisibleSurfacePass)
+    uint64_t visibleSurfaces = kAbsent;                 // the tight fit's depth-bin bounds (VisibleSurfacePass)
     uint64_t viewLists = kAbsent;                       // 2 CullTileStats: the main view's early and late lists
     uint64_t viewMeshlets = kAbsent;                    // uvec4: visibility-buffer meshlets outside, facing away
     uint64_t lightClusters = kAbsent;                   // LightClusterStats

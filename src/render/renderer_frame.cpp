@@ -150,6 +150,20 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     recording.otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
     const SceneWrites writes = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
     recording.casterWrites.assign(writes.begin(), writes.end());
+    if (settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(settings))
+        uploadVisibleBoundsData(recording);
+}
+
+void Renderer::State::uploadVisibleBoundsData(FrameRecording& recording) {
+    // Each directional light's bounds in its own space (the next frames' lights are most likely these).
+    std::array<glm::mat4, gpu_data::kVisibleBoundsSpaces - 1> lightRotations;
+    const std::vector<ReservedDirectionalLight>& lights = recording.frame.plan.directional.lights;
+    const size_t count = std::min(lights.size(), lightRotations.size());
+    for (size_t i = 0; i < count; ++i) lightRotations[i] = lightRotationFromWorld(lights[i].wsDirection);
+    const float vsShadowDistance = shadowDistance(recording.view, recording.settings.shadows.maxDistance);
+    gpu_data::VisibleBoundsData& data = recording.frame.visibleBounds;
+    data = packVisibleBounds(recording.view, std::span(lightRotations.data(), count), vsShadowDistance);
+    recording.visibleBoundsSlice = uploadFrameData(device, &data, sizeof(data));
 }
 
 const TilesToDraw& Renderer::State::chooseTilesToDraw(FrameRecording& recording) {
@@ -307,15 +321,9 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
 }
 
 void Renderer::State::recordVisibleBounds(FrameRecording& recording, gpu::TextureHandle depth) {
-    // Each directional light's bounds in its own space (the next frames' lights are most likely these).
-    std::array<glm::mat4, gpu_data::kVisibleBoundsSpaces - 1> lightRotations;
-    const std::vector<ReservedDirectionalLight>& lights = recording.frame.plan.directional.lights;
-    const size_t count = std::min(lights.size(), lightRotations.size());
-    for (size_t i = 0; i < count; ++i) lightRotations[i] = lightRotationFromWorld(lights[i].wsDirection);
-    const float vsShadowDistance = shadowDistance(recording.view, recording.settings.shadows.maxDistance);
-    recording.frame.visibleBounds = visiblePass.recordBounds(recording.commands, depth, recording.view,
-                                                             std::span(lightRotations.data(), count), vsShadowDistance);
-    recording.frame.readback.visibleSurfaces = recording.frame.visibleBounds.readbackOffset;
+    PENUMBRA_ASSERT(recording.visibleBoundsSlice.buffer);  // uploaded with the frame's inputs
+    recording.frame.readback.visibleSurfaces =
+        visiblePass.recordBounds(recording.commands, depth, recording.visibleBoundsSlice);
 }
 
 gpu::ExternalTarget Renderer::State::recordOutputs(FrameRecording& recording, const ExternalImage* target,
@@ -519,7 +527,7 @@ void Renderer::State::finishFrame(gpu::CompletedFrame& done, PendingFrame& finis
     if (const uint8_t* words = readbackPiece(done.readback, finished.readback.visibleSurfaces,
                                              VisibleSurfacePass::kReadbackBytes)) {
         if (!latestVisible) latestVisible.emplace();
-        const gpu_data::VisibleBoundsData& recorded = finished.visibleBounds.data;
+        const gpu_data::VisibleBoundsData& recorded = finished.visibleBounds;
         VisibleSurfacePass::fromReadback(words, recorded, *latestVisible);
         latestVisibleSize = glm::uvec2(recorded.width, recorded.height);
     }
@@ -589,7 +597,7 @@ void Renderer::State::resetPendingFrame(PendingFrame& frame) {
     frame.readback = FrameReadbackLayout{};
     frame.computeRaster = frame.autoRaster = frame.visibilityView = frame.autoMainView = false;
     frame.virtualSettled = frame.facesSettled = false;
-    frame.visibleBounds = VisibleSurfacePass::BoundsRecord{};
+    frame.visibleBounds = gpu_data::VisibleBoundsData{};
     frame.rasterSetting = ShadowRaster::Auto;
     frame.mainViewSetting = MainView::Auto;
 }

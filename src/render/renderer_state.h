@@ -56,8 +56,8 @@ struct PendingFrame {
     bool autoMainView = false;    // render.mainView = auto and still measuring: its main pass time feeds the choice
     // The page update of the directional maps / the faces was skipped (render/virtual_settling.h).
     bool virtualSettled = false, facesSettled = false;
-    // What the tight fit's reduction of this frame's depth was recorded with (readback.visibleSurfaces).
-    VisibleSurfacePass::BoundsRecord visibleBounds;
+    // What the tight fit's reduction of this frame's depth is recorded with (readback.visibleSurfaces).
+    gpu_data::VisibleBoundsData visibleBounds{};
     ShadowRaster rasterSetting = ShadowRaster::Auto;
     MainView mainViewSetting = MainView::Auto;
 };
@@ -74,6 +74,7 @@ struct FrameRecording {
     // Upload ring slices, all made before the frame's first readback (Device::allocateFrameData).
     gpu::BufferSlice frameSlice, lightSlice, clusterSlice, shadowViewSlice, directionalSlice, otherSlice, cullSlice;
     gpu::BufferSlice cullTileSlice;        // the culling pass's tile list (CullTileUpload)
+    gpu::BufferSlice visibleBoundsSlice;   // the tight fit's VisibleBoundsData (frame.visibleBounds)
     gpu::BufferSlice rasterListSlices[2];  // each atlas pass's raster list (RasterTileUpload)
     bool clustered = false;    // the spot/point lights go through the light clusters
     bool screenSpace = false;  // URP's screen-space resolve of the directional shadows
@@ -249,7 +250,9 @@ private:
     gpu::TextureHandle importedDepth(const ShadowViewDepth& depth, const CameraView& view);
     void uploadShadowHandOver(FrameRecording& recording);
     void recordShadowFitDepth(FrameRecording& recording, MainPassInputs& inputs);
-    // The tight fit's reduction of the view's depth, read back for the next frames' plans.
+    // The tight fit's reduction of the view's depth, read back for the next frames' plans: its data is
+    // uploaded with the frame's inputs (before any readback), the pass recorded after the depth.
+    void uploadVisibleBoundsData(FrameRecording& recording);
     void recordVisibleBounds(FrameRecording& recording, gpu::TextureHandle depth);
     void handOverShadowBindings(FrameRecording& recording, const MainPassInputs& inputs, ShadowFrameWrites& writes);
 };

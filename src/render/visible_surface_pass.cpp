@@ -6,7 +6,6 @@
 #include "pass_bindings.h"
 #include "core/error.h"
 #include "render/frame_data.h"
-#include "render/frame_setup.h"
 #include "render/pass_layouts.h"
 #include "render/screen_space_shadow_pass.h"
 
@@ -109,15 +108,9 @@ void VisibleSurfacePass::recordReduction(gpu::CommandList& commands, gpu::Textur
     commands.dispatch((size.width + 7) / 8, (size.height + 7) / 8);
 }
 
-VisibleSurfacePass::BoundsRecord VisibleSurfacePass::recordBounds(gpu::CommandList& commands, gpu::TextureHandle depth,
-                                                                  const CameraView& view,
-                                                                  std::span<const glm::mat4> lightRotations,
-                                                                  float vsShadowDistance) {
-    BoundsRecord record;
-    record.data = packVisibleBounds(view, lightRotations, vsShadowDistance);
-    recordReduction(commands, depth, uploadFrameData(device_, &record.data, sizeof(record.data)));
-    record.readbackOffset = device_.readBackAtFrameEnd(commands, {words_, 0, kReadbackBytes});
-    return record;
+uint64_t VisibleSurfacePass::recordBounds(gpu::CommandList& commands, gpu::TextureHandle depth, const gpu::BufferSlice& data) {
+    recordReduction(commands, depth, data);
+    return device_.readBackAtFrameEnd(commands, {words_, 0, kReadbackBytes});
 }
 
 void VisibleSurfacePass::fromReadback(const uint8_t* bytes, const gpu_data::VisibleBoundsData& data, VisibleSurfaces& visible) {

@@ -1,6 +1,6 @@
 #pragma once
 // The depth reduction of the tight cascade fit (SDSM, "Sample Distribution Shadow Maps"): which surfaces a
-// view shows, from its depth, reduced on the CPU (shadows/visible_surfaces.h) for the shadow plan.
+// view shows, from its depth, for the shadow plan (shadows/visible_surfaces.h).
 // - now(): a depth prepass of the view, waited for and read back whole, every pixel reduced on the CPU:
 //   exact, for one-shot frames (render()), and for the first frame of a real-time run;
 // - recordBounds(): after a real-time frame's main pass, visible_bounds.comp reduces the view's depth
@@ -29,17 +29,10 @@ public:
 
     VisibleSurfaces now(const Scene& scene, const CameraView& view);
 
-    // What the bounds were recorded with, for fromReadback: the bins from view.zNear to a quarter beyond
-    // the shadow distance and the spaces (the lights' rotations, then the world's).
-    struct BoundsRecord {
-        gpu_data::VisibleBoundsData data{};
-        uint64_t readbackOffset = 0;  // where the words start in the frame's readback
-    };
-    // `depth`: the view's depth (D32, view.width x view.height); `lightRotations`: at most
-    // kVisibleBoundsSpaces - 1 (lightRotationFromWorld); vsShadowDistance: the farthest view depth the
-    // plan asks about. Allocates nothing once the first call made its buffer.
-    BoundsRecord recordBounds(gpu::CommandList& commands, gpu::TextureHandle depth, const CameraView& view,
-                              std::span<const glm::mat4> lightRotations, float vsShadowDistance);
+    // Records the reduction of `depth` (the view's D32 depth) with `data` (packVisibleBounds, uploaded
+    // by the caller before the frame's first readback); returns where its words start in the frame's
+    // readback. Allocates nothing once the first call made its buffer.
+    uint64_t recordBounds(gpu::CommandList& commands, gpu::TextureHandle depth, const gpu::BufferSlice& data);
     static constexpr uint64_t kReadbackBytes = uint64_t(gpu_data::kVisibleBoundsWords) * 4;
     // Decodes a recorded reduction's words into `visible` (replaced; its storage reused).
     static void fromReadback(const uint8_t* bytes, const gpu_data::VisibleBoundsData& data, VisibleSurfaces& visible);
@@ -64,7 +57,10 @@ private:
     uint32_t width_ = 0, height_ = 0;
 };
 
-// The uniform data of a reduction of `view`'s depth: see VisibleSurfacePass::recordBounds.
+// The uniform data of a reduction of `view`'s depth, and what fromReadback decodes its words with: the
+// bins from view.zNear to a quarter beyond vsShadowDistance (the farthest view depth the plan asks
+// about); the spaces `lightRotations` (at most kVisibleBoundsSpaces - 1, lightRotationFromWorld), then
+// the world's.
 gpu_data::VisibleBoundsData packVisibleBounds(const CameraView& view, std::span<const glm::mat4> lightRotations,
                                               float vsShadowDistance);
 

@@ -18,8 +18,8 @@ namespace penumbra {
 
 // The visible surfaces binned by view depth (log-spaced bins; the first takes everything nearer, the
 // last everything farther), each bin's bounds kept in a few rotated spaces: what the GPU's reduction
-// reads back (render/visible_surface_pass.h, shaders/shared/visible_bounds_structs.h), a few kilobytes
-// whatever the view's size.
+// reads back (render/visible_surface_pass.h, shaders/shared/visible_bounds_structs.h), 120 KiB whatever
+// the view's size.
 struct VisibleDepthBins {
     static constexpr uint32_t kBins = 1024;    // = gpu_data::kVisibleDepthBins
     static constexpr uint32_t kMaxSpaces = 5;  // = gpu_data::kVisibleBoundsSpaces
