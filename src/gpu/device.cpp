@@ -201,6 +201,22 @@ uint32_t findQueueFamily(VkPhysicalDevice physicalDevice, const std::string& nam
     throw Error("no Vulkan device: " + name + " has no graphics+compute queue");
 }
 
+// The compute shaders' subgroup operations (the compute rasterizers' ballots, the tight fit's depth
+// reduction's per-bin min and max): optional in Vulkan 1.3 beyond the basic ones, so checked. `who`
+// begins the message ("no Vulkan device", "external Vulkan device").
+void requireComputeSubgroups(VkPhysicalDevice physicalDevice, const std::string& who, const std::string& name,
+                             const DeviceFaultInjection& faults) {
+    VkPhysicalDeviceSubgroupProperties subgroups{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroups;
+    vkGetPhysicalDeviceProperties2(physicalDevice, &properties);
+    if (faults.noSubgroupArithmetic) subgroups.supportedOperations &= ~VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    constexpr VkSubgroupFeatureFlags kNeeded =
+        VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    if (!(subgroups.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroups.supportedOperations & kNeeded) != kNeeded)
+        throw Error(who + ": " + name + " lacks basic, ballot and arithmetic subgroup operations in compute shaders");
+}
+
 VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
                              bool memoryBudget, bool& bufferInt64Atomics, bool& storageBufferArrayIndexing,
                              bool& timelineSemaphores) {
@@ -297,6 +313,7 @@ void Device::createOwnDevice(const DeviceOptions& options) {
     d.info = describe(d.physicalDevice, chosen);
     d.queueFamily = findQueueFamily(d.physicalDevice, d.info.name);
     d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    requireComputeSubgroups(d.physicalDevice, "no Vulkan device", d.info.name, options.faults);
     d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget, d.bufferInt64Atomics,
                                    d.storageBufferArrayIndexing, d.timelineSemaphores);
     vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
@@ -319,6 +336,7 @@ Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& option
     try {
         if (!hasDeviceExtension(d.physicalDevice, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
             throw Error("external Vulkan device: " + d.info.name + " lacks VK_KHR_push_descriptor");
+        requireComputeSubgroups(d.physicalDevice, "external Vulkan device", d.info.name, options.faults);
         initialize();
     } catch (...) {
         release();

@@ -27,9 +27,10 @@ DeviceFaultInjection faultInjectionFromEnvironment() {
         else if (number && key == "max-draw-indirect-count" && value >= 1 && value <= UINT32_MAX)
             faults.maxDrawIndirectCount = uint32_t(value);
         else if (number && key == "garbage" && value >= 1 && value <= 255) faults.garbageByte = uint32_t(value);
+        else if (number && key == "no-subgroup-arithmetic" && value == 1) faults.noSubgroupArithmetic = true;
         else
             throw Error("PENUMBRA_FAULT_INJECTION: '" + item +
-                        "' is not allocation=N, submit=N, wait=N, max-image-size=N, max-storage-buffer-range=N, max-draw-indirect-count=N or garbage=1..255");
+                        "' is not allocation=N, submit=N, wait=N, max-image-size=N, max-storage-buffer-range=N, max-draw-indirect-count=N, garbage=1..255 or no-subgroup-arithmetic=1");
     }
     return faults;
 }

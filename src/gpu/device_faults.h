@@ -22,6 +22,7 @@ struct DeviceFaultInjection {
     // contents, lavapipe fresh zero pages: this makes a pass that reads what nothing wrote fail on
     // lavapipe too.
     uint32_t garbageByte = 0;
+    bool noSubgroupArithmetic = false;  // the device seems to lack arithmetic subgroup operations
 };
 
 // PENUMBRA_FAULT_INJECTION, e.g. "allocation=3" or "submit=2,max-image-size=512" or

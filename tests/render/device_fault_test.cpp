@@ -258,3 +258,15 @@ TEST(DeviceFaults, ALostDeviceWithFramesInFlightIsDestroyedCleanly) {
     EXPECT_TRUE(device.lost());
     EXPECT_EQ(device.validationMessageCount(), 0u);
 }
+
+// The compute shaders need basic, ballot and arithmetic subgroup operations (optional in Vulkan 1.3):
+// a device without them is refused when it is made, in one line that names what it lacks.
+TEST(DeviceFaults, ADeviceWithoutSubgroupArithmeticIsRefusedInOneLine) {
+    gpu::DeviceFaultInjection faults;
+    faults.noSubgroupArithmetic = true;
+    const Outcome outcome = renderWith(faults, Settings{});
+    EXPECT_TRUE(oneLine(outcome.error)) << outcome.error;
+    EXPECT_TRUE(contains(outcome.error, "no Vulkan device: ")) << outcome.error;
+    EXPECT_TRUE(contains(outcome.error, "lacks basic, ballot and arithmetic subgroup operations")) << outcome.error;
+    EXPECT_FALSE(outcome.leftObjects);
+}
