@@ -70,7 +70,7 @@ std::optional<VisibleSurfaces> Renderer::State::tightFitSurfacesNow(const Settin
                                                                    bool oneShot) {
     // The tight cascade fit's depth reduction (fit = tight): this view's, waited for, when the
     // caller waits anyway or nothing earlier matches; else the latest finished frame's (none here).
-    if (settings.shadows.directional.fit != CascadeFit::Tight || virtualDirectional(settings)) return std::nullopt;
+    if (!tightCascadeFit(settings)) return std::nullopt;
     if (!oneShot && latestVisible && latestVisibleSize == glm::uvec2(view.width, view.height)) return std::nullopt;
     // The depth pass draws the GPU's instances: the edits since the last frame go up first, or the fit
     // would see the scene as it was.
@@ -99,7 +99,7 @@ void Renderer::State::planShadows(PendingFrame& frame, const Settings& settings,
     planOptions.cullCasters = false;  // the GPU culls (ShadowCullingPass)
     planOptions.sceneVersion = casterSetVersion + 1;  // the caster set changes only with it (never 0); moves are reported
     // Virtual shadow maps fit no cascades: they plan with no visible surfaces.
-    const bool tight = settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(settings);
+    const bool tight = tightCascadeFit(settings);
     const VisibleSurfaces* planVisible = !tight ? nullptr : visibleNow ? &*visibleNow : &*latestVisible;
     ShadowPlanner::plan(scene, view, settings.shadows, planVisible, planOptions, frame.plan, planWorkspace);
 }
@@ -150,8 +150,7 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     recording.otherSlice = uploadFrameData(device, &plan.other.gpu, sizeof(plan.other.gpu));
     const SceneWrites writes = sceneDescriptorWrites(gpuScene, recording.frameSlice, recording.lightSlice);
     recording.casterWrites.assign(writes.begin(), writes.end());
-    if (settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(settings))
-        uploadVisibleBoundsData(recording);
+    if (tightCascadeFit(settings)) uploadVisibleBoundsData(recording);
 }
 
 void Renderer::State::uploadVisibleBoundsData(FrameRecording& recording) {
@@ -315,8 +314,7 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     }
     mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
-    if (recording.settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(recording.settings) &&
-        !oneShot)
+    if (tightCascadeFit(recording.settings) && !oneShot)
         recordVisibleBounds(recording, targets.depth);
 }
 

@@ -39,7 +39,7 @@ void Renderer::State::recordShadowFitDepth(FrameRecording& recording, MainPassIn
     // The tight cascade fit reads the view's depth of the latest finished frame; with no main view of its
     // own, a shadow frame draws the depth prepass for it (virtual maps drew one already, or need none).
     const Settings& settings = recording.settings;
-    if (settings.shadows.directional.fit != CascadeFit::Tight || virtualDirectional(settings)) return;
+    if (!tightCascadeFit(settings)) return;
     recording.stage = "depth prepass (tight fit)";
     const gpu::TextureHandle depth = recording.callerDepth ? recording.callerDepth : prepassDepthOf(recording, inputs);
     recordVisibleBounds(recording, depth);

@@ -92,6 +92,11 @@ inline bool virtualDirectional(const Settings& settings) {
     return settings.shadows.directional.mode == DirectionalShadowMode::Virtual;
 }
 
+// Whether frames reduce the view's depth for the tight cascade fit (fit = tight; virtual maps fit no cascades).
+inline bool tightCascadeFit(const Settings& settings) {
+    return settings.shadows.directional.fit == CascadeFit::Tight && !virtualDirectional(settings);
+}
+
 // The shadow tiles a frame draws (indices into the plan's tiles of each atlas), the rest cached.
 struct TilesToDraw {
     std::vector<uint32_t> directional, other;

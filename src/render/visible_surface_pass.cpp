@@ -15,7 +15,7 @@ gpu_data::VisibleBoundsData packVisibleBounds(const CameraView& view, std::span<
                                               float vsShadowDistance) {
     PENUMBRA_ASSERT(lightRotations.size() < gpu_data::kVisibleBoundsSpaces);
     gpu_data::VisibleBoundsData data{};
-    data.worldFromClip = glm::inverse(view.clipFromWorld);  // as visibleSurfacesFromDepths computes it
+    data.worldFromClip = glm::inverse(view.clipFromWorld);  // as forEachSurfacePixel computes it
     for (size_t i = 0; i < lightRotations.size(); ++i) data.spaceFromWorld[i] = lightRotations[i];
     data.spaceFromWorld[lightRotations.size()] = glm::mat4(1.0f);  // the world: for a light not seen yet
     data.spaceCount = uint32_t(lightRotations.size()) + 1;

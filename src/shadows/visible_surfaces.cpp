@@ -23,6 +23,16 @@ float floatFromKey(uint32_t key) {
     return value;
 }
 
+// The bins' spacing and spaces, with rsBounds sized for them (its elements left for the caller to fill).
+void startBins(VisibleDepthBins& bins, float vsBinNear, float binsPerLogDepth, std::span<const glm::mat4> spaceFromWorld) {
+    PENUMBRA_ASSERT(spaceFromWorld.size() <= VisibleDepthBins::kMaxSpaces);
+    bins.vsBinNear = vsBinNear;
+    bins.binsPerLogDepth = binsPerLogDepth;
+    bins.spaceCount = uint32_t(spaceFromWorld.size());
+    for (uint32_t space = 0; space < bins.spaceCount; ++space) bins.spaceFromWorld[space] = glm::mat3(spaceFromWorld[space]);
+    bins.rsBounds.resize(size_t(bins.spaceCount) * VisibleDepthBins::kBins);
+}
+
 uint32_t binOf(const VisibleDepthBins& bins, float vsDepth) {
     return gpu_data::visibleDepthBin(vsDepth, bins.vsBinNear, bins.binsPerLogDepth);
 }
@@ -68,7 +78,6 @@ float visibleBinsPerLogDepth(float vsBinNear, float vsBinFar) {
 
 void visibleSurfacesFromBoundsWords(const uint32_t* words, float vsBinNear, float binsPerLogDepth,
                                     std::span<const glm::mat4> spaceFromWorld, VisibleSurfaces& visible) {
-    PENUMBRA_ASSERT(spaceFromWorld.size() <= VisibleDepthBins::kMaxSpaces);
     const uint32_t* minima = words;
     const uint32_t* maxima = words + gpu_data::kVisibleBoundsMinWords;
     constexpr uint32_t kNone = 0xffffffffu;  // a minimum no surface lowered
@@ -77,11 +86,7 @@ void visibleSurfacesFromBoundsWords(const uint32_t* words, float vsBinNear, floa
     visible.vsMinDepth = minima[0] == kNone ? std::numeric_limits<float>::infinity() : floatFromKey(minima[0]);
     visible.vsMaxDepth = minima[0] == kNone ? 0.0f : floatFromKey(maxima[0]);
     VisibleDepthBins& bins = visible.bins;
-    bins.vsBinNear = vsBinNear;
-    bins.binsPerLogDepth = binsPerLogDepth;
-    bins.spaceCount = uint32_t(spaceFromWorld.size());
-    for (uint32_t space = 0; space < bins.spaceCount; ++space) bins.spaceFromWorld[space] = glm::mat3(spaceFromWorld[space]);
-    bins.rsBounds.resize(size_t(bins.spaceCount) * VisibleDepthBins::kBins);
+    startBins(bins, vsBinNear, binsPerLogDepth, spaceFromWorld);
     for (size_t i = 0; i < bins.rsBounds.size(); ++i) {
         const uint32_t* lo = minima + 1 + i * 3;
         const uint32_t* hi = maxima + 1 + i * 3;
@@ -93,16 +98,11 @@ void visibleSurfacesFromBoundsWords(const uint32_t* words, float vsBinNear, floa
 
 VisibleSurfaces binVisibleSurfaces(const VisibleSurfaces& points, std::span<const glm::mat4> spaceFromWorld,
                                    float vsBinNear, float vsBinFar) {
-    PENUMBRA_ASSERT(spaceFromWorld.size() <= VisibleDepthBins::kMaxSpaces);
     VisibleSurfaces binned;
     binned.vsMinDepth = points.vsMinDepth;
     binned.vsMaxDepth = points.vsMaxDepth;
     VisibleDepthBins& bins = binned.bins;
-    bins.vsBinNear = vsBinNear;
-    bins.binsPerLogDepth = visibleBinsPerLogDepth(vsBinNear, vsBinFar);
-    bins.spaceCount = uint32_t(spaceFromWorld.size());
-    for (uint32_t space = 0; space < bins.spaceCount; ++space) bins.spaceFromWorld[space] = glm::mat3(spaceFromWorld[space]);
-    bins.rsBounds.assign(size_t(bins.spaceCount) * VisibleDepthBins::kBins, Aabb{});
+    startBins(bins, vsBinNear, visibleBinsPerLogDepth(vsBinNear, vsBinFar), spaceFromWorld);  // every bin empty
     for (size_t i = 0; i < points.wsPoints.size(); ++i) {
         const uint32_t bin = binOf(bins, points.vsDepths[i]);
         for (uint32_t space = 0; space < bins.spaceCount; ++space)
@@ -111,37 +111,17 @@ VisibleSurfaces binVisibleSurfaces(const VisibleSurfaces& points, std::span<cons
     return binned;
 }
 
-void visibleSurfacesFromDepths(const uint8_t* depths, uint32_t width, uint32_t height, const CameraView& view,
-                               uint32_t stride, VisibleSurfaces& visible) {
-    PENUMBRA_ASSERT(stride >= 1 && width == (view.width + stride - 1) / stride &&
-                    height == (view.height + stride - 1) / stride);
-    const glm::mat4 worldFromClip = glm::inverse(view.clipFromWorld);
-    visible.wsPoints.clear();
-    visible.vsDepths.clear();
-    visible.vsMinDepth = std::numeric_limits<float>::infinity();
-    visible.vsMaxDepth = 0.0f;
-    visible.wsPoints.reserve(size_t(width) * height);
-    visible.vsDepths.reserve(size_t(width) * height);
-    for (uint32_t y = 0; y < height; ++y) {
-        for (uint32_t x = 0; x < width; ++x) {
-            float d = 0.0f;
-            std::memcpy(&d, depths + (size_t(y) * width + x) * 4, sizeof(float));
-            if (!(d > 0.0f)) continue;  // reversed Z: 0 = the far plane, nothing drawn
-            const glm::vec3 wsPoint =
-                wsPositionFromDepth(worldFromClip, view, float(x * stride) + 0.5f, float(y * stride) + 0.5f, d);
-            const float vsDepth = -(view.viewFromWorld * glm::vec4(wsPoint, 1.0f)).z;
-            visible.wsPoints.push_back(wsPoint);
-            visible.vsDepths.push_back(vsDepth);
-            visible.vsMinDepth = std::min(visible.vsMinDepth, vsDepth);
-            visible.vsMaxDepth = std::max(visible.vsMaxDepth, vsDepth);
-        }
-    }
-}
-
-VisibleSurfaces visibleSurfacesFromDepth(const Image& depth, const CameraView& view, uint32_t stride) {
-    PENUMBRA_ASSERT(depth.channels == 4);
+VisibleSurfaces visibleSurfacesFromDepth(const Image& depth, const CameraView& view) {
+    PENUMBRA_ASSERT(depth.channels == 4 && depth.width == view.width && depth.height == view.height);
     VisibleSurfaces visible;
-    visibleSurfacesFromDepths(depth.pixels.data(), depth.width, depth.height, view, stride, visible);
+    visible.wsPoints.reserve(size_t(depth.width) * depth.height);
+    visible.vsDepths.reserve(size_t(depth.width) * depth.height);
+    forEachSurfacePixel(depth, view, [&](const glm::vec3& wsPoint, float vsDepth) {
+        visible.wsPoints.push_back(wsPoint);
+        visible.vsDepths.push_back(vsDepth);
+        visible.vsMinDepth = std::min(visible.vsMinDepth, vsDepth);
+        visible.vsMaxDepth = std::max(visible.vsMaxDepth, vsDepth);
+    });
     return visible;
 }
 

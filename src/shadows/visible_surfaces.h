@@ -41,15 +41,9 @@ struct VisibleSurfaces {
     bool empty() const { return !(vsMinDepth <= vsMaxDepth); }
 };
 
-// depth: the main view's reversed-Z depth as a D32 target reads back (4 bytes of float
-// per pixel, 0 = nothing drawn), view.width x view.height; or, with stride > 1, every stride-th pixel
-// of it in x and y (ceil(width / stride) x ceil(height / stride), pixel (x, y) = view pixel
-// (x * stride, y * stride)), as the real-time path reads it back.
-VisibleSurfaces visibleSurfacesFromDepth(const Image& depth, const CameraView& view, uint32_t stride = 1);
-// The same from such depths as raw bytes (width x height floats, rows top to bottom) into `visible`
-// (replaced; its storage reused: no allocation once it has held as many points).
-void visibleSurfacesFromDepths(const uint8_t* depths, uint32_t width, uint32_t height, const CameraView& view,
-                               uint32_t stride, VisibleSurfaces& visible);
+// depth: the main view's reversed-Z depth as a D32 target reads back (4 bytes of float per pixel,
+// 0 = nothing drawn), view.width x view.height: every covered pixel's point (forEachSurfacePixel).
+VisibleSurfaces visibleSurfacesFromDepth(const Image& depth, const CameraView& view);
 
 // The depth of pixel (x, y) of such an image (4 bytes of float per pixel).
 float depthAt(const Image& depth, uint32_t x, uint32_t y);
@@ -58,8 +52,8 @@ float depthAt(const Image& depth, uint32_t x, uint32_t y);
 glm::vec3 wsPositionFromDepth(const glm::mat4& worldFromClip, const CameraView& view, float px, float py, float depth);
 
 // Calls visit(wsPosition, vsDepth) for every pixel of such an image (view.width x view.height) with
-// geometry (reversed-Z depth > 0), at the pixel's centre, rows top to bottom: the virtual shadow maps'
-// page marking references walk the view's depth this way.
+// geometry (reversed-Z depth > 0), at the pixel's centre, rows top to bottom: visibleSurfacesFromDepth
+// and the virtual shadow maps' page marking references walk the view's depth this way.
 template <typename Visit>
 void forEachSurfacePixel(const Image& depth, const CameraView& view, Visit&& visit) {
     const glm::mat4 worldFromClip = glm::inverse(view.clipFromWorld);
