@@ -10,7 +10,8 @@ namespace penumbra {
 enum class ShadowFilter { PCF2x2, PCF3x3, PCF5x5, PCF7x7 };
 enum class CascadeBlend { Hard, Soft, Dither };
 // How shadow depth is rasterized: the hardware pipeline, compute shaders (fast where few
-// SMs run graphics, e.g. NVIDIA H100/H200), or whichever the first frames measure faster.
+// SMs run graphics, e.g. NVIDIA H100/H200), or auto: compute on datacenter NVIDIA GPUs (a table),
+// elsewhere whichever the first frames measure faster.
 enum class ShadowRaster { Hw, Compute, Auto };
 // How the lit pass keeps surfaces from shadowing themselves (penumbra/shadows/bias.glsl):
 // a constant normal offset, a normal offset scaled by sin(N, L), or receiver-plane depth bias.

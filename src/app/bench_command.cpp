@@ -230,10 +230,10 @@ struct FrameLoop {
 
 // Submits frame `frame` (counted from the first warm-up frame): the lights and instances of
 // --light-motion and --move-objects set first, then the camera of --camera.
-void submitBenchFrame(Renderer& renderer, const BenchOptions& bench, const FrameLoop& loop, const Settings& settings,
-                      uint64_t frame) {
+uint64_t submitBenchFrame(Renderer& renderer, const BenchOptions& bench, const FrameLoop& loop, const Settings& settings,
+                          uint64_t frame) {
     loop.motion.apply(renderer, frame);
-    renderer.submitFrame(loop.request, settings, benchCamera(loop.pivot, loop.start, bench.camera, frame), nullptr);
+    return renderer.submitFrame(loop.request, settings, benchCamera(loop.pivot, loop.start, bench.camera, frame), nullptr);
 }
 
 // The timed frames; with --vary-settings the settings and shadowed lights change every period.
@@ -251,24 +251,30 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
     uint32_t step = 0, shadowedLights = 0;
     ProgressBar progress(bench.frames);
     std::vector<FrameStats> finished;
+    // The timed frames follow the warm-up without a pause, as an application's frames do: the warm-up
+    // frames still in flight finish during the first timed ones and are left out by their index.
+    uint64_t firstTimed = UINT64_MAX;
+    auto take = [&](const FrameStats& stats) {
+        if (stats.frameIndex < firstTimed) return;
+        run.measured.add(stats);
+        run.warnings = stats.warnings;
+    };
     for (uint32_t i = 0; i < bench.frames; ++i) {
         if (bench.varyPeriod > 0 && i % bench.varyPeriod == 0) {
             step = (i / bench.varyPeriod) % uint32_t(benchVariations().size());
             current = variedSettings(settings, benchVariations()[step]);
             shadowedLights = applyShadowedLights(renderer, originalLights, benchVariations()[step].shadowedLightShare);
         }
-        submitBenchFrame(renderer, bench, loop, current, frame++);
+        const uint64_t submitted = submitBenchFrame(renderer, bench, loop, current, frame++);
+        if (i == 0) firstTimed = submitted;
         renderer.takeCompletedFrames(finished);  // exchanges elements with the renderer: no allocation once warm
-        for (const FrameStats& stats : finished) {
-            run.measured.add(stats);
-            run.warnings = stats.warnings;
-        }
+        for (const FrameStats& stats : finished) take(stats);
         if (bench.varyPeriod > 0 && (i + 1) % bench.varyPeriod == 0)
             run.samples.push_back({i + 1, step, hostRssMegabytes(), deviceMegabytes(device), shadowedLights});
         if (i % 8 == 0 || i + 1 == bench.frames) progress.update(i + 1);
     }
     renderer.waitIdle();
-    for (const FrameStats& stats : renderer.takeCompletedFrames()) run.measured.add(stats);
+    for (const FrameStats& stats : renderer.takeCompletedFrames()) take(stats);
     run.rssLast = hostRssMegabytes();
     run.deviceLast = deviceMegabytes(device);
     run.after = device.liveObjects();
@@ -449,8 +455,10 @@ int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
 
     uint64_t frame = 0;
     for (uint32_t i = 0; i < bench.warmup; ++i) submitBenchFrame(renderer, bench, loop, settings, frame++);
-    if (warmAllVariants) renderer.buildAllPipelines();  // the timed frames use the specialized variants
-    renderer.waitIdle();
+    if (warmAllVariants) {  // the timed frames use the specialized variants
+        renderer.buildAllPipelines();
+        renderer.waitIdle();
+    }
     renderer.takeCompletedFrames();
     const TimedRun run = runTimedFrames(device, renderer, bench, loop, settings, frame);
     for (const std::string& warning : run.warnings) std::fprintf(stderr, "penumbra: warning: %s\n", warning.c_str());

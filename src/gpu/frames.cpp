@@ -218,7 +218,9 @@ CommandList Device::Impl::beginSlot(Device& owner, VkCommandBuffer external) {
     frame.external = external != VK_NULL_HANDLE;
     VkCommandBuffer commandBuffer = frame.external ? external : frame.commandBuffer;
     if (!frame.external) {
-        VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, VK_COMMAND_POOL_RESET_RELEASE_RESOURCES_BIT));
+        // The pool keeps its memory (no RELEASE_RESOURCES): the next frame's recording reuses it rather
+        // than the driver allocating it again.
+        VK_CHECK(vkResetCommandPool(d.device, frame.commandPool, 0));
         VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         VK_CHECK(vkBeginCommandBuffer(frame.commandBuffer, &begin));

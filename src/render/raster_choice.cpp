@@ -22,10 +22,13 @@ double median(std::vector<double> values) {
 
 RasterChoice::RasterChoice(bool timestamps, const std::string& deviceName, Names names)
     : phase_(Phase::MeasureHw), names_(names) {
-    if (!timestamps) {
+    if (datacenterNvidia(deviceName)) {
         phase_ = Phase::Decided;
-        compute_ = datacenterNvidia(deviceName);
-        reason_ = std::string(compute_ ? names_.compute : names_.hw) + " (no timestamps: by the device table)";
+        compute_ = true;
+        reason_ = std::string(names_.compute) + " (by the device table: a datacenter GPU, graphics on few SMs)";
+    } else if (!timestamps) {
+        phase_ = Phase::Decided;
+        reason_ = std::string(names_.hw) + " (no timestamps: by the device table)";
     }
 }
 

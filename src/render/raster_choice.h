@@ -1,11 +1,12 @@
 #pragma once
-// shadows.raster = auto: which shadow-map rasterizer a device runs faster, by measurement.
-// The first frames that draw shadow tiles alternate: kWarmup + kSamples frames with the hardware path,
-// as many with the compute path; the shadow passes' GPU time (timestamps) decides, and later frames use
-// the faster. Frames whose tiles are all cached measure nothing (the renderer does not report them).
-// Without timestamps a table decides: compute on
-// datacenter NVIDIA GPUs (H100, H200, A100, GH200, B200: few SMs run graphics, measured 7-100x
-// slower raster there, docs/performance.md), the hardware path elsewhere. No GPU here: unit-tested.
+// shadows.raster = auto: which shadow-map rasterizer a device runs faster.
+// On datacenter NVIDIA GPUs (H100, H200, A100, GH200, B200, ...) a table decides at once: compute.
+// Few of their SMs run the graphics pipeline (measured 7-100x slower raster there, docs/performance.md),
+// so measuring would only cost frames that alternate paths (uneven frame times from the first frame on).
+// Elsewhere the first frames that draw shadow tiles alternate: kWarmup + kSamples frames with the
+// hardware path, as many with the compute path; the shadow passes' GPU time (timestamps) decides, and
+// later frames use the faster. Frames whose tiles are all cached measure nothing (the renderer does not
+// report them). Without timestamps the hardware path. No GPU here: tests/unit/raster_choice_test.cpp.
 // render.mainView = auto decides between the forward and the visibility-buffer main view the same way.
 #include <string>
 #include <vector>

@@ -110,8 +110,9 @@ std::vector<SettingKey> makeTable() {
                        "prepass, then a full-screen pass writes the light's shadow term, which the lit pass reads."));
     t.push_back(choice("shadows.raster", {"hw", "compute", "auto"}, PENUMBRA_FIELD(shadows.raster),
                        "How shadow depth is rasterized: `hw` by the graphics pipeline, `compute` by compute shaders "
-                       "(fast where few SMs run graphics, e.g. NVIDIA H100 / H200), `auto` by whichever the first "
-                       "frames measure faster. Both give the same shadow term."));
+                       "(fast where few SMs run graphics, e.g. NVIDIA H100 / H200), `auto` by a table on datacenter "
+                       "NVIDIA GPUs (compute, no measuring frames) and elsewhere by whichever the first frames measure "
+                       "faster. Both give the same shadow term."));
     t.push_back(flag("shadows.cacheTiles", PENUMBRA_FIELD(shadows.cacheTiles),
                        "A shadow tile whose projection, cascade spheres, casters and rasterizer did not change since the "
                        "last frame keeps its depth and is not drawn again."));
@@ -231,8 +232,9 @@ std::vector<SettingKey> makeTable() {
                        "meshlets that face away from the camera. The image is the same."));
     t.push_back(choice("render.mainView", {"forward", "visibility", "auto"}, PENUMBRA_FIELD(render.mainView),
                        "How the main view is drawn: `forward` by the graphics pipeline, `visibility` through a compute "
-                       "visibility buffer (needs 64-bit buffer atomics), `auto` by whichever the first frames measure "
-                       "faster on a GPU; on a CPU device `auto` draws forward."));
+                       "visibility buffer (needs 64-bit buffer atomics), `auto` by a table on datacenter NVIDIA GPUs "
+                       "(visibility) and elsewhere by whichever the first frames measure faster; on a CPU device `auto` "
+                       "draws forward."));
     t.push_back(choice("render.toneMapping", {"none", "neutral", "aces"}, PENUMBRA_FIELD(render.toneMapping),
                        "How exposed radiance becomes display values: `neutral` is Khronos PBR Neutral, `aces` "
                        "Narkowicz's fit of the ACES filmic curve, `none` the linear values clamped to 1. The shadow and "
