@@ -93,6 +93,9 @@ struct FrameStats {
     std::string shadowRasterChoice;          // shadows.raster = auto: how it was chosen
     std::string mainView = "forward";        // how the main view was drawn: forward | visibility
     std::string mainViewChoice;              // how it was chosen: "render.mainView = forward|visibility", or auto's choice (or "measuring")
+    // How this frame's directional lights were shadowed: "cascades" or "virtual" (shadows.directional.mode,
+    // with auto resolved for the device: virtual on a GPU, cascades on a CPU device).
+    const char* directionalShadows = "cascades";
     // The visibility buffer's GPU culling (render.viewCulling): the opaque and alpha-tested instances
     // with geometry, those drawn in the early phase (the frustum's instances visible last frame) and the
     // late one (found visible by the depth pyramid), and their triangles; all 0 for forward frames.

@@ -27,9 +27,10 @@ enum class CascadeSplitMode { Manual, Log, Practical };
 // Unity URP's, linear in the squared camera distance over the same band.
 enum class ShadowFadeMode { Linear, Squared };
 
-// How directional lights are shadowed: cascaded shadow maps in the atlas (Unity's system), or a
-// virtual shadow map per light (a clipmap of pages drawn on demand and cached across frames).
-enum class DirectionalShadowMode { Cascades, Virtual };
+// How directional lights are shadowed: cascaded shadow maps in the atlas (Unity's system), a virtual
+// shadow map per light (a clipmap of pages drawn on demand and cached across frames), or auto: virtual
+// on a GPU, cascades on a CPU device (where drawing pages costs more than the atlas).
+enum class DirectionalShadowMode { Cascades, Virtual, Auto };
 
 // How spot and point lights are shadowed: tiles of the spot atlas (Unity's system), or virtual shadow
 // maps: a face per spot light and six per point light, each a mip chain of pages drawn on demand and
@@ -37,7 +38,7 @@ enum class DirectionalShadowMode { Cascades, Virtual };
 enum class SpotShadowMode { Atlas, Virtual };
 
 struct DirectionalShadowSettings {
-    DirectionalShadowMode mode = DirectionalShadowMode::Cascades;
+    DirectionalShadowMode mode = DirectionalShadowMode::Auto;
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF2x2;
     uint32_t cascadeCount = 4;

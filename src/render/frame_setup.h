@@ -53,7 +53,11 @@ gpu::BufferSlice uploadFrameData(gpu::Device& device, const void* data, size_t s
 void checkCameraView(const CameraView& view);
 
 // The shadow settings a device whose largest image side is maxImageSize can hold: a larger atlas is made
-// as large as the device allows (the largest power of two), with a warning.
-ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, std::vector<std::string>& warnings);
+// as large as the device allows (the largest power of two), with a warning; shadows.directional.mode =
+// auto becomes the mode this device draws (resolveDirectionalShadowMode).
+ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, bool cpuDevice,
+                                 std::vector<std::string>& warnings);
+// shadows.directional.mode = auto as this device draws it: virtual on a GPU, cascades on a CPU device.
+DirectionalShadowMode resolveDirectionalShadowMode(DirectionalShadowMode requested, bool cpuDevice);
 
 }  // namespace penumbra

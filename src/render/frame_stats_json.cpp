@@ -17,6 +17,7 @@ std::string toJson(const FrameStats& frame) {
     stats["shadows"] = nlohmann::json::parse(toJson(frame.shadows));
     stats["warnings"] = frame.warnings;
     stats["shadowRaster"] = {{"used", frame.shadowRaster}, {"choice", frame.shadowRasterChoice}};
+    stats["directionalShadows"] = frame.directionalShadows;
     stats["mainView"] = {{"used", frame.mainView},
                          {"choice", frame.mainViewChoice},
                          {"instances", frame.viewInstances},

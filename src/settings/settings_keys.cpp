@@ -116,12 +116,12 @@ std::vector<SettingKey> makeTable() {
     t.push_back(flag("shadows.cacheTiles", PENUMBRA_FIELD(shadows.cacheTiles),
                        "A shadow tile whose projection, cascade spheres, casters and rasterizer did not change since the "
                        "last frame keeps its depth and is not drawn again."));
-    t.push_back(choice("shadows.directional.mode", {"cascades", "virtual"}, PENUMBRA_FIELD(shadows.directional.mode),
-                       "How directional lights are shadowed: `cascades` in the directional atlas (the keys below), or "
+    t.push_back(choice("shadows.directional.mode", {"cascades", "virtual", "auto"}, PENUMBRA_FIELD(shadows.directional.mode),
+                       "How directional lights are shadowed: `cascades` in the directional atlas (the keys below), "
                        "`virtual`: a virtual shadow map per light, a clipmap centred on the camera whose pages are "
                        "drawn only where visible surfaces need them, at the level whose texel matches the pixel's "
                        "footprint, and kept across frames until a light or a caster in them changes (the "
-                       "`shadows.virtual` keys)."));
+                       "`shadows.virtual` keys), or `auto`: virtual on a GPU, cascades on a CPU device."));
     t.push_back(atlasSizeKey("shadows.directional.atlasSize", PENUMBRA_FIELD(shadows.directional.atlasSize),
                              "directional shadow atlas, shared by up to 4 shadowed directional lights times "
                              "`cascadeCount` cascades."));

@@ -85,7 +85,7 @@ std::optional<ShadowRaster> parseShadowRaster(const std::string& name) {
 }
 
 const char* directionalShadowModeName(DirectionalShadowMode mode) {
-    return mode == DirectionalShadowMode::Virtual ? "virtual" : "cascades";
+    return mode == DirectionalShadowMode::Virtual ? "virtual" : mode == DirectionalShadowMode::Auto ? "auto" : "cascades";
 }
 
 const char* spotShadowModeName(SpotShadowMode mode) { return mode == SpotShadowMode::Virtual ? "virtual" : "atlas"; }

@@ -31,8 +31,10 @@ struct Variant {
 
 std::vector<Variant> variants() {
     std::vector<Variant> list;
-    list.push_back({"cascades", Settings{}});
-    Settings compute;
+    Settings cascades;
+    cascades.shadows.directional.mode = DirectionalShadowMode::Cascades;  // auto would pick virtual on a GPU
+    list.push_back({"cascades", cascades});
+    Settings compute = cascades;
     compute.shadows.raster = ShadowRaster::Compute;
     compute.render.mainView = MainView::Visibility;
     list.push_back({"compute raster, visibility buffer", compute});

@@ -106,6 +106,15 @@ TEST_F(VirtualFrameTest, AStillCameraDrawsNoPageAfterTheFirstFrame) {
     EXPECT_EQ(first.image.pixels, second.image.pixels) << "cached pages give the same image";
 }
 
+TEST_F(VirtualFrameTest, TheDefaultModeDrawsCascadesOnACpuDeviceAndTheStatsSaySo) {
+    const auto [automatic, unused] = twoStillFrames("poles", Settings{});
+    EXPECT_STREQ(automatic.stats.directionalShadows, "cascades");
+    EXPECT_EQ(automatic.stats.virtualPages.maps, 0u);
+    const auto [virtualFrame, unused2] = twoStillFrames("poles", virtualSettings("poles"));
+    EXPECT_STREQ(virtualFrame.stats.directionalShadows, "virtual");
+    EXPECT_EQ(virtualFrame.stats.virtualPages.maps, 1u);
+}
+
 TEST_F(VirtualFrameTest, WithTheCacheOffEveryRequestedPageIsDrawnEveryFrame) {
     Settings settings = virtualSettings("poles");
     settings.shadows.virtualMaps.cache = false;
