@@ -29,7 +29,8 @@ enum class ShadowFadeMode { Linear, Squared };
 
 // How directional lights are shadowed: cascaded shadow maps in the atlas (Unity's system), a virtual
 // shadow map per light (a clipmap of pages drawn on demand and cached across frames), or auto: virtual
-// on a GPU, cascades on a CPU device (where drawing pages costs more than the atlas).
+// on a GPU, cascades on a CPU device (where drawing pages costs more than the atlas). The default is
+// cascades: the virtual maps' per-page culling lists do not yet fit scenes of 100k+ instances.
 enum class DirectionalShadowMode { Cascades, Virtual, Auto };
 
 // How spot and point lights are shadowed: tiles of the spot atlas (Unity's system), or virtual shadow
@@ -38,7 +39,7 @@ enum class DirectionalShadowMode { Cascades, Virtual, Auto };
 enum class SpotShadowMode { Atlas, Virtual };
 
 struct DirectionalShadowSettings {
-    DirectionalShadowMode mode = DirectionalShadowMode::Auto;
+    DirectionalShadowMode mode = DirectionalShadowMode::Cascades;
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF2x2;
     uint32_t cascadeCount = 4;

@@ -116,9 +116,9 @@ void checkCameraView(const CameraView& view) {
 
 DirectionalShadowMode resolveDirectionalShadowMode(DirectionalShadowMode requested, bool cpuDevice) {
     if (requested != DirectionalShadowMode::Auto) return requested;
-    // On a GPU the virtual maps win on both counts (docs/fidelity.md, docs/performance.md: fewer
+    // On a GPU the virtual maps win on both counts measured (docs/fidelity.md, docs/performance.md: fewer
     // misclassified pixels on every canonical scene, less shimmer, and a frame in motion 2x faster); a
-    // CPU device draws and marks pages slower than it draws the atlas.
+    // CPU device marks and draws pages slower than it draws the atlas.
     return cpuDevice ? DirectionalShadowMode::Cascades : DirectionalShadowMode::Virtual;
 }
 

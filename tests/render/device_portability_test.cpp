@@ -32,7 +32,7 @@ struct Variant {
 std::vector<Variant> variants() {
     std::vector<Variant> list;
     Settings cascades;
-    cascades.shadows.directional.mode = DirectionalShadowMode::Cascades;  // auto would pick virtual on a GPU
+    cascades.shadows.directional.mode = DirectionalShadowMode::Cascades;  // what auto would not pick on a GPU
     list.push_back({"cascades", cascades});
     Settings compute = cascades;
     compute.shadows.raster = ShadowRaster::Compute;

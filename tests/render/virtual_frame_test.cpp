@@ -106,8 +106,10 @@ TEST_F(VirtualFrameTest, AStillCameraDrawsNoPageAfterTheFirstFrame) {
     EXPECT_EQ(first.image.pixels, second.image.pixels) << "cached pages give the same image";
 }
 
-TEST_F(VirtualFrameTest, TheDefaultModeDrawsCascadesOnACpuDeviceAndTheStatsSaySo) {
-    const auto [automatic, unused] = twoStillFrames("poles", Settings{});
+TEST_F(VirtualFrameTest, AutoDrawsCascadesOnACpuDeviceAndTheStatsSaySo) {
+    Settings settings = virtualSettings("poles");
+    settings.shadows.directional.mode = DirectionalShadowMode::Auto;
+    const auto [automatic, unused] = twoStillFrames("poles", settings);
     EXPECT_STREQ(automatic.stats.directionalShadows, "cascades");
     EXPECT_EQ(automatic.stats.virtualPages.maps, 0u);
     const auto [virtualFrame, unused2] = twoStillFrames("poles", virtualSettings("poles"));
