@@ -96,6 +96,9 @@ struct FrameStats {
     // How this frame's directional lights were shadowed: "cascades" or "virtual" (shadows.directional.mode,
     // with auto resolved for the device: virtual on a GPU, cascades on a CPU device).
     const char* directionalShadows = "cascades";
+    // The tight cascade fit reduced this frame's own view depth and waited for it (one-shot frames, and
+    // the first real-time frame; later ones plan from the latest finished reduction).
+    bool tightFitWaited = false;
     // The visibility buffer's GPU culling (render.viewCulling): the opaque and alpha-tested instances
     // with geometry, those drawn in the early phase (the frustum's instances visible last frame) and the
     // late one (found visible by the depth pyramid), and their triangles; all 0 for forward frames.

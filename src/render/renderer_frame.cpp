@@ -75,7 +75,12 @@ std::optional<VisibleSurfaces> Renderer::State::tightFitSurfacesNow(const Settin
     // The depth pass draws the GPU's instances: the edits since the last frame go up first, or the fit
     // would see the scene as it was.
     editBytesUploaded = uploadSceneEditsNow();
-    return visiblePass.now(scene, view);
+    std::optional<VisibleSurfaces> surfaces = visiblePass.now(scene, view);
+    if (!oneShot) {  // the next frames plan from it until their own reductions come back: one wait, not one per frame
+        latestVisible = *surfaces;
+        latestVisibleSize = glm::uvec2(view.width, view.height);
+    }
+    return surfaces;
 }
 
 uint64_t Renderer::State::uploadSceneEditsNow() {
@@ -388,6 +393,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     editBytesUploaded = 0;
     try {
         visibleNow = tightFitSurfacesNow(settings, view, oneShot);
+        stats.tightFitWaited = visibleNow.has_value();
     } catch (const Error& error) {
         throw frameFailure(frameIndex, "the tight fit's visible surfaces", error);
     }

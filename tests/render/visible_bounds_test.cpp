@@ -116,5 +116,25 @@ TEST_F(VisibleBoundsTest, RealTimeFramesPlanTheTightFitFromTheGpuBinsAsAOneShotF
     }
 }
 
+// Only the first real-time frame waits for its own reduction: the frames after it plan from it until
+// their own reductions come back, however many are in flight (one-shot frames always wait).
+TEST_F(VisibleBoundsTest, OnlyTheFirstRealTimeFrameWaitsForTheTightFitsReduction) {
+    const Scene scene = makeCanonicalScene("poles");
+    RenderRequest request;
+    request.width = 160;
+    request.height = 90;
+    const CameraView view = resolveCameraView(scene, request.width, request.height);
+    Settings settings;
+    settings.shadows.directional.fit = CascadeFit::Tight;
+    Renderer renderer(device(), scene);
+    for (int i = 0; i < 4; ++i) renderer.submitFrame(request, settings, view);
+    renderer.waitIdle();
+    const std::vector<FrameStats> frames = renderer.takeCompletedFrames();
+    ASSERT_EQ(frames.size(), 4u);
+    EXPECT_TRUE(frames[0].tightFitWaited);
+    for (size_t i = 1; i < frames.size(); ++i) EXPECT_FALSE(frames[i].tightFitWaited) << "frame " << i;
+    EXPECT_TRUE(renderer.render(request, settings, view).stats.tightFitWaited) << "a one-shot frame";
+}
+
 }  // namespace
 }  // namespace penumbra::test
