@@ -240,9 +240,9 @@ TEST(DeviceFaults, EveryFrameAfterADeviceLossFailsAtOnce) {
 
 TEST(DeviceFaults, ALostDeviceWithFramesInFlightIsDestroyedCleanly) {
     gpu::DeviceFaultInjection faults;
-    // The scene upload, then per frame the tight fit's one-off depth reduction (no earlier frame has
-    // finished) and the frame itself: submission 5 is frame 1's.
-    faults.loseDeviceAtSubmit = 5;
+    // The scene upload, frame 0's tight-fit depth reduction (nothing earlier to plan from) and frame 0;
+    // frame 1 plans from frame 0's reduction: submission 4 is frame 1's.
+    faults.loseDeviceAtSubmit = 4;
     Device device(faultyDevice(faults));
     {
         Renderer renderer(device, faultScene());
