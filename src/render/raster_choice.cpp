@@ -28,7 +28,7 @@ RasterChoice::RasterChoice(bool timestamps, const std::string& deviceName, Names
         reason_ = std::string(names_.compute) + " (by the device table: a datacenter GPU, graphics on few SMs)";
     } else if (!timestamps) {
         phase_ = Phase::Decided;
-        reason_ = std::string(names_.hw) + " (no timestamps: by the device table)";
+        reason_ = std::string(names_.hw) + " (no timestamps to measure with)";
     }
 }
 
