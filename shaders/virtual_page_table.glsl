@@ -74,10 +74,11 @@ uint ageBucket(VirtualPageEntry entry) {
     return min(table.frame - entry.lastRequested, kVirtualPageMaxKeepFrames) - 1u;
 }
 
-// Appends a resident, requested, dirty page to the update's draw list.
+// Appends a resident, requested, dirty page to the update's draw list, in the unordered half after the
+// list itself (step 6 orders it).
 void appendDraw(uint entry, VirtualPageEntry page) {
     atomicAdd(counters.levelDrawn[bucketOfEntry(entry)], 1u);
-    draws[atomicAdd(drawHeader.count, 1u)] = VirtualPageDraw(entry, page.physicalPage, page.pageX, page.pageY);
+    draws[table.capacity + atomicAdd(drawHeader.appended, 1u)] = VirtualPageDraw(entry, page.physicalPage, page.pageX, page.pageY);
 }
 
 #endif

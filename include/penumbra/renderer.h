@@ -68,8 +68,12 @@ struct VirtualPageCounts {
     uint32_t drawn = 0;       // pages drawn this frame (new, or invalidated by a light or a caster)
     uint32_t evicted = 0;     // resident pages freed (left the window, idle too long, or taken for another)
     uint32_t overflowed = 0;  // requested pages that found no physical page: a coarser level served them
+    // Requested pages to draw past what one frame draws (its culling lists' budget, docs/rendering.md
+    // "Pages per frame"): the finest wait for the next frames, a coarser level serving them meanwhile.
+    uint32_t deferred = 0;
     uint32_t resident = 0;    // resident pages after the frame
     uint32_t poolPages = 0;   // physical pages of all the maps' pools
+    uint32_t pagesPerFrame = 0;  // the most pages all the maps draw in one frame (shadows.virtual.pagesPerFrame, lists)
     // Pool pressure (spot and point faces): steps coarser than shadows.virtual.faceLodBias the pages were
     // marked and read at, after earlier frames overflowed the pool (0..2).
     uint32_t lodBiasSteps = 0;

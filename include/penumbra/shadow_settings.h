@@ -89,6 +89,7 @@ struct VirtualShadowSettings {
     float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint
     bool cache = true;            // pages stay drawn across frames until invalidated
     uint32_t keepFrames = 8;      // frames an unrequested page stays resident
+    uint32_t pagesPerFrame = 0;   // most dirty pages drawn in a frame per map (0: as many as its lists hold)
     uint32_t faceResolution = 8192;  // spot and point light faces: virtual texels along mip 0's side
     // The faces' lodBias: a perspective face's filter reaches further in the world at a coarser mip, so
     // they read finer texels than the clipmaps (measured: docs/fidelity.md, "Spot and point lights'

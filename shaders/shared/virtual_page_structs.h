@@ -101,7 +101,7 @@ struct VirtualPageTableData {
     uint entryCount;         // levelCount * pagesPerSide^2
     uint levelsPerBucket;    // 1 for a clipmap
     uint fixedWindows;       // 1: no windows, slot = page (levels[] unused)
-    uint reserved0;
+    uint drawBudget;         // pages one update may give the draw list (the drawing pass's lists), 1..capacity
     uint reserved1;
     VirtualPageLevelWindow levels[kVirtualPageMaxLevels];
 };
@@ -131,9 +131,9 @@ struct VirtualPageStats {
     uint allocated;   // requested, not resident, given a physical page
     uint evicted;     // resident pages freed (left the window, idle past keepFrames) or given to another
     uint overflowed;  // requested pages that found no physical page (a coarser level serves them)
-    uint toDraw;      // requested pages that are dirty: the draw list's length
+    uint toDraw;      // requested dirty pages on the draw list (its length): at most the draw budget
     uint resident;    // resident pages after the update
-    uint reserved;
+    uint deferred;    // requested dirty pages past the draw budget: they stay dirty (a coarser level serves)
 };
 PENUMBRA_CHECK_SIZE(VirtualPageStats, 32)
 
@@ -148,6 +148,9 @@ PENUMBRA_CHECK_SIZE(VirtualPageLevelStats, 3 * 64)
 // The counters of one update, zeroed before it. Per level bucket (coarsest first; a clipmap's buckets are
 // its levels) and per eviction age
 // (oldest first): how many, a cursor, and where their run starts in the allocation / eviction order.
+// levelCursor and levelFirst serve the allocation (steps 2 and 4), then the draw list's order (steps 5
+// and 6: the dirty pages, coarsest bucket first); levelDrawn counts a bucket's dirty pages as they are
+// appended and, from step 5 on, those of them the draw list holds.
 struct VirtualPageCounters {
     VirtualPageStats stats;
     uint missing;    // requested pages not resident (every level)
@@ -190,13 +193,16 @@ struct VirtualPageDraw {
 };
 PENUMBRA_CHECK_SIZE(VirtualPageDraw, 16)
 
-// The draw list's header; capacity VirtualPageDraws follow it. pageDispatch: one workgroup per page
-// (the page-drawing pass's vkCmdDispatchIndirect); listDispatch: kVirtualPageGroupSize pages a group.
+// The draw list's header; 2 * capacity VirtualPageDraws follow it: the list (count pages, coarsest
+// bucket first), then the dirty pages as the update appended them (appended of them, in any order),
+// which step 6 sorts into the list up to the draw budget. pageDispatch: one workgroup per page of the
+// list (the page-drawing pass's vkCmdDispatchIndirect); listDispatch: kVirtualPageGroupSize pages a
+// group, over the appended pages (the list is no longer).
 struct VirtualPageDrawHeader {
     uvec4 pageDispatch;  // x = count, y = z = 1
-    uvec4 listDispatch;  // x = ceil(count / kVirtualPageGroupSize), y = z = 1
-    uint count;
-    uint reserved0;
+    uvec4 listDispatch;  // x = ceil(appended / kVirtualPageGroupSize), y = z = 1
+    uint count;          // pages on the list: min(appended, drawBudget)
+    uint appended;       // requested dirty pages this update
     uint reserved1;
     uint reserved2;
 };

@@ -105,8 +105,8 @@ private:
 
 // Virtual shadow map pages per frame: the directional lights' or the spot and point lights' faces'.
 struct PageSeries {
-    Series requested, cached, allocated, drawn, evicted, overflowed, resident;
-    uint32_t maps = 0, poolPages = 0, lodBiasSteps = 0;  // of the last timed frame
+    Series requested, cached, allocated, drawn, evicted, overflowed, deferred, resident;
+    uint32_t maps = 0, poolPages = 0, pagesPerFrame = 0, lodBiasSteps = 0;  // of the last timed frame
     uint32_t settled = 0;  // frames whose page update was skipped (VirtualPageCounts::settled)
     void add(const VirtualPageCounts& pages) {
         settled += pages.settled ? 1u : 0u;
@@ -116,14 +116,17 @@ struct PageSeries {
         drawn.values.push_back(pages.drawn);
         evicted.values.push_back(pages.evicted);
         overflowed.values.push_back(pages.overflowed);
+        deferred.values.push_back(pages.deferred);
         resident.values.push_back(pages.resident);
         maps = pages.maps;
         poolPages = pages.poolPages;
+        pagesPerFrame = pages.pagesPerFrame;
         lodBiasSteps = pages.lodBiasSteps;
     }
     nlohmann::json toJson(const char* mapsKey) const {
         return {{mapsKey, maps},
                 {"poolPages", poolPages},
+                {"pagesPerFrame", pagesPerFrame},
                 {"lodBiasSteps", lodBiasSteps},
                 {"settledFrames", settled},
                 {"requested", requested.median()},
@@ -133,14 +136,16 @@ struct PageSeries {
                 {"drawnMax", drawn.percentile(1.0)},
                 {"evicted", evicted.median()},
                 {"overflowed", overflowed.percentile(1.0)},
+                {"deferred", deferred.percentile(1.0)},
                 {"resident", resident.median()}};
     }
     void print(const char* what, const char* maps_) const {
         if (maps == 0) return;
-        std::printf("%s per frame (median, %u %s, pool %u pages): %.0f requested, %.0f cached, %.0f allocated, "
+        std::printf("%s per frame (median, %u %s, pool %u pages, at most %u drawn a frame): %.0f requested, %.0f cached, %.0f allocated, "
                     "%.0f drawn (most %.0f), %.0f evicted, %.0f resident; overflowed at most %.0f",
-                    what, maps, maps_, poolPages, requested.median(), cached.median(), allocated.median(), drawn.median(),
+                    what, maps, maps_, poolPages, pagesPerFrame, requested.median(), cached.median(), allocated.median(), drawn.median(),
                     drawn.percentile(1.0), evicted.median(), resident.median(), overflowed.percentile(1.0));
+        if (deferred.percentile(1.0) > 0) std::printf("; deferred at most %.0f", deferred.percentile(1.0));
         if (lodBiasSteps > 0) std::printf("; pool pressure: lodBias %u step(s) coarser at the end", lodBiasSteps);
         if (settled > 0) std::printf("; %u of %zu frames settled (page update skipped)", settled, requested.values.size());
         std::printf("\n");

@@ -97,6 +97,7 @@ void addPageStats(VirtualPageCounts& pages, const gpu_data::VirtualPageStats& co
     pages.drawn += counts.toDraw;
     pages.evicted += counts.evicted;
     pages.overflowed += counts.overflowed;
+    pages.deferred += counts.deferred;
     pages.resident += counts.resident;
 }
 

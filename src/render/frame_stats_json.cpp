@@ -33,7 +33,9 @@ std::string toJson(const FrameStats& frame) {
     const VirtualPageCounts& pages = frame.virtualPages;
     stats["virtualPages"] = {{"maps", pages.maps},           {"requested", pages.requested}, {"cached", pages.cached},
                              {"allocated", pages.allocated}, {"drawn", pages.drawn},         {"evicted", pages.evicted},
-                             {"overflowed", pages.overflowed}, {"resident", pages.resident}, {"poolPages", pages.poolPages},
+                             {"overflowed", pages.overflowed}, {"deferred", pages.deferred},
+                             {"resident", pages.resident},     {"poolPages", pages.poolPages},
+                             {"pagesPerFrame", pages.pagesPerFrame},
                              {"settled", pages.settled}};
     nlohmann::json maps = nlohmann::json::array();
     for (uint32_t map = 0; map < std::min<uint32_t>(pages.maps, uint32_t(frame.virtualMaps.size())); ++map) {
@@ -52,7 +54,9 @@ std::string toJson(const FrameStats& frame) {
                           {"drawn", frame.virtualFaceMips.drawn[mip]}});
     stats["virtualFacePages"] = {{"faces", faces.maps},         {"requested", faces.requested}, {"cached", faces.cached},
                                  {"allocated", faces.allocated}, {"drawn", faces.drawn},         {"evicted", faces.evicted},
-                                 {"overflowed", faces.overflowed}, {"resident", faces.resident}, {"poolPages", faces.poolPages},
+                                 {"overflowed", faces.overflowed}, {"deferred", faces.deferred},
+                                 {"resident", faces.resident},     {"poolPages", faces.poolPages},
+                                 {"pagesPerFrame", faces.pagesPerFrame},
                                  {"lodBiasSteps", faces.lodBiasSteps}, {"settled", faces.settled}, {"perMip", perMip}};
     return stats.dump();
 }

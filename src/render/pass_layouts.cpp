@@ -222,6 +222,7 @@ std::vector<BindingDesc> virtualPageTableBindings(const std::string& shader) {
     if (shader == "virtual_page_candidates.comp") return {table, requests, entries, owners, counters, candidates};
     if (shader == "virtual_page_allocate.comp") return {table, entries, owners, pool, counters, candidates, draws, missing};
     if (shader == "virtual_page_finish.comp") return {table, pool, counters, draws};
+    if (shader == "virtual_page_order.comp") return {table, counters, draws};
     if (shader == "virtual_page_drawn.comp") return {entries, draws};
     throw Error("internal: no virtual page table bindings for '" + shader + "'");
 }

@@ -178,11 +178,16 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     return render(request, settings, resolveCameraView(state_->scene, request.width, request.height));
 }
 
+// A one-shot frame's redraws while virtual pages wait for later frames: a pool of 65536 pages (the most)
+// drawn kMinVirtualPagesPerRecord a frame.
+constexpr int kMaxDeferredRedraws = 2048;
+
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
     State& s = *state_;
     RenderResult result;
-    // A frame whose compute-raster queues overflowed is drawn again once they have grown.
-    for (int attempt = 0; attempt < 4; ++attempt) {
+    // A frame whose compute-raster queues overflowed is drawn again once they have grown; one that left
+    // virtual pages for later frames (more dirty pages than a frame draws) until none is left.
+    for (int attempt = 0;; ++attempt) {
         const uint64_t frameIndex =
             s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas, true);
         s.device.waitFrame(frameIndex);
@@ -195,7 +200,9 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
         }
         // A frame that overflowed the faces' pool is drawn again a step coarser (pool pressure).
         const bool coarser = std::exchange(s.facesWentCoarser, false);
-        if (result.stats.rasterDropped == 0 && !coarser) break;
+        const uint32_t deferred = result.stats.virtualPages.deferred + result.stats.virtualFacePages.deferred;
+        if (result.stats.rasterDropped == 0 && !coarser && deferred == 0) break;
+        if (attempt + 1 >= (deferred > 0 ? kMaxDeferredRedraws : 4)) break;
     }
     const FrameTargetSizes& sizes = s.targets.sizes();
     if (request.readback)

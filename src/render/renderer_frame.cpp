@@ -410,9 +410,11 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
                               view, stats.warnings);
     stats.virtualPages.maps = virtualShadows.mapsInUse(uint32_t(plan.directional.lights.size()));
     stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
+    stats.virtualPages.pagesPerFrame = virtualShadows.active() ? virtualShadows.pagesPerFrame() : 0u;
     virtualFaces.beginFrame(settings.shadows, plan.other, settings.render.meshletCulling, view, stats.warnings);
     stats.virtualFacePages.maps = virtualFaces.faceCount();
     stats.virtualFacePages.poolPages = virtualFaces.poolPages();
+    stats.virtualFacePages.pagesPerFrame = virtualFaces.pagesPerFrame();
     stats.virtualFacePages.lodBiasSteps = virtualFaces.poolPressureSteps();
     virtualSettling.beginFrame(frameIndex, {settings, view, sceneVersion + callerDepthFrames, lightVersion,
                                             virtualFaces.poolPressureSteps()});

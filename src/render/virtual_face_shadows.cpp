@@ -101,6 +101,7 @@ void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherS
                                " holds; using " + std::to_string(config.poolSide * config.poolSide) + " pages");
         configure(config);
         if (!settings.virtualMaps.cache) invalidateAll_ = true;
+        table_->setDrawBudget(virtualDrawBudget(settings.virtualMaps.pagesPerFrame, draw_->pagesPerRecord()));
         lightCount_ = uint32_t(std::min<size_t>(plan.faceLights.size(), kMaxFaces));
         meshletCulling_ = meshletCulling;
         footprintScale_ = std::exp2(settings.virtualMaps.faceLodBias + float(pressureSteps_));

@@ -72,6 +72,7 @@ public:
 
     uint32_t faceCount() const { return active_ ? config_.faceCount : 0u; }
     uint32_t poolPages() const { return active_ ? config_.poolSide * config_.poolSide : 0u; }
+    uint32_t pagesPerFrame() const { return active_ && table_ ? table_->drawBudget() : 0u; }  // the table's draw budget
     gpu::BufferSlice stats() const { return table_->stats(); }            // VirtualPageStats of the last record
     gpu::BufferSlice levelStats() const { return table_->levelStats(); }  // per mip (the table's buckets)
     uint32_t mipCount() const { return virtualFaceMipCount(config_.faces); }

@@ -53,6 +53,30 @@ glm::mat4 virtualPageClipFromWorld(const VirtualPageDrawSpace& space, uint32_t l
     return clipFromLight * space.lightRotationFromWorld;
 }
 
+uint32_t virtualPagesPerRecord(uint32_t poolPages, uint32_t instanceCount, uint64_t listBytes) {
+    // The culling pass keeps two lists more than its tiles (the main view's, unused here).
+    const uint64_t lists = listBytes / (uint64_t(std::max(instanceCount, 1u)) * 4);
+    const uint64_t pages = lists > gpu_data::kCullListCount - gpu_data::kMaxCullTiles
+                               ? lists - (gpu_data::kCullListCount - gpu_data::kMaxCullTiles)
+                               : 0;
+    return uint32_t(std::clamp<uint64_t>(pages, std::min(kMinVirtualPagesPerRecord, poolPages), poolPages));
+}
+
+namespace {
+
+// virtualPagesPerRecord within the lists the device's storage buffers hold (fewer than the culling pass
+// needs: it refuses the scene in one line).
+uint32_t pagesPerRecordOn(const gpu::Device& device, uint32_t instanceCount, uint32_t poolPages) {
+    const uint64_t listBytes = uint64_t(std::max(instanceCount, 1u)) * 4;
+    const uint64_t buffers = device.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u;
+    const uint64_t deviceLists = device.maxStorageBufferRange() / listBytes * buffers;
+    const uint64_t viewLists = gpu_data::kCullListCount - gpu_data::kMaxCullTiles;
+    const uint32_t pages = virtualPagesPerRecord(poolPages, instanceCount, kVirtualPageListBytes);
+    return deviceLists > viewLists ? uint32_t(std::min<uint64_t>(pages, deviceLists - viewLists)) : pages;
+}
+
+}  // namespace
+
 gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, uint32_t pageSize) {
     return {int32_t(physicalPage % poolPagesPerSide * pageSize), int32_t(physicalPage / poolPagesPerSide * pageSize), pageSize,
             pageSize};
@@ -72,8 +96,9 @@ VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gp
                                          uint32_t pageSize, uint32_t pagesPerLevelSide, uint32_t poolPagesPerSide, bool faces,
                                          const VirtualPageStorage* shared)
     : device_(device), scene_(gpuScene), raster_(raster), poolPagesPerSide_(poolPagesPerSide), pageSize_(pageSize),
-      pagesPerLevelSide_(pagesPerLevelSide), faces_(faces),
-      culling_(device, gpuScene, std::max(poolPagesPerSide * poolPagesPerSide, 1u)) {
+      pagesPerLevelSide_(pagesPerLevelSide),
+      pagesPerRecord_(pagesPerRecordOn(device, gpuScene.instanceCount(), std::max(poolPagesPerSide * poolPagesPerSide, 1u))),
+      faces_(faces), culling_(device, gpuScene, pagesPerRecord_) {
     if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
         throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
                     std::to_string(pageSize_) + " texels does not fit an image");
@@ -125,7 +150,7 @@ void VirtualPageDrawPass::create() {
     using gpu::MemoryKind;
     cullFrame_ = device_.createBuffer(sizeof(frame), gpu::kBufferUniform, MemoryKind::DeviceLocal, &frame,
                                       "virtual page culling frame");
-    const uint64_t pages = capacity();
+    const uint64_t pages = pagesPerRecord_;
     tiles_ = device_.createBuffer(sizeof(gpu_data::CullTileListHeader) + pages * sizeof(gpu_data::CullTile),
                                   gpu::kBufferStorage | gpu::kBufferIndirect, MemoryKind::DeviceLocal, nullptr,
                                   "virtual page cull tiles");
@@ -179,12 +204,12 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     constants.pagesPerSide = pagesPerLevelSide_;
     constants.pageSize = pageSize_;
     constants.poolPagesPerSide = poolPagesPerSide_;
-    constants.capacity = capacity();
+    constants.capacity = pagesPerRecord_;
     constants.instanceGroups = groupsOf(scene_.instanceCount(), kCullWorkgroupSize);
     constants.meshGroups = groupsOf(scene_.meshSlotCount(), kCullWorkgroupSize);
     constants.expandGroups = groupsOf(scene_.instanceCount(), kRasterExpandGroup);
     commands.pushConstants(&constants, sizeof(constants));
-    commands.dispatch(groupsOf(capacity(), kVirtualPageGroupSize), 1);
+    commands.dispatch(groupsOf(pagesPerRecord_, kVirtualPageGroupSize), 1);
     // 2. Culling per page, 3. clear and raster per page (both sized by the lists' headers).
     culling_.record(commands, {cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, "virtualPages.culling");
     const RasterTileLists lists{{cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, {rasterList_, 0, listBytes}};
@@ -202,7 +227,7 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
                                                {kPageDrawBindingPoolDepth, poolDepth_, {}, {}},
                                                {kPageDrawBindingPoolTexture, {}, poolTexture_, {}}};
     commands.pushDescriptors(copyWrites);
-    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, capacity(), poolOriginY_};
+    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, pagesPerRecord_, poolOriginY_};
     commands.pushConstants(&copy, sizeof(copy));
     commands.dispatchIndirect(inputs.drawList, offsetof(VirtualPageDrawHeader, pageDispatch));
 }

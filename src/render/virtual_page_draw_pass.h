@@ -3,7 +3,7 @@
 // maps: virtual_face_tiles.comp gives each page its perspective projection) with the compute rasterizer the
 // atlases use (render/compute_raster_pass.h), from the page table's draw list (render/
 // virtual_page_table_pass.h: VirtualPageDrawHeader + VirtualPageDraw[]) that exists only on the GPU: no
-// readback, every loop over the pages an indirect dispatch or a dispatch over the pool's capacity.
+// readback, every loop over the pages an indirect dispatch or a dispatch over the pages one record draws.
 //
 // Per record: virtual_page_tiles.comp turns the list into the rasterizer's tile lists (one tile per page:
 // the page's orthographic projection, its square, its physical page's viewport; shaders/shared/
@@ -18,6 +18,7 @@
 // The design follows the published virtual shadow maps: Timberdoodle's GPU-driven page drawing (GPU Zen 3,
 // "Virtual Shadow Maps") and Unreal Engine's ("Virtual Shadow Maps" documentation: one depth range for
 // the whole clipmap, cached pages redrawn only when invalidated).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -56,6 +57,20 @@ glm::mat4 virtualPageClipFromWorld(const VirtualPageDrawSpace& space, uint32_t l
 // The pool texel rectangle of physical page `physicalPage`.
 gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, uint32_t pageSize);
 
+// How many pages one record of a VirtualPageDrawPass draws: every page of a pool of poolPages, unless the
+// culling's visible lists (cull_structs.h: each has room for every instance, so a list of a million
+// instances takes 4 MB) would then take more than listBytes; then as many as fit, at least
+// kMinVirtualPagesPerRecord (or the pool). The page table's draw budget (VirtualPageTablePass::
+// setDrawBudget) is this: dirty pages past it wait for the next frames.
+constexpr uint64_t kVirtualPageListBytes = 256ull << 20;  // the lists' budget: 256 MiB
+constexpr uint32_t kMinVirtualPagesPerRecord = 32;
+uint32_t virtualPagesPerRecord(uint32_t poolPages, uint32_t instanceCount, uint64_t listBytes);
+// The page table's draw budget for shadows.virtual.pagesPerFrame (0: no limit of its own) and a drawing
+// pass that draws pagesPerRecord pages a record.
+inline uint32_t virtualDrawBudget(uint32_t pagesPerFrame, uint32_t pagesPerRecord) {
+    return pagesPerFrame == 0 ? pagesPerRecord : std::min(pagesPerFrame, pagesPerRecord);
+}
+
 struct VirtualPageDrawInputs {
     gpu::BufferHandle drawList;  // VirtualPageDrawHeader + VirtualPageDraw[] (the table pass's drawList())
     const VirtualPageDrawSpace* space = nullptr;  // a clipmap's pages (else faces below)
@@ -92,6 +107,9 @@ public:
     gpu::BufferHandle poolDepth() const { return poolDepth_; }      // float bits per texel
     uint32_t poolSide() const { return poolPagesPerSide_ * pageSize_; }  // texels along the pool's side
     uint32_t capacity() const { return poolPagesPerSide_ * poolPagesPerSide_; }
+    // The most pages one record draws (virtualPagesPerRecord for the scene and the device): the rest of
+    // a longer draw list is not drawn, so the page table's draw budget must not be larger.
+    uint32_t pagesPerRecord() const { return pagesPerRecord_; }
     // The last record's GPU-written lists (tests, debugging).
     gpu::BufferHandle tileList() const { return tiles_; }
     gpu::BufferHandle rasterList() const { return rasterList_; }
@@ -108,6 +126,7 @@ private:
     std::vector<gpu::DescriptorWrite> sceneWrites_;  // the scene's bindings, refreshed per record (capacity kept)
     ComputeRasterPass& raster_;
     uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
+    uint32_t pagesPerRecord_ = 0;
     uint32_t poolOriginY_ = 0;  // pool texture texels
     bool ownsTexture_ = true;
     bool faces_ = false;  // spot and point light faces' pages (virtual_face_tiles.comp)

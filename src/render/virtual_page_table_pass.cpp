@@ -19,7 +19,7 @@ constexpr const char* kShaders[] = {"virtual_page_reset.comp",      "virtual_pag
                                     "virtual_page_update.comp",     "virtual_page_requests.comp",
                                     "virtual_page_plan.comp",       "virtual_page_candidates.comp",
                                     "virtual_page_allocate.comp",   "virtual_page_finish.comp",
-                                    "virtual_page_drawn.comp"};
+                                    "virtual_page_order.comp",      "virtual_page_drawn.comp"};
 constexpr uint32_t kMaxGroups = 65535;  // the guaranteed maxComputeWorkGroupCount[0]
 
 uint32_t groupsFor(uint32_t invocations) {
@@ -48,6 +48,7 @@ gpu_data::VirtualPageTableData packTableShape(const VirtualPageTableLayout& layo
     data.entryCount = layout.entryCount();
     data.levelsPerBucket = layout.levelsPerBucket;
     data.fixedWindows = layout.fixedWindows ? 1u : 0u;
+    data.drawBudget = capacity;
     return data;
 }
 
@@ -73,13 +74,14 @@ gpu_data::VirtualPageInvalidation virtualPageInvalidation(uint32_t level, const 
 
 VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualClipmapConfig& config, uint32_t capacity,
                                            uint32_t keepFrames, const VirtualPageStorage* shared)
-    : device_(device), config_(config), layout_(clipmapTableLayout(config)), capacity_(capacity), keepFrames_(keepFrames) {
+    : device_(device), config_(config), layout_(clipmapTableLayout(config)), capacity_(capacity), keepFrames_(keepFrames),
+      drawBudget_(capacity) {
     create(shared);
 }
 
 VirtualPageTablePass::VirtualPageTablePass(gpu::Device& device, const VirtualPageTableLayout& layout, uint32_t capacity,
                                            uint32_t keepFrames)
-    : device_(device), layout_(layout), capacity_(capacity), keepFrames_(keepFrames) {
+    : device_(device), layout_(layout), capacity_(capacity), keepFrames_(keepFrames), drawBudget_(capacity) {
     if (!layout.fixedWindows || layout.levelsPerBucket == 0)
         throw Error("internal: a virtual page table of fixed windows needs fixedWindows and levelsPerBucket >= 1");
     create(nullptr);
@@ -150,7 +152,8 @@ void VirtualPageTablePass::createBuffers() {
                        "virtual page counters");
     missing_ = create(uint64_t(entryCount_) * 4, storage, "virtual page missing entries");
     candidates_ = create(uint64_t(capacity_) * 4, storage, "virtual page eviction order");
-    drawList_ = create(sizeof(gpu_data::VirtualPageDrawHeader) + uint64_t(capacity_) * sizeof(gpu_data::VirtualPageDraw),
+    // The list, then as many draws in the order the update appends them (VirtualPageDrawHeader).
+    drawList_ = create(sizeof(gpu_data::VirtualPageDrawHeader) + 2 * uint64_t(capacity_) * sizeof(gpu_data::VirtualPageDraw),
                        storage | gpu::kBufferTransferDst | gpu::kBufferIndirect, "virtual page draw list");
 }
 
@@ -161,8 +164,11 @@ gpu_data::VirtualPageTableData VirtualPageTablePass::packFrame(const glm::vec2& 
                                               : packVirtualPageTable(config_, lsCamera, ++frame_, capacity_, keepFrames_);
     data.invalidateAll = invalidateAll ? 1u : 0u;
     data.invalidationCount = invalidationCount;
+    data.drawBudget = drawBudget_;
     return data;
 }
+
+void VirtualPageTablePass::setDrawBudget(uint32_t pages) { drawBudget_ = std::clamp(pages, 1u, capacity_); }
 
 void VirtualPageTablePass::bindStep(gpu::CommandList& commands, Step step) {
     commands.bindPipeline(pipelines_[step]);
@@ -226,6 +232,10 @@ void VirtualPageTablePass::record(gpu::CommandList& commands, const VirtualPageT
     commands.pass("virtualPageTable/finish", {gpu::use(pool_, Usage::ComputeWrite), gpu::use(counters_, Usage::ComputeWrite),
                                               gpu::use(drawList_, Usage::ComputeWrite)});
     dispatch(commands, Finish, 1);
+    commands.pass("virtualPageTable/order", {gpu::use(counters_, Usage::ComputeWrite), gpu::use(drawList_, Usage::IndirectArguments),
+                                             gpu::use(drawList_, Usage::ComputeWrite)});
+    bindStep(commands, Order);  // over the appended pages: the finish sized the dispatch
+    commands.dispatchIndirect(drawList_, offsetof(gpu_data::VirtualPageDrawHeader, listDispatch));
 }
 
 void VirtualPageTablePass::recordMarkDrawn(gpu::CommandList& commands) {

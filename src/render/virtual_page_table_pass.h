@@ -10,7 +10,9 @@
 // resident pages are cached; requested missing pages take a free physical page, else the least
 // recently requested page not requested this frame, coarse levels before fine ones, else overflow
 // (their receivers sample a coarser level: VirtualPageStats::overflowed is the warning's count). The
-// requested dirty pages (new, or invalidated) make the draw list, with its indirect dispatch sizes;
+// requested dirty pages (new, or invalidated) make the draw list, coarse levels first and at most the
+// draw budget of them (the drawing pass's capacity: the rest stay dirty for the next frames), with its
+// indirect dispatch sizes;
 // once a later pass has drawn them, recordMarkDrawn clears their dirty flags. An update's work follows
 // the pool and the requests, not the levels' slots: the resident pages are visited through their
 // owners, the request bits a word at a time (the missing pages listed for the allocation, an indirect
@@ -89,6 +91,12 @@ public:
     void record(gpu::CommandList& commands, const VirtualPageTableInputs& inputs);
     // After the pass that drew the last update's draw list: those pages are no longer dirty.
     void recordMarkDrawn(gpu::CommandList& commands);
+    // The most pages one update puts on its draw list (clamped to 1..capacity; capacity when never set):
+    // what the drawing pass can draw in one record (VirtualPageDrawPass::pagesPerRecord). The dirty pages
+    // past it, the finest first, stay dirty for the next updates (VirtualPageStats::deferred); until drawn
+    // their receivers sample a coarser level.
+    void setDrawBudget(uint32_t pages);
+    uint32_t drawBudget() const { return drawBudget_; }
     // The next record starts from an empty table (every page freed).
     void reset() { needsReset_ = true; }
 
@@ -96,7 +104,7 @@ public:
     gpu::BufferSlice entriesSlice() const { return {entries_, entriesOffset_, entryBytes()}; }  // this table's range
     uint32_t firstEntry() const { return uint32_t(entriesOffset_ / sizeof(gpu_data::VirtualPageEntry)); }
     uint32_t entryCount() const { return entryCount_; }
-    gpu::BufferHandle drawList() const { return drawList_; }  // VirtualPageDrawHeader + VirtualPageDraw[capacity]
+    gpu::BufferHandle drawList() const { return drawList_; }  // VirtualPageDrawHeader + VirtualPageDraw[2 * capacity]
     gpu::BufferSlice stats() const;                           // VirtualPageStats of the last update
     gpu::BufferSlice levelStats() const;                      // VirtualPageLevelStats of the last update
     uint32_t capacity() const { return capacity_; }
@@ -110,7 +118,7 @@ public:
 
 private:
     void create(const VirtualPageStorage* shared);
-    enum Step : uint32_t { Reset, Invalidate, Update, Requests, Plan, Candidates, Allocate, Finish, Drawn, StepCount };
+    enum Step : uint32_t { Reset, Invalidate, Update, Requests, Plan, Candidates, Allocate, Finish, Order, Drawn, StepCount };
     void useSharedEntries(const VirtualPageStorage& shared);
     void createBuffers();
     uint64_t entryBytes() const { return uint64_t(entryCount_) * sizeof(gpu_data::VirtualPageEntry); }
@@ -122,7 +130,7 @@ private:
     gpu::Device& device_;
     VirtualClipmapConfig config_;   // a clipmap's (layout_.fixedWindows false)
     VirtualPageTableLayout layout_;
-    uint32_t capacity_ = 0, keepFrames_ = 0, entryCount_ = 0;
+    uint32_t capacity_ = 0, keepFrames_ = 0, entryCount_ = 0, drawBudget_ = 0;
     uint32_t frame_ = 0;  // the last update packed
     bool needsReset_ = true;
     bool ownsEntries_ = true;

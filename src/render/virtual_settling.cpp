@@ -13,7 +13,7 @@ bool sameView(const CameraView& a, const CameraView& b) {
 
 bool pagesAtRest(const VirtualPageCounts& pages) {
     return pages.requested == pages.cached && pages.allocated == 0 && pages.drawn == 0 && pages.evicted == 0 &&
-           pages.overflowed == 0;
+           pages.overflowed == 0 && pages.deferred == 0;
 }
 
 void VirtualSettling::beginFrame(uint64_t frameIndex, const VirtualFrameInputs& inputs) {

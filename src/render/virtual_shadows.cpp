@@ -72,6 +72,12 @@ uint32_t VirtualShadows::poolPages() const {
     return uint32_t(maps_.size()) * config_.poolPagesPerSide * config_.poolPagesPerSide;
 }
 
+uint32_t VirtualShadows::pagesPerFrame() const {
+    uint32_t pages = 0;
+    for (const auto& map : maps_) pages += map->table().drawBudget();
+    return pages;
+}
+
 void VirtualShadows::configure(const VirtualShadowMapConfig& config, uint32_t lightCount) {
     if (!maps_.empty() && sameConfig(config, config_) && maps_.size() >= lightCount) return;
     releaseMaps();
@@ -110,6 +116,8 @@ void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCo
                                " pages per light");
         configure(config, lightCount);
         if (!settings.virtualMaps.cache) invalidateAll_ = true;
+        for (const auto& map : maps_)  // the pages past it wait for the next frames
+            map->table().setDrawBudget(virtualDrawBudget(settings.virtualMaps.pagesPerFrame, map->draw().pagesPerRecord()));
     } else if (!maps_.empty()) {
         releaseMaps();  // deferred by the device until the frames using them are done
     }

@@ -100,6 +100,7 @@ public:
     gpu::BufferSlice levelStats(uint32_t map) const { return maps_[map]->levelStats(); }
     uint32_t levelCount() const { return config_.clipmap.levelCount; }
     uint32_t poolPages() const;  // physical pages of all the maps
+    uint32_t pagesPerFrame() const;  // the most pages all the maps draw in a frame (their draw budgets)
 
 private:
     void configure(const VirtualShadowMapConfig& config, uint32_t lightCount);

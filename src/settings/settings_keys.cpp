@@ -203,6 +203,14 @@ std::vector<SettingKey> makeTable() {
                        PENUMBRA_FIELD(shadows.virtualMaps.keepFrames),
                        "Virtual shadow maps: frames a page nobody requests stays resident (and reusable without a "
                        "redraw) before the pool may give it to another page."));
+    t.push_back(ranged("shadows.virtual.pagesPerFrame", SettingType::Integer, 0, 65536, "0..65536",
+                       PENUMBRA_FIELD(shadows.virtualMaps.pagesPerFrame),
+                       "Virtual shadow maps: the most pages one frame draws per directional light (and for all the spot "
+                       "and point light faces together); the rest wait for the next frames, coarse levels first, a "
+                       "coarser level serving their pixels meanwhile (the stat `deferred`). 0: as many as the page "
+                       "raster's culling lists hold, every page unless the scene has so many instances that they "
+                       "would take more than 256 MiB (a list has room for every instance: 65 pages a frame at a "
+                       "million; the stat `pagesPerFrame`). A lower value spreads the cost of a turning light over frames."));
     t.push_back(ranged("shadows.virtual.faceResolution", SettingType::PowerOfTwo, 1024, 16384,
                        "a power of two in 1024..16384", PENUMBRA_FIELD(shadows.virtualMaps.faceResolution),
                        "Virtual shadow maps of spot and point lights (`shadows.spot.mode = virtual`): virtual texels "

@@ -164,7 +164,8 @@ static void drawVirtualPageView(const FrameStats& last) {
     const auto counts = [](const char* what, const char* maps, const VirtualPageCounts& pages) {
         ImGui::Text("%s (%u %s): %u requested, %u cached, %u drawn", what, pages.maps, maps, pages.requested,
                     pages.cached, pages.drawn);
-        ImGui::Text("  %u allocated, %u evicted, %u overflowed", pages.allocated, pages.evicted, pages.overflowed);
+        ImGui::Text("  %u allocated, %u evicted, %u overflowed, %u deferred", pages.allocated, pages.evicted, pages.overflowed,
+                    pages.deferred);
         char label[64];
         std::snprintf(label, sizeof label, "pool %u / %u pages", pages.resident, pages.poolPages);
         ImGui::ProgressBar(pages.poolPages > 0 ? float(pages.resident) / float(pages.poolPages) : 0.0f,

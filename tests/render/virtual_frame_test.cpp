@@ -12,6 +12,7 @@
 #include "compare_test_support.h"
 #include "gpu/device.h"
 #include "gpu/device_access.h"
+#include "penumbra/scene_loading.h"
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -191,6 +192,60 @@ TEST_F(VirtualFrameTest, APoolTooSmallServesCoarserLevelsWithAWarning) {
     EXPECT_GT(farField.ours.stats.virtualPages.overflowed, 0u);
     EXPECT_LE(farField.metrics.misclassifiedPercent, 0.63) << toText(farField.metrics);
     EXPECT_LE(farField.metrics.interiorMisclassifiedPercent, 0.15) << toText(farField.metrics);
+}
+
+// shadows.virtual.pagesPerFrame below what a view needs: each frame draws that many pages, the coarsest
+// levels first (the ones finer receivers fall back to: never a hole), the rest in the next frames; a
+// one-shot render draws again until none is left, so its image is the unlimited one.
+TEST_F(VirtualFrameTest, APagesPerFrameLimitDrawsTheCoarsestLevelsFirstAndTheRestInLaterFrames) {
+    const Scene& scene = canonicalScene("poles");
+    const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
+    Settings limited = virtualSettings("poles");
+    limited.shadows.virtualMaps.pagesPerFrame = 8;
+    Renderer renderer(device(), scene);
+    RenderRequest request;
+    request.width = kCompareWidth;
+    request.height = kCompareHeight;
+    request.output = OutputMode::ShadowAov;
+    renderer.submitFrame(request, limited, view);
+    renderer.waitIdle();
+    const std::vector<FrameStats> frames = renderer.takeCompletedFrames();
+    ASSERT_EQ(frames.size(), 1u);
+    const VirtualPageCounts& pages = frames[0].virtualPages;
+    ASSERT_GT(pages.requested, 8u);
+    EXPECT_EQ(pages.drawn, 8u);
+    EXPECT_EQ(pages.deferred, pages.requested - 8u) << "the first frame's pages are all new";
+    const FrameStats::VirtualMapLevels& levels = frames[0].virtualMaps[0];
+    uint32_t left = 8;
+    for (uint32_t level = levels.levelCount; level-- > 0;) {
+        EXPECT_EQ(levels.drawn[level], std::min(levels.requested[level], left)) << "level " << level;
+        left -= std::min(levels.drawn[level], left);
+    }
+    const RenderResult oneShot = renderAov(renderer, limited, view);
+    EXPECT_EQ(oneShot.stats.virtualPages.deferred, 0u);
+    Renderer unlimitedRenderer(device(), scene);
+    const RenderResult unlimited = renderAov(unlimitedRenderer, virtualSettings("poles"), view);
+    EXPECT_EQ(unlimited.stats.virtualPages.deferred, 0u);
+    EXPECT_EQ(oneShot.image.pixels, unlimited.image.pixels);
+}
+
+// The page raster's culling keeps a list per page drawn with room for every instance: at 100k instances
+// 256 MiB of lists hold 669 pages (of the pool's 2025), so a frame draws at most that many. Before, the
+// lists followed the pool and the scene did not fit lavapipe's storage buffers.
+TEST_F(VirtualFrameTest, AHundredThousandInstancesDrawAtMostTheirListsPagesAFrame) {
+    Renderer renderer(device(), loadScene("gen:boxes:100000"));
+    Settings settings;
+    settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+    settings.shadows.maxDistance = 900.0f;
+    RenderRequest request;
+    request.width = 64;
+    request.height = 36;
+    const RenderResult result = renderer.render(request, settings);
+    const VirtualPageCounts& pages = result.stats.virtualPages;
+    EXPECT_EQ(pages.poolPages, 2025u);
+    EXPECT_EQ(pages.pagesPerFrame, 669u);
+    EXPECT_GT(pages.drawn, 0u);
+    EXPECT_EQ(pages.overflowed, 0u);
 }
 
 TEST_F(VirtualFrameTest, TheScreenSpaceResolveSamplesTheVirtualMaps) {

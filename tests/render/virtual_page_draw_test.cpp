@@ -273,6 +273,21 @@ std::vector<PageDraw> demoPages(const PageRig& rig) {
     return draws;
 }
 
+// A record draws every page of the pool unless the culling's lists (room for every instance in each, two
+// more than the pages) would take more than the budget; never fewer than 32 pages (or the pool).
+TEST(VirtualPagesPerRecord, FollowTheCullingListsBudget) {
+    constexpr uint64_t kBudget = kVirtualPageListBytes;
+    EXPECT_EQ(virtualPagesPerRecord(2025, 1000, kBudget), 2025u);
+    EXPECT_EQ(virtualPagesPerRecord(2025, 100000, kBudget), 671u - 2u);   // 400 KB a list
+    EXPECT_EQ(virtualPagesPerRecord(2025, 1000000, kBudget), 67u - 2u);   // 4 MB a list
+    EXPECT_EQ(virtualPagesPerRecord(2025, 10000000, kBudget), 32u);       // the least
+    EXPECT_EQ(virtualPagesPerRecord(16, 10000000, kBudget), 16u);         // a pool smaller than that
+    EXPECT_EQ(virtualPagesPerRecord(2025, 0, kBudget), 2025u);
+    EXPECT_EQ(virtualDrawBudget(0, 65), 65u);
+    EXPECT_EQ(virtualDrawBudget(8, 65), 8u);
+    EXPECT_EQ(virtualDrawBudget(100, 65), 65u);
+}
+
 TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
     PageRig rig(gpu(), makeDemoScene());
     const std::vector<PageDraw> draws = demoPages(rig);

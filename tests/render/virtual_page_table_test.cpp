@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -153,7 +154,8 @@ protected:
         EXPECT_EQ(s.stats.resident, view.resident.size()) << what;
         EXPECT_EQ(s.draws.size(), view.toDraw.size()) << what << ": a page listed twice";
         EXPECT_EQ(s.drawHeader.pageDispatch.x, s.draws.size()) << what;
-        EXPECT_EQ(s.drawHeader.listDispatch.x, (s.draws.size() + 63) / 64) << what;
+        EXPECT_EQ(s.drawHeader.appended, s.draws.size() + s.stats.deferred) << what;
+        EXPECT_EQ(s.drawHeader.listDispatch.x, (s.drawHeader.appended + 63) / 64) << what;
         for (const gpu_data::VirtualPageDraw& draw : s.draws) {
             const VirtualPageEntry& e = s.entries[draw.entry];
             EXPECT_EQ(e.flags, gpu_data::kVirtualPageResident | gpu_data::kVirtualPageDirty | gpu_data::kVirtualPageRequested)
@@ -431,6 +433,50 @@ TEST_F(VirtualPageTableTest, InvalidationMarksExactlyTheCoveredPagesDirtyAndDraw
     const GpuView all = pools.frame(relit, "light changed");
     EXPECT_EQ(all.dirty, all.resident);
     EXPECT_EQ(all.toDraw.size(), 32u);
+}
+
+// A draw budget smaller than the dirty pages (the drawing pass's lists hold fewer pages than the pool):
+// the list holds the coarsest levels' pages first, the rest stay resident and dirty (deferred: their
+// receivers read a coarser level) and the next updates list them, a budget at a time.
+TEST_F(VirtualPageTableTest, ADrawBudgetListsCoarseLevelsFirstAndTheRestInTheNextUpdates) {
+    const VirtualClipmapConfig config = smallConfig();
+    VirtualPageTablePass pass(gpu(), config, 64, 8);
+    pass.setDrawBudget(5);
+    EXPECT_EQ(pass.drawBudget(), 5u);
+    // Level 3: 2 pages, level 2: 2, level 1: 3, level 0: 4; 11 to draw.
+    Frame frame = requesting({{3, 0, 0}, {3, -1, 0}, {2, 0, 0}, {2, 0, -1}, {1, 0, 0}, {1, 1, 0}, {1, -1, -1},
+                              {0, 0, 0}, {0, 1, 1}, {0, -1, 0}, {0, -2, -2}});
+    const auto levels = [](const GpuView& view) {
+        std::multiset<uint32_t, std::greater<>> drawn;
+        for (const PageId& id : view.toDraw) drawn.insert(std::get<0>(id));
+        return std::vector<uint32_t>(drawn.begin(), drawn.end());
+    };
+    const GpuView first = update(pass, config, frame);
+    expectConsistent(first, pass.capacity(), "first");
+    EXPECT_EQ(first.resident.size(), 11u);
+    EXPECT_EQ(first.dirty.size(), 11u);
+    EXPECT_EQ(levels(first), (std::vector<uint32_t>{3, 3, 2, 2, 1}));
+    EXPECT_EQ(first.state.stats.toDraw, 5u);
+    EXPECT_EQ(first.state.stats.deferred, 6u);
+    pass.markDrawnNow();
+    const GpuView second = update(pass, config, frame);
+    expectConsistent(second, pass.capacity(), "second");
+    EXPECT_EQ(second.dirty.size(), 6u) << "the first list's pages are drawn";
+    EXPECT_EQ(levels(second), (std::vector<uint32_t>{1, 1, 0, 0, 0}));
+    for (const PageId& id : second.toDraw) EXPECT_FALSE(first.toDraw.contains(id));
+    EXPECT_EQ(second.state.stats.deferred, 1u);
+    EXPECT_EQ(second.state.stats.cached, 11u);
+    pass.markDrawnNow();
+    const GpuView third = update(pass, config, frame);
+    expectConsistent(third, pass.capacity(), "third");
+    EXPECT_EQ(levels(third), (std::vector<uint32_t>{0}));
+    EXPECT_EQ(third.state.stats.deferred, 0u);
+    pass.markDrawnNow();
+    const GpuView rest = update(pass, config, frame);
+    EXPECT_TRUE(rest.toDraw.empty());
+    EXPECT_TRUE(rest.dirty.empty());
+    pass.setDrawBudget(0);
+    EXPECT_EQ(pass.drawBudget(), 1u) << "a budget is at least one page";
 }
 
 // A table of fixed windows (spot and point faces' mip chains): 3 mips of 8 faces, level = mip * 8 + face,

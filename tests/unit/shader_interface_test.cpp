@@ -60,7 +60,7 @@ std::vector<PassCase> everyPass() {
     };
     for (const char* shader : {"virtual_page_reset.comp", "virtual_page_invalidate.comp", "virtual_page_update.comp",
                                "virtual_page_plan.comp", "virtual_page_candidates.comp", "virtual_page_allocate.comp",
-                               "virtual_page_finish.comp", "virtual_page_drawn.comp"})
+                               "virtual_page_finish.comp", "virtual_page_order.comp", "virtual_page_drawn.comp"})
         cases.push_back({shader, {compute(shader)}, virtualPageTableBindings(shader)});
     cases.push_back({"virtual page tiles", {compute("virtual_page_tiles.comp")}, virtualPageDrawBindings("virtual_page_tiles.comp"),
                      sizeof(VirtualPageTilesConstants)});
