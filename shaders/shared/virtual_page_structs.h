@@ -124,7 +124,8 @@ struct VirtualPageInvalidation {
 };
 PENUMBRA_CHECK_SIZE(VirtualPageInvalidation, 32)
 
-// What one update did: shadows/virtual_page_pool.h's VirtualPageFrame, field for field.
+// What one update did: shadows/virtual_page_pool.h's VirtualPageFrame, field for field, but for the draw
+// budget, which the CPU reference does not model: its toDraw is toDraw + deferred here.
 struct VirtualPageStats {
     uint requested;   // pages requested
     uint cached;      // requested and already resident

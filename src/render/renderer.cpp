@@ -1,6 +1,7 @@
 #include "penumbra/renderer.h"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "core/error.h"
@@ -178,16 +179,16 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
     return render(request, settings, resolveCameraView(state_->scene, request.width, request.height));
 }
 
-// A one-shot frame's redraws while virtual pages wait for later frames: a pool of 65536 pages (the most)
-// drawn kMinVirtualPagesPerRecord a frame.
-constexpr int kMaxDeferredRedraws = 2048;
-
 RenderResult Renderer::render(const RenderRequest& request, const Settings& settings, const CameraView& view) {
     State& s = *state_;
     RenderResult result;
-    // A frame whose compute-raster queues overflowed is drawn again once they have grown; one that left
-    // virtual pages for later frames (more dirty pages than a frame draws) until none is left.
-    for (int attempt = 0;; ++attempt) {
+    // A frame whose compute-raster queues overflowed is drawn again once they have grown (at most 3 times);
+    // one that left virtual pages for later frames (more dirty pages than a frame draws) again while each
+    // redraw draws some of them. With shadows.virtual.cache off every frame dirties every page again, so
+    // the pages past the limit are never drawn: the result's warning says so.
+    int redraws = 0;
+    uint32_t deferred = 0, lastDeferred = std::numeric_limits<uint32_t>::max();
+    for (;;) {
         const uint64_t frameIndex =
             s.submit(request, settings, view, nullptr, request.readback, request.captureAtlas, true);
         s.device.waitFrame(frameIndex);
@@ -200,10 +201,20 @@ RenderResult Renderer::render(const RenderRequest& request, const Settings& sett
         }
         // A frame that overflowed the faces' pool is drawn again a step coarser (pool pressure).
         const bool coarser = std::exchange(s.facesWentCoarser, false);
-        const uint32_t deferred = result.stats.virtualPages.deferred + result.stats.virtualFacePages.deferred;
-        if (result.stats.rasterDropped == 0 && !coarser && deferred == 0) break;
-        if (attempt + 1 >= (deferred > 0 ? kMaxDeferredRedraws : 4)) break;
+        deferred = result.stats.virtualPages.deferred + result.stats.virtualFacePages.deferred;
+        const bool progress = deferred > 0 && deferred < lastDeferred;
+        lastDeferred = deferred;
+        if ((result.stats.rasterDropped > 0 || coarser) && redraws < 3) {
+            ++redraws;
+            continue;
+        }
+        if (!progress) break;
     }
+    if (deferred > 0)
+        result.stats.warnings.push_back("virtual shadow maps: " + std::to_string(deferred) +
+                                        " requested pages were not drawn (more dirty pages than a frame draws, "
+                                        "shadows.virtual.pagesPerFrame, and every page dirty again each frame: "
+                                        "shadows.virtual.cache off); a coarser level served them");
     const FrameTargetSizes& sizes = s.targets.sizes();
     if (request.readback)
         result.image = outputImageFromRgba(s.device.mappedPointer(s.targets.colorReadback()), sizes.width, sizes.height,

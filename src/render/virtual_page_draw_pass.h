@@ -97,7 +97,7 @@ public:
     VirtualPageDrawPass(const VirtualPageDrawPass&) = delete;
     VirtualPageDrawPass& operator=(const VirtualPageDrawPass&) = delete;
 
-    // Draws the pages of inputs.drawList (its count is read on the GPU, at most capacity()); its steps are
+    // Draws the pages of inputs.drawList (its count is read on the GPU, at most pagesPerRecord()); its steps are
     // the frame graph passes virtualPages.tiles, virtualPages.culling*, virtualPages/clear ... /chunks,
     // virtualPages/copy. Allocates nothing.
     void record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs);

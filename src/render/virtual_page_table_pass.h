@@ -11,7 +11,7 @@
 // recently requested page not requested this frame, coarse levels before fine ones, else overflow
 // (their receivers sample a coarser level: VirtualPageStats::overflowed is the warning's count). The
 // requested dirty pages (new, or invalidated) make the draw list, coarse levels first and at most the
-// draw budget of them (the drawing pass's capacity: the rest stay dirty for the next frames), with its
+// draw budget of them (what the drawing pass draws in a record: the rest stay dirty for the next frames), with its
 // indirect dispatch sizes;
 // once a later pass has drawn them, recordMarkDrawn clears their dirty flags. An update's work follows
 // the pool and the requests, not the levels' slots: the resident pages are visited through their

@@ -209,8 +209,11 @@ std::vector<SettingKey> makeTable() {
                        "and point light faces together); the rest wait for the next frames, coarse levels first, a "
                        "coarser level serving their pixels meanwhile (the stat `deferred`). 0: as many as the page "
                        "raster's culling lists hold, every page unless the scene has so many instances that they "
-                       "would take more than 256 MiB (a list has room for every instance: 65 pages a frame at a "
-                       "million; the stat `pagesPerFrame`). A lower value spreads the cost of a turning light over frames."));
+                       "would take more than 256 MiB or the device's storage buffers (a list has room for every "
+                       "instance: 65 pages a frame at a million; the stat `pagesPerFrame`). A lower value bounds the "
+                       "cost of a frame that finds many pages dirty (a camera cut, a light turned once); where every "
+                       "frame dirties them all (`cache` off, a light turning every frame) the pages past it are not "
+                       "drawn while that lasts."));
     t.push_back(ranged("shadows.virtual.faceResolution", SettingType::PowerOfTwo, 1024, 16384,
                        "a power of two in 1024..16384", PENUMBRA_FIELD(shadows.virtualMaps.faceResolution),
                        "Virtual shadow maps of spot and point lights (`shadows.spot.mode = virtual`): virtual texels "

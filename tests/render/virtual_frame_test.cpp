@@ -229,6 +229,20 @@ TEST_F(VirtualFrameTest, APagesPerFrameLimitDrawsTheCoarsestLevelsFirstAndTheRes
     EXPECT_EQ(oneShot.image.pixels, unlimited.image.pixels);
 }
 
+// With the cache off every frame dirties every page again: past pagesPerFrame the finer pages are never
+// drawn, so a one-shot render stops redrawing once a redraw draws none of them, and says so.
+TEST_F(VirtualFrameTest, AOneShotRenderThatCannotDrawEveryPageStopsAndWarns) {
+    Settings settings = virtualSettings("poles");
+    settings.shadows.virtualMaps.cache = false;
+    settings.shadows.virtualMaps.pagesPerFrame = 8;
+    const SceneComparison limited = compareCanonicalScene("poles", 0, settings);
+    EXPECT_GT(limited.ours.stats.virtualPages.deferred, 0u);
+    EXPECT_EQ(limited.ours.stats.virtualPages.drawn, 8u);
+    EXPECT_TRUE(hasWarning(limited.ours.stats, "pages were not drawn"));
+    // The coarse levels drawn serve every receiver: edges move, no shadow is lost.
+    EXPECT_LE(limited.metrics.interiorMisclassifiedPercent, 0.05) << toText(limited.metrics);
+}
+
 // The page raster's culling keeps a list per page drawn with room for every instance: at 100k instances
 // 256 MiB of lists hold 669 pages (of the pool's 2025), so a frame draws at most that many. Before, the
 // lists followed the pool and the scene did not fit lavapipe's storage buffers.
