@@ -20,8 +20,7 @@ void main() {
     const uint appended = drawHeader.appended;
     const uint count = min(appended, max(table.drawBudget, 1u));
     uint first = 0u;
-    const uint buckets = (table.levelCount + table.levelsPerBucket - 1u) / table.levelsPerBucket;
-    for (uint bucket = buckets; bucket > 0u; --bucket) {
+    for (uint bucket = bucketCount(); bucket > 0u; --bucket) {
         const uint dirty = counters.levelDrawn[bucket - 1u];
         counters.levelFirst[bucket - 1u] = first;
         counters.levelCursor[bucket - 1u] = 0u;

@@ -10,8 +10,7 @@ layout(local_size_x = 1) in;
 
 void main() {
     uint first = 0u;
-    const uint buckets = (table.levelCount + table.levelsPerBucket - 1u) / table.levelsPerBucket;
-    for (uint bucket = buckets; bucket > 0u; --bucket) {
+    for (uint bucket = bucketCount(); bucket > 0u; --bucket) {
         counters.levelFirst[bucket - 1u] = first;
         first += counters.levelMissing[bucket - 1u];
     }

@@ -38,6 +38,8 @@ uint levelOfEntry(uint entry) { return entry / pagesPerLevel(); }
 // The bucket the counters, the stats and the allocation order use (VirtualPageTableData).
 uint bucketOfEntry(uint entry) { return levelOfEntry(entry) / table.levelsPerBucket; }
 
+uint bucketCount() { return (table.levelCount + table.levelsPerBucket - 1u) / table.levelsPerBucket; }
+
 // The first page of a level's window (the pages [0, pagesPerSide) in a table of fixed windows).
 ivec2 windowMinPage(uint level) {
     if (table.fixedWindows != 0u) return ivec2(0);

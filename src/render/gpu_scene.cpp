@@ -140,12 +140,20 @@ gpu::SamplerDesc samplerDesc(const TextureSampler& sampler) {
     return desc;
 }
 
+uint64_t maxVisibleLists(uint64_t instanceCount, uint64_t maxStorageBufferRange, uint32_t maxBuffers) {
+    return maxStorageBufferRange / (std::max<uint64_t>(instanceCount, 1) * sizeof(uint32_t)) * maxBuffers;
+}
+
+uint32_t visibleListBuffersOn(const gpu::Device& device) {
+    return device.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u;
+}
+
 VisibleListSplit splitVisibleLists(uint64_t instanceCount, uint32_t listCount, uint64_t maxStorageBufferRange,
                                    uint32_t maxBuffers) {
     const uint64_t listBytes = std::max<uint64_t>(instanceCount, 1) * sizeof(uint32_t);
     const uint64_t perBuffer = std::min<uint64_t>(std::max(listCount, 1u), maxStorageBufferRange / listBytes);
     const uint64_t buffers = perBuffer > 0 ? (listCount + perBuffer - 1) / perBuffer : 0;
-    if (perBuffer == 0 || buffers > maxBuffers)
+    if (std::max(listCount, 1u) > maxVisibleLists(instanceCount, maxStorageBufferRange, maxBuffers))
         throw Error("the scene does not fit on this GPU: its " + std::to_string(instanceCount) + " instances need " +
                     std::to_string(listCount) + " culling lists of " + mib(listBytes) + ", more than " +
                     std::to_string(maxBuffers) + " of the device's largest storage buffers (" +
@@ -185,8 +193,7 @@ void GpuScene::create(const Scene& scene) {
     }
     totals.instances = scene.instances.size();
     totals.materials = std::max<size_t>(scene.materials.size(), 1);
-    checkGpuSceneLimits(totals, device_.maxStorageBufferRange(),
-                        device_.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u);
+    checkGpuSceneLimits(totals, device_.maxStorageBufferRange(), visibleListBuffersOn(device_));
 
     gpu::Device& device = device_;
     gpu::ComputePipelineDesc scatter;

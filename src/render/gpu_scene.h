@@ -50,6 +50,10 @@ struct VisibleListSplit {
 };
 VisibleListSplit splitVisibleLists(uint64_t instanceCount, uint32_t listCount, uint64_t maxStorageBufferRange,
                                    uint32_t maxBuffers);
+// The most such lists maxBuffers buffers of maxStorageBufferRange hold (what splitVisibleLists accepts).
+uint64_t maxVisibleLists(uint64_t instanceCount, uint64_t maxStorageBufferRange, uint32_t maxBuffers);
+// The storage buffers a device's shaders may index as one binding's array: kVisibleListBuffers, or 1.
+uint32_t visibleListBuffersOn(const gpu::Device& device);
 // The GPU sampler of a glTF texture sampler (filters, mipmap mode, wrap modes).
 gpu::SamplerDesc samplerDesc(const TextureSampler& sampler);
 

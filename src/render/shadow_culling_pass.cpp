@@ -24,7 +24,7 @@ uint32_t groupsFor(uint32_t count) { return (count + gpu_data::kCullWorkgroupSiz
 
 ShadowCullingPass::ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t tileCapacity)
     : device_(device), scene_(gpuScene), tileCapacity_(std::max(tileCapacity, 1u)),
-      listCount_(std::max(tileCapacity_, gpu_data::kMaxCullTiles) + gpu_data::kCullListCount - gpu_data::kMaxCullTiles) {
+      listCount_(std::max(tileCapacity_, gpu_data::kMaxCullTiles) + kViewLists) {
     try {
         create();
     } catch (...) {
@@ -53,8 +53,7 @@ void ShadowCullingPass::create() {
     listCounts_ = device.createBuffer(tiles * meshes * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
                                       "shadow cull list counts");
     const VisibleListSplit split =
-        splitVisibleLists(instances, listCount_, device.maxStorageBufferRange(),
-                          device.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u);
+        splitVisibleLists(instances, listCount_, device.maxStorageBufferRange(), visibleListBuffersOn(device));
     listsPerBuffer_ = split.listsPerBuffer;
     visibleBufferCount_ = split.bufferCount;
     for (uint32_t b = 0; b < visibleBufferCount_; ++b) {

@@ -21,6 +21,8 @@ public:
     // Lists for tileCapacity tiles: kMaxCullTiles for the atlases (and the main view's two lists), or
     // more for the virtual pages (render/virtual_page_draw_pass.h: such a pass records no main view).
     ShadowCullingPass(gpu::Device& device, const GpuScene& gpuScene, uint32_t tileCapacity = gpu_data::kMaxCullTiles);
+    // The lists it keeps besides the tiles' (the main view's two; kept by a pass for more tiles too).
+    static constexpr uint32_t kViewLists = gpu_data::kCullListCount - gpu_data::kMaxCullTiles;
     ~ShadowCullingPass();
     ShadowCullingPass(const ShadowCullingPass&) = delete;
     ShadowCullingPass& operator=(const ShadowCullingPass&) = delete;

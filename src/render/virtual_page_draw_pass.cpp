@@ -54,11 +54,10 @@ glm::mat4 virtualPageClipFromWorld(const VirtualPageDrawSpace& space, uint32_t l
 }
 
 uint32_t virtualPagesPerRecord(uint32_t poolPages, uint32_t instanceCount, uint64_t listBytes) {
-    // The culling pass keeps two lists more than its tiles (the main view's, unused here).
+    // The culling pass keeps the main view's lists besides its tiles' (unused here).
+    constexpr uint64_t kViewLists = ShadowCullingPass::kViewLists;
     const uint64_t lists = listBytes / (uint64_t(std::max(instanceCount, 1u)) * 4);
-    const uint64_t pages = lists > gpu_data::kCullListCount - gpu_data::kMaxCullTiles
-                               ? lists - (gpu_data::kCullListCount - gpu_data::kMaxCullTiles)
-                               : 0;
+    const uint64_t pages = lists > kViewLists ? lists - kViewLists : 0;
     return uint32_t(std::clamp<uint64_t>(pages, std::min(kMinVirtualPagesPerRecord, poolPages), poolPages));
 }
 
@@ -67,12 +66,10 @@ namespace {
 // virtualPagesPerRecord within the lists the device's storage buffers hold (fewer than the culling pass
 // needs: it refuses the scene in one line).
 uint32_t pagesPerRecordOn(const gpu::Device& device, uint32_t instanceCount, uint32_t poolPages) {
-    const uint64_t listBytes = uint64_t(std::max(instanceCount, 1u)) * 4;
-    const uint64_t buffers = device.hasStorageBufferArrayIndexing() ? gpu_data::kVisibleListBuffers : 1u;
-    const uint64_t deviceLists = device.maxStorageBufferRange() / listBytes * buffers;
-    const uint64_t viewLists = gpu_data::kCullListCount - gpu_data::kMaxCullTiles;
+    const uint64_t deviceLists = maxVisibleLists(instanceCount, device.maxStorageBufferRange(), visibleListBuffersOn(device));
+    constexpr uint64_t kViewLists = ShadowCullingPass::kViewLists;
     const uint32_t pages = virtualPagesPerRecord(poolPages, instanceCount, kVirtualPageListBytes);
-    return deviceLists > viewLists ? uint32_t(std::min<uint64_t>(pages, deviceLists - viewLists)) : pages;
+    return deviceLists > kViewLists ? uint32_t(std::min<uint64_t>(pages, deviceLists - kViewLists)) : pages;
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ VirtualShadowMap::VirtualShadowMap(gpu::Device& device, const GpuScene& gpuScene
     : device_(device), scene_(gpuScene), config_(config), mark_(device),
       table_(device, config.clipmap, config.poolPagesPerSide * config.poolPagesPerSide, config.keepFrames, storage),
       draw_(device, gpuScene, raster, config.clipmap, config.poolPagesPerSide, storage) {
-    table_.setDrawBudget(draw_.pagesPerRecord());  // the pages past it wait for the next frames
+    setPagesPerFrame(0);
     slotCount_ = device.framesInFlight() + 1;  // a frame's slot is free again once its slot's next frame begins
     uploads_ = device.createBuffer(slotLayout().size * slotCount_, gpu::kBufferUniform | gpu::kBufferStorage,
                                    gpu::MemoryKind::HostVisible, nullptr, "virtual shadow map uploads");

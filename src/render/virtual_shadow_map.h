@@ -99,6 +99,10 @@ public:
     const VirtualPageDrawSpace& drawSpace() const { return space_; }
     bool lastRecordInvalidatedAll() const { return lastInvalidatedAll_; }
     // The passes (tests, debugging: VirtualPageTablePass::readState after a record).
+    // shadows.virtual.pagesPerFrame (0: as many as the drawing pass's lists hold): the page table's draw
+    // budget, never more than the drawing pass draws in a record; the pages past it wait for later frames.
+    void setPagesPerFrame(uint32_t pages) { table_.setDrawBudget(virtualDrawBudget(pages, draw_.pagesPerRecord())); }
+    uint32_t pagesPerFrame() const { return table_.drawBudget(); }
     VirtualPageTablePass& table() { return table_; }
     VirtualPageDrawPass& draw() { return draw_; }
 

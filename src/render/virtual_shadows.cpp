@@ -74,7 +74,7 @@ uint32_t VirtualShadows::poolPages() const {
 
 uint32_t VirtualShadows::pagesPerFrame() const {
     uint32_t pages = 0;
-    for (const auto& map : maps_) pages += map->table().drawBudget();
+    for (const auto& map : maps_) pages += map->pagesPerFrame();
     return pages;
 }
 
@@ -116,8 +116,7 @@ void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCo
                                " pages per light");
         configure(config, lightCount);
         if (!settings.virtualMaps.cache) invalidateAll_ = true;
-        for (const auto& map : maps_)  // the pages past it wait for the next frames
-            map->table().setDrawBudget(virtualDrawBudget(settings.virtualMaps.pagesPerFrame, map->draw().pagesPerRecord()));
+        for (const auto& map : maps_) map->setPagesPerFrame(settings.virtualMaps.pagesPerFrame);
     } else if (!maps_.empty()) {
         releaseMaps();  // deferred by the device until the frames using them are done
     }
