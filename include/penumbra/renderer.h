@@ -100,6 +100,9 @@ struct FrameStats {
     // How this frame's directional lights were shadowed: "cascades" or "virtual" (shadows.directional.mode,
     // with auto resolved for the device: virtual on a GPU, cascades on a CPU device).
     const char* directionalShadows = "cascades";
+    // How this frame's spot and point lights were shadowed: "atlas" or "virtual" (shadows.spot.mode, auto
+    // resolved as above: virtual on a GPU, the atlas on a CPU device).
+    const char* spotShadows = "atlas";
     // The tight cascade fit reduced this frame's own view depth and waited for it (one-shot frames, and
     // the first real-time frame; later ones plan from the latest finished reduction).
     bool tightFitWaited = false;

@@ -35,8 +35,8 @@ enum class DirectionalShadowMode { Cascades, Virtual, Auto };
 
 // How spot and point lights are shadowed: tiles of the spot atlas (Unity's system), or virtual shadow
 // maps: a face per spot light and six per point light, each a mip chain of pages drawn on demand and
-// cached across frames.
-enum class SpotShadowMode { Atlas, Virtual };
+// cached across frames. Auto: virtual on a GPU, the atlas on a CPU device (resolveSpotShadowMode).
+enum class SpotShadowMode { Atlas, Virtual, Auto };
 
 struct DirectionalShadowSettings {
     DirectionalShadowMode mode = DirectionalShadowMode::Cascades;

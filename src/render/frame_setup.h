@@ -54,10 +54,13 @@ void checkCameraView(const CameraView& view);
 
 // The shadow settings a device whose largest image side is maxImageSize can hold: a larger atlas is made
 // as large as the device allows (the largest power of two), with a warning; shadows.directional.mode =
-// auto becomes the mode this device draws (resolveDirectionalShadowMode).
+// auto and shadows.spot.mode = auto become the modes this device draws (resolveDirectionalShadowMode,
+// resolveSpotShadowMode).
 ShadowSettings fitShadowSettings(const ShadowSettings& requested, uint32_t maxImageSize, bool cpuDevice,
                                  std::vector<std::string>& warnings);
 // shadows.directional.mode = auto as this device draws it: virtual on a GPU, cascades on a CPU device.
 DirectionalShadowMode resolveDirectionalShadowMode(DirectionalShadowMode requested, bool cpuDevice);
+// shadows.spot.mode = auto as this device draws it: virtual on a GPU, the spot atlas on a CPU device.
+SpotShadowMode resolveSpotShadowMode(SpotShadowMode requested, bool cpuDevice);
 
 }  // namespace penumbra

@@ -18,6 +18,7 @@ std::string toJson(const FrameStats& frame) {
     stats["warnings"] = frame.warnings;
     stats["shadowRaster"] = {{"used", frame.shadowRaster}, {"choice", frame.shadowRasterChoice}};
     stats["directionalShadows"] = frame.directionalShadows;
+    stats["spotShadows"] = frame.spotShadows;
     stats["tightFitWaited"] = frame.tightFitWaited;
     stats["mainView"] = {{"used", frame.mainView},
                          {"choice", frame.mainViewChoice},

@@ -380,9 +380,10 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     FrameStats& stats = frame.stats;
     stats.warnings.assign(gpuScene.warnings().begin(), gpuScene.warnings().end());
     // The settings this device can hold (an atlas over its largest image is shrunk, with a warning) and
-    // draws (shadows.directional.mode = auto resolved).
+    // draws (shadows.directional.mode and shadows.spot.mode = auto resolved).
     settings.shadows = fitShadowSettings(settings.shadows, device.maxImageSize(), device.info().isCpu, stats.warnings);
     stats.directionalShadows = directionalShadowModeName(settings.shadows.directional.mode);
+    stats.spotShadows = spotShadowModeName(settings.shadows.spot.mode);
     visibilityWanted = false;
     if (shadowsOnly) stats.mainView = "none";  // the caller draws it
     else visibilityWanted = chooseMainView(settings, frame);

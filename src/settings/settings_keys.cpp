@@ -157,12 +157,13 @@ std::vector<SettingKey> makeTable() {
                      "Cascades leave out casters whose shadow cannot reach a surface that samples them: one inside the "
                      "camera's frustum and the cascade's depth range (tight fit) or culling sphere (sphere fit), within "
                      "the filter's reach. The image is the same; off draws every caster that meets a cascade's box."));
-    t.push_back(choice("shadows.spot.mode", {"atlas", "virtual"}, PENUMBRA_FIELD(shadows.spot.mode),
+    t.push_back(choice("shadows.spot.mode", {"atlas", "virtual", "auto"}, PENUMBRA_FIELD(shadows.spot.mode),
                        "How spot and point lights are shadowed: `atlas` in tiles of the spot atlas (the keys below), or "
                        "`virtual`: a virtual shadow map per spot light and six per point light (one per cube face), "
                        "each a chain of mips whose pages are drawn only where visible surfaces need them, at the mip "
                        "whose texel matches the pixel's footprint, and kept across frames until the light or a caster "
-                       "in them changes (`shadows.virtual.faceResolution`, `faceLodBias`, `pageSize`, `poolPages`)."));
+                       "in them changes (`shadows.virtual.faceResolution`, `faceLodBias`, `pageSize`, `poolPages`), or `auto`: "
+                       "virtual on a GPU, the atlas on a CPU device."));
     t.push_back(atlasSizeKey("shadows.spot.atlasSize", PENUMBRA_FIELD(shadows.spot.atlasSize),
                              "atlas of spot and point light shadows: up to 16 tiles, one per spot light and six per "
                              "point light."));

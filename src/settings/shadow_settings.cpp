@@ -88,7 +88,9 @@ const char* directionalShadowModeName(DirectionalShadowMode mode) {
     return mode == DirectionalShadowMode::Virtual ? "virtual" : mode == DirectionalShadowMode::Auto ? "auto" : "cascades";
 }
 
-const char* spotShadowModeName(SpotShadowMode mode) { return mode == SpotShadowMode::Virtual ? "virtual" : "atlas"; }
+const char* spotShadowModeName(SpotShadowMode mode) {
+    return mode == SpotShadowMode::Virtual ? "virtual" : mode == SpotShadowMode::Auto ? "auto" : "atlas";
+}
 
 // validateShadowSettings: src/settings/settings_keys.cpp, from the table of every key.
 

@@ -114,6 +114,18 @@ TEST_F(VirtualFaceFrameTest, AStillCameraDrawsNoFacePageAfterTheFirstFrame) {
     EXPECT_EQ(first.image.pixels, second.image.pixels) << "cached pages give the same image";
 }
 
+TEST_F(VirtualFaceFrameTest, AutoDrawsTheAtlasOnACpuDeviceAndTheStatsSaySo) {
+    Settings settings = virtualSettings();
+    settings.shadows.spot.mode = SpotShadowMode::Auto;
+    const auto [automatic, unused] = twoStillFrames("point_light", settings);
+    EXPECT_STREQ(automatic.stats.spotShadows, "atlas");
+    EXPECT_EQ(automatic.stats.virtualFacePages.maps, 0u);
+    EXPECT_GT(automatic.stats.atlases.at(1).tiles, 0u);
+    const auto [virtualFrame, unused2] = twoStillFrames("point_light", virtualSettings());
+    EXPECT_STREQ(virtualFrame.stats.spotShadows, "virtual");
+    EXPECT_GT(virtualFrame.stats.virtualFacePages.maps, 0u);
+}
+
 TEST_F(VirtualFaceFrameTest, WithTheCacheOffEveryRequestedFacePageIsDrawnEveryFrame) {
     Settings settings = virtualSettings();
     settings.shadows.virtualMaps.cache = false;

@@ -1,6 +1,6 @@
-// shadows.directional.mode = auto: virtual shadow maps on a GPU, cascades on a CPU device
-// (render/frame_setup.h, resolveDirectionalShadowMode; the renderer resolves it in fitShadowSettings).
-// The default stays cascades (docs/rendering.md, "Virtual shadow maps": why not yet virtual).
+// shadows.directional.mode = auto and shadows.spot.mode = auto: virtual shadow maps on a GPU, cascades and
+// the spot atlas on a CPU device (render/frame_setup.h, resolveDirectionalShadowMode and
+// resolveSpotShadowMode; the renderer resolves both in fitShadowSettings).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -37,6 +37,32 @@ TEST(DirectionalShadowMode, TheFittedSettingsCarryTheResolvedMode) {
     requested.directional.mode = DirectionalShadowMode::Auto;
     EXPECT_EQ(fitShadowSettings(requested, 16384, false, warnings).directional.mode, DirectionalShadowMode::Virtual);
     EXPECT_EQ(fitShadowSettings(requested, 16384, true, warnings).directional.mode, DirectionalShadowMode::Cascades);
+    EXPECT_TRUE(warnings.empty());
+}
+
+TEST(SpotShadowMode, AutoHasItsName) { EXPECT_STREQ(spotShadowModeName(SpotShadowMode::Auto), "auto"); }
+
+TEST(SpotShadowMode, AutoIsVirtualOnAGpu) {
+    EXPECT_EQ(resolveSpotShadowMode(SpotShadowMode::Auto, false), SpotShadowMode::Virtual);
+}
+
+TEST(SpotShadowMode, AutoIsTheAtlasOnACpuDevice) {
+    EXPECT_EQ(resolveSpotShadowMode(SpotShadowMode::Auto, true), SpotShadowMode::Atlas);
+}
+
+TEST(SpotShadowMode, AnExplicitModeIsKeptOnEveryDevice) {
+    for (const bool cpu : {false, true}) {
+        EXPECT_EQ(resolveSpotShadowMode(SpotShadowMode::Atlas, cpu), SpotShadowMode::Atlas);
+        EXPECT_EQ(resolveSpotShadowMode(SpotShadowMode::Virtual, cpu), SpotShadowMode::Virtual);
+    }
+}
+
+TEST(SpotShadowMode, TheFittedSettingsCarryTheResolvedMode) {
+    std::vector<std::string> warnings;
+    ShadowSettings requested;
+    requested.spot.mode = SpotShadowMode::Auto;
+    EXPECT_EQ(fitShadowSettings(requested, 16384, false, warnings).spot.mode, SpotShadowMode::Virtual);
+    EXPECT_EQ(fitShadowSettings(requested, 16384, true, warnings).spot.mode, SpotShadowMode::Atlas);
     EXPECT_TRUE(warnings.empty());
 }
 
