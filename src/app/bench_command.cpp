@@ -291,6 +291,7 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     const Measurements& measured = run.measured;
     nlohmann::json json;
     json["device"] = device.info().name;
+    json["hostWait"] = options.spinWait ? "spin" : "sleep";
     json["driver"] = device.info().driver;
     json["width"] = request.width;
     json["height"] = request.height;
@@ -347,7 +348,8 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
 void printReport(const Device& device, const RenderOptions& options, const BenchOptions& bench,
                  const RenderRequest& request, const Scene& scene, const TimedRun& run) {
     const Measurements& measured = run.measured;
-    std::printf("device: %s (%s)\n", device.info().name.c_str(), device.info().driver.c_str());
+    std::printf("device: %s (%s), host wait: %s\n", device.info().name.c_str(), device.info().driver.c_str(),
+                options.spinWait ? "spin" : "sleep");
     std::printf("scene: %s, %llu triangles, %zu instances, %zu lights; %ux%u, %u frames after %u warm-up, camera %s",
                 options.scenePath.empty() ? "demo" : options.scenePath.c_str(),
                 (unsigned long long)sceneTotals(scene).triangles, scene.instances.size(), scene.lights.size(),

@@ -131,6 +131,8 @@ int runCli(int argc, char** argv) {
     bench->add_option("--move-objects", benchSettings.moveObjects,
                       "move this fraction of the instances every frame, 0..1 (default 0: none)")
         ->check(numberIn(0.0, 1.0));
+    bench->add_flag("--spin-wait", benchOptions.spinWait,
+                    "wait for the GPU by polling its fences instead of sleeping: steadier CPU phases, one core busy");
 
     RenderOptions exportOptions;
     CLI::App* exporter = app.add_subcommand("export", "write a scene (file, demo or gen:) as glTF 2.0 (.gltf or .glb)");

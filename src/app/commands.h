@@ -28,6 +28,7 @@ struct RenderOptions {
     std::string raster;  // --raster: shorthand for --set shadows.raster=...
     std::string mainView;  // --main-view: shorthand for --set render.mainView=...
     bool validation = false;
+    bool spinWait = false;  // --spin-wait (bench): DeviceOptions::spinWait
     uint32_t light = 0;
     std::string outputPath;
     std::string aov;

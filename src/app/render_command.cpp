@@ -28,6 +28,7 @@ Device openDevice(const RenderOptions& options) {
     DeviceOptions device;
     device.device = options.device;
     device.validation = options.validation;
+    device.spinWait = options.spinWait;
     try {
         return Device(device);
     } catch (const Error& e) {

@@ -446,6 +446,8 @@ bool Device::hasBufferInt64Atomics() const { return impl_->bufferInt64Atomics; }
 bool Device::hasStorageBufferArrayIndexing() const { return impl_->storageBufferArrayIndexing; }
 bool Device::hasTimelineSemaphores() const { return impl_->timelineSemaphores; }
 
+uint64_t Device::spinWaitPolls() const { return impl_->spinWaitPolls; }
+
 uint32_t Device::validationMessageCount() const {
     std::lock_guard lock(impl_->messagesMutex);
     return uint32_t(impl_->validationMessages.size());

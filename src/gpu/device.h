@@ -160,6 +160,9 @@ public:
     // else the bytes held in the allocator's blocks.
     uint64_t deviceMemoryBytes() const;
 
+    // Fence and semaphore status polls made by waits so far (DeviceOptions::spinWait; 0 without it).
+    uint64_t spinWaitPolls() const;
+
     // Validation messages (warnings and errors) seen so far; tests fail on any.
     uint32_t validationMessageCount() const;
     std::vector<std::string> validationMessages() const;

@@ -1,6 +1,7 @@
 // The ring of frames in flight: per slot a command pool, a fence, a timestamp range, an upload ring
 // and the garbage destroyed while it was recorded. Also the one-off (load-time) submissions.
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 
 #include "gpu/vk_internal.h"
@@ -57,12 +58,45 @@ void Device::Impl::queueSubmit(const VkSubmitInfo2& submit, VkFence fence, const
     ++submits;
 }
 
+namespace {
+
+// One iteration of a polling loop: a hint to the core that it spins (x86 PAUSE), else nothing.
+inline void spinPause() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+}
+
+// DeviceOptions::spinWait: polls `ready` until it returns something other than VK_NOT_READY (or the
+// timeout passes: VK_TIMEOUT).
+template <typename Poll>
+VkResult spinUntil(Poll ready, uint64_t timeoutNs) {
+    const auto start = std::chrono::steady_clock::now();
+    for (uint32_t round = 0;; ++round) {
+        const VkResult result = ready();
+        if (result != VK_NOT_READY) return result;
+        if ((round & 1023u) == 0 && uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                                 std::chrono::steady_clock::now() - start).count()) >= timeoutNs)
+            return VK_TIMEOUT;
+        spinPause();
+    }
+}
+
+}  // namespace
+
 void Device::Impl::waitForFence(VkFence fence, const SubmissionName& what) {
     throwIfLost();
     ++fenceWaits;
     const uint64_t injected = options.faults.loseDeviceAtWait;
-    const VkResult result =
-        fenceWaits == injected ? VK_ERROR_DEVICE_LOST : vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+    const auto wait = [&] {
+        if (!options.spinWait) return vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+        const auto poll = [&] {
+            ++spinWaitPolls;
+            return vkGetFenceStatus(device, fence);
+        };
+        return spinUntil(poll, UINT64_MAX);
+    };
+    const VkResult result = fenceWaits == injected ? VK_ERROR_DEVICE_LOST : wait();
     if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what.describe(), result);
     if (result != VK_SUCCESS)
         throw Error("Vulkan call failed: vkWaitForFences (" + what.describe() + ") returned " + vkResultName(result));
@@ -78,7 +112,13 @@ void Device::Impl::waitForTimeline(uint64_t value, const SubmissionName& what) {
     wait.semaphoreCount = 1;
     wait.pSemaphores = &externalTimeline;
     wait.pValues = &value;
-    const VkResult result = vkWaitSemaphores(device, &wait, kTimeoutNs);
+    const auto poll = [&] {
+        uint64_t reached = 0;
+        ++spinWaitPolls;
+        const VkResult counter = vkGetSemaphoreCounterValue(device, externalTimeline, &reached);
+        return counter != VK_SUCCESS ? counter : reached >= value ? VK_SUCCESS : VK_NOT_READY;
+    };
+    const VkResult result = options.spinWait ? spinUntil(poll, kTimeoutNs) : vkWaitSemaphores(device, &wait, kTimeoutNs);
     if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what.describe(), result);
     if (result == VK_TIMEOUT)
         throw Error(what.describe() + " did not finish within 60 s: was its command buffer submitted with the "

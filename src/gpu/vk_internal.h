@@ -222,6 +222,7 @@ struct Device::Impl {
     std::string lostAt;           // "submitting frame 3 (passes a, b)"
     uint64_t submissionCalls = 0;  // queue submissions attempted (fault injection counts these)
     uint64_t fenceWaits = 0;       // waits for a submission (fault injection counts these)
+    uint64_t spinWaitPolls = 0;    // status polls of spinning waits (options.spinWait)
     [[noreturn]] void throwLost(const std::string& where, VkResult result);
     void throwIfLost() const;
     // What a submission holds, spelled out only for an error message ("frame 3 (passes
