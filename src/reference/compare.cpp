@@ -119,7 +119,7 @@ ShimmerMetrics compareShimmer(const Image& ours0, const Image& ours1, const Imag
             s.flickering += oursFlips && !referenceFlips ? 1 : 0;
             const bool interior = !nearBoundary(reference0, x, y, threshold) && !nearBoundary(reference1, x, y, threshold);
             s.interiorPixels += interior ? 1 : 0;
-            s.interiorFlickering += interior && oursFlips ? 1 : 0;
+            s.interiorFlickering += interior && oursFlips && !referenceFlips ? 1 : 0;  // as flickering: ours only
         }
     }
     s.shimmerPercent = percent(s.flickering, s.pixels);

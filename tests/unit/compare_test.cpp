@@ -159,6 +159,20 @@ TEST(CompareShimmer, InteriorShimmerCountsFlipsAwayFromTheTruthsEdges) {
     EXPECT_EQ(s.flickering, 2u);
 }
 
+// A region that changes class in the truth as a whole (a near object shifts by several pixels with the
+// camera) holds pixels away from both frames' edges that flip in the truth: ours flipping with it is not
+// shimmer there either.
+TEST(CompareShimmer, InteriorShimmerLeavesOutPixelsWhoseTruthFlipsToo) {
+    Image shifted(16, 16, 1, 255);
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 14; ++x) shifted.at(x, y) = 0;  // the edge moved 6 columns
+    const ShimmerMetrics s = compareShimmer(halfShadowed(), shifted, halfShadowed(), shifted, kAllValid, kAllValid);
+    EXPECT_GT(s.referenceFlips, 0u);
+    EXPECT_GT(s.interiorPixels, 0u);
+    EXPECT_EQ(s.flickering, 0u);
+    EXPECT_EQ(s.interiorFlickering, 0u);
+}
+
 TEST(CompareShimmer, OnlyPixelsValidInBothFramesCount) {
     Image ours1 = halfShadowed();
     ours1.at(12, 3) = 0;
