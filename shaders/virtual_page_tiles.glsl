@@ -1,8 +1,8 @@
 // The draw list of a virtual shadow map (virtual_page_structs.h) as the compute rasterizer's tile lists
 // (cull_structs.h), all on the GPU, shared by virtual_page_tiles.comp (a directional light's clipmap
 // pages) and virtual_face_tiles.comp (spot and point light faces' pages): one thread per dirty page writes
-// its CullTile (the includer's pageTile: the page's projection and its culling test; its physical page's
-// viewport in the pool) and raster entry; thread 0 writes both headers with the dispatch sizes of the
+// its CullTile (the includer's pageTile: the page's projection and its culling test; its slot's viewport
+// in the record's depth target) and raster entry; thread 0 writes both headers with the dispatch sizes of the
 // culling and raster passes. The rules are virtual_page_draw_structs.h's; render/virtual_page_draw_pass.cpp
 // and shadows/virtual_faces.cpp have the projections on the CPU (the tests').
 #ifndef PENUMBRA_VIRTUAL_PAGE_TILES_GLSL
@@ -41,10 +41,10 @@ void writeHeaders(uint count) {
     rasterList.count = count;
 }
 
-// The page's place in the pool: its physical page's square.
-void placeInPool(inout CullTile tile, uint physicalPage) {
+// The place where the record draws its i-th page: slot i of the depth target.
+void placeInTarget(inout CullTile tile, uint slot) {
     uint size = constants.pageSize;
-    uvec2 origin = uvec2(physicalPage % constants.poolPagesPerSide, physicalPage / constants.poolPagesPerSide) * size;
+    uvec2 origin = uvec2(slot % constants.targetPagesPerSide, slot / constants.targetPagesPerSide) * size;
     tile.viewport = vec4(vec2(origin), float(size), float(size));
     tile.scissor = uvec4(origin, origin + size);
 }
@@ -55,7 +55,7 @@ void main() {
     if (i == 0u) writeHeaders(count);
     if (i >= count) return;
     CullTile tile = pageTile(draws[i]);
-    placeInPool(tile, draws[i].physicalPage);
+    placeInTarget(tile, i);
     tiles[i] = tile;
     rasterEntries[i] = i;
 }

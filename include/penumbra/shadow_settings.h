@@ -39,7 +39,7 @@ enum class DirectionalShadowMode { Cascades, Virtual, Auto };
 enum class SpotShadowMode { Atlas, Virtual, Auto };
 
 struct DirectionalShadowSettings {
-    DirectionalShadowMode mode = DirectionalShadowMode::Cascades;
+    DirectionalShadowMode mode = DirectionalShadowMode::Auto;  // virtual on a GPU, cascades on a CPU device
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF2x2;
     uint32_t cascadeCount = 4;
@@ -56,7 +56,7 @@ struct DirectionalShadowSettings {
 };
 
 struct SpotShadowSettings {
-    SpotShadowMode mode = SpotShadowMode::Atlas;
+    SpotShadowMode mode = SpotShadowMode::Auto;  // virtual on a GPU, the atlas on a CPU device
     uint32_t atlasSize = 1024;
     ShadowFilter filter = ShadowFilter::PCF5x5;
     // Constant clip-space depth bias of spot/point receivers, 0..1, subtracted from the
@@ -79,11 +79,14 @@ struct SpotShadowSettings {
 // `levelCount` levels of `resolution` virtual texels a side, level i firstLevelSize * 2^i metres wide, cut
 // into pages of pageSize texels; a pool of poolPages physical pages per light. With shadows.spot.mode =
 // virtual, the spot and point lights' faces: faceResolution virtual texels a side with mips down to one
-// page, and one more pool of poolPages pages for all of them.
+// page, and one more pool of facePoolPages pages for all of them.
 struct VirtualShadowSettings {
     uint32_t pageSize = 128;
     uint32_t resolution = 16384;
-    uint32_t poolPages = 2048;  // rounded down to a square: 45^2 = 2025 pages
+    // Rounded down to a square: 60^2 = 3600 pages of 128^2 texels, one R32F image of 225 MiB (with the
+    // drawing's depth target of 484 pages, 256 MiB in all).
+    uint32_t poolPages = 3600;
+    uint32_t facePoolPages = 2048;  // the faces' pool, rounded down as well: 45^2 = 2025 pages
     uint32_t levelCount = 16;
     float firstLevelSize = 2.0f;  // scene units (metres) along level 0's side
     float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint

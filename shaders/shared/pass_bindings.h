@@ -158,7 +158,7 @@ PENUMBRA_CONST(uint, kPageTableBindingMissing, 9u)        // the requested entri
 PENUMBRA_CONST(uint, kPageDrawBindingDrawList, 0u)     // VirtualPageDrawHeader + VirtualPageDraw[]
 PENUMBRA_CONST(uint, kPageDrawBindingTiles, 1u)        // CullTileListHeader + CullTile[] (written)
 PENUMBRA_CONST(uint, kPageDrawBindingRasterList, 2u)   // RasterTileListHeader + entries (written)
-PENUMBRA_CONST(uint, kPageDrawBindingPoolDepth, 3u)    // the pool's depth buffer, float bits per texel
+PENUMBRA_CONST(uint, kPageDrawBindingTargetDepth, 3u)  // the record's depth target, float bits per texel
 PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's R32F image (storage), sampled later
 PENUMBRA_CONST(uint, kPageDrawBindingFaces, 5u)        // virtual_face_tiles.comp: VirtualFaceData[]
 

@@ -10,9 +10,13 @@
 //   lsDepthNear (depth 0) to lsDepthFar (depth 1), the same two planes for every page of every level and
 //   every frame, so depths compare across pages and a cached page stays valid; casters nearer the light
 //   than lsDepthNear clamp to 0 (pancaking, as the cascades);
-// - its place: physical page p is the pageSize^2 texels at ((p % poolPagesPerSide), (p / poolPagesPerSide))
-//   * pageSize of the pool's depth buffer, and at that plus (0, poolOriginY) of the pool texture, which
-//   several maps may share (render/virtual_page_storage.h: each map's pool a square at its own rows).
+// - its place while drawn: the i-th page of a record is drawn into slot i of the record's depth target
+//   (the compute rasterizer's atomic-min buffer, targetPagesPerSide^2 slots of pageSize^2 texels), the
+//   pageSize^2 texels at ((i % targetPagesPerSide), (i / targetPagesPerSide)) * pageSize;
+// - its place in the pool: physical page p is the pageSize^2 texels at ((p % poolPagesPerSide),
+//   (p / poolPagesPerSide)) * pageSize plus (0, poolOriginY) of the pool texture, which several maps may
+//   share (render/virtual_page_storage.h: each map's pool a square at its own rows); the copy step moves
+//   slot i there. The target holds one record's pages, not the pool's: the pool is one image.
 #ifndef PENUMBRA_VIRTUAL_PAGE_DRAW_STRUCTS_H
 #define PENUMBRA_VIRTUAL_PAGE_DRAW_STRUCTS_H
 #include "gpu_shared.h"
@@ -30,7 +34,7 @@ struct VirtualPageTilesConstants {
     float slopeBias;              // the tiles' slope-scale depth bias
     uint pagesPerSide;            // of a level (resolution / pageSize)
     uint pageSize;                // texels along a page's side
-    uint poolPagesPerSide;        // the pool is poolPagesPerSide^2 physical pages
+    uint targetPagesPerSide;      // the depth target holds targetPagesPerSide^2 pages (slot i: the i-th listed page)
     uint capacity;                // pages the tile lists hold
     uint instanceGroups;          // the culling dispatch's x: ceil(instances / kCullWorkgroupSize)
     uint meshGroups;              // the draw lists' dispatch's x: ceil(meshes / kCullWorkgroupSize)
@@ -46,10 +50,11 @@ PENUMBRA_CHECK_LAYOUT(VirtualPageTilesConstants, instanceGroups, 96)
 struct VirtualPageCopyConstants {
     uint pageSize;
     uint poolPagesPerSide;
-    uint capacity;     // pages a draw list may hold here
-    uint poolOriginY;  // pool texture texels: the pool's page 0 lies at (0, poolOriginY) (a shared texture)
+    uint capacity;            // pages a draw list may hold here
+    uint poolOriginY;         // pool texture texels: the pool's page 0 lies at (0, poolOriginY) (a shared texture)
+    uint targetPagesPerSide;  // the depth target's slots per side (VirtualPageTilesConstants)
 };
-PENUMBRA_CHECK_SIZE(VirtualPageCopyConstants, 16)
+PENUMBRA_CHECK_SIZE(VirtualPageCopyConstants, 20)
 
 PENUMBRA_GPU_NAMESPACE_END
 #endif

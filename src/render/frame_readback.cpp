@@ -126,11 +126,14 @@ void applyVirtualPages(FrameStats& stats, const FrameReadbackLayout& layout, con
     gpu_data::VirtualPageStats faceCounts{};
     if (readPiece(readback, layout.virtualFacePages, &faceCounts)) addPageStats(stats.virtualFacePages, faceCounts);
     readLevels(stats.virtualFaceMips, readback, layout.virtualFaceMips, layout.virtualFaceMipCount);
-    const uint32_t overflowed = pages.overflowed + stats.virtualFacePages.overflowed;
-    if (overflowed > 0)
-        stats.warnings.push_back("virtual shadow maps: " + std::to_string(overflowed) +
-                                 " requested pages found no free physical page (raise shadows.virtual.poolPages); a "
-                                 "coarser level served them");
+    const auto warn = [&](uint32_t overflowed, const char* key) {
+        if (overflowed > 0)
+            stats.warnings.push_back("virtual shadow maps: " + std::to_string(overflowed) +
+                                     " requested pages found no free physical page (raise shadows.virtual." + key +
+                                     "); a coarser level served them");
+    };
+    warn(pages.overflowed, "poolPages");
+    warn(stats.virtualFacePages.overflowed, "facePoolPages");
 }
 
 }  // namespace

@@ -92,11 +92,10 @@ void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherS
         config.faces = plan.faceConfig;
         config.faceCount = uint32_t(std::min<size_t>(plan.faces.size(), kMaxFaces));
         config.keepFrames = settings.virtualMaps.keepFrames;
-        const uint32_t requested = virtualPoolPagesPerSide(settings.virtualMaps);
-        config.poolSide = fitVirtualPool(requested, config.faces.pageSize, 1, device_.maxImageSize(),
-                                         device_.maxStorageBufferRange());
+        const uint32_t requested = virtualPoolPagesPerSide(settings.virtualMaps.facePoolPages);
+        config.poolSide = fitVirtualPool(requested, config.faces.pageSize, 1, device_.maxImageSize());
         if (config.poolSide < requested)
-            warnings.push_back("shadows.virtual.poolPages = " + std::to_string(settings.virtualMaps.poolPages) +
+            warnings.push_back("shadows.virtual.facePoolPages = " + std::to_string(settings.virtualMaps.facePoolPages) +
                                " for the spot and point lights' faces is more than " + device_.info().name +
                                " holds; using " + std::to_string(config.poolSide * config.poolSide) + " pages");
         configure(config);

@@ -20,7 +20,6 @@ namespace {
 
 using gpu::Usage;
 
-constexpr uint32_t kFarDepthBits = 0x3f800000u;  // floatBitsToUint(1.0): nothing cast
 constexpr const char* kPassName = "virtualPages";
 
 uint32_t groupsOf(uint32_t count, uint32_t group) { return (count + group - 1) / group; }
@@ -58,25 +57,37 @@ uint32_t virtualPagesPerRecord(uint32_t poolPages, uint32_t instanceCount, uint6
     constexpr uint64_t kViewLists = ShadowCullingPass::kViewLists;
     const uint64_t lists = listBytes / (uint64_t(std::max(instanceCount, 1u)) * 4);
     const uint64_t pages = lists > kViewLists ? lists - kViewLists : 0;
-    return uint32_t(std::clamp<uint64_t>(pages, std::min(kMinVirtualPagesPerRecord, poolPages), poolPages));
+    const uint32_t most = std::min(poolPages, kMaxVirtualPagesPerRecord);
+    return uint32_t(std::clamp<uint64_t>(pages, std::min(kMinVirtualPagesPerRecord, most), most));
+}
+
+uint32_t virtualDrawTargetPagesPerSide(uint32_t pagesPerRecord) {
+    uint32_t side = 1;
+    while (side * side < pagesPerRecord) ++side;
+    return side;
 }
 
 namespace {
 
 // virtualPagesPerRecord within the lists the device's storage buffers hold (fewer than the culling pass
-// needs: it refuses the scene in one line).
-uint32_t pagesPerRecordOn(const gpu::Device& device, uint32_t instanceCount, uint32_t poolPages) {
+// needs: it refuses the scene in one line) and a depth target that one storage buffer holds.
+uint32_t pagesPerRecordOn(const gpu::Device& device, uint32_t instanceCount, uint32_t poolPages, uint32_t pageSize) {
     const uint64_t deviceLists = maxVisibleLists(instanceCount, device.maxStorageBufferRange(), visibleListBuffersOn(device));
     constexpr uint64_t kViewLists = ShadowCullingPass::kViewLists;
-    const uint32_t pages = virtualPagesPerRecord(poolPages, instanceCount, kVirtualPageListBytes);
-    return deviceLists > kViewLists ? uint32_t(std::min<uint64_t>(pages, deviceLists - kViewLists)) : pages;
+    uint32_t pages = virtualPagesPerRecord(poolPages, instanceCount, kVirtualPageListBytes);
+    if (deviceLists > kViewLists) pages = uint32_t(std::min<uint64_t>(pages, deviceLists - kViewLists));
+    const auto targetBytes = [&](uint32_t n) {
+        const uint64_t side = uint64_t(virtualDrawTargetPagesPerSide(n)) * pageSize;
+        return side * side * 4;
+    };
+    while (pages > 1 && targetBytes(pages) > device.maxStorageBufferRange()) --pages;
+    return pages;
 }
 
 }  // namespace
 
-gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, uint32_t pageSize) {
-    return {int32_t(physicalPage % poolPagesPerSide * pageSize), int32_t(physicalPage / poolPagesPerSide * pageSize), pageSize,
-            pageSize};
+gpu::Rect virtualPageRect(uint32_t index, uint32_t pagesPerSide, uint32_t pageSize) {
+    return {int32_t(index % pagesPerSide * pageSize), int32_t(index / pagesPerSide * pageSize), pageSize, pageSize};
 }
 
 VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
@@ -94,8 +105,9 @@ VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gp
                                          const VirtualPageStorage* shared)
     : device_(device), scene_(gpuScene), raster_(raster), poolPagesPerSide_(poolPagesPerSide), pageSize_(pageSize),
       pagesPerLevelSide_(pagesPerLevelSide),
-      pagesPerRecord_(pagesPerRecordOn(device, gpuScene.instanceCount(), std::max(poolPagesPerSide * poolPagesPerSide, 1u))),
-      faces_(faces), culling_(device, gpuScene, pagesPerRecord_) {
+      pagesPerRecord_(pagesPerRecordOn(device, gpuScene.instanceCount(), std::max(poolPagesPerSide * poolPagesPerSide, 1u),
+                                       std::max(pageSize, 1u))),
+      targetPagesPerSide_(virtualDrawTargetPagesPerSide(pagesPerRecord_)), faces_(faces), culling_(device, gpuScene, pagesPerRecord_) {
     if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
         throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
                     std::to_string(pageSize_) + " texels does not fit an image");
@@ -125,7 +137,7 @@ void VirtualPageDrawPass::useSharedTexture(const VirtualPageStorage& shared) {
 
 void VirtualPageDrawPass::release() {
     for (gpu::PipelineHandle p : {tilesPipeline_, copyPipeline_}) device_.destroy(p);
-    for (gpu::BufferHandle b : {cullFrame_, tiles_, rasterList_, poolDepth_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {cullFrame_, tiles_, rasterList_, targetDepth_}) device_.destroy(b);
     if (ownsTexture_) device_.destroy(poolTexture_);  // a shared texture is its storage's
 }
 
@@ -154,21 +166,18 @@ void VirtualPageDrawPass::create() {
     rasterList_ = device_.createBuffer(sizeof(gpu_data::RasterTileListHeader) + pages * 4,
                                        gpu::kBufferStorage | gpu::kBufferIndirect, MemoryKind::DeviceLocal, nullptr,
                                        "virtual page raster list");
-    const uint32_t side = poolSide();
-    const std::vector<uint32_t> far(size_t(side) * side, kFarDepthBits);  // once, at creation
-    poolDepth_ = device_.createBuffer(far.size() * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
-                                      far.data(), "virtual page pool depth");
+    // The depth target: every slot is cleared to far before it is drawn (the rasterizer's clear step).
+    const uint64_t targetSide = uint64_t(targetPagesPerSide_) * pageSize_;
+    targetDepth_ = device_.createBuffer(targetSide * targetSide * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
+                                        "virtual page depth target");
     if (!ownsTexture_) return;  // a shared texture starts far already (VirtualPageStorageSet)
     gpu::TextureDesc texture;
-    texture.width = texture.height = side;
+    texture.width = texture.height = poolSide();
     texture.format = gpu::Format::R32Float;
     texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst;
     texture.debugName = "virtual page pool";
     poolTexture_ = device_.createTexture(texture);
-    gpu::CommandList commands = device_.beginCommands();  // the image starts far too
-    commands.pass("virtualPages/init", {gpu::use(poolDepth_, Usage::TransferRead), gpu::discard(poolTexture_, Usage::TransferWrite)});
-    commands.copyBufferToTexture(poolDepth_, poolTexture_);
-    device_.submitAndWait(commands);
+    fillVirtualPoolTextureFar(device_, poolTexture_);  // the image starts far
 }
 
 void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs) {
@@ -200,7 +209,7 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     constants.faceCount = inputs.faceCount;
     constants.pagesPerSide = pagesPerLevelSide_;
     constants.pageSize = pageSize_;
-    constants.poolPagesPerSide = poolPagesPerSide_;
+    constants.targetPagesPerSide = targetPagesPerSide_;
     constants.capacity = pagesPerRecord_;
     constants.instanceGroups = groupsOf(scene_.instanceCount(), kCullWorkgroupSize);
     constants.meshGroups = groupsOf(scene_.meshSlotCount(), kCullWorkgroupSize);
@@ -214,17 +223,18 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     sceneWrites_.push_back({kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
     sceneWrites_.push_back({kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
     sceneWrites_.push_back({kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
-    raster_.recordTiles(commands, sceneWrites_, lists, culling_, poolDepth_, poolSide(), inputs.meshletCulling, kPassName);
-    // 4. The listed pages into the sampled image, one workgroup per page (the list's pageDispatch).
+    raster_.recordTiles(commands, sceneWrites_, lists, culling_, targetDepth_, targetPagesPerSide_ * pageSize_,
+                        inputs.meshletCulling, kPassName);
+    // 4. The slots into their physical pages of the sampled image, one workgroup per page (the list's pageDispatch).
     commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
-                                        gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(poolDepth_, Usage::ComputeRead),
+                                        gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(targetDepth_, Usage::ComputeRead),
                                         gpu::use(poolTexture_, Usage::ComputeWrite)});
     commands.bindPipeline(copyPipeline_);
     const gpu::DescriptorWrite copyWrites[] = {{kPageDrawBindingDrawList, inputs.drawList, {}, {}},
-                                               {kPageDrawBindingPoolDepth, poolDepth_, {}, {}},
+                                               {kPageDrawBindingTargetDepth, targetDepth_, {}, {}},
                                                {kPageDrawBindingPoolTexture, {}, poolTexture_, {}}};
     commands.pushDescriptors(copyWrites);
-    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, pagesPerRecord_, poolOriginY_};
+    const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, pagesPerRecord_, poolOriginY_, targetPagesPerSide_};
     commands.pushConstants(&copy, sizeof(copy));
     commands.dispatchIndirect(inputs.drawList, offsetof(VirtualPageDrawHeader, pageDispatch));
 }

@@ -8,10 +8,11 @@
 // Per record: virtual_page_tiles.comp turns the list into the rasterizer's tile lists (one tile per page:
 // the page's orthographic projection, its square, its physical page's viewport; shaders/shared/
 // virtual_page_draw_structs.h has the rules); the culling pass keeps, per page, the instances whose bounds
-// overlap its square; the rasterizer clears each page's texels of the pool's depth buffer to far and
-// draws them (a triangle reaches only the pages whose lists hold its instance and, within a page, the
-// 16 x 16 chunks it overlaps); virtual_page_copy.comp copies the listed pages into the pool's R32F image.
-// Pages not in the list keep their depth and texels. Not yet used by frames (sampling comes next).
+// overlap its square; the rasterizer clears each page's slot of the record's depth target to far and
+// draws it (a triangle reaches only the pages whose lists hold its instance and, within a page, the
+// 16 x 16 chunks it overlaps); virtual_page_copy.comp copies each slot into its physical page of the
+// pool's R32F image. Pages not in the list keep their texels. The depth target holds one record's pages
+// (at most kMaxVirtualPagesPerRecord), not the pool's, so a pool costs one image: 4 bytes a texel.
 // The image may be a pool texture that several maps share (render/virtual_page_storage.h): this pass
 // then writes only its square, the rows from poolOriginY on, and neither initializes nor destroys it.
 //
@@ -54,17 +55,23 @@ VirtualPageDrawSpace makeVirtualPageDrawSpace(const VirtualClipmapConfig& clipma
 // The projection of global page `page` of `level` (what virtual_page_tiles.comp computes): its square to
 // clip x, y in [-1, 1] (rows with light-space y), the depth range to z in [0, 1], w = 1.
 glm::mat4 virtualPageClipFromWorld(const VirtualPageDrawSpace& space, uint32_t level, const glm::ivec2& page);
-// The pool texel rectangle of physical page `physicalPage`.
-gpu::Rect virtualPagePoolRect(uint32_t physicalPage, uint32_t poolPagesPerSide, uint32_t pageSize);
+// The texel rectangle of page `index` of a square of pagesPerSide^2 pages of pageSize texels, row by row:
+// a physical page of the pool, or a slot of a record's depth target.
+gpu::Rect virtualPageRect(uint32_t index, uint32_t pagesPerSide, uint32_t pageSize);
 
-// How many pages one record of a VirtualPageDrawPass draws: every page of a pool of poolPages, unless the
-// culling's visible lists (cull_structs.h: each has room for every instance, so a list of a million
-// instances takes 4 MB) would then take more than listBytes; then as many as fit, at least
-// kMinVirtualPagesPerRecord (or the pool). The page table's draw budget (VirtualPageTablePass::
+// How many pages one record of a VirtualPageDrawPass draws: every page of a pool of poolPages up to
+// kMaxVirtualPagesPerRecord, unless the culling's visible lists (cull_structs.h: each has room for every
+// instance, so a list of a million instances takes 4 MB) would then take more than listBytes; then as
+// many as fit, at least kMinVirtualPagesPerRecord (or the pool). The page table's draw budget (VirtualPageTablePass::
 // setDrawBudget) is this: dirty pages past it wait for the next frames.
+// A record draws at most kMaxVirtualPagesPerRecord pages: its depth target's slots (22^2 pages of 128^2
+// texels take 31 MiB beside the default pool's 225 MiB image).
 constexpr uint64_t kVirtualPageListBytes = 256ull << 20;  // the lists' budget: 256 MiB
 constexpr uint32_t kMinVirtualPagesPerRecord = 32;
+constexpr uint32_t kMaxVirtualPagesPerRecord = 484;
 uint32_t virtualPagesPerRecord(uint32_t poolPages, uint32_t instanceCount, uint64_t listBytes);
+// The depth target's slots per side for a record of pagesPerRecord pages: the smallest square that holds them.
+uint32_t virtualDrawTargetPagesPerSide(uint32_t pagesPerRecord);
 // The page table's draw budget for shadows.virtual.pagesPerFrame (0: no limit of its own) and a drawing
 // pass that draws pagesPerRecord pages a record.
 inline uint32_t virtualDrawBudget(uint32_t pagesPerFrame, uint32_t pagesPerRecord) {
@@ -104,7 +111,8 @@ public:
 
     gpu::TextureHandle poolTexture() const { return poolTexture_; }  // R32F, left in General after a record
     uint32_t poolOriginY() const { return poolOriginY_; }            // texels: the pool's first row in poolTexture()
-    gpu::BufferHandle poolDepth() const { return poolDepth_; }      // float bits per texel
+    gpu::BufferHandle targetDepth() const { return targetDepth_; }  // float bits per texel: the slots a record draws
+    uint32_t targetPagesPerSide() const { return targetPagesPerSide_; }
     uint32_t poolSide() const { return poolPagesPerSide_ * pageSize_; }  // texels along the pool's side
     uint32_t capacity() const { return poolPagesPerSide_ * poolPagesPerSide_; }
     // The most pages one record draws (virtualPagesPerRecord for the scene and the device): the rest of
@@ -126,13 +134,13 @@ private:
     std::vector<gpu::DescriptorWrite> sceneWrites_;  // the scene's bindings, refreshed per record (capacity kept)
     ComputeRasterPass& raster_;
     uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
-    uint32_t pagesPerRecord_ = 0;
+    uint32_t pagesPerRecord_ = 0, targetPagesPerSide_ = 0;
     uint32_t poolOriginY_ = 0;  // pool texture texels
     bool ownsTexture_ = true;
     bool faces_ = false;  // spot and point light faces' pages (virtual_face_tiles.comp)
     ShadowCullingPass culling_;
     gpu::PipelineHandle tilesPipeline_, copyPipeline_;
-    gpu::BufferHandle cullFrame_, tiles_, rasterList_, poolDepth_;
+    gpu::BufferHandle cullFrame_, tiles_, rasterList_, targetDepth_;
     gpu::TextureHandle poolTexture_;
 };
 

@@ -22,6 +22,23 @@ uint32_t paddedEntries(uint32_t count) {
 
 }  // namespace
 
+void fillVirtualPoolTextureFar(gpu::Device& device, gpu::TextureHandle texture) {
+    const gpu::TextureDesc& desc = device.textureDesc(texture);
+    const std::vector<float> far(size_t(desc.width) * desc.height, kFarDepth);  // once, at creation
+    const gpu::BufferHandle staging = device.createBuffer(far.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
+                                                          far.data(), "virtual page pool upload");
+    try {
+        gpu::CommandList commands = device.beginCommands();
+        commands.pass("virtualPool/init", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});
+        commands.copyBufferToTexture(staging, texture);
+        device.submitAndWait(commands);
+    } catch (...) {
+        device.destroy(staging);
+        throw;
+    }
+    device.destroy(staging);
+}
+
 VirtualPageStorageSet::VirtualPageStorageSet(gpu::Device& device, const VirtualClipmapConfig& clipmap,
                                              uint32_t poolPagesPerSide, uint32_t mapCount)
     : device_(device), mapCount_(mapCount) {
@@ -40,7 +57,6 @@ VirtualPageStorageSet::VirtualPageStorageSet(gpu::Device& device, const VirtualC
         throw Error("virtual page storage: " + std::to_string(mapCount) + " page tables of " +
                     std::to_string(entriesPerMap_) + " entries exceed the storage buffer range");
     poolSide_ = uint32_t(side);
-    gpu::BufferHandle staging;
     try {
         // Empty maps: no entry resident (as virtual_page_reset.comp leaves a table), every texel far.
         const gpu_data::VirtualPageEntry none{gpu_data::kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u};
@@ -54,17 +70,8 @@ VirtualPageStorageSet::VirtualPageStorageSet(gpu::Device& device, const VirtualC
         texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst | gpu::kTextureTransferSrc;
         texture.debugName = "virtual page pools (shared)";
         poolTexture_ = device.createTexture(texture);
-        const std::vector<float> far(size_t(texture.width) * texture.height, kFarDepth);  // once, at creation
-        staging = device.createBuffer(far.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible, far.data(),
-                                      "virtual page pools upload");
-        gpu::CommandList commands = device.beginCommands();
-        commands.pass("virtualPageStorage/init",
-                      {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(poolTexture_, gpu::Usage::TransferWrite)});
-        commands.copyBufferToTexture(staging, poolTexture_);
-        device.submitAndWait(commands);
-        device.destroy(staging);
+        fillVirtualPoolTextureFar(device, poolTexture_);
     } catch (...) {
-        device.destroy(staging);
         release();  // the destructor does not run
         throw;
     }

@@ -22,6 +22,9 @@
 
 namespace penumbra {
 
+// Every texel of a pool texture (R32F, transfer destination) to far: nothing cast (one submission, waited for).
+void fillVirtualPoolTextureFar(gpu::Device& device, gpu::TextureHandle texture);
+
 // Where one map lives in storage that several maps share.
 struct VirtualPageStorage {
     gpu::TextureHandle poolTexture;  // R32F; this map's pool is the (poolPagesPerSide*pageSize)^2 square at (0, poolOriginY)

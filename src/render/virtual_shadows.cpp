@@ -10,8 +10,8 @@
 
 namespace penumbra {
 
-uint32_t virtualPoolPagesPerSide(const VirtualShadowSettings& settings) {
-    return std::max(1u, uint32_t(std::floor(std::sqrt(double(settings.poolPages)))));
+uint32_t virtualPoolPagesPerSide(uint32_t pages) {
+    return std::max(1u, uint32_t(std::floor(std::sqrt(double(pages)))));
 }
 
 VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling) {
@@ -21,7 +21,7 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bo
     config.clipmap.pageSize = pages.pageSize;
     config.clipmap.levelCount = pages.levelCount;
     config.clipmap.firstLevelSize = pages.firstLevelSize;
-    config.poolPagesPerSide = virtualPoolPagesPerSide(pages);
+    config.poolPagesPerSide = virtualPoolPagesPerSide(pages.poolPages);
     config.keepFrames = pages.keepFrames;
     config.meshletCulling = meshletCulling;
     config.footprintScale = std::exp2(pages.lodBias);
@@ -90,14 +90,9 @@ void VirtualShadows::configure(const VirtualShadowMapConfig& config, uint32_t li
     }
 }
 
-uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize,
-                        uint64_t maxStorageBufferRange) {
+uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize) {
     uint32_t side = poolPagesPerSide;
-    const auto fits = [&](uint32_t pages) {
-        const uint64_t texels = uint64_t(pages) * pageSize;
-        return texels * std::max(mapCount, 1u) <= maxImageSize && texels * texels * 4 <= maxStorageBufferRange;
-    };
-    while (side > 1 && !fits(side)) --side;
+    while (side > 1 && uint64_t(side) * pageSize * std::max(mapCount, 1u) > maxImageSize) --side;
     return side;
 }
 
@@ -107,8 +102,7 @@ void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCo
     if (active_) {
         VirtualShadowMapConfig config = virtualShadowMapConfig(settings, meshletCulling);
         const uint32_t requested = config.poolPagesPerSide;
-        config.poolPagesPerSide = fitVirtualPool(requested, config.clipmap.pageSize, lightCount, device_.maxImageSize(),
-                                                 device_.maxStorageBufferRange());
+        config.poolPagesPerSide = fitVirtualPool(requested, config.clipmap.pageSize, lightCount, device_.maxImageSize());
         if (config.poolPagesPerSide < requested)
             warnings.push_back("shadows.virtual.poolPages = " + std::to_string(settings.virtualMaps.poolPages) + " for " +
                                std::to_string(lightCount) + " directional lights is more than " + device_.info().name +

@@ -33,17 +33,17 @@
 
 namespace penumbra {
 
-// Pages along a pool's side: shadows.virtual.poolPages rounded down to a square (at least one page).
-uint32_t virtualPoolPagesPerSide(const VirtualShadowSettings& settings);
+// Pages along a pool's side: a pool of `pages` (shadows.virtual.poolPages or facePoolPages) rounded down
+// to a square (at least one page).
+uint32_t virtualPoolPagesPerSide(uint32_t pages);
 
 // The VirtualShadowMapConfig of the shadows.virtual settings (the pool rounded down to a square of pages).
 VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling);
 
 // The most pages a side (up to poolPagesPerSide) whose pools fit the device for mapCount maps: their
-// shared texture (mapCount pools stacked) within maxImageSize, one map's rasterizer target (32 bits a
-// texel) within maxStorageBufferRange.
-uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize,
-                        uint64_t maxStorageBufferRange);
+// shared texture (mapCount pools stacked) within maxImageSize. (The rasterizer draws into a depth target
+// of one record's pages: render/virtual_page_draw_pass.h.)
+uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t mapCount, uint32_t maxImageSize);
 
 // One kind of virtual map's lit bindings (the directional maps', or the spot and point faces'): the
 // binding numbers of its uniform block, pool and page table, and its index in

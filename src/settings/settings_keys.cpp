@@ -162,7 +162,7 @@ std::vector<SettingKey> makeTable() {
                        "`virtual`: a virtual shadow map per spot light and six per point light (one per cube face), "
                        "each a chain of mips whose pages are drawn only where visible surfaces need them, at the mip "
                        "whose texel matches the pixel's footprint, and kept across frames until the light or a caster "
-                       "in them changes (`shadows.virtual.faceResolution`, `faceLodBias`, `pageSize`, `poolPages`), or `auto`: "
+                       "in them changes (`shadows.virtual.faceResolution`, `faceLodBias`, `pageSize`, `facePoolPages`), or `auto`: "
                        "virtual on a GPU, the atlas on a CPU device."));
     t.push_back(atlasSizeKey("shadows.spot.atlasSize", PENUMBRA_FIELD(shadows.spot.atlasSize),
                              "atlas of spot and point light shadows: up to 16 tiles, one per spot light and six per "
@@ -179,13 +179,18 @@ std::vector<SettingKey> makeTable() {
                        "Virtual shadow maps: virtual texels along a clipmap level's side."));
     t.push_back(ranged("shadows.virtual.poolPages", SettingType::Integer, 16, 16384, "16..16384",
                        PENUMBRA_FIELD(shadows.virtualMaps.poolPages),
-                       "Virtual shadow maps: physical pages per directional light (and as many for all the spot and "
-                       "point light faces together), rounded down to a square number, each "
-                       "pageSize^2 32-bit depths, twice (the rasterizer's target and the sampled pool): 2048 pages of 128^2 "
-                       "take 2 x 127 MiB. A 1920x1080 view needs about 700 pages per light at lodBias 0, 2000-3000 at "
-                       "-1. When the visible pages need more, a coarser level serves the rest (a warning and the stat "
-                       "`overflowed`), and the faces' frames after it read mips one step coarser (up to two: pool "
-                       "pressure); a pool larger than the device holds is shrunk, with a warning."));
+                       "Virtual shadow maps: physical pages per directional light, rounded down to a square number, "
+                       "each pageSize^2 32-bit depths in one image: 3600 pages of 128^2 take 225 MiB, and the "
+                       "rasterizer draws a frame's pages into a target of at most 484 more (31 MiB). A 1920x1080 view "
+                       "needs about 700 pages per light at lodBias 0, 2000-3100 at -1. When the visible pages need "
+                       "more, a coarser level serves the rest (a warning and the stat `overflowed`); a pool larger "
+                       "than the device holds is shrunk, with a warning."));
+    t.push_back(ranged("shadows.virtual.facePoolPages", SettingType::Integer, 16, 16384, "16..16384",
+                       PENUMBRA_FIELD(shadows.virtualMaps.facePoolPages),
+                       "Virtual shadow maps of spot and point lights: physical pages for all their faces together, "
+                       "rounded down to a square number, as `poolPages`. When the faces' visible pages need more, a "
+                       "coarser mip serves the rest (a warning and the stat `overflowed`) and the frames after it "
+                       "read mips one step coarser (up to two: pool pressure)."));
     t.push_back(ranged("shadows.virtual.levelCount", SettingType::Integer, 1, 16, "1..16",
                        PENUMBRA_FIELD(shadows.virtualMaps.levelCount),
                        "Virtual shadow maps: clipmap levels; level i is firstLevelSize x 2^i wide. Receivers beyond the "

@@ -135,6 +135,7 @@ TEST_F(SynchronizationTest, VirtualFaceFramesRenderWithoutHazards) {
             settings.shadows.spot.mode = SpotShadowMode::Virtual;
             settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
             settings.shadows.virtualMaps.poolPages = 64;
+            settings.shadows.virtualMaps.facePoolPages = 64;
             settings.shadows.virtualMaps.resolution = 2048;
             settings.shadows.virtualMaps.faceResolution = 2048;
             const uint32_t before = device().validationMessageCount();

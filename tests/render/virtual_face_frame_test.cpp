@@ -88,7 +88,7 @@ protected:
     // point_light's light 0 with a faces' pool of `poolPages` pages, against the ray tracer.
     SceneComparison pointLightWithPool(uint32_t poolPages) {
         Settings settings = virtualSettings();
-        settings.shadows.virtualMaps.poolPages = poolPages;
+        settings.shadows.virtualMaps.facePoolPages = poolPages;
         return compareCanonicalScene("point_light", 0, settings);
     }
 };

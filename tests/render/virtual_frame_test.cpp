@@ -243,11 +243,12 @@ TEST_F(VirtualFrameTest, AOneShotRenderThatCannotDrawEveryPageStopsAndWarns) {
     EXPECT_LE(limited.metrics.interiorMisclassifiedPercent, 0.05) << toText(limited.metrics);
 }
 
-// The page raster's culling keeps a list per page drawn with room for every instance: at 100k instances
-// 256 MiB of lists hold 669 pages (of the pool's 2025), so a frame draws at most that many. Before, the
-// lists followed the pool and the scene did not fit lavapipe's storage buffers.
-TEST_F(VirtualFrameTest, AHundredThousandInstancesDrawAtMostTheirListsPagesAFrame) {
-    Renderer renderer(device(), loadScene("gen:boxes:100000"));
+// The page raster's culling keeps a list per page drawn with room for every instance: at 150k instances
+// 256 MiB of lists hold 445 pages (of the pool's 3600, fewer than the depth target's 484), so a frame
+// draws at most that many. Before, the lists followed the pool and the scene did not fit lavapipe's
+// storage buffers.
+TEST_F(VirtualFrameTest, AHundredAndFiftyThousandInstancesDrawAtMostTheirListsPagesAFrame) {
+    Renderer renderer(device(), loadScene("gen:boxes:150000"));
     Settings settings;
     settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
     settings.shadows.maxDistance = 900.0f;
@@ -256,8 +257,8 @@ TEST_F(VirtualFrameTest, AHundredThousandInstancesDrawAtMostTheirListsPagesAFram
     request.height = 36;
     const RenderResult result = renderer.render(request, settings);
     const VirtualPageCounts& pages = result.stats.virtualPages;
-    EXPECT_EQ(pages.poolPages, 2025u);
-    EXPECT_EQ(pages.pagesPerFrame, 669u);
+    EXPECT_EQ(pages.poolPages, 3600u);
+    EXPECT_EQ(pages.pagesPerFrame, 445u);
     EXPECT_GT(pages.drawn, 0u);
     EXPECT_EQ(pages.overflowed, 0u);
 }

@@ -62,10 +62,10 @@ constexpr VirtualFaceConfig kFaceConfig{.resolution = 128 * 16, .pageSize = 128}
 // theirs (spot and point light faces) instead of the clipmap's.
 class PageRig {
 public:
-    PageRig(gpu::Device& gpu, Scene scene, std::vector<VirtualFace> faces = {})
+    PageRig(gpu::Device& gpu, Scene scene, std::vector<VirtualFace> faces = {}, uint32_t poolPagesPerSide = kPoolPagesPerSide)
         : gpu_(gpu), scene_(std::move(scene)), gpuScene_(gpu, scene_), raster_(gpu, gpuScene_),
-          pages_(faces.empty() ? VirtualPageDrawPass(gpu, gpuScene_, raster_, testClipmap(), kPoolPagesPerSide)
-                               : VirtualPageDrawPass(gpu, gpuScene_, raster_, kFaceConfig, kPoolPagesPerSide)),
+          pages_(faces.empty() ? VirtualPageDrawPass(gpu, gpuScene_, raster_, testClipmap(), poolPagesPerSide)
+                               : VirtualPageDrawPass(gpu, gpuScene_, raster_, kFaceConfig, poolPagesPerSide)),
           faces_(std::move(faces)) {
         space_ = makeVirtualPageDrawSpace(testClipmap(), firstDirectionalLight(scene_), scene_.wsBounds);
         using namespace gpu_data;
@@ -91,6 +91,7 @@ public:
     VirtualPageDrawSpace& space() { return space_; }
     VirtualPageDrawPass& pass() { return pages_; }
     uint32_t side() const { return pages_.poolSide(); }
+    uint32_t poolPagesPerSide() const { return pages_.poolSide() / 128; }
 
     // Writes the list as the page table pass would (header with its dispatch sizes, then the draws) and draws it.
     void draw(const std::vector<PageDraw>& draws) {
@@ -121,7 +122,7 @@ public:
     // The pool's sampled image, row by row.
     std::vector<float> readPool() { return readTexture(pages_.poolTexture(), "pool"); }
 
-    // The hardware rasterizer's depth of the same pages, each at its physical page's place: every caster
+    // The hardware rasterizer's depth of the same pages, drawn where the compute rasterizer draws them and laid out as the pool: every caster
     // drawn (a culling tile that keeps everything), projected by the CPU's virtualPageClipFromWorld.
     std::vector<float> hardwareReference(const std::vector<PageDraw>& draws) {
         ShadowCullingPass culling(gpu_, gpuScene_);
@@ -136,7 +137,9 @@ public:
             keepAll.kind = gpu_data::kCullTileDirectional;
             keepAll.halfExtent = keepAll.farDistance = 1e30f;
             ShadowTile tile;
-            const gpu::Rect rect = virtualPagePoolRect(d.physical, kPoolPagesPerSide, 128);
+            // Where the compute rasterizer draws it: the record's depth target's slot (laid out as the
+            // pool below).
+            const gpu::Rect rect = virtualPageRect(uint32_t(shadowTiles.size()), pages_.targetPagesPerSide(), 128);
             tile.rect.offset = glm::uvec2(rect.x, rect.y);
             tile.rect.size = 128;
             const uint32_t faceCount = uint32_t(faces_.size());
@@ -164,11 +167,19 @@ public:
         culling.record(commands, {frameBuffer, 0, sizeof(frame)}, {tileBuffer, 0, tiles.bytes()}, "test.culling");
         casters.record(commands, shadowTiles, drawn, true, 0, atlas, side(), writes_, culling, "test.hw");
         gpu_.submitAndWait(commands);
-        std::vector<float> depth = readTexture(atlas, "hw");
+        const std::vector<float> depth = readTexture(atlas, "hw");
         gpu_.destroy(atlas);
         gpu_.destroy(frameBuffer);
         gpu_.destroy(tileBuffer);
-        return depth;
+        std::vector<float> pool(depth.size(), kFar);  // each slot at its physical page, as the copy step does
+        for (size_t i = 0; i < draws.size(); ++i) {
+            const gpu::Rect from = virtualPageRect(uint32_t(i), pages_.targetPagesPerSide(), 128);
+            const gpu::Rect to = virtualPageRect(draws[i].physical, poolPagesPerSide(), 128);
+            for (int32_t y = 0; y < 128; ++y)
+                for (int32_t x = 0; x < 128; ++x)
+                    pool[size_t(to.y + y) * side() + to.x + x] = depth[size_t(from.y + y) * side() + from.x + x];
+        }
+        return pool;
     }
 
     // The GPU-written culling tile list of the last draw.
@@ -217,7 +228,7 @@ struct PageComparison {
 
 PageComparison comparePage(const std::vector<float>& pool, const std::vector<float>& reference, uint32_t side,
                            uint32_t physical, float tolerance) {
-    const gpu::Rect rect = virtualPagePoolRect(physical, kPoolPagesPerSide, 128);
+    const gpu::Rect rect = virtualPageRect(physical, side / 128, 128);
     PageComparison c;
     for (int32_t y = rect.y; y < rect.y + int32_t(rect.height); ++y)
         for (int32_t x = rect.x; x < rect.x + int32_t(rect.width); ++x) {
@@ -273,19 +284,28 @@ std::vector<PageDraw> demoPages(const PageRig& rig) {
     return draws;
 }
 
-// A record draws every page of the pool unless the culling's lists (room for every instance in each, two
-// more than the pages) would take more than the budget; never fewer than 32 pages (or the pool).
-TEST(VirtualPagesPerRecord, FollowTheCullingListsBudget) {
+// A record draws every page of the pool up to its depth target's 484 slots, unless the culling's lists
+// (room for every instance in each, two more than the pages) would take more than the budget; never
+// fewer than 32 pages (or the pool).
+TEST(VirtualPagesPerRecord, FollowTheCullingListsBudgetUpToTheDepthTargetsSlots) {
     constexpr uint64_t kBudget = kVirtualPageListBytes;
-    EXPECT_EQ(virtualPagesPerRecord(2025, 1000, kBudget), 2025u);
-    EXPECT_EQ(virtualPagesPerRecord(2025, 100000, kBudget), 671u - 2u);   // 400 KB a list
-    EXPECT_EQ(virtualPagesPerRecord(2025, 1000000, kBudget), 67u - 2u);   // 4 MB a list
-    EXPECT_EQ(virtualPagesPerRecord(2025, 10000000, kBudget), 32u);       // the least
+    EXPECT_EQ(virtualPagesPerRecord(400, 1000, kBudget), 400u);
+    EXPECT_EQ(virtualPagesPerRecord(3600, 1000, kBudget), kMaxVirtualPagesPerRecord);
+    EXPECT_EQ(virtualPagesPerRecord(3600, 100000, kBudget), kMaxVirtualPagesPerRecord);  // lists for 669
+    EXPECT_EQ(virtualPagesPerRecord(3600, 1000000, kBudget), 67u - 2u);   // 4 MB a list
+    EXPECT_EQ(virtualPagesPerRecord(3600, 10000000, kBudget), 32u);       // the least
     EXPECT_EQ(virtualPagesPerRecord(16, 10000000, kBudget), 16u);         // a pool smaller than that
-    EXPECT_EQ(virtualPagesPerRecord(2025, 0, kBudget), 2025u);
+    EXPECT_EQ(virtualPagesPerRecord(3600, 0, kBudget), kMaxVirtualPagesPerRecord);
     EXPECT_EQ(virtualDrawBudget(0, 65), 65u);
     EXPECT_EQ(virtualDrawBudget(8, 65), 8u);
     EXPECT_EQ(virtualDrawBudget(100, 65), 65u);
+}
+
+TEST(VirtualPagesPerRecord, TheDepthTargetIsTheSmallestSquareOfSlotsThatHoldsThem) {
+    EXPECT_EQ(virtualDrawTargetPagesPerSide(1), 1u);
+    EXPECT_EQ(virtualDrawTargetPagesPerSide(16), 4u);
+    EXPECT_EQ(virtualDrawTargetPagesPerSide(17), 5u);
+    EXPECT_EQ(virtualDrawTargetPagesPerSide(kMaxVirtualPagesPerRecord), 22u);
 }
 
 TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
@@ -305,6 +325,24 @@ TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
     }
 }
 
+// A pool of 24^2 pages is larger than a record's depth target (22^2 slots): the pages are drawn in the
+// target's first slots and still land at their physical pages, here all beyond the target's 484.
+TEST_F(VirtualPageDrawTest, APoolLargerThanTheDepthTargetGetsEveryPageAtItsPhysicalPlace) {
+    PageRig rig(gpu(), makeDemoScene(), {}, 24);
+    ASSERT_EQ(rig.pass().pagesPerRecord(), kMaxVirtualPagesPerRecord);
+    ASSERT_EQ(rig.pass().targetPagesPerSide(), 22u);
+    EXPECT_EQ(gpu().bufferSize(rig.pass().targetDepth()), 22ull * 22 * 128 * 128 * 4) << "the target holds a record, not the pool";
+    std::vector<PageDraw> draws = demoPages(rig);
+    for (PageDraw& d : draws) d.physical = 560 + d.physical;  // of 576
+    rig.draw(draws);
+    const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
+    for (const PageDraw& d : draws) {
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
+        EXPECT_GT(c.written, c.texels / 4) << "physical page " << d.physical << " holds casters";
+        EXPECT_LE(c.differ, c.texels / 1000) << "physical page " << d.physical << ": " << c.differ << " texels differ";
+    }
+}
+
 TEST_F(VirtualPageDrawTest, TheGpuWritesOneTilePerPageWithTheCpuProjection) {
     PageRig rig(gpu(), makeDemoScene());
     const std::vector<PageDraw> draws = demoPages(rig);
@@ -319,7 +357,8 @@ TEST_F(VirtualPageDrawTest, TheGpuWritesOneTilePerPageWithTheCpuProjection) {
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r)
                 EXPECT_NEAR(tiles[i].clipFromWorld[c][r], cpu[c][r], 1e-4f * std::max(1.0f, std::abs(cpu[c][r]))) << "tile " << i;
-        const gpu::Rect rect = virtualPagePoolRect(draws[i].physical, kPoolPagesPerSide, 128);
+        // Page i is drawn into slot i of the record's depth target (then copied to its physical page).
+        const gpu::Rect rect = virtualPageRect(uint32_t(i), rig.pass().targetPagesPerSide(), 128);
         EXPECT_EQ(tiles[i].viewport, glm::vec4(rect.x, rect.y, 128, 128)) << "tile " << i;
         EXPECT_EQ(tiles[i].scissor, glm::uvec4(rect.x, rect.y, rect.x + 128, rect.y + 128)) << "tile " << i;
     }
@@ -386,7 +425,7 @@ TEST_F(VirtualPageDrawTest, AGroundTriangleSpanningManyPagesIsDrawnRightInEach) 
     const VirtualClipmapConfig config = testClipmap();
     for (const PageDraw& d : draws) {
         const double lsPage = config.firstLevelSize * std::exp2(double(d.level)) / pagesPerSide(config);
-        const gpu::Rect rect = virtualPagePoolRect(d.physical, kPoolPagesPerSide, 128);
+        const gpu::Rect rect = virtualPageRect(d.physical, rig.poolPagesPerSide(), 128);
         size_t differ = 0;
         double worst = 0.0;
         for (uint32_t ty = 0; ty < 128; ++ty)

@@ -276,11 +276,12 @@ TEST(SettingsJson, NumberTooLargeForADoubleIsAnError) {
 
 TEST(SettingsJson, VirtualShadowSettingsAreReadAndChecked) {
     const Settings settings = parseSettingsJson(
-        R"({"shadows": {"directional": {"mode": "virtual"}, "virtual": {"pageSize": 64, "poolPages": 300, "lodBias": -2}}})",
+        R"({"shadows": {"directional": {"mode": "virtual"}, "virtual": {"pageSize": 64, "poolPages": 300, "facePoolPages": 200, "lodBias": -2}}})",
         "test.json");
     EXPECT_EQ(settings.shadows.directional.mode, DirectionalShadowMode::Virtual);
     EXPECT_EQ(settings.shadows.virtualMaps.pageSize, 64u);
     EXPECT_EQ(settings.shadows.virtualMaps.poolPages, 300u);
+    EXPECT_EQ(settings.shadows.virtualMaps.facePoolPages, 200u);
     EXPECT_EQ(settings.shadows.virtualMaps.lodBias, -2.0f);
     EXPECT_NE(parseError(R"({"shadows": {"virtual": {"pageSize": 100}}})").find("shadows.virtual.pageSize = 100 is out of range"),
               std::string::npos);
@@ -302,7 +303,7 @@ TEST(SettingsJson, SpotVirtualShadowSettingsAreReadAndChecked) {
         parseSettingsJson(R"({"shadows": {"spot": {"mode": "virtual"}, "virtual": {"faceResolution": 4096}}})", "test.json");
     EXPECT_EQ(settings.shadows.spot.mode, SpotShadowMode::Virtual);
     EXPECT_EQ(settings.shadows.virtualMaps.faceResolution, 4096u);
-    EXPECT_EQ(Settings{}.shadows.spot.mode, SpotShadowMode::Atlas);
+    EXPECT_EQ(Settings{}.shadows.spot.mode, SpotShadowMode::Auto);
     EXPECT_NE(parseError(R"({"shadows": {"spot": {"mode": "cube"}}})").find("shadows.spot.mode"), std::string::npos);
     EXPECT_NE(parseError(R"({"shadows": {"virtual": {"faceResolution": 3000}}})").find("shadows.virtual.faceResolution"),
               std::string::npos);

@@ -11,8 +11,8 @@
 namespace penumbra {
 namespace {
 
-TEST(DirectionalShadowMode, TheDefaultIsCascadesAndAutoHasItsName) {
-    EXPECT_EQ(Settings{}.shadows.directional.mode, DirectionalShadowMode::Cascades);
+TEST(DirectionalShadowMode, TheDefaultIsAutoAndAutoHasItsName) {
+    EXPECT_EQ(Settings{}.shadows.directional.mode, DirectionalShadowMode::Auto);
     EXPECT_STREQ(directionalShadowModeName(DirectionalShadowMode::Auto), "auto");
 }
 
@@ -40,7 +40,10 @@ TEST(DirectionalShadowMode, TheFittedSettingsCarryTheResolvedMode) {
     EXPECT_TRUE(warnings.empty());
 }
 
-TEST(SpotShadowMode, AutoHasItsName) { EXPECT_STREQ(spotShadowModeName(SpotShadowMode::Auto), "auto"); }
+TEST(SpotShadowMode, TheDefaultIsAutoAndAutoHasItsName) {
+    EXPECT_EQ(Settings{}.shadows.spot.mode, SpotShadowMode::Auto);
+    EXPECT_STREQ(spotShadowModeName(SpotShadowMode::Auto), "auto");
+}
 
 TEST(SpotShadowMode, AutoIsVirtualOnAGpu) {
     EXPECT_EQ(resolveSpotShadowMode(SpotShadowMode::Auto, false), SpotShadowMode::Virtual);
