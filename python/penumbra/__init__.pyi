@@ -102,7 +102,8 @@ class SceneBuilder:
 
 class Renderer:
     """The real-time renderer of one scene on one Vulkan device."""
-    def __init__(self, scene: Scene, *, device: str | int = "auto", validation: bool = False) -> None: ...
+    def __init__(self, scene: Scene, *, device: str | int = "auto", validation: bool = False,
+                 spin_wait: bool = False) -> None: ...
     def render(self, *, width: int = 1280, height: int = 720, settings: Settings | None = None,
                aov: Aov = "color", light: int = 0, camera: Camera | None = None) -> np.ndarray:
         """color/cascades: uint8 (H, W, 4); shadow: float32 (H, W) 1 lit .. 0 shadowed; depth: float32 (H, W)."""

@@ -21,7 +21,7 @@ namespace py = pybind11;
 // traced; one mutex serialises this renderer's calls from several Python threads.
 class PyRenderer {
 public:
-    PyRenderer(const std::shared_ptr<Scene>& scene, const py::object& device, bool validation);
+    PyRenderer(const std::shared_ptr<Scene>& scene, const py::object& device, bool validation, bool spinWait);
     py::object render(const py::object& width, const py::object& height, const py::object& settings,
                       const py::object& aov, const py::object& light, const py::object& camera);
     py::object stats();
@@ -44,7 +44,7 @@ private:
     uint32_t validationMessagesSeen_ = 0;  // validation=True: the messages frames before this one made
 };
 
-DeviceOptions deviceOptionsFromPython(const py::handle& device, bool validation);
+DeviceOptions deviceOptionsFromPython(const py::handle& device, bool validation, bool spinWait = false);
 py::dict deviceInfoToPython(const DeviceInfo& info);
 
 void bindScene(py::module_& m);
@@ -122,7 +122,9 @@ inline constexpr const char* kRenderer = R"doc(The real-time renderer of one sce
 It holds its own copy of the scene; the set_* methods edit it between frames (only what changed is
 uploaded). The GIL is released while a frame renders. close() (or a with block) frees the device
 early; otherwise it goes with the object. validation=True turns on the Vulkan validation layers (as
-the CLI's --validation): a frame that makes them report raises penumbra.Error.)doc";
+the CLI's --validation): a frame that makes them report raises penumbra.Error. spin_wait=True waits for
+the GPU by polling its fences instead of sleeping (DeviceOptions::spinWait: steadier CPU frame times,
+one core busy while the GPU works).)doc";
 inline constexpr const char* kRender = R"doc(Renders one frame and returns it as a NumPy array.
 
 aov: 'color' -> uint8 (H, W, 4): the PNG `penumbra render` writes, RGB sRGB plus alpha 255;

@@ -37,9 +37,10 @@ py::array_t<float> depthToPython(const std::vector<float>& viewDepth, uint32_t w
 
 }  // namespace
 
-DeviceOptions deviceOptionsFromPython(const py::handle& device, bool validation) {
+DeviceOptions deviceOptionsFromPython(const py::handle& device, bool validation, bool spinWait) {
     DeviceOptions options;
     options.validation = validation;
+    options.spinWait = spinWait;
     if (py::isinstance<py::str>(device)) options.device = device.cast<std::string>();
     else options.device = std::to_string(checkedIndex(device, "device", 0, 1023));
     return options;
@@ -54,9 +55,9 @@ py::dict deviceInfoToPython(const DeviceInfo& info) {
     return d;
 }
 
-PyRenderer::PyRenderer(const std::shared_ptr<Scene>& scene, const py::object& device, bool validation) {
+PyRenderer::PyRenderer(const std::shared_ptr<Scene>& scene, const py::object& device, bool validation, bool spinWait) {
     if (!scene) throw Error("Renderer: scene must be a penumbra.Scene (from load_scene or SceneBuilder.build)");
-    const DeviceOptions options = deviceOptionsFromPython(device, validation);
+    const DeviceOptions options = deviceOptionsFromPython(device, validation, spinWait);
     Scene copy = *scene;
     py::gil_scoped_release release;
     try {
@@ -199,8 +200,8 @@ void PyRenderer::close() {
 
 void bindRenderer(py::module_& m) {
     py::class_<PyRenderer>(m, "Renderer", docs::kRenderer)
-        .def(py::init<const std::shared_ptr<Scene>&, const py::object&, bool>(), py::arg("scene"), py::kw_only(),
-             py::arg("device") = "auto", py::arg("validation") = false)
+        .def(py::init<const std::shared_ptr<Scene>&, const py::object&, bool, bool>(), py::arg("scene"), py::kw_only(),
+             py::arg("device") = "auto", py::arg("validation") = false, py::arg("spin_wait") = false)
         .def("render", &PyRenderer::render, py::kw_only(), py::arg("width") = 1280, py::arg("height") = 720,
              py::arg("settings") = py::none(), py::arg("aov") = "color", py::arg("light") = 0,
              py::arg("camera") = py::none(), docs::kRender)

@@ -73,6 +73,12 @@ def test_frames_pass_the_validation_layers(built_scene, renderer):
             assert (image == renderer.render(width=W, height=H, aov=aov)).all()
 
 
+def test_a_renderer_that_spins_on_its_fences_draws_the_same_frames(built_scene, renderer):
+    with penumbra.Renderer(built_scene, device=DEVICE, spin_wait=True) as spinning:
+        for aov in ("color", "shadow"):
+            assert (spinning.render(width=W, height=H, aov=aov) == renderer.render(width=W, height=H, aov=aov)).all()
+
+
 def test_the_camera_per_call_equals_the_scene_camera(renderer, built_scene):
     own = renderer.render(width=W, height=H)
     given = renderer.render(width=W, height=H, camera=CAMERA)
