@@ -46,6 +46,28 @@ PENUMBRA_INLINE bool meshletBoxOutside(mat4 clipFromObject, vec3 osMin, vec3 osM
     return outside != 0u;
 }
 
+// Whether no triangle of the box can cover a texel of a viewport (x, y, width, height in texels): the
+// box's window-space bounds hold no texel centre along x or along y (a triangle covers a texel only when
+// its centre lies inside it, so within its vertices' bounds). The bounds are widened by a rasterizer's
+// vertex snapping (half of 1/256 texel, rounded up) and kMeshletSlack of their size. False when a corner
+// lies at or behind w = kMeshletNearW (perspective: no bounds). What a far cascade or a coarse virtual
+// page sees of small meshes: meshlets smaller than a texel, between its centres.
+PENUMBRA_INLINE bool meshletBetweenTexelCentres(mat4 clipFromObject, vec3 osMin, vec3 osMax, vec4 viewport) {
+    vec2 lo = vec2(1e30f), hi = vec2(-1e30f);
+    for (int i = 0; i < 8; ++i) {
+        vec3 corner = vec3((i & 1) != 0 ? osMax.x : osMin.x, (i & 2) != 0 ? osMax.y : osMin.y, (i & 4) != 0 ? osMax.z : osMin.z);
+        vec4 c = clipFromObject * vec4(corner, 1.0f);
+        if (c.w <= kMeshletNearW) return false;
+        vec2 window = vec2(viewport.x, viewport.y) + (vec2(c.x, c.y) / c.w * 0.5f + 0.5f) * vec2(viewport.z, viewport.w);
+        lo = min(lo, window);
+        hi = max(hi, window);
+    }
+    vec2 margin = vec2(1.0f / 256.0f) + kMeshletSlack * (hi - lo + vec2(1.0f));
+    lo -= margin;
+    hi += margin;
+    // A centre i + 0.5 in [lo, hi] exists when ceil(lo - 0.5) <= floor(hi - 0.5).
+    return ceil(lo.x - 0.5f) > floor(hi.x - 0.5f) || ceil(lo.y - 0.5f) > floor(hi.y - 0.5f);
+}
 // The camera's position in an instance's object space (worldFromObject affine and invertible).
 PENUMBRA_INLINE vec3 meshletObjectEye(mat4 worldFromObject, vec3 wsEye) {
     return inverse(mat3(worldFromObject)) * (wsEye - vec3(worldFromObject[3]));

@@ -142,8 +142,12 @@ void main() {
         barrier();  // itemClipFromObject written; the last meshlet's threads done with meshletSkipped
         if (gl_LocalInvocationID.x == 0u) {
             // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.
-            meshletSkipped = raster.meshletCulling != 0u && meshletBoxOutside(itemClipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
-                                                                      kMeshletSidesXY | kMeshletSideNearW);
+            // Or, smaller than a texel, it lies between the texel centres (a far cascade's or coarse page's
+            // view of small meshes): it covers no texel.
+            meshletSkipped = raster.meshletCulling != 0u &&
+                             (meshletBoxOutside(itemClipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz,
+                                                kMeshletSidesXY | kMeshletSideNearW) ||
+                              meshletBetweenTexelCentres(itemClipFromObject, meshlet.osMin.xyz, meshlet.osMax.xyz, tile.viewport));
             if (meshletSkipped) atomicAdd(counters.meshletsOutside, 1u);
         }
         barrier();

@@ -245,8 +245,9 @@ std::vector<SettingKey> makeTable() {
                        "frustum, `occlusion` also against a depth pyramid in two phases, `none` not at all. The image is "
                        "the same; the forward pass draws every instance."));
     t.push_back(flag("render.meshletCulling", PENUMBRA_FIELD(render.meshletCulling),
-                       "The compute rasterizers skip meshlets outside the view or the shadow tile, and main-view "
-                       "meshlets that face away from the camera. The image is the same."));
+                       "The compute rasterizers skip meshlets outside the view or the shadow tile, shadow meshlets "
+                       "that lie between the tile's texel centres, and main-view meshlets that face away from the "
+                       "camera. The image is the same."));
     t.push_back(choice("render.mainView", {"forward", "visibility", "auto"}, PENUMBRA_FIELD(render.mainView),
                        "How the main view is drawn: `forward` by the graphics pipeline, `visibility` through a compute "
                        "visibility buffer (needs 64-bit buffer atomics), `auto` by a table on datacenter NVIDIA GPUs "

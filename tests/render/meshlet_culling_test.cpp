@@ -120,6 +120,27 @@ TEST_F(MeshletCullingTest, MeshletsOutsideTheViewAndOutsideShadowTilesAreSkipped
     EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
 }
 
+// Seen from far away, the sphere's pages are of a level whose texels are wider than its meshlets: the
+// meshlets that lie between the texel centres cover no texel and are skipped with those outside the
+// page (279 of the 439 skipped here lie outside a page; meshletBetweenTexelCentres is checked triangle
+// by triangle in tests/unit/meshlets_test.cpp); the image is the same.
+TEST_F(MeshletCullingTest, ShadowMeshletsBetweenTheTexelCentresOfACoarsePageAreSkippedWithoutChangingTheImage) {
+    const Scene scene = sphereScene(false, false);
+    Renderer renderer(device(), scene);
+    const CameraView far = makeCameraView(makeLookAtCamera({120.0f, 150.0f, 160.0f}, {0.0f, 1.0f, 0.0f}, 0.5f), 160, 90);
+    Settings settings = computeSettings(true);
+    settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+    settings.shadows.maxDistance = 400.0f;
+    const RenderResult culled = renderer.render(smallRequest(), settings, far);
+    settings.render.meshletCulling = false;
+    const RenderResult unculled = renderer.render(smallRequest(), settings, far);
+    std::printf("shadow meshlets skipped: %llu of the sphere's %zu\n", (unsigned long long)culled.stats.shadowMeshletsOutside,
+                size_t(sphereMeshlets()));
+    EXPECT_GT(culled.stats.shadowMeshletsOutside, 6 * sphereMeshlets());
+    EXPECT_EQ(unculled.stats.shadowMeshletsOutside, 0u);
+    EXPECT_EQ(shareOfPixelsOver(culled.image, unculled.image, 0), 0.0);
+}
+
 // Small one-meshlet objects are drawn several to a work item (packed): each instance's meshlet is still
 // tested. Single-sided quads, 40 turned towards the camera and 40 away: 40 meshlets skipped, same image.
 TEST_F(MeshletCullingTest, PackedSmallObjectsFacingAwayAreSkippedOneByOne) {

@@ -3,7 +3,9 @@
 // test skips would have drawn nothing, checked triangle by triangle on real meshes from many views.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <random>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -143,14 +145,30 @@ TEST(MeshletCulling, ConeTestSkipsOnlyMeshletsWhoseEveryTriangleFacesAway) {
     }
 }
 
+namespace {
+
+// The engine mesh, its meshlets and its box's centre and size: what the view tests look at.
+struct ViewedEngine {
+    Mesh mesh;
+    MeshletMesh split;
+    glm::vec3 center;
+    float size;
+};
+ViewedEngine viewedEngine() {
+    Mesh mesh = engineMesh();
+    MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+    const auto [center, size] = centreAndSize(mesh);
+    return {std::move(mesh), std::move(split), center, size};
+}
+
+}  // namespace
+
 // meshletBoxOutside says yes only when every triangle's vertices lie beyond one side of the clip
 // volume; from cameras inside and around the mesh, part of the meshlets lie outside.
 TEST(MeshletCulling, BoxTestSkipsOnlyMeshletsOutsideOneSide) {
     std::mt19937 random(11);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    const Mesh mesh = engineMesh();
-    const MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
-    const auto [center, size] = centreAndSize(mesh);
+    const auto [mesh, split, center, size] = viewedEngine();
     const uint32_t sides = mc::kMeshletSidesXY | mc::kMeshletSidesDepth;
     size_t skipped = 0, tested = 0;
     for (int view = 0; view < 64; ++view) {
@@ -174,6 +192,47 @@ TEST(MeshletCulling, BoxTestSkipsOnlyMeshletsOutsideOneSide) {
         }
     }
     std::printf("%zu of %zu meshlets outside the view\n", skipped, tested);
+    EXPECT_GT(skipped, tested / 10);
+    EXPECT_LT(skipped, tested);
+}
+
+// meshletBetweenTexelCentres says yes only when no triangle of the meshlet can cover a texel: each one's
+// snapped window-space vertices (as the rasterizer's setup: 1/256 texel) hold no texel centre along x or
+// along y. Orthographic views of the mesh whose texels are about its size, as a coarse virtual page sees
+// small meshes: many meshlets lie between the centres.
+TEST(MeshletCulling, BetweenTexelCentresSkipsOnlyMeshletsThatCoverNoTexel) {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const auto [mesh, split, center, size] = viewedEngine();
+    size_t skipped = 0, tested = 0;
+    for (int view = 0; view < 64; ++view) {
+        const glm::vec3 direction = glm::normalize(glm::vec3(unit(random), -1.0f, unit(random)));
+        const float texel = size * (0.05f + 0.5f * std::abs(unit(random)));  // metres per texel
+        const float half = 8.0f * texel;                                      // a 16-texel viewport
+        const glm::vec3 offset = texel * glm::vec3(unit(random), unit(random), unit(random));
+        const glm::mat4 clipFromObject = glm::ortho(-half, half, -half, half, -4.0f * size, 4.0f * size) *
+                                         glm::lookAt(center + offset - 2.0f * size * direction, center + offset, glm::vec3(0, 0, 1));
+        const glm::vec4 viewport(37.0f, 5.0f, 16.0f, 16.0f);
+        for (const Meshlet& meshlet : split.meshlets) {
+            ++tested;
+            if (!mc::meshletBetweenTexelCentres(clipFromObject, meshlet.osMin, meshlet.osMax, viewport)) continue;
+            ++skipped;
+            for (uint32_t t = meshlet.firstTriangle; t < meshlet.firstTriangle + meshlet.triangleCount; ++t) {
+                glm::vec2 lo(1e30f), hi(-1e30f);
+                for (int i = 0; i < 3; ++i) {
+                    const glm::vec4 c = clipFromObject * glm::vec4(position(mesh, split.indices[t * 3 + i]), 1.0f);
+                    const glm::vec2 window = glm::vec2(viewport) + (glm::vec2(c) / c.w * 0.5f + 0.5f) * glm::vec2(viewport.z, viewport.w);
+                    const glm::vec2 snapped = glm::round(window * 256.0f) / 256.0f;
+                    lo = glm::min(lo, snapped);
+                    hi = glm::max(hi, snapped);
+                }
+                const bool centreAlongX = std::ceil(lo.x - 0.5f) <= std::floor(hi.x - 0.5f);
+                const bool centreAlongY = std::ceil(lo.y - 0.5f) <= std::floor(hi.y - 0.5f);
+                ASSERT_FALSE(centreAlongX && centreAlongY) << "a skipped triangle's bounds hold a texel centre";
+            }
+        }
+    }
+    std::printf("%zu of %zu meshlets between texel centres\n", skipped, tested);
     EXPECT_GT(skipped, tested / 10);
     EXPECT_LT(skipped, tested);
 }
