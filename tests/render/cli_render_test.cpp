@@ -88,6 +88,9 @@ TEST(CliRender, StatsReportDeviceTimingsAndShadowTiles) {
     // The demo's two spot lights: each cluster holds at most both, and some hold one.
     EXPECT_GT(stats["lightsPerCluster"]["mean"].get<double>(), 0.0);
     EXPECT_LE(stats["lightsPerCluster"]["max"].get<int>(), 2);
+    // The default shadow modes (auto) as a CPU device draws them.
+    EXPECT_EQ(stats["directionalShadows"], "cascades");
+    EXPECT_EQ(stats["spotShadows"], "atlas");
 }
 
 TEST(CliRender, MissingSceneFileIsOneLineError) {
