@@ -88,15 +88,13 @@ void Device::Impl::waitForFence(VkFence fence, const SubmissionName& what) {
     throwIfLost();
     ++fenceWaits;
     const uint64_t injected = options.faults.loseDeviceAtWait;
-    const auto wait = [&] {
-        if (!options.spinWait) return vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
-        const auto poll = [&] {
-            ++spinWaitPolls;
-            return vkGetFenceStatus(device, fence);
-        };
-        return spinUntil(poll, UINT64_MAX);
+    const auto poll = [&] {
+        ++spinWaitPolls;
+        return vkGetFenceStatus(device, fence);
     };
-    const VkResult result = fenceWaits == injected ? VK_ERROR_DEVICE_LOST : wait();
+    const VkResult result = fenceWaits == injected ? VK_ERROR_DEVICE_LOST
+                            : options.spinWait     ? spinUntil(poll, UINT64_MAX)
+                                                   : vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
     if (result == VK_ERROR_DEVICE_LOST) throwLost("while the GPU ran " + what.describe(), result);
     if (result != VK_SUCCESS)
         throw Error("Vulkan call failed: vkWaitForFences (" + what.describe() + ") returned " + vkResultName(result));
