@@ -136,9 +136,11 @@ void main() {
         return;
     }
     if (gl_LocalInvocationID.x == 0u) itemClipFromObject = tile.clipFromWorld * instanceWorldFromObject(instances[item.instance]);
-    uint lastMeshlet = min(item.firstMeshlet + kRasterMeshletsPerItem, mesh.meshletCount);
-    for (uint m = item.firstMeshlet; m < lastMeshlet; ++m) {
-        Meshlet meshlet = meshlets[mesh.firstMeshlet + m];
+    uvec2 level = lodMeshlets(item.meshSlot, item.firstMeshlet >> kRasterLodShift);  // first, count
+    uint firstMeshlet = item.firstMeshlet & kRasterMeshletMask;
+    uint lastMeshlet = min(firstMeshlet + kRasterMeshletsPerItem, level.y);
+    for (uint m = firstMeshlet; m < lastMeshlet; ++m) {
+        Meshlet meshlet = meshlets[level.x + m];
         barrier();  // itemClipFromObject written; the last meshlet's threads done with meshletSkipped
         if (gl_LocalInvocationID.x == 0u) {
             // Depth is clamped, not clipped (pancaking): only the tile's sides and a perspective tile's near w.

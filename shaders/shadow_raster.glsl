@@ -124,6 +124,34 @@ const int kShadowBlock = 4;
 
 bool isAlphaTested(CullMesh mesh) { return materials[mesh.materialIndex].shadowMode != kShadowModeOn; }
 
+// The level (0: the full mesh, l: simplified level l, scene/meshlets.h) an instance of `mesh` is drawn
+// with in `tile`: the coarsest whose object-space error, projected where the instance's bounding sphere
+// comes nearest the light (w), is at most raster.lodErrorTexels texels of the tile. The rows of
+// clipFromObject carry the instance's scale; an orthographic tile's w is 1 everywhere. The level arrays
+// are read from the buffer, not from a copy of the mesh: a copy indexed by a variable costs every item
+// of the rasterizer registers.
+uint shadowLod(uint meshSlot, mat4 worldFromObject, CullTile tile) {
+    uint lodCount = cullMeshes[meshSlot].lodCount;
+    if (lodCount == 0u || !(raster.lodErrorTexels > 0.0) || isAlphaTested(cullMeshes[meshSlot])) return 0u;
+    vec4 osSphere = cullMeshes[meshSlot].osSphere;
+    mat4 clipFromObject = tile.clipFromWorld * worldFromObject;
+    vec3 rowX = vec3(clipFromObject[0][0], clipFromObject[1][0], clipFromObject[2][0]);
+    vec3 rowY = vec3(clipFromObject[0][1], clipFromObject[1][1], clipFromObject[2][1]);
+    vec3 rowW = vec3(clipFromObject[0][3], clipFromObject[1][3], clipFromObject[2][3]);
+    float nearW = dot(rowW, osSphere.xyz) + clipFromObject[3][3] - length(rowW) * osSphere.w;
+    if (!(nearW > 1e-6)) return 0u;  // the light sits inside its bounds
+    float texelsPerUnit = 0.5 * max(length(rowX) * tile.viewport.z, length(rowY) * tile.viewport.w) / nearW;
+    for (uint level = lodCount; level > 0u; --level)
+        if (cullMeshes[meshSlot].lodError[level - 1u] * texelsPerUnit <= raster.lodErrorTexels) return level;
+    return 0u;
+}
+
+// A level's meshlets: the first (in the scene's meshlets) and how many.
+uvec2 lodMeshlets(uint meshSlot, uint level) {
+    return level == 0u ? uvec2(cullMeshes[meshSlot].firstMeshlet, cullMeshes[meshSlot].meshletCount)
+                       : uvec2(cullMeshes[meshSlot].lodFirstMeshlet[level - 1u], cullMeshes[meshSlot].lodMeshletCount[level - 1u]);
+}
+
 // The planes a shadow tile clips to (depth is clamped, not clipped: pancaking).
 const uint kShadowClipPlanes = kClipNearW | kClipGuard;
 

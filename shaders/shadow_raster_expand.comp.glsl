@@ -3,7 +3,8 @@
 // drawn tile's culled list (tile = the raster list's entry in z): a slot its culling filled turns
 // into work items (RasterWorkItem) of at most kRasterMeshletsPerItem of the instance's meshlets,
 // appended to the work queue; the instances of a mesh of one small meshlet share packed items
-// instead (CullMesh.packedInstances to an item). Pass 1 then runs one workgroup per item, so its
+// instead (CullMesh.packedInstances to an item). An instance's items hold the meshlets of the level of
+// detail its size in the tile asks for (shadowLod). Pass 1 then runs one workgroup per item, so its
 // dispatch holds only the meshlets a tile draws, not every meshlet of the scene per tile.
 #include "pass_bindings.h"
 #include "shadow_raster.glsl"
@@ -31,9 +32,12 @@ void main() {
     // tileIndex is the workgroup's: a uniform index into the buffer array.
     uint instance = visibleLists[visibleListBuffer(tileIndex, raster.listsPerBuffer)]
                         .entries[visibleListStart(tileIndex, raster.listsPerBuffer, instanceCount) + slot];
-    uint items = (mesh.meshletCount + kRasterMeshletsPerItem - 1u) / kRasterMeshletsPerItem;
+    uint level = shadowLod(meshSlot, instanceWorldFromObject(instances[instance]), tiles[tileIndex]);
+    uint items = (lodMeshlets(meshSlot, level).y + kRasterMeshletsPerItem - 1u) / kRasterMeshletsPerItem;
     uint first = atomicAdd(counters.workQueued, items);
     uint kept = first < raster.workCapacity ? min(items, raster.workCapacity - first) : 0u;
-    for (uint i = 0u; i < kept; ++i) work[first + i] = RasterWorkItem(instance, tileIndex, meshSlot, i * kRasterMeshletsPerItem);
+    if (level > 0u) atomicAdd(counters.lodItems, kept);
+    for (uint i = 0u; i < kept; ++i)
+        work[first + i] = RasterWorkItem(instance, tileIndex, meshSlot, (level << kRasterLodShift) | (i * kRasterMeshletsPerItem));
     if (kept < items) atomicAdd(counters.workDropped, items - kept);
 }

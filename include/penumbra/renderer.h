@@ -118,6 +118,8 @@ struct FrameStats {
     // instance, or several small instances, in one tile or page), the medium triangle pieces a workgroup
     // rasterized together, large pieces split into chunks, the chunks, and what its queues could not hold
     // (drawn incompletely, then drawn again: a warning names it).
+    // Of the work items, those drawing a simplified level of their mesh (shadows.lodErrorTexels).
+    uint64_t rasterSimplifiedItems = 0;
     uint64_t rasterWorkItems = 0, rasterMediumTriangles = 0, rasterLargeTriangles = 0, rasterChunks = 0, rasterDropped = 0;
     // Shadow tiles drawn this frame and kept from earlier frames (shadows.cacheTiles).
     uint32_t tilesRendered = 0, tilesReused = 0;

@@ -108,6 +108,9 @@ struct ShadowSettings {
     float distanceFade = 0.1f;
     bool screenSpace = false;
     ShadowRaster raster = ShadowRaster::Auto;
+    // The compute rasterizer draws each caster with the coarsest simplified level of its mesh whose error
+    // stays within this many texels of the tile or page it is drawn into (0: full meshes).
+    float lodErrorTexels = 0.5f;
     // Cached shadow tiles: a tile whose light, projection and casters did not change since the last
     // frame keeps its depth and is not drawn again.
     bool cacheTiles = true;

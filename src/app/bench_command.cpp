@@ -162,6 +162,7 @@ struct Measurements {
     uint32_t viewInstances = 0;  // of the last timed frame
     Series viewEarly, viewLate, viewTriangles;
     Series shadowMeshletsOutside, viewMeshletsOutside, viewMeshletsFacingAway;  // render.meshletCulling
+    uint64_t rasterSimplified = 0;  // of rasterWork, items of a simplified level
     uint64_t rasterWork = 0, rasterMedium = 0, rasterLarge = 0, rasterChunks = 0, rasterDropped = 0;
     Series tilesRendered, tilesReused;
     PageSeries pages;      // shadows.directional.mode = virtual
@@ -190,6 +191,7 @@ struct Measurements {
         facePages.add(stats.virtualFacePages);
         raster = stats.shadowRaster;
         rasterWork = stats.rasterWorkItems;
+        rasterSimplified = stats.rasterSimplifiedItems;
         rasterMedium = stats.rasterMediumTriangles;
         rasterLarge = stats.rasterLargeTriangles;
         rasterChunks = stats.rasterChunks;
@@ -327,7 +329,8 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     json["virtualPages"] = measured.pages.toJson("maps");
     json["virtualFacePages"] = measured.facePages.toJson("faces");
     json["shadowRaster"] = {{"used", measured.raster}, {"choice", measured.rasterChoice},
-                            {"workItems", measured.rasterWork}, {"mediumPieces", measured.rasterMedium},
+                            {"workItems", measured.rasterWork}, {"simplifiedItems", measured.rasterSimplified},
+                            {"mediumPieces", measured.rasterMedium},
                             {"largePieces", measured.rasterLarge},
                             {"chunks", measured.rasterChunks},
                             {"dropped", measured.rasterDropped}};
@@ -376,8 +379,9 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
     for (const AtlasDrawStats& atlas : measured.atlases)
         std::printf("%-20s %u tiles, %u draws, %llu triangles\n", atlas.pass.c_str(), atlas.tiles, atlas.draws,
                     (unsigned long long)atlas.triangles);
-    std::printf("shadow raster: %s (%s), %llu work items, %llu medium pieces, %llu large pieces in %llu chunks, %llu dropped\n",
+    std::printf("shadow raster: %s (%s), %llu work items (%llu simplified), %llu medium pieces, %llu large pieces in %llu chunks, %llu dropped\n",
                 measured.raster.c_str(), measured.rasterChoice.c_str(), (unsigned long long)measured.rasterWork,
+                (unsigned long long)measured.rasterSimplified,
                 (unsigned long long)measured.rasterMedium, (unsigned long long)measured.rasterLarge,
                 (unsigned long long)measured.rasterChunks, (unsigned long long)measured.rasterDropped);
     std::printf("main view: %s (%s)\n", measured.mainView.c_str(), measured.mainViewChoice.c_str());

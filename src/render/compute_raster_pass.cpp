@@ -143,7 +143,7 @@ void ComputeRasterPass::destroyAll() {
 
 void ComputeRasterPass::prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
                                 const ShadowCullingPass& culling, gpu::BufferHandle depth, uint32_t depthSide,
-                                bool meshletCulling) {
+                                const ShadowRasterOptions& options) {
     using namespace gpu_data;
     lists_ = lists;
     writes_.assign(writes.begin(), writes.end());
@@ -153,7 +153,8 @@ void ComputeRasterPass::prepare(const std::vector<gpu::DescriptorWrite>& writes,
     writes_.push_back({kShadowRasterBindingRasterList, lists.rasterList});
     writes_.push_back({kShadowRasterBindingWork, work_, {}, {}});
     appendRasterMeshWrites(writes_, scene_, culling, {counters_, large_, chunkList_});
-    constants_ = {depthSide, meshletCulling ? 1u : 0u, largeCapacity_, chunkCapacity_, workCapacity_, culling.listsPerBuffer(), 0, 0};
+    constants_ = {depthSide,     options.meshletCulling ? 1u : 0u, largeCapacity_,          chunkCapacity_,
+                  workCapacity_, culling.listsPerBuffer(),        options.lodErrorTexels, 0};
     rasterReads(scene_, culling, reads_);
 }
 
@@ -216,7 +217,8 @@ void ComputeRasterPass::recordDraw(gpu::CommandList& commands, std::string_view 
 
 void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                const RasterTileLists& lists, const ShadowCullingPass& culling, const AtlasTiles& tiles,
-                               uint32_t atlasSize, gpu::BufferHandle depth, bool meshletCulling, std::string_view timerPrefix) {
+                               uint32_t atlasSize, gpu::BufferHandle depth, const ShadowRasterOptions& options,
+                               std::string_view timerPrefix) {
     using gpu::Usage;
     // Step names: timerPrefix + step in the command list's scratch (a timer keeps its own copy).
     auto stepName = [&](std::string_view step) { return commands.joinName(timerPrefix, step); };
@@ -225,7 +227,7 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
         commands.fillBuffer(counters_, 0);  // nothing queued (its counters are read back)
         return;
     }
-    prepare(writes, lists, culling, depth, atlasSize, meshletCulling);
+    prepare(writes, lists, culling, depth, atlasSize, options);
     commands.beginTimer(stepName("/clear"));
     const gpu::ResourceUse clears[2] = {gpu::use(counters_, Usage::TransferWrite), gpu::use(depth, Usage::TransferWrite)};
     commands.pass(stepName("/clear"), std::span(clears, tiles.freshAtlas ? 2 : 1));
@@ -239,8 +241,9 @@ void ComputeRasterPass::record(gpu::CommandList& commands, const std::vector<gpu
 
 void ComputeRasterPass::recordTiles(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes,
                                     const RasterTileLists& lists, const ShadowCullingPass& culling, gpu::BufferHandle depth,
-                                    uint32_t depthSide, bool meshletCulling, std::string_view timerPrefix) {
-    prepare(writes, lists, culling, depth, depthSide, meshletCulling);
+                                    uint32_t depthSide, const ShadowRasterOptions& options,
+                                    std::string_view timerPrefix) {
+    prepare(writes, lists, culling, depth, depthSide, options);
     const std::string_view clearName = commands.joinName(timerPrefix, "/clear");
     commands.beginTimer(clearName);
     commands.pass(clearName, {gpu::use(counters_, gpu::Usage::TransferWrite)});

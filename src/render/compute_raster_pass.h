@@ -12,6 +12,7 @@
 #include <string>
 
 #include "cull_structs.h"
+#include "penumbra/settings.h"
 #include "gpu/device.h"
 #include "render/gpu_scene.h"
 #include "render/shadow_culling_pass.h"
@@ -34,6 +35,18 @@ void appendRasterMeshWrites(std::vector<gpu::DescriptorWrite>& writes, const Gpu
                             const ShadowCullingPass& culling, const RasterQueues& queues);
 
 // The lists one raster pass reads (cull_structs.h), in the upload ring or GPU-written buffers.
+// What the shadow rasterizer skips or simplifies: meshlets outside their tile or between its texel
+// centres (render.meshletCulling), casters drawn with a simplified level of their mesh whose error stays
+// within lodErrorTexels texels of the tile (shadows.lodErrorTexels; 0: full meshes).
+struct ShadowRasterOptions {
+    bool meshletCulling = true;
+    float lodErrorTexels = 0.5f;
+    bool operator==(const ShadowRasterOptions&) const = default;
+};
+inline ShadowRasterOptions shadowRasterOptions(const Settings& settings) {
+    return {settings.render.meshletCulling, settings.shadows.lodErrorTexels};
+}
+
 struct RasterTileLists {
     gpu::BufferSlice cullFrame;   // CullFrame: the instance and mesh counts
     gpu::BufferSlice tiles;       // the culling pass's CullTileListHeader + CullTile[]
@@ -57,17 +70,17 @@ public:
     };
     // Draws the tiles into `depth` (atlasSize^2 uints; the caller copies the drawn rects into the sampled
     // atlas, AtlasCopyPass, which keeps the cached tiles). `writes`: the scene bindings
-    // 0-4. meshletCulling: skip the meshlets whose box lies outside their tile (render.meshletCulling).
+    // 0-4. options: the meshlets it skips, the simplified levels it draws.
     // Its steps are timed as PREFIX/clear, /instances, /chunks.
     void record(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
                 const ShadowCullingPass& culling, const AtlasTiles& tiles, uint32_t atlasSize, gpu::BufferHandle depth,
-                bool meshletCulling, std::string_view timerPrefix);
+                const ShadowRasterOptions& options, std::string_view timerPrefix);
     // Clears the raster list's tiles (their viewports) in `depth` (depthSide^2 uints) to far and draws
     // them, nothing known to the CPU but the lists' buffers (the virtual pages' GPU-written lists). Timed
     // as PREFIX/clear, /instances, /chunks.
     void recordTiles(gpu::CommandList& commands, const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists,
-                     const ShadowCullingPass& culling, gpu::BufferHandle depth, uint32_t depthSide, bool meshletCulling,
-                     std::string_view timerPrefix);
+                     const ShadowCullingPass& culling, gpu::BufferHandle depth, uint32_t depthSide,
+                     const ShadowRasterOptions& options, std::string_view timerPrefix);
     // The counters of the last recorded pass (RasterCounters): read back to see dropped triangles and
     // skipped meshlets.
     gpu::BufferSlice counters() const { return {counters_, 0, sizeof(gpu_data::RasterCounters)}; }
@@ -88,7 +101,7 @@ private:
     void destroyAll();
     // The pieces both records share: the writes and constants, the list's clear, passes 1-3.
     void prepare(const std::vector<gpu::DescriptorWrite>& writes, const RasterTileLists& lists, const ShadowCullingPass& culling,
-                 gpu::BufferHandle depth, uint32_t depthSide, bool meshletCulling);
+                 gpu::BufferHandle depth, uint32_t depthSide, const ShadowRasterOptions& options);
     void bind(gpu::CommandList& commands, gpu::PipelineHandle pipeline);
     void recordClearTiles(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth);
     void recordDraw(gpu::CommandList& commands, std::string_view timerPrefix, gpu::BufferHandle depth);

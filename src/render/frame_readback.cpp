@@ -56,6 +56,7 @@ void applyRasterCounters(FrameStats& stats, const FrameReadbackLayout& layout, c
         gpu_data::RasterCounters counters{};
         if (!readPiece(readback, offset, &counters)) continue;
         stats.rasterWorkItems += counters.workQueued;
+        stats.rasterSimplifiedItems += counters.lodItems;
         stats.rasterMediumTriangles += counters.mediumQueued;
         stats.rasterLargeTriangles += counters.largeQueued;
         stats.rasterChunks += counters.chunksQueued;

@@ -16,7 +16,10 @@ std::string toJson(const FrameStats& frame) {
                       {"readback", frame.cpu.readback}};
     stats["shadows"] = nlohmann::json::parse(toJson(frame.shadows));
     stats["warnings"] = frame.warnings;
-    stats["shadowRaster"] = {{"used", frame.shadowRaster}, {"choice", frame.shadowRasterChoice}};
+    stats["shadowRaster"] = {{"used", frame.shadowRaster},
+                             {"choice", frame.shadowRasterChoice},
+                             {"workItems", frame.rasterWorkItems},
+                             {"simplifiedItems", frame.rasterSimplifiedItems}};
     stats["directionalShadows"] = frame.directionalShadows;
     stats["spotShadows"] = frame.spotShadows;
     stats["tightFitWaited"] = frame.tightFitWaited;

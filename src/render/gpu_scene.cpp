@@ -64,6 +64,18 @@ uint32_t packedInstances(const MeshletMesh& mesh) {
     return std::clamp(gpu_data::kRasterPackTriangles / mesh.meshlets[0].triangleCount, 1u, gpu_data::kRasterPackInstances);
 }
 
+// The mesh's simplified levels (their meshlets after its full mesh's, from mesh.firstMeshlet) and the
+// bounding sphere the rasterizer projects their errors at.
+void packShadowLods(const MeshletMesh& meshlets, const Aabb& osBounds, gpu_data::CullMesh& mesh) {
+    mesh.lodCount = uint32_t(std::min<size_t>(meshlets.lods.size(), gpu_data::kMaxShadowLods));
+    if (osBounds.valid()) mesh.osSphere = glm::vec4(osBounds.center(), 0.5f * glm::length(osBounds.max - osBounds.min));
+    for (uint32_t l = 0; l < mesh.lodCount; ++l) {
+        mesh.lodFirstMeshlet[l] = mesh.firstMeshlet + meshlets.lods[l].firstMeshlet;
+        mesh.lodMeshletCount[l] = meshlets.lods[l].meshletCount;
+        mesh.lodError[l] = meshlets.lods[l].osError;
+    }
+}
+
 gpu_data::CullInstance packCullInstance(const Instance& instance, uint32_t meshSlot) {
     gpu_data::CullInstance data{};
     // Every instance with geometry keeps its slot and bounds (the main view's rasterizer and resolve
@@ -211,12 +223,14 @@ void GpuScene::create(const Scene& scene) {
     std::vector<MeshletMesh> meshletMeshes;
     for (const Mesh& mesh : scene.meshes) {
         meshletMeshes.push_back(buildMeshlets(mesh, gpu_data::kRasterBatch));
-        const std::vector<uint32_t>& meshIndices = meshletMeshes.back().indices;
-        ranges.push_back({uint32_t(indices.size()), uint32_t(meshIndices.size()), int32_t(vertices.size())});
+        addShadowLods(mesh, gpu_data::kRasterBatch, gpu_data::kMaxShadowLods, meshletMeshes.back());
+        const std::vector<uint32_t>& meshIndices = meshletMeshes.back().indices;  // the full mesh's, then its levels'
+        ranges.push_back({uint32_t(indices.size()), meshletMeshes.back().fullIndexCount, int32_t(vertices.size())});
         for (const Vertex& v : mesh.vertices)
             vertices.push_back({v.osPosition, v.uv.x, v.osNormal, v.uv.y});
         indices.insert(indices.end(), meshIndices.begin(), meshIndices.end());
     }
+    checkBufferSize("indices with the shadow levels of detail", indices.size() * sizeof(uint32_t), device.maxStorageBufferRange());
     std::vector<gpu_data::InstanceData> instances;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
@@ -239,9 +253,11 @@ void GpuScene::create(const Scene& scene) {
         mesh.vertexOffset = int32_t(ranges[m].vertexOffset);
         mesh.materialIndex = scene.meshes[m].materialIndex;
         mesh.firstMeshlet = uint32_t(meshlets.size());
-        mesh.meshletCount = uint32_t(meshletMeshes[m].meshlets.size());
-        mesh.packedInstances = packedInstances(meshletMeshes[m]);
-        for (const Meshlet& meshlet : meshletMeshes[m].meshlets) meshlets.push_back(packMeshlet(meshlet));
+        const MeshletMesh& meshletMesh = meshletMeshes[m];
+        mesh.meshletCount = uint32_t(meshletMesh.lods.empty() ? meshletMesh.meshlets.size() : meshletMesh.lods[0].firstMeshlet);
+        mesh.packedInstances = packedInstances(meshletMesh);
+        packShadowLods(meshletMesh, scene.meshes[m].osBounds, mesh);
+        for (const Meshlet& meshlet : meshletMesh.meshlets) meshlets.push_back(packMeshlet(meshlet));
         cullMeshes.push_back(mesh);
     }
     meshletCount_ = uint32_t(meshlets.size());

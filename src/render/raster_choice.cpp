@@ -24,7 +24,7 @@ RasterChoice::RasterChoice(bool timestamps, const std::string& deviceName, Names
     : phase_(Phase::MeasureHw), names_(names) {
     if (datacenterNvidia(deviceName)) {
         phase_ = Phase::Decided;
-        compute_ = true;
+        compute_ = byTable_ = true;
         reason_ = std::string(names_.compute) + " (by the device table: a datacenter GPU, graphics on few SMs)";
     } else if (!timestamps) {
         phase_ = Phase::Decided;

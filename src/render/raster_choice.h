@@ -35,6 +35,11 @@ public:
     // A finished auto frame: which path drew it and its shadow passes' GPU milliseconds.
     void measured(bool compute, double shadowMilliseconds);
     bool decided() const { return phase_ == Phase::Decided; }
+    // Whether every frame draws with the compute path, whatever any frame measures: the setting says
+    // `compute`, or `auto` on a device the table decides for.
+    bool computeForGood(ShadowRaster setting) const {
+        return setting == ShadowRaster::Compute || (setting == ShadowRaster::Auto && byTable_);
+    }
     // For the stats: "measuring", or the choice with its reason (valid until the next measured()).
     const char* describe() const;
 
@@ -42,6 +47,7 @@ private:
     enum class Phase { MeasureHw, MeasureCompute, Decided };
     Phase phase_;
     bool compute_ = false;
+    bool byTable_ = false;  // decided by the device table
     std::string reason_;
     Names names_;
     std::vector<double> hw_, compute__;

@@ -234,7 +234,7 @@ void Renderer::State::recordShadowAtlases(FrameRecording& recording, const Tiles
         if (frame.computeRaster) {
             const RasterTileLists lists{recording.cullSlice, recording.cullTileSlice, recording.rasterListSlices[pass]};
             computeRaster.record(commands, recording.casterWrites, lists, culling, atlasTiles, size, rasterDepth,
-                                 recording.settings.render.meshletCulling, name);
+                                 frame.atlasRaster, name);
             frame.readback.rasterCounters[pass] = device.readBackAtFrameEnd(commands, computeRaster.counters());
             atlasCopy.copyFromBuffer(commands, commands.joinName(name, "/copy"), rasterDepth, atlas, size, atlasTiles.rects, fresh);
         } else {
@@ -407,12 +407,12 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
 
-    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), settings.render.meshletCulling,
+    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), shadowRasterOptions(settings),
                               view, stats.warnings);
     stats.virtualPages.maps = virtualShadows.mapsInUse(uint32_t(plan.directional.lights.size()));
     stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
     stats.virtualPages.pagesPerFrame = virtualShadows.active() ? virtualShadows.pagesPerFrame() : 0u;
-    virtualFaces.beginFrame(settings.shadows, plan.other, settings.render.meshletCulling, view, stats.warnings);
+    virtualFaces.beginFrame(settings.shadows, plan.other, shadowRasterOptions(settings), view, stats.warnings);
     stats.virtualFacePages.maps = virtualFaces.faceCount();
     stats.virtualFacePages.poolPages = virtualFaces.poolPages();
     stats.virtualFacePages.pagesPerFrame = virtualFaces.pagesPerFrame();
@@ -422,6 +422,13 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
     frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
     frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
+    frame.atlasRaster = shadowRasterOptions(settings);
+    if (!rasterChoice.computeForGood(settings.shadows.raster)) frame.atlasRaster.lodErrorTexels = 0.0f;
+    if (frame.atlasRaster.lodErrorTexels != tilesLodErrorTexels) {  // the cached tiles hold other levels of detail
+        directionalCache.invalidate();
+        otherCache.invalidate();
+        tilesLodErrorTexels = frame.atlasRaster.lodErrorTexels;
+    }
     FrameTargetSizes sizes = frameTargetSizes(plan, view, output, settings.shadows);
     if (settings.shadows.raster == ShadowRaster::Auto && rasterChoice.decided()) {  // only the chosen path's depth
         sizes.computeRaster = frame.computeRaster;

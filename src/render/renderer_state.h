@@ -51,6 +51,9 @@ struct PendingFrame {
     ShadowFrame plan;  // the stats JSON is written once the GPU's cull counts are back
     FrameReadbackLayout readback;
     bool computeRaster = false;
+    // What the atlases' compute rasterizer skips and simplifies: full meshes unless every frame draws the
+    // atlases with it (RasterChoice::computeForGood), so that both paths give one shadow whichever runs.
+    ShadowRasterOptions atlasRaster;
     bool autoRaster = false;      // shadows.raster = auto and still measuring: its timings feed the choice
     bool visibilityView = false;  // the main view came from the visibility buffer
     bool autoMainView = false;    // render.mainView = auto and still measuring: its main pass time feeds the choice
@@ -132,6 +135,7 @@ struct Renderer::State {
     glm::uvec3 rasterNeeded{0};  // the most large pieces / chunks / work items a finished frame asked the compute rasterizer for
     TileCache directionalCache, otherCache;
     uint64_t directionalGenerationDrawn = ~0ull, otherGenerationDrawn = ~0ull;  // atlases the caches hold tiles of
+    float tilesLodErrorTexels = 0.0f;  // PendingFrame::atlasRaster.lodErrorTexels the cached tiles were drawn with
     uint64_t sceneVersion = 0;  // bumped by every change to the casters (transforms, cast flags, materials)
     // Bumped by the changes that can add or remove casters or receivers (cast flags, materials): the
     // planner's workspace follows moves itself (ShadowPlanWorkspace::instanceMoved).

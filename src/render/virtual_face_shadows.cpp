@@ -80,7 +80,7 @@ void VirtualFaceShadows::configure(const Config& config) {
     drawnFaces_.clear();  // every face is new: the table starts empty
 }
 
-void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherShadowPlan& plan, bool meshletCulling,
+void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherShadowPlan& plan, const ShadowRasterOptions& raster,
                                     const CameraView& view, std::vector<std::string>& warnings) {
     active_ = plan.virtualFaces && !plan.faces.empty();
     const SlotLayout layout = slotLayout();
@@ -102,7 +102,8 @@ void VirtualFaceShadows::beginFrame(const ShadowSettings& settings, const OtherS
         if (!settings.virtualMaps.cache) invalidateAll_ = true;
         table_->setDrawBudget(virtualDrawBudget(settings.virtualMaps.pagesPerFrame, draw_->pagesPerRecord()));
         lightCount_ = uint32_t(std::min<size_t>(plan.faceLights.size(), kMaxFaces));
-        meshletCulling_ = meshletCulling;
+        if (raster.lodErrorTexels != rasterOptions_.lodErrorTexels) invalidateAll_ = true;  // pages drawn with other levels
+        rasterOptions_ = raster;
         footprintScale_ = std::exp2(settings.virtualMaps.faceLodBias + float(pressureSteps_));
         marginTexels_ = plan.faceMarginTexels;
         faces_.assign(plan.faces.begin(), plan.faces.begin() + config_.faceCount);
@@ -198,7 +199,7 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
                               {uploads_, base + layout.invalidations, kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)},
                               invalidationCount_});
     commands.endTimer();
-    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, meshletCulling_, faces, config_.faceCount};
+    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, rasterOptions_, faces, config_.faceCount};
     draw_->record(commands, inputs);
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
     commands.beginTimer("virtualFaces/drawn");

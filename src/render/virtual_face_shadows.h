@@ -45,7 +45,7 @@ public:
     // Before a frame is recorded: the table and pool for the plan's faces when it has any (a changed face
     // count or configuration makes new ones: every page drawn again), this frame's lit block (enabled or
     // not). A pool larger than the device holds is shrunk, with a warning.
-    void beginFrame(const ShadowSettings& settings, const OtherShadowPlan& plan, bool meshletCulling,
+    void beginFrame(const ShadowSettings& settings, const OtherShadowPlan& plan, const ShadowRasterOptions& raster,
                     const CameraView& view, std::vector<std::string>& warnings);
     bool active() const { return active_; }
 
@@ -108,7 +108,8 @@ private:
     Config config_;               // of the table and pool made last (faceCount 0: none)
     uint32_t lightCount_ = 0;     // this frame's lights with faces
     uint32_t pressureSteps_ = 0;  // pool pressure: steps coarser than faceLodBias (notePoolLoad)
-    bool active_ = false, invalidateAll_ = false, meshletCulling_ = true;
+    bool active_ = false, invalidateAll_ = false;
+    ShadowRasterOptions rasterOptions_;
     float marginTexels_ = 0.0f, footprintScale_ = 1.0f;
     std::vector<VirtualFace> faces_;        // this frame's (capacity kept)
     std::vector<glm::mat4> drawnFaces_;     // each face's clipFromWorld at the last record

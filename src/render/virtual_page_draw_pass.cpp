@@ -224,7 +224,7 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     sceneWrites_.push_back({kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
     sceneWrites_.push_back({kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
     raster_.recordTiles(commands, sceneWrites_, lists, culling_, targetDepth_, targetPagesPerSide_ * pageSize_,
-                        inputs.meshletCulling, kPassName);
+                        inputs.raster, kPassName);
     // 4. The slots into their physical pages of the sampled image, one workgroup per page (the list's pageDispatch).
     commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
                                         gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(targetDepth_, Usage::ComputeRead),

@@ -81,7 +81,7 @@ inline uint32_t virtualDrawBudget(uint32_t pagesPerFrame, uint32_t pagesPerRecor
 struct VirtualPageDrawInputs {
     gpu::BufferHandle drawList;  // VirtualPageDrawHeader + VirtualPageDraw[] (the table pass's drawList())
     const VirtualPageDrawSpace* space = nullptr;  // a clipmap's pages (else faces below)
-    bool meshletCulling = true;                   // render.meshletCulling
+    ShadowRasterOptions raster;                   // render.meshletCulling, shadows.lodErrorTexels
     gpu::BufferSlice faces;  // a faces' pass: faceCount VirtualFaceData (storage)
     uint32_t faceCount = 0;
 };

@@ -52,7 +52,7 @@ struct VirtualShadowMapConfig {
     VirtualClipmapConfig clipmap;
     uint32_t poolPagesPerSide = 16;  // the pool holds poolPagesPerSide^2 physical pages
     uint32_t keepFrames = 8;         // unrequested pages stay resident this many frames (VirtualPageTablePass)
-    bool meshletCulling = true;      // render.meshletCulling for the page drawing
+    ShadowRasterOptions raster;      // render.meshletCulling, shadows.lodErrorTexels for the page drawing
     // The pixel footprint the levels are picked by is the view's times this (shadows.virtual.lodBias:
     // 2^lodBias): 0.5 picks texels half as wide as a pixel's footprint. A lit pass must use the same.
     float footprintScale = 1.0f;

@@ -14,7 +14,7 @@ uint32_t virtualPoolPagesPerSide(uint32_t pages) {
     return std::max(1u, uint32_t(std::floor(std::sqrt(double(pages)))));
 }
 
-VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling) {
+VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, const ShadowRasterOptions& raster) {
     const VirtualShadowSettings& pages = settings.virtualMaps;
     VirtualShadowMapConfig config;
     config.clipmap.resolution = pages.resolution;
@@ -23,7 +23,7 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bo
     config.clipmap.firstLevelSize = pages.firstLevelSize;
     config.poolPagesPerSide = virtualPoolPagesPerSide(pages.poolPages);
     config.keepFrames = pages.keepFrames;
-    config.meshletCulling = meshletCulling;
+    config.raster = raster;
     config.footprintScale = std::exp2(pages.lodBias);
     return config;
 }
@@ -33,7 +33,7 @@ namespace {
 bool sameConfig(const VirtualShadowMapConfig& a, const VirtualShadowMapConfig& b) {
     return a.clipmap.resolution == b.clipmap.resolution && a.clipmap.pageSize == b.clipmap.pageSize &&
            a.clipmap.levelCount == b.clipmap.levelCount && a.clipmap.firstLevelSize == b.clipmap.firstLevelSize &&
-           a.poolPagesPerSide == b.poolPagesPerSide && a.keepFrames == b.keepFrames && a.meshletCulling == b.meshletCulling &&
+           a.poolPagesPerSide == b.poolPagesPerSide && a.keepFrames == b.keepFrames && a.raster == b.raster &&
            a.footprintScale == b.footprintScale;
 }
 
@@ -96,11 +96,11 @@ uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t m
     return side;
 }
 
-void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCount, bool meshletCulling,
+void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCount, const ShadowRasterOptions& raster,
                                 const CameraView& view, std::vector<std::string>& warnings) {
     active_ = settings.directional.mode == DirectionalShadowMode::Virtual;
     if (active_) {
-        VirtualShadowMapConfig config = virtualShadowMapConfig(settings, meshletCulling);
+        VirtualShadowMapConfig config = virtualShadowMapConfig(settings, raster);
         const uint32_t requested = config.poolPagesPerSide;
         config.poolPagesPerSide = fitVirtualPool(requested, config.clipmap.pageSize, lightCount, device_.maxImageSize());
         if (config.poolPagesPerSide < requested)

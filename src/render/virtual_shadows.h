@@ -38,7 +38,7 @@ namespace penumbra {
 uint32_t virtualPoolPagesPerSide(uint32_t pages);
 
 // The VirtualShadowMapConfig of the shadows.virtual settings (the pool rounded down to a square of pages).
-VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, bool meshletCulling);
+VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, const ShadowRasterOptions& raster);
 
 // The most pages a side (up to poolPagesPerSide) whose pools fit the device for mapCount maps: their
 // shared texture (mapCount pools stacked) within maxImageSize. (The rasterizer draws into a depth target
@@ -68,7 +68,7 @@ public:
     // lights when the mode is virtual (a changed configuration makes new ones: every page drawn again),
     // and this frame's uniform block (enabled or not). A pool larger than the device holds is shrunk,
     // with a warning.
-    void beginFrame(const ShadowSettings& settings, uint32_t lightCount, bool meshletCulling, const CameraView& view,
+    void beginFrame(const ShadowSettings& settings, uint32_t lightCount, const ShadowRasterOptions& raster, const CameraView& view,
                     std::vector<std::string>& warnings);
     bool active() const { return active_; }
 

@@ -113,6 +113,14 @@ std::vector<SettingKey> makeTable() {
                        "(fast where few SMs run graphics, e.g. NVIDIA H100 / H200), `auto` by a table on datacenter "
                        "NVIDIA GPUs (compute, no measuring frames) and elsewhere by whichever the first frames measure "
                        "faster. Both give the same shadow term."));
+    t.push_back(ranged("shadows.lodErrorTexels", SettingType::Number, 0.0, 4.0, "0..4", PENUMBRA_FIELD(shadows.lodErrorTexels),
+                       "The compute rasterizer draws each shadow caster with the coarsest simplified level of its mesh "
+                       "(up to 4, made by meshoptimizer at load) whose error, scaled to the instance, stays within "
+                       "this many texels of the tile or page it is drawn into at the caster's nearest point: a far "
+                       "cascade or coarse page draws a few triangles of a detailed mesh. 0 draws every caster in "
+                       "full; alpha-tested casters and the `hw` rasterizer always are, and so are the atlases' "
+                       "casters unless every frame draws them by compute (`shadows.raster = compute`, or `auto` "
+                       "where the device table decides), so that both rasterizers give one shadow."));
     t.push_back(flag("shadows.cacheTiles", PENUMBRA_FIELD(shadows.cacheTiles),
                        "A shadow tile whose projection, cascade spheres, casters and rasterizer did not change since the "
                        "last frame keeps its depth and is not drawn again."));

@@ -246,3 +246,83 @@ TEST(MeshletCulling, ObjectEyeIsTheInverseTransformOfTheWorldEye) {
     const glm::vec3 back = mc::meshletObjectEye(worldFromObject, wsEye);
     EXPECT_NEAR(glm::distance(back, osEye), 0.0f, 1e-4f);
 }
+
+// Shadow levels of detail (addShadowLods): each level keeps at most kLodKeepAtMost of the triangles of
+// the one before, its error grows level by level, its meshlets hold exactly its triangles after the full
+// mesh's, and the full mesh's part is what buildMeshlets made.
+TEST(ShadowLods, EachLevelHasFewerTrianglesAndALargerErrorThanTheOneBefore) {
+    for (const Mesh& mesh : {makeSphereMesh(1.0f, 0, 96, 48), makeCylinderMesh(0.5f, 2.0f, 0, 64), engineMesh()}) {
+        const MeshletMesh full = buildMeshlets(mesh, kMaxTriangles);
+        MeshletMesh split = full;
+        addShadowLods(mesh, kMaxTriangles, 4, split);
+        ASSERT_FALSE(split.lods.empty());
+        EXPECT_EQ(split.fullIndexCount, mesh.indices.size());
+        EXPECT_TRUE(std::equal(full.indices.begin(), full.indices.end(), split.indices.begin()));
+        size_t previous = mesh.indices.size() / 3;
+        float previousError = 0.0f;
+        uint32_t nextMeshlet = uint32_t(full.meshlets.size()), nextTriangle = split.fullIndexCount / 3;
+        for (const MeshletLod& lod : split.lods) {
+            EXPECT_LE(float(lod.triangleCount), kLodKeepAtMost * float(previous));
+            EXPECT_GT(lod.osError, previousError);
+            EXPECT_EQ(lod.firstMeshlet, nextMeshlet);
+            uint32_t triangles = 0;
+            for (uint32_t m = lod.firstMeshlet; m < lod.firstMeshlet + lod.meshletCount; ++m) {
+                EXPECT_EQ(split.meshlets[m].firstTriangle, nextTriangle);
+                nextTriangle += split.meshlets[m].triangleCount;
+                triangles += split.meshlets[m].triangleCount;
+            }
+            EXPECT_EQ(triangles, lod.triangleCount);
+            nextMeshlet += lod.meshletCount;
+            previous = lod.triangleCount;
+            previousError = lod.osError;
+        }
+        EXPECT_EQ(nextMeshlet, split.meshlets.size());
+        EXPECT_EQ(size_t(nextTriangle) * 3, split.indices.size());
+        for (uint32_t index : split.indices) ASSERT_LT(index, mesh.vertices.size());
+    }
+}
+
+// The error is what the shadow rasterizer trusts to pick a level: every vertex of the full sphere lies
+// within it of the level's surface.
+TEST(ShadowLods, TheFullMeshLiesWithinEachLevelsErrorOfItsSurface) {
+    const Mesh mesh = makeSphereMesh(1.0f, 0, 96, 48);
+    MeshletMesh split = buildMeshlets(mesh, kMaxTriangles);
+    addShadowLods(mesh, kMaxTriangles, 4, split);
+    auto pointTriangle = [](glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c) {  // distance, Ericson 5.1.5
+        const glm::vec3 ab = b - a, ac = c - a, n = glm::cross(ab, ac);
+        const float area2 = glm::dot(n, n);
+        if (area2 > 0.0f) {
+            const glm::vec3 q = p - glm::dot(p - a, n) / area2 * n;  // p projected onto the plane
+            const float u = glm::dot(glm::cross(c - b, q - b), n), v = glm::dot(glm::cross(a - c, q - c), n),
+                        w = glm::dot(glm::cross(b - a, q - a), n);
+            if (u >= 0.0f && v >= 0.0f && w >= 0.0f) return glm::distance(p, q);
+        }
+        auto segment = [&](glm::vec3 s, glm::vec3 e) {
+            const float t = glm::clamp(glm::dot(p - s, e - s) / std::max(glm::dot(e - s, e - s), 1e-20f), 0.0f, 1.0f);
+            return glm::distance(p, s + t * (e - s));
+        };
+        return std::min({segment(a, b), segment(b, c), segment(c, a)});
+    };
+    for (const MeshletLod& lod : split.lods) {
+        const uint32_t first = split.meshlets[lod.firstMeshlet].firstTriangle;
+        float farthest = 0.0f;
+        for (const Vertex& vertex : mesh.vertices) {
+            float nearest = 1e30f;
+            for (uint32_t t = first; t < first + lod.triangleCount; ++t)
+                nearest = std::min(nearest, pointTriangle(vertex.osPosition, position(mesh, split.indices[t * 3]),
+                                                          position(mesh, split.indices[t * 3 + 1]),
+                                                          position(mesh, split.indices[t * 3 + 2])));
+            farthest = std::max(farthest, nearest);
+        }
+        std::printf("level of %u triangles: error %.4f, farthest vertex %.4f\n", lod.triangleCount, lod.osError, farthest);
+        EXPECT_LE(farthest, lod.osError * 1.01f + 1e-5f);
+    }
+}
+
+TEST(ShadowLods, AMeshOfOneMeshletHasNone) {
+    const Mesh box = makeBoxMesh(glm::vec3(1.0f), 0);
+    MeshletMesh split = buildMeshlets(box, kMaxTriangles);
+    addShadowLods(box, kMaxTriangles, 4, split);
+    EXPECT_TRUE(split.lods.empty());
+    EXPECT_EQ(split.indices.size(), box.indices.size());
+}
