@@ -48,6 +48,9 @@ struct CpuPhaseTimes {
     double submit = 0.0;   // vkQueueSubmit
     double readback = 0.0; // the finished frame's results on the host (tight-fit depth bounds, virtual page
                            // requests, timings), done when a later call collects the frame
+    // plan + culling + upload + record + submit in the calling thread's CPU time: without the time the
+    // thread was not running (the host's), with what the thread itself spent (the engine's).
+    double thread = 0.0;
 };
 
 // What one shadow atlas pass drew.

@@ -181,6 +181,7 @@ struct Measurements {
         // of a sum is not the sum of the p95s).
         cpu["total"].values.push_back(stats.cpu.plan + stats.cpu.culling + stats.cpu.upload + stats.cpu.record + stats.cpu.submit +
                                      stats.cpu.readback);
+        cpu["thread"].values.push_back(stats.cpu.thread);
         frame.values.push_back(stats.submitToFenceMilliseconds);
         gpuFrame.values.push_back(stats.gpuFrameMilliseconds);
         if (stats.gpuFramePeriodMilliseconds > 0.0) gpuPeriod.values.push_back(stats.gpuFramePeriodMilliseconds);
@@ -423,7 +424,7 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
 // One row per timed frame, in order: what the medians and p95s summarize, for a plot of a run or a look
 // at its slowest frames.
 std::string frameTimesCsv(const Measurements& measured) {
-    static const char* const kPhases[] = {"plan", "culling", "upload", "record", "submit", "readback", "total"};
+    static const char* const kPhases[] = {"plan", "culling", "upload", "record", "submit", "readback", "total", "thread"};
     std::string csv = "frame,gpuFrameMs,submitToFenceMs";
     for (const char* phase : kPhases) csv += std::string(",cpu_") + phase + "Ms";
     csv += "\n";

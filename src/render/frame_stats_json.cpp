@@ -13,7 +13,7 @@ std::string toJson(const FrameStats& frame) {
     stats["cpuPlanMs"] = frame.cpu.plan + frame.cpu.culling;
     stats["cpuMs"] = {{"plan", frame.cpu.plan}, {"culling", frame.cpu.culling}, {"upload", frame.cpu.upload},
                       {"record", frame.cpu.record}, {"submit", frame.cpu.submit},
-                      {"readback", frame.cpu.readback}};
+                      {"readback", frame.cpu.readback}, {"thread", frame.cpu.thread}};
     stats["shadows"] = nlohmann::json::parse(toJson(frame.shadows));
     stats["warnings"] = frame.warnings;
     stats["shadowRaster"] = {{"used", frame.shadowRaster},

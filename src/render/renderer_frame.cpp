@@ -390,6 +390,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     const uint64_t frameIndex = device.nextFrameIndex();
 
     Stopwatch phase;
+    const ThreadStopwatch planThread;
     std::optional<VisibleSurfaces> visibleNow;
     editBytesUploaded = 0;
     try {
@@ -404,6 +405,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     packFrameLights(scene, plan, packedLights);
     stats.cpu.culling = plan.stats.cullingMilliseconds;
     stats.cpu.plan = phase.milliseconds() - stats.cpu.culling;
+    stats.cpu.thread = planThread.milliseconds();
     stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
 
@@ -469,6 +471,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     }
     const PackedLights& lights = packedLights;
     Stopwatch phase;
+    ThreadStopwatch work;
 
     gpu::CommandList commands = device.beginFrame();
     // A failure from here to the submission drops the frame (the next one starts clean) and names the
@@ -476,6 +479,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     FrameRecording recording{commands, frame, settings, view, sizes, casterWrites};
     try {
         phase.restart();  // the wait for the slot's previous frame is not CPU work
+        work.restart();
         stats.sceneBytesUploaded = editBytesUploaded + gpuScene.recordUpdates(commands, scene);
         uploadFrameInputs(recording, request, lights);
         const TilesToDraw& draw = chooseTilesToDraw(recording);
@@ -500,6 +504,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
     }
     gpuScene.updatesSubmitted();
     stats.cpu.submit = phase.milliseconds();
+    stats.cpu.thread += work.milliseconds();
     stats.frameIndex = frame.frameIndex;
     const uint64_t submitted = frame.frameIndex;
     collectCompleted();  // recycles only older slots: `frame` is the newest

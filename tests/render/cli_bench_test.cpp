@@ -189,7 +189,8 @@ TEST(CliBench, WithoutVarySettingsThereIsNoVaryBlock) {
 }
 
 // --frame-times: a header and one row per timed frame (none for the warm-up frames still in flight when
-// the timed ones start), each frame's CPU total the sum of its phases.
+// the timed ones start), each frame's CPU total the sum of its phases, its thread time (plan to
+// submit, CPU time of one thread) above zero and no more than the wall time of those phases.
 TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
     const std::string path =
         (std::filesystem::temp_directory_path() / ("penumbra_frames_" + std::to_string(::getpid()) + ".csv")).string();
@@ -198,15 +199,18 @@ TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
     std::ifstream file(path);
     std::string line;
     ASSERT_TRUE(std::getline(file, line));
-    EXPECT_EQ(line, "frame,gpuFrameMs,submitToFenceMs,cpu_planMs,cpu_cullingMs,cpu_uploadMs,cpu_recordMs,cpu_submitMs,cpu_readbackMs,cpu_totalMs");
+    EXPECT_EQ(line, "frame,gpuFrameMs,submitToFenceMs,cpu_planMs,cpu_cullingMs,cpu_uploadMs,cpu_recordMs,cpu_submitMs,cpu_readbackMs,"
+                    "cpu_totalMs,cpu_threadMs");
     int rows = 0;
     while (std::getline(file, line)) {
         std::vector<double> cells;
         std::stringstream row(line);
         for (std::string cell; std::getline(row, cell, ',');) cells.push_back(std::stod(cell));
-        ASSERT_EQ(cells.size(), 10u) << line;
+        ASSERT_EQ(cells.size(), 11u) << line;
         EXPECT_EQ(cells[0], rows);
         EXPECT_NEAR(cells[9], cells[3] + cells[4] + cells[5] + cells[6] + cells[7] + cells[8], 6e-4) << line;
+        EXPECT_GT(cells[10], 0.0) << line;
+        EXPECT_LE(cells[10], cells[3] + cells[4] + cells[5] + cells[6] + cells[7] + 6e-4) << line;
         ++rows;
     }
     EXPECT_EQ(rows, 5);
