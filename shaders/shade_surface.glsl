@@ -42,6 +42,7 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
     vec3 wsToLight = light.wsToLight.xyz;
     float attenuation = 1.0;
     ShadowSample shadow = ShadowSample(1.0, -1);
+    bool aovLight = light.sceneLightIndex == frame.aovLightIndex;
     if (light.type == kLightDirectional) {
         // Transparent surfaces are not in the depth prepass: they sample the atlas directly, as in URP.
         bool resolved = frame.screenSpaceShadows != 0u && light.shadowSlot == 0u && !pixel.blendPass &&
@@ -57,9 +58,13 @@ vec3 shadeLight(uint i, PixelLighting pixel, inout float aovShadow, inout int ao
         attenuation = rangeAttenuation(distanceSquared, light.invRangeSquared);
         if (light.type == kLightSpot)
             attenuation *= spotAttenuation(-wsToLight, -light.wsToLight, light.spotScale, light.spotOffset);
-        if (pixel.receives) shadow = otherShadow(light.shadowSlot, pixel.receiver, wsToLight);
+        // A light that adds nothing here (outside its cone or range, or behind the surface) needs no shadow
+        // lookup, unless its shadow term is the AOV's: a cluster holds every light whose range sphere
+        // reaches it, and most of those pixels lie outside a spot's cone.
+        bool adds = attenuation > 0.0 && dot(pixel.surface.wsNormal, wsToLight) > 0.0;
+        if (pixel.receives && (adds || aovLight)) shadow = otherShadow(light.shadowSlot, pixel.receiver, wsToLight);
     }
-    if (light.sceneLightIndex == frame.aovLightIndex) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
+    if (aovLight) { aovShadow = shadow.attenuation; aovCascade = shadow.cascade; }
     float nDotL = max(dot(pixel.surface.wsNormal, wsToLight), 0.0);
     return brdf(pixel.surface, wsToLight) * light.color * (nDotL * attenuation * shadow.attenuation);
 }
