@@ -409,12 +409,12 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     stats.warnings.insert(stats.warnings.end(), lights.warnings.begin(), lights.warnings.end());
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
 
-    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), shadowRasterOptions(settings),
-                              view, stats.warnings);
+    const ShadowRasterOptions raster = shadowRasterOptions(settings);
+    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), raster, view, stats.warnings);
     stats.virtualPages.maps = virtualShadows.mapsInUse(uint32_t(plan.directional.lights.size()));
     stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
     stats.virtualPages.pagesPerFrame = virtualShadows.active() ? virtualShadows.pagesPerFrame() : 0u;
-    virtualFaces.beginFrame(settings.shadows, plan.other, shadowRasterOptions(settings), view, stats.warnings);
+    virtualFaces.beginFrame(settings.shadows, plan.other, raster, view, stats.warnings);
     stats.virtualFacePages.maps = virtualFaces.faceCount();
     stats.virtualFacePages.poolPages = virtualFaces.poolPages();
     stats.virtualFacePages.pagesPerFrame = virtualFaces.pagesPerFrame();
@@ -424,7 +424,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
     frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
     frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);
-    frame.atlasRaster = shadowRasterOptions(settings);
+    frame.atlasRaster = raster;
     if (!rasterChoice.computeForGood(settings.shadows.raster)) frame.atlasRaster.lodErrorTexels = 0.0f;
     if (frame.atlasRaster.lodErrorTexels != tilesLodErrorTexels) {  // the cached tiles hold other levels of detail
         directionalCache.invalidate();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include <meshoptimizer.h>
 
@@ -85,14 +86,34 @@ std::vector<uint32_t> simplifiedLevel(const Mesh& mesh, const std::vector<uint32
     return properTriangles(level);
 }
 
+// The full mesh as the levels are measured against: its positions, the vertices its triangles use (each
+// once) and the grid of its triangles, made once for all the levels.
+struct FullSurface {
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> vertices;
+    TriangleGrid grid;
+    FullSurface(std::vector<glm::vec3> p, const std::vector<uint32_t>& triangles)
+        : positions(std::move(p)), vertices(usedVertices(triangles, positions.size())), grid(positions, triangles) {}
+    FullSurface(const FullSurface&) = delete;  // the grid points into positions
+    static std::vector<uint32_t> usedVertices(const std::vector<uint32_t>& triangles, size_t vertexCount) {
+        std::vector<bool> used(vertexCount, false);
+        for (uint32_t i : triangles) used[i] = true;
+        std::vector<uint32_t> list;
+        for (uint32_t i = 0; i < vertexCount; ++i)
+            if (used[i]) list.push_back(i);
+        return list;
+    }
+};
+
 // How far the two surfaces lie apart, measured both ways: every vertex of the full mesh from the level,
 // and the corners, edge midpoints and centre of every triangle of the level from the full mesh.
 // (meshoptimizer's own error estimate is a quadric's: on a sphere the true distance is 2-2.5 times it.)
-float measuredError(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& full,
-                    const std::vector<uint32_t>& level) {
-    const TriangleGrid fullGrid(positions, full), levelGrid(positions, level);
+float measuredError(const FullSurface& full, const std::vector<uint32_t>& level) {
+    const std::vector<glm::vec3>& positions = full.positions;
+    const TriangleGrid levelGrid(positions, level);
     float error = 0.0f;
-    for (uint32_t i : full) error = std::max(error, levelGrid.distance(positions[i]));
+    for (uint32_t i : full.vertices) error = std::max(error, levelGrid.distance(positions[i]));
+    const TriangleGrid& fullGrid = full.grid;
     for (size_t t = 0; t + 2 < level.size(); t += 3) {
         const glm::vec3 &a = positions[level[t]], &b = positions[level[t + 1]], &c = positions[level[t + 2]];
         for (const glm::vec3& p : {0.5f * (a + b), 0.5f * (b + c), 0.5f * (c + a), (a + b + c) / 3.0f})
@@ -135,6 +156,7 @@ void addShadowLods(const Mesh& mesh, uint32_t maxTriangles, uint32_t maxLevels, 
     welded = properTriangles(welded);
     std::vector<glm::vec3> positions(mesh.vertices.size());
     for (size_t i = 0; i < positions.size(); ++i) positions[i] = mesh.vertices[i].osPosition;
+    const FullSurface full(std::move(positions), welded);
     size_t previous = fullTriangles;
     for (uint32_t level = 0; level < maxLevels; ++level) {
         const std::vector<uint32_t> triangles = simplifiedLevel(mesh, welded, previous / 4 * 3);
@@ -142,7 +164,7 @@ void addShadowLods(const Mesh& mesh, uint32_t maxTriangles, uint32_t maxLevels, 
         MeshletLod lod;
         lod.firstMeshlet = uint32_t(out.meshlets.size());
         lod.triangleCount = uint32_t(triangles.size() / 3);
-        lod.osError = std::max(measuredError(positions, welded, triangles), out.lods.empty() ? 0.0f : out.lods.back().osError);
+        lod.osError = std::max(measuredError(full, triangles), out.lods.empty() ? 0.0f : out.lods.back().osError);
         appendMeshlets(mesh, triangles, maxTriangles, out);
         lod.meshletCount = uint32_t(out.meshlets.size()) - lod.firstMeshlet;
         out.lods.push_back(lod);
