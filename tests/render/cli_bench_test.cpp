@@ -190,7 +190,9 @@ TEST(CliBench, WithoutVarySettingsThereIsNoVaryBlock) {
 
 // --frame-times: a header and one row per timed frame (none for the warm-up frames still in flight when
 // the timed ones start), each frame's CPU total the sum of its phases, its thread time (plan to
-// submit, CPU time of one thread) above zero and no more than the wall time of those phases.
+// submit, CPU time of one thread) above zero and no more than the wall time of those phases, give or
+// take 0.05 ms: the thread clock is read by a system call, four a frame, which a busy 2-core machine
+// can make ten microseconds slow (1 frame in 40 exceeded the wall time by 0.010 ms under ctest -j2).
 TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
     const std::string path =
         (std::filesystem::temp_directory_path() / ("penumbra_frames_" + std::to_string(::getpid()) + ".csv")).string();
@@ -210,7 +212,7 @@ TEST(CliBench, FrameTimesWritesOneCsvRowPerTimedFrame) {
         EXPECT_EQ(cells[0], rows);
         EXPECT_NEAR(cells[9], cells[3] + cells[4] + cells[5] + cells[6] + cells[7] + cells[8], 6e-4) << line;
         EXPECT_GT(cells[10], 0.0) << line;
-        EXPECT_LE(cells[10], cells[3] + cells[4] + cells[5] + cells[6] + cells[7] + 6e-4) << line;
+        EXPECT_LE(cells[10], cells[3] + cells[4] + cells[5] + cells[6] + cells[7] + 0.05) << line;
         ++rows;
     }
     EXPECT_EQ(rows, 5);
