@@ -83,10 +83,10 @@ struct SpotShadowSettings {
 struct VirtualShadowSettings {
     uint32_t pageSize = 128;
     uint32_t resolution = 16384;
-    // Rounded down to a square: 60^2 = 3600 pages of 128^2 texels, one R32F image of 225 MiB (with the
-    // drawing's depth target of 484 pages, 256 MiB in all).
-    uint32_t poolPages = 3600;
-    uint32_t facePoolPages = 2048;  // the faces' pool, rounded down as well: 45^2 = 2025 pages
+    // Rounded down to a square: 84^2 = 7056 pages of 128^2 texels of 16-bit depth codes, one image of
+    // 220.5 MiB (with the drawing's depth target of 484 pages of 32-bit depths, 251 MiB in all).
+    uint32_t poolPages = 7056;
+    uint32_t facePoolPages = 4096;  // the faces' pool, rounded down as well: 64^2 pages, 128 MiB
     uint32_t levelCount = 16;
     float firstLevelSize = 2.0f;  // scene units (metres) along level 0's side
     float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint

@@ -188,9 +188,10 @@ std::vector<SettingKey> makeTable() {
     t.push_back(ranged("shadows.virtual.poolPages", SettingType::Integer, 16, 16384, "16..16384",
                        PENUMBRA_FIELD(shadows.virtualMaps.poolPages),
                        "Virtual shadow maps: physical pages per directional light, rounded down to a square number, "
-                       "each pageSize^2 32-bit depths in one image: 3600 pages of 128^2 take 225 MiB, and the "
-                       "rasterizer draws a frame's pages into a target of at most 484 more (31 MiB). A 1920x1080 view "
-                       "needs about 700 pages per light at lodBias 0, 2000-3100 at -1. When the visible pages need "
+                       "each pageSize^2 16-bit depth codes of the page's own depth range in one image: 7056 pages of "
+                       "128^2 take 220.5 MiB, and the rasterizer draws a frame's pages into a target of at most 484 "
+                       "32-bit pages (31 MiB). A 1920x1080 view needs about 700 pages per light at lodBias 0, "
+                       "2000-3100 at -1, 4000-6000 at -1.5. When the visible pages need "
                        "more, a coarser level serves the rest (a warning and the stat `overflowed`); a pool larger "
                        "than the device holds is shrunk, with a warning."));
     t.push_back(ranged("shadows.virtual.facePoolPages", SettingType::Integer, 16, 16384, "16..16384",
