@@ -86,10 +86,17 @@ struct VirtualShadowSettings {
     // Rounded down to a square: 84^2 = 7056 pages of 128^2 texels of 16-bit depth codes, one image of
     // 220.5 MiB (with the drawing's depth target of 484 pages of 32-bit depths, 251 MiB in all).
     uint32_t poolPages = 7056;
-    uint32_t facePoolPages = 4096;  // the faces' pool, rounded down as well: 64^2 pages, 128 MiB
+    // The faces' pool, rounded down as well: 45^2 = 2025 pages, 63 MiB. More lets 16 lights at 1920x1080
+    // read a mip finer (pool pressure coarsens them here: docs/rendering.md), at the cost of their pages'
+    // and lookups' time.
+    uint32_t facePoolPages = 2048;
     uint32_t levelCount = 16;
     float firstLevelSize = 2.0f;  // scene units (metres) along level 0's side
     float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint
+    // The lodBias of a directional light whose direction changed in one of its last kVirtualMovingFrames
+    // records: its pages are drawn again every frame, so a finer lodBias than this would cost a turning
+    // light that many more pages (Unreal Engine's r.Shadow.Virtual.ResolutionLodBiasDirectionalMoving).
+    float movingLodBias = -1.0f;
     bool cache = true;            // pages stay drawn across frames until invalidated
     uint32_t keepFrames = 8;      // frames an unrequested page stays resident
     uint32_t pagesPerFrame = 0;   // most dirty pages drawn in a frame per map (0: as many as its lists hold)

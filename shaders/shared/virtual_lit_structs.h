@@ -13,12 +13,16 @@ PENUMBRA_GPU_NAMESPACE_BEGIN
 // used (so a pixel reads the level whose pages were requested for it) and each shadow slot's lookup.
 struct VirtualDirectionalShadowData {
     uint enabled;               // 1: every shadowed directional light samples maps[its shadow slot]
-    float wsFootprintPerDepth;  // a pixel's world footprint per unit of view depth (VirtualPageMarkData's)
+    float wsFootprintPerDepth;  // a pixel's world footprint per unit of view depth
     uint mapCount;              // maps[0 .. mapCount) are valid
     uint reserved0;
+    // By shadow slot: the footprint's scale, 2^lodBias or 2^movingLodBias (a light that turns): the
+    // marking pass's wsFootprintPerDepth is wsFootprintPerDepth x footprintScales[slot].
+    vec4 footprintScales;
     VirtualShadowLookupData maps[4];  // kMaxShadowedDirectionalLights, by shadow slot
 };
-PENUMBRA_CHECK_SIZE(VirtualDirectionalShadowData, 16 + 4 * (112 + 16 * 16))
+PENUMBRA_CHECK_SIZE(VirtualDirectionalShadowData, 32 + 4 * (112 + 16 * 16))
+PENUMBRA_CHECK_LAYOUT(VirtualDirectionalShadowData, maps, 32)
 
 // One uniform block for the spot and point lights' faces: whether they sample virtual maps, the footprint
 // rule of their marking pass, their page table (faceCount > 0) and the faces. A shadow slot's faces start

@@ -410,7 +410,8 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     stats.warnings.insert(stats.warnings.end(), plan.other.warnings.begin(), plan.other.warnings.end());
 
     const ShadowRasterOptions raster = shadowRasterOptions(settings);
-    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), raster, view, stats.warnings);
+    virtualShadows.beginFrame(settings.shadows, uint32_t(plan.directional.lights.size()), raster, view, oneShot,
+                              stats.warnings);
     stats.virtualPages.maps = virtualShadows.mapsInUse(uint32_t(plan.directional.lights.size()));
     stats.virtualPages.poolPages = virtualShadows.active() ? virtualShadows.poolPages() : 0u;
     stats.virtualPages.pagesPerFrame = virtualShadows.active() ? virtualShadows.pagesPerFrame() : 0u;
@@ -420,7 +421,7 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     stats.virtualFacePages.pagesPerFrame = virtualFaces.pagesPerFrame();
     stats.virtualFacePages.lodBiasSteps = virtualFaces.poolPressureSteps();
     virtualSettling.beginFrame(frameIndex, {settings, view, sceneVersion + callerDepthFrames, lightVersion,
-                                            virtualFaces.poolPressureSteps()});
+                                            virtualFaces.poolPressureSteps(), virtualShadows.moving()});
     frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
     frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
     frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);

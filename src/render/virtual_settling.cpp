@@ -17,7 +17,8 @@ bool pagesAtRest(const VirtualPageCounts& pages) {
 }
 
 void VirtualSettling::beginFrame(uint64_t frameIndex, const VirtualFrameInputs& inputs) {
-    const bool same = haveInputs_ && inputs.sceneVersion == sceneVersion_ && inputs.lightVersion == lightVersion_ &&
+    const bool same = haveInputs_ && !inputs.directionalMoving && inputs.sceneVersion == sceneVersion_ &&
+                      inputs.lightVersion == lightVersion_ &&
                       inputs.facePressureSteps == facePressureSteps_ &&
                       sameView(inputs.view, view_) && inputs.settings == settings_;
     if (same) return;

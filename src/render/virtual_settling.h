@@ -6,7 +6,8 @@
 // skip the directional maps' (or the faces') update entirely and sample the page tables as they are,
 // so a still camera costs no page pass (Unreal Engine's "Virtual Shadow Maps" documentation: cached
 // pages cost nothing while nothing invalidates them). Any change of an input, an invalidation or a
-// change of the faces' pool pressure ends it; the next frame updates again.
+// change of the faces' pool pressure ends it; the next frame updates again. Nothing settles while a
+// directional light counts as turning: its bias changes a few frames after it stops (VirtualShadows).
 #include <array>
 #include <cstdint>
 
@@ -23,6 +24,7 @@ struct VirtualFrameInputs {
     uint64_t sceneVersion = 0;  // the casters: transforms, cast flags, materials
     uint64_t lightVersion = 0;  // the lights
     uint32_t facePressureSteps = 0;  // the faces' pool pressure (VirtualFaceShadows::poolPressureSteps)
+    bool directionalMoving = false;  // a directional light still counts as turning (VirtualShadows::moving)
 };
 
 // One kind of virtual map's page counts and per-level counts, as a settled frame found them.

@@ -63,7 +63,7 @@ bool VirtualShadowMap::updateDrawSpace(const glm::vec3& wsLightDirection, const 
 
 void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepthSource& mainDepth, const CameraView& view,
                               const glm::vec3& wsLightDirection, const Aabb& wsSceneBounds, float marginTexels,
-                              std::span<const gpu_data::VirtualPageInvalidation> invalidations) {
+                              std::span<const gpu_data::VirtualPageInvalidation> invalidations, float footprintScale) {
     const bool newSpace = updateDrawSpace(wsLightDirection, wsSceneBounds);
     const bool tooMany = invalidations.size() > kMaxInvalidations;
     const bool invalidateAll = newSpace || forceInvalidate_ || tooMany;
@@ -78,7 +78,7 @@ void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepth
     const glm::mat4& lightFromWorld = space_.lightRotationFromWorld;
     const glm::vec2 lsCamera = lsClipmapCentre(lightFromWorld, view);
     gpu_data::VirtualPageMarkData mark = packVirtualPageMark(config_.clipmap, lightFromWorld, view, marginTexels);
-    mark.wsFootprintPerDepth *= config_.footprintScale;
+    mark.wsFootprintPerDepth *= footprintScale;
     const gpu_data::VirtualPageTableData tableData = table_.packFrame(lsCamera, invalidateAll, rectangles);
     lookup_ = packVirtualShadowLookup(config_.clipmap, lightFromWorld, space_.lsDepthNear, space_.lsDepthFar, lsCamera,
                                       config_.poolPagesPerSide, draw_.poolOriginY(), table_.firstEntry());

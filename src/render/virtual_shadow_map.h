@@ -53,9 +53,6 @@ struct VirtualShadowMapConfig {
     uint32_t poolPagesPerSide = 16;  // the pool holds poolPagesPerSide^2 physical pages
     uint32_t keepFrames = 8;         // unrequested pages stay resident this many frames (VirtualPageTablePass)
     ShadowRasterOptions raster;      // render.meshletCulling, shadows.lodErrorTexels for the page drawing
-    // The pixel footprint the levels are picked by is the view's times this (shadows.virtual.lodBias:
-    // 2^lodBias): 0.5 picks texels half as wide as a pixel's footprint. A lit pass must use the same.
-    float footprintScale = 1.0f;
 };
 
 class VirtualShadowMap {
@@ -74,10 +71,12 @@ public:
     // Records mark -> table update -> draw -> mark drawn for a view whose depth `mainDepth` (a D32
     // texture or the visibility buffer, view.width x view.height, written by earlier passes) is final, a light travelling along
     // wsLightDirection and a scene within wsSceneBounds. marginTexels: the lit pass filter's reach.
-    // `invalidations`: the page rectangles of casters that moved since the last record.
+    // `invalidations`: the page rectangles of casters that moved since the last record. The levels are
+    // picked by the view's pixel footprint times footprintScale (2^lodBias: 0.5 picks texels half as wide
+    // as a pixel's footprint); a lit pass must use the same.
     void record(gpu::CommandList& commands, const VirtualPageDepthSource& mainDepth, const CameraView& view,
                 const glm::vec3& wsLightDirection, const Aabb& wsSceneBounds, float marginTexels,
-                std::span<const gpu_data::VirtualPageInvalidation> invalidations = {});
+                std::span<const gpu_data::VirtualPageInvalidation> invalidations = {}, float footprintScale = 1.0f);
     // The next record invalidates every page (the scene's geometry was replaced, say).
     void invalidateAll() { forceInvalidate_ = true; }
 

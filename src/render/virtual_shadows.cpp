@@ -24,7 +24,6 @@ VirtualShadowMapConfig virtualShadowMapConfig(const ShadowSettings& settings, co
     config.poolPagesPerSide = virtualPoolPagesPerSide(pages.poolPages);
     config.keepFrames = pages.keepFrames;
     config.raster = raster;
-    config.footprintScale = std::exp2(pages.lodBias);
     return config;
 }
 
@@ -33,8 +32,7 @@ namespace {
 bool sameConfig(const VirtualShadowMapConfig& a, const VirtualShadowMapConfig& b) {
     return a.clipmap.resolution == b.clipmap.resolution && a.clipmap.pageSize == b.clipmap.pageSize &&
            a.clipmap.levelCount == b.clipmap.levelCount && a.clipmap.firstLevelSize == b.clipmap.firstLevelSize &&
-           a.poolPagesPerSide == b.poolPagesPerSide && a.keepFrames == b.keepFrames && a.raster == b.raster &&
-           a.footprintScale == b.footprintScale;
+           a.poolPagesPerSide == b.poolPagesPerSide && a.keepFrames == b.keepFrames && a.raster == b.raster;
 }
 
 }  // namespace
@@ -66,6 +64,30 @@ VirtualShadows::~VirtualShadows() {
 void VirtualShadows::releaseMaps() {
     maps_.clear();  // before the storage they draw into
     storage_.reset();
+    motion_ = {};
+}
+
+void VirtualShadows::noteDirection(uint32_t slot, const glm::vec3& wsDirection) {
+    LightMotion& m = motion_[slot];
+    if (!m.known) {
+        m = {wsDirection, kVirtualMovingFrames, true};  // a light that appears is still
+    } else if (wsDirection != m.wsDirection) {
+        m.wsDirection = wsDirection;
+        m.framesStill = 0;
+    } else if (m.framesStill < kVirtualMovingFrames) {
+        ++m.framesStill;
+    }
+}
+
+float VirtualShadows::footprintScale(uint32_t slot) const {
+    const LightMotion& m = motion_[slot];
+    return !oneShot_ && m.known && m.framesStill < kVirtualMovingFrames ? movingScale_ : stillScale_;
+}
+
+bool VirtualShadows::moving() const {
+    for (uint32_t slot = 0; slot < maps_.size() && slot < motion_.size(); ++slot)
+        if (motion_[slot].known && motion_[slot].framesStill < kVirtualMovingFrames) return true;
+    return false;
 }
 
 uint32_t VirtualShadows::poolPages() const {
@@ -97,7 +119,7 @@ uint32_t fitVirtualPool(uint32_t poolPagesPerSide, uint32_t pageSize, uint32_t m
 }
 
 void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCount, const ShadowRasterOptions& raster,
-                                const CameraView& view, std::vector<std::string>& warnings) {
+                                const CameraView& view, bool oneShot, std::vector<std::string>& warnings) {
     active_ = settings.directional.mode == DirectionalShadowMode::Virtual;
     if (active_) {
         VirtualShadowMapConfig config = virtualShadowMapConfig(settings, raster);
@@ -117,7 +139,10 @@ void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCo
     slot_ = (slot_ + 1) % slotCount_;
     block_ = {};
     block_.enabled = active_ ? 1u : 0u;
-    block_.wsFootprintPerDepth = wsFootprintPerDepth(view) * config_.footprintScale;  // the marking pass's
+    block_.wsFootprintPerDepth = wsFootprintPerDepth(view);
+    stillScale_ = std::exp2(settings.virtualMaps.lodBias);
+    oneShot_ = oneShot;
+    movingScale_ = std::exp2(settings.virtualMaps.movingLodBias);
     device_.writeBuffer(blocks_, &block_, sizeof(block_), slotOffset());
 }
 
@@ -178,8 +203,9 @@ void VirtualShadows::record(gpu::CommandList& commands, const VirtualPageDepthSo
         // The marking's margin: the reach of the light's lookups, as the cascades' tight fit keeps it.
         const float marginTexels =
             lookupReachTexels(light.normalBias, light.pcssTanRadius > 0.0f, ShadowFilter(light.filterMode));
+        noteDirection(slot, plan.lights[slot].wsDirection);
         map.record(commands, depth, view, plan.lights[slot].wsDirection, wsSceneBounds, marginTexels,
-                   std::span(invalidations_.data(), invalidationCount_));
+                   std::span(invalidations_.data(), invalidationCount_), footprintScale(slot));
         if (slot < rasterReadback.size()) rasterReadback[slot] = device_.readBackAtFrameEnd(commands, raster_.counters());
     }
     invalidateAll_ = false;
@@ -193,7 +219,10 @@ void VirtualShadows::keepPages(const DirectionalShadowPlan& plan) {
 
 void VirtualShadows::publishLookupData(uint32_t lights) {
     block_.mapCount = lights;
-    for (uint32_t slot = 0; slot < lights; ++slot) block_.maps[slot] = maps_[slot]->lookupData();
+    for (uint32_t slot = 0; slot < lights; ++slot) {
+        block_.maps[slot] = maps_[slot]->lookupData();
+        block_.footprintScales[int(slot)] = footprintScale(slot);  // what its last record marked with
+    }
     device_.writeBuffer(blocks_, &block_, sizeof(block_), slotOffset());
 }
 

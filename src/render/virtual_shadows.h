@@ -16,7 +16,7 @@
 // (VirtualShadowMap's draw space); casters that moved, appeared, disappeared or changed their cast flag
 // pass their old and new world bounds (casterChanged), whose pages in every level are drawn again;
 // more rectangles than one record holds, a material edit (alpha cut-outs) or shadows.virtual.cache =
-// false redraw everything requested.
+// false redraw everything requested. A light that turns reads at movingLodBias (kVirtualMovingFrames).
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -32,6 +32,12 @@
 #include "virtual_lit_structs.h"
 
 namespace penumbra {
+
+// A directional light whose direction changed in one of its last this many records reads at
+// shadows.virtual.movingLodBias (Unreal Engine's r.Shadow.Virtual.ResolutionLodBiasDirectionalMoving):
+// every page of a turning light is drawn again every frame, so finer texels would double that cost.
+// Counting a few frames keeps a light that turns every other frame from flipping between the two.
+constexpr uint32_t kVirtualMovingFrames = 4;
 
 // Pages along a pool's side: a pool of `pages` (shadows.virtual.poolPages or facePoolPages) rounded down
 // to a square (at least one page).
@@ -68,8 +74,10 @@ public:
     // lights when the mode is virtual (a changed configuration makes new ones: every page drawn again),
     // and this frame's uniform block (enabled or not). A pool larger than the device holds is shrunk,
     // with a warning.
+    // oneShot: a frame of Renderer::render, which reads every light at lodBias (a still image's quality)
+    // even right after the light turned.
     void beginFrame(const ShadowSettings& settings, uint32_t lightCount, const ShadowRasterOptions& raster, const CameraView& view,
-                    std::vector<std::string>& warnings);
+                    bool oneShot, std::vector<std::string>& warnings);
     bool active() const { return active_; }
 
     // The three lit bindings into inputs.writes, the pool among inputs.sampled (before its last entry,
@@ -101,8 +109,21 @@ public:
     uint32_t levelCount() const { return config_.clipmap.levelCount; }
     uint32_t poolPages() const;  // physical pages of all the maps
     uint32_t pagesPerFrame() const;  // the most pages all the maps draw in a frame (their draw budgets)
+    // Whether a map's light changed direction in one of its last kVirtualMovingFrames records: it reads at
+    // shadows.virtual.movingLodBias until then. A settled frame (render/virtual_settling.h) records
+    // nothing, so frames must not settle while this holds (the bias changes when it ends).
+    bool moving() const;
 
 private:
+    // Per shadow slot: the light's direction at its last record and the records since it changed.
+    struct LightMotion {
+        glm::vec3 wsDirection{0.0f};
+        uint32_t framesStill = 0;
+        bool known = false;
+    };
+    void noteDirection(uint32_t slot, const glm::vec3& wsDirection);
+    // 2^lodBias, or 2^movingLodBias while the slot's light turns (not in a one-shot frame).
+    float footprintScale(uint32_t slot) const;
     void configure(const VirtualShadowMapConfig& config, uint32_t lightCount);
     // The lights' lookup data into this frame's uniform slot.
     void publishLookupData(uint32_t lights);
@@ -131,6 +152,9 @@ private:
     std::array<LevelPageRect, gpu_data::kVirtualPageMaxLevels> levelRects_{};
     std::array<gpu_data::VirtualPageInvalidation, VirtualShadowMap::kMaxInvalidations> invalidations_{};
     uint32_t invalidationCount_ = 0;
+    std::array<LightMotion, gpu_data::kMaxShadowedDirectionalLights> motion_{};  // by shadow slot
+    float stillScale_ = 1.0f, movingScale_ = 1.0f;  // 2^lodBias, 2^movingLodBias
+    bool oneShot_ = false;
 };
 
 }  // namespace penumbra

@@ -211,6 +211,12 @@ std::vector<SettingKey> makeTable() {
                        PENUMBRA_FIELD(shadows.virtualMaps.lodBias),
                        "Virtual shadow maps: which level a pixel reads, relative to the one whose texel matches the "
                        "pixel's footprint: -1 reads texels half as wide (four times the pages), +1 twice as wide."));
+    t.push_back(ranged("shadows.virtual.movingLodBias", SettingType::Number, -4.0, 4.0, "-4..4",
+                       PENUMBRA_FIELD(shadows.virtualMaps.movingLodBias),
+                       "Virtual shadow maps: the `lodBias` of a directional light whose direction changed in one of "
+                       "its last 4 frames; 4 frames after it stops, it reads at `lodBias` again. Such a light's pages "
+                       "are all drawn again every frame: with `lodBias` -1.5 (a third less shimmer than -1, at twice the "
+                       "pages) a sun that turns every frame keeps the cost of -1. One-shot renders use `lodBias`."));
     t.push_back(flag("shadows.virtual.cache", PENUMBRA_FIELD(shadows.virtualMaps.cache),
                        "Virtual shadow maps: a drawn page stays valid across frames until its light, the scene's bounds "
                        "or a caster over it changes; off, every needed page is drawn again every frame."));

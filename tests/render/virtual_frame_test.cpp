@@ -142,6 +142,51 @@ TEST_F(VirtualFrameTest, ATurnedLightRedrawsEveryRequestedPage) {
     EXPECT_LE(metrics.misclassifiedPercent, 0.15) << toText(metrics);  // as the scene's row above
 }
 
+namespace {
+
+// The finest clipmap level a frame requested pages of (16: none).
+uint32_t finestRequestedLevel(const FrameStats& stats) {
+    const FrameStats::VirtualMapLevels& levels = stats.virtualMaps[0];
+    for (uint32_t level = 0; level < levels.levelCount; ++level)
+        if (levels.requested[level] > 0) return level;
+    return 16;
+}
+
+}  // namespace
+
+// A light that turns every frame redraws all its pages every frame, so it reads at movingLodBias (here a
+// whole level coarser than lodBias) from the frame it turns until kVirtualMovingFrames records after it
+// stopped; then at lodBias again. A one-shot render reads at lodBias even right after a turn.
+TEST_F(VirtualFrameTest, ATurningLightReadsAtTheMovingBiasUntilFourFramesAfterItStops) {
+    const Scene& scene = canonicalScene("poles");
+    const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
+    Renderer renderer(device(), scene);
+    Settings settings = virtualSettings("poles");
+    settings.shadows.virtualMaps.lodBias = -1.5f;
+    settings.shadows.virtualMaps.movingLodBias = -0.5f;
+    const RenderRequest request{view.width, view.height, OutputMode::ShadowAov, 0, false};
+    std::vector<uint32_t> finest;
+    Light light = scene.lights[0];
+    for (int frame = 0; frame < 14; ++frame) {
+        if (frame >= 1 && frame <= 5) {  // turns in frames 1-5, then stays
+            light.wsDirection = glm::normalize(light.wsDirection + glm::vec3(0.01f, 0.0f, 0.0f));
+            renderer.setLight(0, light);
+        }
+        renderer.submitFrame(request, settings, view);
+        renderer.waitIdle();
+        for (const FrameStats& stats : renderer.takeCompletedFrames()) finest.push_back(finestRequestedLevel(stats));
+    }
+    ASSERT_EQ(finest.size(), 14u);
+    const uint32_t still = finest[0];
+    ASSERT_LT(still, 15u);
+    for (int frame = 1; frame <= 8; ++frame) EXPECT_EQ(finest[size_t(frame)], still + 1) << "frame " << frame << " turns";
+    for (int frame = 9; frame < 14; ++frame) EXPECT_EQ(finest[size_t(frame)], still) << "frame " << frame << " still";
+    light.wsDirection = glm::normalize(light.wsDirection + glm::vec3(0.01f, 0.0f, 0.0f));
+    renderer.setLight(0, light);
+    const RenderResult oneShot = renderer.render(request, settings, view);
+    EXPECT_EQ(finestRequestedLevel(oneShot.stats), still) << "a one-shot render reads at lodBias";
+}
+
 // A caster that moves takes its shadow along in the next frame: the pages under its old and new bounds
 // are drawn again (and only pages near it), and the image matches the ray tracer of the edited scene.
 TEST_F(VirtualFrameTest, AMovedCasterIsRedrawnWhereItWasAndWhereItIs) {

@@ -8,7 +8,7 @@
 // A level is treated as one shadow map whose "atlas" coordinates are its global virtual texels
 // (virtualLevelFromWorld: texel x, texel y, depth; atlas size 1), so the bias and filter code is the
 // cascades' own. The level is the one the marking pass requested for the pixel: levelForFootprint of
-// view depth x wsFootprintPerDepth, or the first coarser one whose page holding the receiver is ready
+// view depth x wsFootprintPerDepth x the slot's footprint scale, or the first coarser one whose page holding the receiver is ready
 // (Unreal Engine's "Virtual Shadow Maps" documentation: a clipmap level picked by the pixel's footprint).
 #ifndef PENUMBRA_VIRTUAL_SHADOWS_GLSL
 #define PENUMBRA_VIRTUAL_SHADOWS_GLSL
@@ -215,7 +215,7 @@ float sampleDirectionalVirtual(uint slot, DirectionalShadowLight light, uint bia
     if (slot >= virtualShadows.mapCount) return 1.0;  // a light with no map this frame: nothing cast
     VirtualShadowLookupData data = virtualShadows.maps[slot];
     vec3 lsPosition = (data.lightRotationFromWorld * vec4(receiver.wsPosition, 1.0)).xyz;
-    level = virtualReceiverLevel(data, lsPosition, viewDepth * virtualShadows.wsFootprintPerDepth);
+    level = virtualReceiverLevel(data, lsPosition, viewDepth * virtualShadows.wsFootprintPerDepth * virtualShadows.footprintScales[slot]);
     if (level < 0) return 1.0;
     float wsTexel = ldexp(data.firstLevelSize / float(data.resolution), level);
     ShadowBiasParams bias = ShadowBiasParams(biasMode, light.normalBias, light.slopeBias, wsTexel,
