@@ -11,7 +11,7 @@ layout(local_size_x = kVirtualShadowProbeGroup) in;
 
 layout(set = kPassSet, binding = kShadowProbeBindingLookup, std140) uniform ShadowProbeLookupBlock { VirtualShadowLookupData lookup; };
 layout(set = kPassSet, binding = kShadowProbeBindingEntries, std430) readonly buffer ShadowProbeEntryBlock { VirtualPageEntry entries[]; };
-layout(set = kPassSet, binding = kShadowProbeBindingPool) uniform usampler2D pool;
+layout(set = kPassSet, binding = kShadowProbeBindingPool) uniform sampler2D pool;
 layout(set = kPassSet, binding = kShadowProbeBindingPoints, std430) readonly buffer ShadowProbePointBlock { VirtualShadowProbePoint points[]; };
 layout(set = kPassSet, binding = kShadowProbeBindingResults, std430) writeonly buffer ShadowProbeResultBlock {
     VirtualShadowProbeResult results[];
@@ -22,10 +22,10 @@ layout(push_constant) uniform ShadowProbeBlock { VirtualShadowProbeConstants con
 // One table is bound, whichever kind the lookup data names.
 VirtualPageEntry virtualShadowEntry(bool faces, uint record) {
     if (record < constants.entryCount) return entries[record];
-    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0.0, 0.0, 0u);
+    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
 }
 
-uint virtualShadowPoolWord(bool faces, ivec2 poolWord) { return texelFetch(pool, poolWord, 0).r; }
+float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) { return texelFetch(pool, poolTexel, 0).r; }
 
 #include "penumbra/shadows/virtual_shadow_lookup.glsl"
 #endif

@@ -83,13 +83,10 @@ struct SpotShadowSettings {
 struct VirtualShadowSettings {
     uint32_t pageSize = 128;
     uint32_t resolution = 16384;
-    // Rounded down to a square: 84^2 = 7056 pages of 128^2 texels of 16-bit depth codes, one image of
-    // 220.5 MiB (with the drawing's depth target of 484 pages of 32-bit depths, 251 MiB in all).
-    uint32_t poolPages = 7056;
-    // The faces' pool, rounded down as well: 45^2 = 2025 pages, 63 MiB. More lets 16 lights at 1920x1080
-    // read a mip finer (pool pressure coarsens them here: docs/rendering.md), at the cost of their pages'
-    // and lookups' time.
-    uint32_t facePoolPages = 2048;
+    // Rounded down to a square: 60^2 = 3600 pages of 128^2 texels, one R32F image of 225 MiB (with the
+    // drawing's depth target of 484 pages, 256 MiB in all).
+    uint32_t poolPages = 3600;
+    uint32_t facePoolPages = 2048;  // the faces' pool, rounded down as well: 45^2 = 2025 pages
     uint32_t levelCount = 16;
     float firstLevelSize = 2.0f;  // scene units (metres) along level 0's side
     float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint

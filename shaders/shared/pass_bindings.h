@@ -159,9 +159,8 @@ PENUMBRA_CONST(uint, kPageDrawBindingDrawList, 0u)     // VirtualPageDrawHeader 
 PENUMBRA_CONST(uint, kPageDrawBindingTiles, 1u)        // CullTileListHeader + CullTile[] (written)
 PENUMBRA_CONST(uint, kPageDrawBindingRasterList, 2u)   // RasterTileListHeader + entries (written)
 PENUMBRA_CONST(uint, kPageDrawBindingTargetDepth, 3u)  // the record's depth target, float bits per texel
-PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's R32_UINT image of depth codes (storage), sampled later
+PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's R32F image (storage), sampled later
 PENUMBRA_CONST(uint, kPageDrawBindingFaces, 5u)        // virtual_face_tiles.comp: VirtualFaceData[]
-PENUMBRA_CONST(uint, kPageDrawBindingEntries, 6u)      // virtual_page_copy.comp: the table's entries (a drawn page's depth range)
 
 // The virtual shadow map lookup's test probe (virtual_shadow_probe.comp, driven by
 // tests/render/virtual_shadow_lookup_test.cpp).

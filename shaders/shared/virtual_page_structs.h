@@ -65,34 +65,13 @@ struct VirtualPageEntry {
     int pageX;           // the global page (level's page coordinates) the slot holds or was requested for
     int pageY;
     uint lastRequested;  // the frame (VirtualPageTableData::frame) that last requested it
-    float depthMin;      // the drawn page's depth codes (virtualPageDecodeDepth): written when it is drawn
-    float depthStep;
     uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
 PENUMBRA_CHECK_SIZE(VirtualPageEntry, 32)
 PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, pageX, 8)
 PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, lastRequested, 16)
-PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, depthMin, 20)
-
-// ---- The pool's texels: 16-bit depth codes relative to their page's own depth range, two to a 32-bit
-// word (the pool image is R32_UINT, half as wide as its texels: texel (x, y) is the low half of word
-// (x / 2, y) for even x, the high half for odd x), so a pool of pageSize^2 texels a page takes 2 bytes a
-// texel. When a page is drawn, its texels nearer than far (depth < 1) span [depthMin, depthMax]; code c
-// in [0, kVirtualPageDepthCodeMax] stands for depthMin + c * depthStep, depthStep = (depthMax - depthMin) /
-// kVirtualPageDepthCodeMax, rounded up (away from the light): a stored depth is never nearer than the
-// drawn one, so quantization never shadows a surface that the float depths light. The error is at most
-// one step: a 1/65534 of the page's own depth range (a page of casters within 10 m: 0.15 mm), not of
-// the map's. Far texels (nothing cast) take kVirtualPageDepthCodeFar and decode to exactly 1.
-PENUMBRA_CONST(uint, kVirtualPageDepthCodeMax, 65534u)
-PENUMBRA_CONST(uint, kVirtualPageDepthCodeFar, 65535u)
-PENUMBRA_CONST(uint, kVirtualPageFarWord, 0xFFFFFFFFu)  // two far texels
-
-PENUMBRA_INLINE float virtualPageDecodeDepth(uint code, float depthMin, float depthStep) {
-    return code == kVirtualPageDepthCodeFar ? 1.0f : depthMin + float(code) * depthStep;
-}
-
-// The code of texel `x` (its column: the half of the word) in pool word `word`.
-PENUMBRA_INLINE uint virtualPageTexelCode(uint word, int x) { return (x & 1) != 0 ? word >> 16u : word & 0xFFFFu; }
 
 // A level's window this frame (ClipmapLevel::window): its first page and that page's slot.
 struct VirtualPageLevelWindow {

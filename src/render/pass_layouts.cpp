@@ -235,8 +235,7 @@ std::vector<BindingDesc> virtualPageDrawBindings(const std::string& shader) {
     if (shader == "virtual_face_tiles.comp") return {draws, tiles, rasterList, {"FaceBlock", kPageDrawBindingFaces, kStorage, kC}};
     if (shader == "virtual_page_copy.comp")
         return {draws, {"TargetDepthBlock", kPageDrawBindingTargetDepth, kStorage, kC},
-                {"poolTexture", kPageDrawBindingPoolTexture, gpu::DescriptorType::StorageTexture, kC},
-                {"EntryBlock", kPageDrawBindingEntries, kStorage, kC}};
+                {"poolTexture", kPageDrawBindingPoolTexture, gpu::DescriptorType::StorageTexture, kC}};
     throw Error("internal: no virtual page drawing bindings for '" + shader + "'");
 }
 

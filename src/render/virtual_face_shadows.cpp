@@ -34,7 +34,7 @@ VirtualFaceShadows::VirtualFaceShadows(gpu::Device& device, const GpuScene& gpuS
     try {
         uploads_ = device.createBuffer(slotLayout().size * slotCount_, gpu::kBufferUniform | gpu::kBufferStorage,
                                        gpu::MemoryKind::HostVisible, nullptr, "virtual face uploads");
-        placeholderPool_ = device.createTexture({1, 1, gpu::Format::R32Uint, gpu::kTextureSampled, 1, "no virtual face pool"});
+        placeholderPool_ = device.createTexture({1, 1, gpu::Format::R32Float, gpu::kTextureSampled, 1, "no virtual face pool"});
         placeholderPages_ = device.createBuffer(sizeof(gpu_data::VirtualPageEntry), gpu::kBufferStorage,
                                                 gpu::MemoryKind::DeviceLocal, nullptr, "no virtual face page table");
     } catch (...) {  // the destructor does not run
@@ -199,7 +199,7 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
                               {uploads_, base + layout.invalidations, kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)},
                               invalidationCount_});
     commands.endTimer();
-    VirtualPageDrawInputs inputs{table_->drawList(), table_->entriesSlice(), nullptr, rasterOptions_, faces, config_.faceCount};
+    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, rasterOptions_, faces, config_.faceCount};
     draw_->record(commands, inputs);
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
     commands.beginTimer("virtualFaces/drawn");

@@ -108,7 +108,7 @@ VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gp
       pagesPerRecord_(pagesPerRecordOn(device, gpuScene.instanceCount(), std::max(poolPagesPerSide * poolPagesPerSide, 1u),
                                        std::max(pageSize, 1u))),
       targetPagesPerSide_(virtualDrawTargetPagesPerSide(pagesPerRecord_)), faces_(faces), culling_(device, gpuScene, pagesPerRecord_) {
-    if (poolPagesPerSide == 0 || pageSize_ == 0 || pageSize_ % 2 != 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
+    if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
         throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
                     std::to_string(pageSize_) + " texels does not fit an image");
     if (shared && shared->poolTexture) useSharedTexture(*shared);
@@ -125,7 +125,7 @@ VirtualPageDrawPass::~VirtualPageDrawPass() { release(); }
 void VirtualPageDrawPass::useSharedTexture(const VirtualPageStorage& shared) {
     const gpu::TextureDesc& desc = device_.textureDesc(shared.poolTexture);
     const uint32_t needed = gpu::kTextureSampled | gpu::kTextureStorage;
-    if (desc.format != gpu::Format::R32Uint || (desc.usage & needed) != needed || desc.width != poolSide() / 2 ||
+    if (desc.format != gpu::Format::R32Float || (desc.usage & needed) != needed || desc.width != poolSide() ||
         uint64_t(shared.poolOriginY) + poolSide() > desc.height)
         throw Error("internal: a shared virtual page pool texture of " + std::to_string(desc.width) + " x " +
                     std::to_string(desc.height) + " texels holds no pool of " + std::to_string(poolSide()) +
@@ -171,12 +171,17 @@ void VirtualPageDrawPass::create() {
     targetDepth_ = device_.createBuffer(targetSide * targetSide * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
                                         "virtual page depth target");
     if (!ownsTexture_) return;  // a shared texture starts far already (VirtualPageStorageSet)
-    poolTexture_ = device_.createTexture(virtualPoolTextureDesc(poolSide(), poolSide(), gpu::kTextureTransferDst, "virtual page pool"));
+    gpu::TextureDesc texture;
+    texture.width = texture.height = poolSide();
+    texture.format = gpu::Format::R32Float;
+    texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst;
+    texture.debugName = "virtual page pool";
+    poolTexture_ = device_.createTexture(texture);
     fillVirtualPoolTextureFar(device_, poolTexture_);  // the image starts far
 }
 
 void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs) {
-    PENUMBRA_ASSERT(inputs.drawList && inputs.entries.buffer && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
+    PENUMBRA_ASSERT(inputs.drawList && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
                                                                        : inputs.space != nullptr));
     PENUMBRA_ASSERT(faces_ || (inputs.space->clipmap.pageSize == pageSize_ && pagesPerSide(inputs.space->clipmap) == pagesPerLevelSide_));
     using namespace gpu_data;
@@ -221,15 +226,13 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     raster_.recordTiles(commands, sceneWrites_, lists, culling_, targetDepth_, targetPagesPerSide_ * pageSize_,
                         inputs.raster, kPassName);
     // 4. The slots into their physical pages of the sampled image, one workgroup per page (the list's pageDispatch).
-    // Each page's depth range goes into its entry (the table's entries: this map's range of them).
     commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
                                         gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(targetDepth_, Usage::ComputeRead),
-                                        gpu::use(poolTexture_, Usage::ComputeWrite), gpu::use(inputs.entries.buffer, Usage::ComputeWrite)});
+                                        gpu::use(poolTexture_, Usage::ComputeWrite)});
     commands.bindPipeline(copyPipeline_);
     const gpu::DescriptorWrite copyWrites[] = {{kPageDrawBindingDrawList, inputs.drawList, {}, {}},
                                                {kPageDrawBindingTargetDepth, targetDepth_, {}, {}},
-                                               {kPageDrawBindingPoolTexture, {}, poolTexture_, {}},
-                                               {kPageDrawBindingEntries, inputs.entries}};
+                                               {kPageDrawBindingPoolTexture, {}, poolTexture_, {}}};
     commands.pushDescriptors(copyWrites);
     const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, pagesPerRecord_, poolOriginY_, targetPagesPerSide_};
     commands.pushConstants(&copy, sizeof(copy));

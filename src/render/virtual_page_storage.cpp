@@ -10,6 +10,8 @@ namespace penumbra {
 
 namespace {
 
+constexpr float kFarDepth = 1.0f;  // nothing cast
+
 // The records of `count` padded up to the next multiple whose bytes are kVirtualPageEntryAlignment-aligned.
 uint32_t paddedEntries(uint32_t count) {
     constexpr uint64_t bytes = sizeof(gpu_data::VirtualPageEntry);
@@ -20,20 +22,9 @@ uint32_t paddedEntries(uint32_t count) {
 
 }  // namespace
 
-gpu::TextureDesc virtualPoolTextureDesc(uint32_t poolSide, uint32_t rows, uint32_t extraUsage, std::string debugName) {
-    PENUMBRA_ASSERT(poolSide % 2 == 0);
-    gpu::TextureDesc texture;
-    texture.width = poolSide / 2;
-    texture.height = rows;
-    texture.format = gpu::Format::R32Uint;
-    texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | extraUsage;
-    texture.debugName = std::move(debugName);
-    return texture;
-}
-
 void fillVirtualPoolTextureFar(gpu::Device& device, gpu::TextureHandle texture) {
     const gpu::TextureDesc& desc = device.textureDesc(texture);
-    const std::vector<uint32_t> far(size_t(desc.width) * desc.height, gpu_data::kVirtualPageFarWord);  // once, at creation
+    const std::vector<float> far(size_t(desc.width) * desc.height, kFarDepth);  // once, at creation
     const gpu::BufferHandle staging = device.createBuffer(far.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
                                                           far.data(), "virtual page pool upload");
     try {
@@ -68,13 +59,17 @@ VirtualPageStorageSet::VirtualPageStorageSet(gpu::Device& device, const VirtualC
     poolSide_ = uint32_t(side);
     try {
         // Empty maps: no entry resident (as virtual_page_reset.comp leaves a table), every texel far.
-        const gpu_data::VirtualPageEntry none{gpu_data::kVirtualPageNone, 0u, 0, 0, 0u, 0.0f, 0.0f, 0u};
+        const gpu_data::VirtualPageEntry none{gpu_data::kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u};
         const std::vector<gpu_data::VirtualPageEntry> entries(size_t(entryStride_) * mapCount, none);
         entries_ = device.createBuffer(entryBytes, gpu::kBufferStorage | gpu::kBufferTransferSrc, gpu::MemoryKind::DeviceLocal,
                                        entries.data(), "virtual page tables (shared)");
-        poolTexture_ = device.createTexture(virtualPoolTextureDesc(poolSide_, poolSide_ * mapCount,
-                                                                   gpu::kTextureTransferDst | gpu::kTextureTransferSrc,
-                                                                   "virtual page pools (shared)"));
+        gpu::TextureDesc texture;
+        texture.width = poolSide_;
+        texture.height = poolSide_ * mapCount;
+        texture.format = gpu::Format::R32Float;
+        texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst | gpu::kTextureTransferSrc;
+        texture.debugName = "virtual page pools (shared)";
+        poolTexture_ = device.createTexture(texture);
         fillVirtualPoolTextureFar(device, poolTexture_);
     } catch (...) {
         release();  // the destructor does not run

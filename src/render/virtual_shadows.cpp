@@ -43,7 +43,7 @@ VirtualShadows::VirtualShadows(gpu::Device& device, const GpuScene& gpuScene, Co
     try {
         blocks_ = device.createBuffer(kSlotStride * slotCount_, gpu::kBufferUniform, gpu::MemoryKind::HostVisible,
                                       nullptr, "virtual shadow lit blocks");
-        placeholderPool_ = device.createTexture({1, 1, gpu::Format::R32Uint, gpu::kTextureSampled, 1, "no virtual pool"});
+        placeholderPool_ = device.createTexture({1, 1, gpu::Format::R32Float, gpu::kTextureSampled, 1, "no virtual pool"});
         placeholderPages_ = device.createBuffer(sizeof(gpu_data::VirtualPageEntry), gpu::kBufferStorage,
                                                 gpu::MemoryKind::DeviceLocal, nullptr, "no virtual page table");
     } catch (...) {  // the destructor does not run

@@ -35,10 +35,9 @@ namespace penumbra {
 struct VirtualShadowPages {
     // At least firstEntry + levelCount * pagesPerSide^2 records; this map's by (level, slot) from firstEntry.
     std::span<const gpu_data::VirtualPageEntry> entries;
-    // The pool texture's words (two 16-bit depth codes each: shadows/virtual_page_depth.h), row by row,
-    // poolPagesPerSide * pageSize / 2 words a row; this map's pool is the poolPagesPerSide * pageSize rows
-    // from row poolOriginY. A ready page's entry holds the range that decodes its codes.
-    std::span<const uint32_t> poolWords;
+    // The pool texture's stored depths, row by row, poolPagesPerSide * pageSize texels a row; this map's
+    // pool is the square of that side from row poolOriginY.
+    std::span<const float> poolTexels;
 };
 
 struct VirtualShadowSample {

@@ -289,7 +289,7 @@ TEST_F(VirtualFrameTest, AOneShotRenderThatCannotDrawEveryPageStopsAndWarns) {
 }
 
 // The page raster's culling keeps a list per page drawn with room for every instance: at 150k instances
-// 256 MiB of lists hold 445 pages (of the pool's 7056, fewer than the depth target's 484), so a frame
+// 256 MiB of lists hold 445 pages (of the pool's 3600, fewer than the depth target's 484), so a frame
 // draws at most that many. Before, the lists followed the pool and the scene did not fit lavapipe's
 // storage buffers.
 TEST_F(VirtualFrameTest, AHundredAndFiftyThousandInstancesDrawAtMostTheirListsPagesAFrame) {
@@ -302,7 +302,7 @@ TEST_F(VirtualFrameTest, AHundredAndFiftyThousandInstancesDrawAtMostTheirListsPa
     request.height = 36;
     const RenderResult result = renderer.render(request, settings);
     const VirtualPageCounts& pages = result.stats.virtualPages;
-    EXPECT_EQ(pages.poolPages, 7056u);
+    EXPECT_EQ(pages.poolPages, 3600u);
     EXPECT_EQ(pages.pagesPerFrame, 445u);
     EXPECT_GT(pages.drawn, 0u);
     EXPECT_EQ(pages.overflowed, 0u);

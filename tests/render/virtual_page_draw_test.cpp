@@ -5,10 +5,8 @@
 // plane, its light-space depth computed on the CPU at every texel centre.
 //
 // Tolerances: against the hardware, a texel agrees when both are far or their depths differ by at most
-// 1e-5 of the depth range plus the pool's quantization step (the page's own depth range / 65534:
-// virtual_page_structs.h, "The pool's texels"); at most 0.1 % of a page's texels may disagree (coverage
-// of edges exactly on a texel centre, rounded differently). Against the plane: 2e-5 of the depth range
-// plus the step, everywhere.
+// 1e-5 of the depth range; at most 0.1 % of a page's texels may disagree (coverage of edges exactly on a
+// texel centre, rounded differently). Against the plane: 2e-5 of the depth range everywhere.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -27,7 +25,6 @@
 #include "shadows/cull_packing.h"
 #include "shadows/spot_projection.h"
 #include "shadows/virtual_faces.h"
-#include "shadows/virtual_page_depth.h"
 #include "virtual_face_structs.h"
 
 namespace penumbra::test {
@@ -35,9 +32,6 @@ namespace {
 
 constexpr uint32_t kPoolPagesPerSide = 4;  // 16 physical pages, 512 x 512 texels
 constexpr float kFar = 1.0f;
-using gpu_data::kVirtualPageNone;
-using gpu_data::VirtualPageEntry;
-constexpr uint32_t kMaxLevels = 64;  // levels (faces' mip * faceCount + face) the rig's entries hold, of 16^2 pages
 
 VirtualClipmapConfig testClipmap() {
     VirtualClipmapConfig config;
@@ -81,11 +75,6 @@ public:
         drawList_ = gpu.createBuffer(sizeof(VirtualPageDrawHeader) + pages_.capacity() * sizeof(VirtualPageDraw),
                                      gpu::kBufferStorage | gpu::kBufferIndirect, gpu::MemoryKind::HostVisible, nullptr,
                                      "test page draw list");
-        // Entries for every level the tests draw (the copy step writes a drawn page's depth range there).
-        const std::vector<VirtualPageEntry> entries(size_t(kMaxLevels) * 16 * 16, VirtualPageEntry{kVirtualPageNone, 0, 0, 0, 0, 0.0f, 0.0f, 0});
-        entries_ = gpu.createBuffer(entries.size() * sizeof(VirtualPageEntry), gpu::kBufferStorage, gpu::MemoryKind::HostVisible,
-                                    entries.data(), "test page entries");
-        physicalEntry_.assign(pages_.capacity(), kVirtualPageNone);
         std::vector<VirtualFaceData> faceData;
         for (const VirtualFace& face : faces_) faceData.push_back({face.clipFromWorld, face.wsPosition, face.tanHalfFov});
         if (!faceData.empty())
@@ -94,7 +83,6 @@ public:
     }
     ~PageRig() {
         gpu_.destroy(drawList_);
-        gpu_.destroy(entries_);
         gpu_.destroy(faceBuffer_);
     }
 
@@ -118,12 +106,11 @@ public:
             const auto wrap = [&](int v) { return uint32_t(((v % int(perSide)) + int(perSide)) % int(perSide)); };
             const uint32_t entry = (d.level * perSide + wrap(d.page.y)) * perSide + wrap(d.page.x);
             list.push_back({entry, d.physical, d.page.x, d.page.y});
-            physicalEntry_.at(d.physical) = entry;
         }
         gpu_.writeBuffer(drawList_, &header, sizeof(header));
         if (!list.empty()) gpu_.writeBuffer(drawList_, list.data(), list.size() * sizeof(list[0]), sizeof(header));
         gpu::CommandList commands = gpu_.beginCommands();
-        VirtualPageDrawInputs inputs{drawList_, {entries_, 0, gpu_.bufferSize(entries_)}, faces_.empty() ? &space_ : nullptr, true, {}, 0};
+        VirtualPageDrawInputs inputs{drawList_, faces_.empty() ? &space_ : nullptr, true, {}, 0};
         if (!faces_.empty()) {
             inputs.faces = {faceBuffer_, 0, faces_.size() * sizeof(gpu_data::VirtualFaceData)};
             inputs.faceCount = uint32_t(faces_.size());
@@ -132,30 +119,8 @@ public:
         gpu_.submitAndWait(commands);
     }
 
-    // The pool's depths, row by row: its words decoded with the ranges the copy step wrote into the entries of
-    // the pages drawn last into each physical page (a page never drawn holds far codes, which decode to far).
-    std::vector<float> readPool() {
-        const std::vector<uint32_t> words = readWords(pages_.poolTexture(), side() / 2, "pool");
-        std::vector<VirtualPageEntry> entries(gpu_.bufferSize(entries_) / sizeof(VirtualPageEntry));
-        std::memcpy(entries.data(), gpu_.mappedPointer(entries_), entries.size() * sizeof(VirtualPageEntry));
-        std::vector<float> texels(size_t(side()) * side());
-        for (uint32_t y = 0; y < side(); ++y)
-            for (uint32_t x = 0; x < side(); ++x) {
-                const uint32_t physical = y / 128 * poolPagesPerSide() + x / 128, entry = physicalEntry_[physical];
-                const VirtualPageDepthRange range =
-                    entry == kVirtualPageNone ? VirtualPageDepthRange{} : VirtualPageDepthRange{entries[entry].depthMin, entries[entry].depthStep};
-                texels[size_t(y) * side() + x] = virtualPoolDepth(words, side() / 2, x, y, range);
-            }
-        return texels;
-    }
-    // The quantization step of the page last drawn into `physical` (what a tolerance must add).
-    float depthStep(uint32_t physical) {
-        const uint32_t entry = physicalEntry_.at(physical);
-        if (entry == kVirtualPageNone) return 0.0f;
-        VirtualPageEntry e;
-        std::memcpy(&e, static_cast<const uint8_t*>(gpu_.mappedPointer(entries_)) + entry * sizeof(e), sizeof(e));
-        return e.depthStep;
-    }
+    // The pool's sampled image, row by row.
+    std::vector<float> readPool() { return readTexture(pages_.poolTexture(), "pool"); }
 
     // The hardware rasterizer's depth of the same pages, drawn where the compute rasterizer draws them and laid out as the pool: every caster
     // drawn (a culling tile that keeps everything), projected by the CPU's virtualPageClipFromWorld.
@@ -227,11 +192,8 @@ public:
     }
 
 private:
-    // A texture of `width` x side() 4-byte texels (the pool's words, or a depth image's floats), row by row.
-    template <typename Texel>
-    std::vector<Texel> readTexels(gpu::TextureHandle texture, uint32_t width, const char* what) {
-        static_assert(sizeof(Texel) == 4);
-        std::vector<Texel> texels(size_t(width) * side());
+    std::vector<float> readTexture(gpu::TextureHandle texture, const char* what) {
+        std::vector<float> texels(size_t(side()) * side());
         const gpu::BufferHandle readback = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferDst,
                                                              gpu::MemoryKind::HostVisible, nullptr, what);
         gpu::CommandList commands = gpu_.beginCommands();
@@ -243,10 +205,6 @@ private:
         gpu_.destroy(readback);
         return texels;
     }
-    std::vector<uint32_t> readWords(gpu::TextureHandle texture, uint32_t width, const char* what) {
-        return readTexels<uint32_t>(texture, width, what);
-    }
-    std::vector<float> readTexture(gpu::TextureHandle texture, const char* what) { return readTexels<float>(texture, side(), what); }
 
     gpu::Device& gpu_;
     Scene scene_;
@@ -257,8 +215,7 @@ private:
     gpu::BufferHandle faceBuffer_;
     VirtualPageDrawSpace space_;
     std::vector<gpu::DescriptorWrite> writes_;
-    gpu::BufferHandle drawList_, entries_;
-    std::vector<uint32_t> physicalEntry_;  // by physical page: the entry of the page last drawn there
+    gpu::BufferHandle drawList_;
 };
 
 // What one page of the pool holds compared with a reference.
@@ -357,7 +314,7 @@ TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
     rig.draw(draws);
     const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
     for (const PageDraw& d : draws) {
-        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f + rig.depthStep(d.physical));
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
         const std::string what = "level " + std::to_string(d.level) + " page (" + std::to_string(d.page.x) + ", " +
                                  std::to_string(d.page.y) + ")";
         EXPECT_GT(c.written, c.texels / 4) << what << ": the page holds casters";
@@ -365,43 +322,6 @@ TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
         std::printf("%s: %zu of %zu texels written, %zu differ, worst %.2e\n", what.c_str(), c.written, c.texels, c.differ,
                     double(c.worst));
         ASSERT_GE(draws.size(), 8u) << "the demo has at least four casters besides its ground";
-    }
-}
-
-// The pool holds each drawn texel as a 16-bit code of its page's own depth range (virtual_page_copy.comp):
-// decoded, never nearer the light than the rasterizer drew it (quantization lights, never shadows) and
-// at most one step (the page's range / 65534) farther; far texels decode to exactly far.
-TEST_F(VirtualPageDrawTest, PoolCodesDecodeNoNearerThanDrawnAndWithinOneStepOfIt) {
-    PageRig rig(gpu(), makeDemoScene());
-    const std::vector<PageDraw> draws = demoPages(rig);
-    rig.draw(draws);
-    const std::vector<float> pool = rig.readPool();
-    const std::vector<uint8_t> bytes = gpu().readBuffer(rig.pass().targetDepth());
-    const uint32_t targetSide = rig.pass().targetPagesPerSide() * 128;
-    for (size_t i = 0; i < draws.size(); ++i) {
-        const gpu::Rect slot = virtualPageRect(uint32_t(i), rig.pass().targetPagesPerSide(), 128);
-        const gpu::Rect page = virtualPageRect(draws[i].physical, rig.poolPagesPerSide(), 128);
-        const float step = rig.depthStep(draws[i].physical);
-        size_t drawn = 0, nearer = 0, beyondStep = 0, farWrong = 0;
-        for (int32_t y = 0; y < 128; ++y)
-            for (int32_t x = 0; x < 128; ++x) {
-                float raw;
-                std::memcpy(&raw, bytes.data() + (size_t(slot.y + y) * targetSide + slot.x + x) * 4, 4);
-                raw = std::max(raw, 0.0f);
-                const float decoded = pool[size_t(page.y + y) * rig.side() + page.x + x];
-                if (raw >= kFar) {
-                    farWrong += decoded != kFar;
-                    continue;
-                }
-                ++drawn;
-                nearer += decoded < raw;
-                beyondStep += decoded - raw > step * 1.001f + 1e-7f;
-            }
-        EXPECT_GT(drawn, 1000u) << "page " << i << " holds casters";
-        EXPECT_GT(step, 0.0f) << "page " << i << " spans depths";
-        EXPECT_EQ(nearer, 0u) << "page " << i;
-        EXPECT_EQ(beyondStep, 0u) << "page " << i;
-        EXPECT_EQ(farWrong, 0u) << "page " << i;
     }
 }
 
@@ -417,7 +337,7 @@ TEST_F(VirtualPageDrawTest, APoolLargerThanTheDepthTargetGetsEveryPageAtItsPhysi
     rig.draw(draws);
     const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
     for (const PageDraw& d : draws) {
-        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f + rig.depthStep(d.physical));
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
         EXPECT_GT(c.written, c.texels / 4) << "physical page " << d.physical << " holds casters";
         EXPECT_LE(c.differ, c.texels / 1000) << "physical page " << d.physical << ": " << c.differ << " texels differ";
     }
@@ -508,7 +428,6 @@ TEST_F(VirtualPageDrawTest, AGroundTriangleSpanningManyPagesIsDrawnRightInEach) 
         const gpu::Rect rect = virtualPageRect(d.physical, rig.poolPagesPerSide(), 128);
         size_t differ = 0;
         double worst = 0.0;
-        const double tolerance = 2e-5 + rig.depthStep(d.physical);  // plus the pool's quantization step
         for (uint32_t ty = 0; ty < 128; ++ty)
             for (uint32_t tx = 0; tx < 128; ++tx) {
                 const double x = (d.page.x + (tx + 0.5) / 128.0) * lsPage, y = (d.page.y + (ty + 0.5) / 128.0) * lsPage;
@@ -516,7 +435,7 @@ TEST_F(VirtualPageDrawTest, AGroundTriangleSpanningManyPagesIsDrawnRightInEach) 
                 const double expected = (space.lsDepthNear - z) / (space.lsDepthNear - space.lsDepthFar);
                 const float got = pool[size_t(rect.y + ty) * rig.side() + rect.x + tx];
                 worst = std::max(worst, std::abs(got - expected));
-                differ += std::abs(got - expected) > tolerance;
+                differ += std::abs(got - expected) > 2e-5;
             }
         EXPECT_EQ(differ, 0u) << "level " << d.level << " page (" << d.page.x << ", " << d.page.y << "): worst " << worst;
     }
@@ -547,7 +466,7 @@ void expectFacePagesMatchTheHardware(gpu::Device& gpu, const Scene& scene) {
     const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
     uint32_t pagesWithCasters = 0;
     for (const PageDraw& d : draws) {
-        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f + rig.depthStep(d.physical));
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
         const std::string what = "face " + std::to_string(d.level % kFaces) + " mip " + std::to_string(d.level / kFaces) +
                                  " page (" + std::to_string(d.page.x) + ", " + std::to_string(d.page.y) + ")";
         EXPECT_LE(c.differ, c.texels / 1000) << what << ": " << c.differ << " texels differ, worst depth difference " << c.worst;

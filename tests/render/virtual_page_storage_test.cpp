@@ -53,7 +53,7 @@ struct LightPoints {
 // What the lookups of a map read, copied back: the whole entry buffer and pool texture.
 struct StorageCopy {
     std::vector<VirtualPageEntry> entries;
-    std::vector<uint32_t> pool;  // the pool texture's words, row by row, poolSide / 2 a row
+    std::vector<float> pool;  // row by row, poolSide texels a row
 };
 
 // One map drawn in a frame: which map, for which light.
@@ -123,7 +123,8 @@ public:
         const std::vector<uint8_t> bytes = gpu_.readBuffer(map.pageEntries());
         c.entries.resize(bytes.size() / sizeof(VirtualPageEntry));
         std::memcpy(c.entries.data(), bytes.data(), c.entries.size() * sizeof(VirtualPageEntry));
-        c.pool = probe_.readPool(map.poolTexture());
+        const gpu::TextureDesc& pool = gpu_.textureDesc(map.poolTexture());
+        c.pool = probe_.readPool(map.poolTexture(), pool.width, pool.height);
         return c;
     }
 
@@ -146,12 +147,12 @@ size_t differences(const std::vector<VirtualShadowProbeResult>& a, const std::ve
     return differ;
 }
 
-// Map `map`'s words of a shared pool copy (its square, rows from poolOriginY) and entries (from firstEntry).
-std::vector<uint32_t> poolSquare(const StorageCopy& c, const VirtualShadowMap& map) {
+// Map `map`'s texels of a shared pool copy (its square, rows from poolOriginY) and entries (from firstEntry).
+std::vector<float> poolSquare(const StorageCopy& c, const VirtualShadowMap& map) {
     const VirtualPageStorage at = map.storage();
     const size_t side = mapConfig().poolPagesPerSide * mapConfig().clipmap.pageSize;
-    const auto first = c.pool.begin() + std::ptrdiff_t(at.poolOriginY * side / 2);
-    return {first, first + std::ptrdiff_t(side * side / 2)};
+    const auto first = c.pool.begin() + std::ptrdiff_t(at.poolOriginY * side);
+    return {first, first + std::ptrdiff_t(side * side)};
 }
 std::vector<uint8_t> entryBytes(const StorageCopy& c, const VirtualShadowMap& map) {
     const auto* first = reinterpret_cast<const uint8_t*>(c.entries.data() + map.storage().firstEntry);
@@ -168,7 +169,7 @@ TEST_F(VirtualPageStorageTest, TheSetPlacesEachMapInItsOwnAlignedRangeAndSquare)
     VirtualPageStorageSet set(gpu(), config.clipmap, config.poolPagesPerSide, 3);
     const uint32_t side = config.poolPagesPerSide * config.clipmap.pageSize;
     EXPECT_EQ(set.poolSide(), side);
-    EXPECT_EQ(gpu().textureDesc(set.poolTexture()).width, side / 2) << "two texels a word";
+    EXPECT_EQ(gpu().textureDesc(set.poolTexture()).width, side);
     EXPECT_EQ(gpu().textureDesc(set.poolTexture()).height, 3 * side);
     EXPECT_EQ(set.entriesPerMap(), config.clipmap.levelCount * 128u * 128u);
     EXPECT_GE(gpu().bufferSize(set.entries()), uint64_t(set.entryCount()) * sizeof(VirtualPageEntry));

@@ -187,12 +187,12 @@ private:
     }
 
 public:
-    // A pool texture of side x side texels (side / 2 words a row: shadows/virtual_page_depth.h), row by row.
-    gpu::TextureHandle uploadPool(const std::vector<uint32_t>& words, uint32_t side) {
-        const gpu::BufferHandle staging = gpu_.createBuffer(words.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
-                                                            words.data(), "probe pool upload");
+    // An R32F texture of side x side texels, row by row.
+    gpu::TextureHandle uploadPool(const std::vector<float>& texels, uint32_t side) {
+        const gpu::BufferHandle staging = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
+                                                            texels.data(), "probe pool upload");
         const gpu::TextureHandle texture = gpu_.createTexture(
-            {side / 2, side, gpu::Format::R32Uint, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
+            {side, side, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/upload", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});
         commands.copyBufferToTexture(staging, texture);
@@ -201,12 +201,11 @@ public:
         return texture;
     }
 
-    // The pool texture's words (two texels' depth codes each), row by row, through a buffer that
-    // Device::readBuffer reads back.
-    std::vector<uint32_t> readPool(gpu::TextureHandle texture) {
-        const gpu::TextureDesc& desc = gpu_.textureDesc(texture);
-        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(desc.width) * desc.height * 4,
-                                                         gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
+    // The pool texture's texels (side x side, or side x height: pools several maps share), row by row, through
+    // a buffer that Device::readBuffer reads back.
+    std::vector<float> readPool(gpu::TextureHandle texture, uint32_t side, uint32_t height = 0) {
+        const size_t rows = height ? height : side;
+        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(side) * rows * 4, gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
                                                          gpu::MemoryKind::DeviceLocal, nullptr, "probe pool copy");
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/pool", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(copy, gpu::Usage::TransferWrite)});
@@ -214,9 +213,9 @@ public:
         gpu_.submitAndWait(commands);
         const std::vector<uint8_t> bytes = gpu_.readBuffer(copy);
         gpu_.destroy(copy);
-        std::vector<uint32_t> words(bytes.size() / 4);
-        std::memcpy(words.data(), bytes.data(), words.size() * 4);
-        return words;
+        std::vector<float> texels(bytes.size() / 4);
+        std::memcpy(texels.data(), bytes.data(), texels.size() * 4);
+        return texels;
     }
 
 private:

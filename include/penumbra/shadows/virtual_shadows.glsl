@@ -22,7 +22,7 @@
 layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtual, std140) uniform VirtualShadowBlock {
     VirtualDirectionalShadowData virtualShadows;
 };
-layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualPool) uniform usampler2D virtualShadowPool;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualPool) uniform sampler2D virtualShadowPool;
 layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualPages, std430) readonly buffer VirtualPageBlock {
     VirtualPageEntry virtualPageEntries[];
 };
@@ -30,7 +30,7 @@ layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShad
 layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFaces, std140) uniform VirtualFaceBlock {
     VirtualFaceShadowData virtualFaces;
 };
-layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFacePool) uniform usampler2D virtualFacePool;
+layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFacePool) uniform sampler2D virtualFacePool;
 layout(set = PENUMBRA_SHADOW_SET, binding = PENUMBRA_SHADOW_BINDING_BASE + kShadowBindingVirtualFacePages, std430) readonly buffer VirtualFacePageBlock {
     VirtualPageEntry virtualFacePageEntries[];
 };
@@ -41,30 +41,20 @@ VirtualPageEntry virtualShadowEntry(bool faces, uint entry) {
     } else if (entry < uint(virtualPageEntries.length())) {
         return virtualPageEntries[entry];
     }
-    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0.0, 0.0, 0u);
+    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
 }
 
-uint virtualShadowPoolWord(bool faces, ivec2 poolWord) {
-    return faces ? texelFetch(virtualFacePool, poolWord, 0).r : texelFetch(virtualShadowPool, poolWord, 0).r;
+float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) {
+    return faces ? texelFetch(virtualFacePool, poolTexel, 0).r : texelFetch(virtualShadowPool, poolTexel, 0).r;
 }
 
-// The stored depths of the 2 x 2 pool texels from poolTexel (its lower corner) to poolTexel + 1, in the
-// order (0,0) (1,0) (0,1) (1,1), of one page whose entry's range is depthRange: one gather of the 2 x 2
-// words from word (poolTexel.x / 2, poolTexel.y), which hold the block whether poolTexel.x is even (the
-// first column's two halves) or odd (the high half of the first, the low half of the second).
-// textureGather gives the words as (0,1) (1,1) (1,0) (0,0).
-vec4 virtualShadowPoolGather(bool faces, ivec2 poolTexel, vec2 depthRange) {
-    ivec2 word = ivec2(poolTexel.x >> 1, poolTexel.y);
-    uvec4 w;  // (0,0) (1,0) (0,1) (1,1)
-    if (faces) w = textureGather(virtualFacePool, vec2(word + 1) / vec2(textureSize(virtualFacePool, 0)), 0).wzxy;
-    else w = textureGather(virtualShadowPool, vec2(word + 1) / vec2(textureSize(virtualShadowPool, 0)), 0).wzxy;
-    bool odd = (poolTexel.x & 1) != 0;
-    uint row0 = odd ? (w.x >> 16u) | (w.y << 16u) : w.x;  // the block's two texels of each row, low first
-    uint row1 = odd ? (w.z >> 16u) | (w.w << 16u) : w.z;
-    return vec4(virtualPageDecodeDepth(row0 & 0xFFFFu, depthRange.x, depthRange.y),
-                virtualPageDecodeDepth(row0 >> 16u, depthRange.x, depthRange.y),
-                virtualPageDecodeDepth(row1 & 0xFFFFu, depthRange.x, depthRange.y),
-                virtualPageDecodeDepth(row1 >> 16u, depthRange.x, depthRange.y));
+// The 2 x 2 pool texels from poolTexel (its lower corner) to poolTexel + 1 in one gather, in the order
+// (0,0) (1,0) (0,1) (1,1); textureGather gives them as (0,1) (1,1) (1,0) (0,0).
+vec4 virtualShadowPoolGather(bool faces, ivec2 poolTexel) {
+    vec4 gathered;
+    if (faces) gathered = textureGather(virtualFacePool, vec2(poolTexel + 1) / vec2(textureSize(virtualFacePool, 0)), 0);
+    else gathered = textureGather(virtualShadowPool, vec2(poolTexel + 1) / vec2(textureSize(virtualShadowPool, 0)), 0);
+    return gathered.wzxy;
 }
 
 #include "virtual_shadow_lookup.glsl"
@@ -113,13 +103,11 @@ float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, v
 }
 
 // virtualCompareBilinear where every texel of the block lies in one ready page of the level, whose pool
-// texel is texel + poolFromTexel and whose entry's range is depthRange: one gather, no page lookup; the
-// same texels, so the same result.
-float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 depthRange, vec2 q, vec3 uvDepth, vec2 u, vec2 g,
-                             bool perTexelPlane) {
+// texel is texel + poolFromTexel: one gather, no page lookup; the same texels, so the same result.
+float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 q, vec3 uvDepth, vec2 u, vec2 g, bool perTexelPlane) {
     vec2 first = floor(q - 0.5);
     vec2 f = q - 0.5 - first;
-    vec4 stored = virtualShadowPoolGather(faces, ivec2(first) + poolFromTexel, depthRange);
+    vec4 stored = virtualShadowPoolGather(faces, ivec2(first) + poolFromTexel);
     vec4 lit;  // (0,0) (1,0) (0,1) (1,1)
     for (int i = 0; i < 4; ++i) {
         vec2 offset = vec2(float(i & 1), float(i >> 1));
@@ -131,18 +119,17 @@ float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 depthRange, v
 
 // Whether a filter that reads the texels within `reach` of the one nearest u (on both axes) reads one
 // ready page of the level (most receivers: a kernel of a few texels in a page of 128), and where that
-// page's texels are in the pool (pool texel = texel + poolFromTexel) and its entry's depthRange.
-bool virtualKernelInOnePage(VirtualShadowLookupData data, uint level, vec2 u, int reach, out ivec2 poolFromTexel,
-                            out vec2 depthRange) {
+// page's texels are in the pool (pool texel = texel + poolFromTexel).
+bool virtualKernelInOnePage(VirtualShadowLookupData data, uint level, vec2 u, int reach, out ivec2 poolFromTexel) {
     poolFromTexel = ivec2(0);
-    depthRange = vec2(0.0);
     if (any(greaterThan(abs(u), vec2(kVirtualShadowMaxTexel)))) return false;
     ivec2 centre = ivec2(floor(u + 0.5));
     ivec2 page = virtualShadowPageOfTexel(data, centre - reach);
     if (page != virtualShadowPageOfTexel(data, centre + reach)) return false;
-    int physical = virtualShadowReadyPage(data, level, page, depthRange);
+    int physical = virtualShadowReadyPage(data, level, page);
     if (physical < 0) return false;
-    poolFromTexel = virtualShadowPoolTexelOf(data, physical, page, ivec2(0));
+    const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
+    poolFromTexel = ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY)) - page * size;
     return true;
 }
 
@@ -156,10 +143,9 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
     bool faces = data.faceCount > 0u;
     int pairs = filterMode == kShadowFilterPcf2x2 ? 0 : int(filterMode) + 1;
     ivec2 poolFromTexel;
-    vec2 depthRange;
-    bool onePage = virtualKernelInOnePage(data, level, u, max(pairs, 1) + 1, poolFromTexel, depthRange);
+    bool onePage = virtualKernelInOnePage(data, level, u, max(pairs, 1) + 1, poolFromTexel);
     if (pairs == 0)
-        return onePage ? virtualCompareGathered(faces, poolFromTexel, depthRange, u, uvDepth, u, g, perTexelPlane)
+        return onePage ? virtualCompareGathered(faces, poolFromTexel, u, uvDepth, u, g, perTexelPlane)
                        : virtualCompareBilinear(data, level, u, uvDepth, u, g, perTexelPlane);
     vec4 px, wx, py, wy;
     penumbraTentFetches1D(u.x, pairs, px, wx);
@@ -168,8 +154,8 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
     if (onePage) {
         for (int y = 0; y < pairs; ++y)
             for (int x = 0; x < pairs; ++x)
-                shadow += wx[x] * wy[y] * virtualCompareGathered(faces, poolFromTexel, depthRange, vec2(px[x], py[y]),
-                                                                 uvDepth, u, g, perTexelPlane);
+                shadow += wx[x] * wy[y] * virtualCompareGathered(faces, poolFromTexel, vec2(px[x], py[y]), uvDepth, u, g,
+                                                                 perTexelPlane);
         return shadow;
     }
     // Across a page border (few receivers): the per-texel lookups, kept a loop. Unrolled, its 16 blocks of
