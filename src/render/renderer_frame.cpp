@@ -421,7 +421,8 @@ FrameTargetSizes Renderer::State::planFrame(PendingFrame& frame, Settings& setti
     stats.virtualFacePages.pagesPerFrame = virtualFaces.pagesPerFrame();
     stats.virtualFacePages.lodBiasSteps = virtualFaces.poolPressureSteps();
     virtualSettling.beginFrame(frameIndex, {settings, view, sceneVersion + callerDepthFrames, lightVersion,
-                                            virtualFaces.poolPressureSteps(), virtualShadows.moving()});
+                                            virtualFaces.poolPressureSteps(),
+                                            virtualShadows.moving(uint32_t(plan.directional.lights.size()))});
     frame.virtualSettled = virtualShadows.active() && virtualSettling.directionalSettled();
     frame.facesSettled = virtualFaces.active() && virtualSettling.facesSettled();
     frame.computeRaster = rasterChoice.useCompute(settings.shadows.raster);

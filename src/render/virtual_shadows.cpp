@@ -80,13 +80,12 @@ void VirtualShadows::noteDirection(uint32_t slot, const glm::vec3& wsDirection) 
 }
 
 float VirtualShadows::footprintScale(uint32_t slot) const {
-    const LightMotion& m = motion_[slot];
-    return !oneShot_ && m.known && m.framesStill < kVirtualMovingFrames ? movingScale_ : stillScale_;
+    return !oneShot_ && motion_[slot].turning() ? movingScale_ : stillScale_;
 }
 
-bool VirtualShadows::moving() const {
-    for (uint32_t slot = 0; slot < maps_.size() && slot < motion_.size(); ++slot)
-        if (motion_[slot].known && motion_[slot].framesStill < kVirtualMovingFrames) return true;
+bool VirtualShadows::moving(uint32_t lightCount) const {
+    for (uint32_t slot = 0; slot < mapsInUse(lightCount); ++slot)
+        if (motion_[slot].turning()) return true;
     return false;
 }
 
@@ -141,8 +140,8 @@ void VirtualShadows::beginFrame(const ShadowSettings& settings, uint32_t lightCo
     block_.enabled = active_ ? 1u : 0u;
     block_.wsFootprintPerDepth = wsFootprintPerDepth(view);
     stillScale_ = std::exp2(settings.virtualMaps.lodBias);
-    oneShot_ = oneShot;
     movingScale_ = std::exp2(settings.virtualMaps.movingLodBias);
+    oneShot_ = oneShot;
     device_.writeBuffer(blocks_, &block_, sizeof(block_), slotOffset());
 }
 

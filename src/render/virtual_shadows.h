@@ -109,10 +109,12 @@ public:
     uint32_t levelCount() const { return config_.clipmap.levelCount; }
     uint32_t poolPages() const;  // physical pages of all the maps
     uint32_t pagesPerFrame() const;  // the most pages all the maps draw in a frame (their draw budgets)
-    // Whether a map's light changed direction in one of its last kVirtualMovingFrames records: it reads at
-    // shadows.virtual.movingLodBias until then. A settled frame (render/virtual_settling.h) records
-    // nothing, so frames must not settle while this holds (the bias changes when it ends).
-    bool moving() const;
+    // Whether the light of a map in use by a frame of lightCount reserved directional lights changed
+    // direction in one of its last kVirtualMovingFrames records: it reads at shadows.virtual.movingLodBias
+    // until then. A settled frame (render/virtual_settling.h) records nothing, so frames must not settle
+    // while this holds (the bias changes when it ends). Slots out of use do not count: their lights are
+    // not recorded, so their count would never end.
+    bool moving(uint32_t lightCount) const;
 
 private:
     // Per shadow slot: the light's direction at its last record and the records since it changed.
@@ -120,6 +122,7 @@ private:
         glm::vec3 wsDirection{0.0f};
         uint32_t framesStill = 0;
         bool known = false;
+        bool turning() const { return known && framesStill < kVirtualMovingFrames; }
     };
     void noteDirection(uint32_t slot, const glm::vec3& wsDirection);
     // 2^lodBias, or 2^movingLodBias while the slot's light turns (not in a one-shot frame).

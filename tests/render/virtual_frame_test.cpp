@@ -187,6 +187,36 @@ TEST_F(VirtualFrameTest, ATurningLightReadsAtTheMovingBiasUntilFourFramesAfterIt
     EXPECT_EQ(finestRequestedLevel(oneShot.stats), still) << "a one-shot render reads at lodBias";
 }
 
+// Two suns turn, then one stops casting shadows: the slot it leaves counts no more (its light is not
+// recorded, so its turning count would never end), and once the other has been still for
+// kVirtualMovingFrames frames the frames settle.
+TEST_F(VirtualFrameTest, ALightThatLeavesItsShadowSlotWhileTurningLetsTheFramesSettle) {
+    Scene scene = canonicalScene("poles");
+    Light second = scene.lights[0];
+    second.wsDirection = glm::normalize(second.wsDirection + glm::vec3(0.2f, 0.0f, -0.1f));
+    scene.lights.push_back(second);
+    const CameraView view = resolveCameraView(scene, kCompareWidth, kCompareHeight);
+    Renderer renderer(device(), scene);
+    const Settings settings = virtualSettings("poles");
+    const RenderRequest request{view.width, view.height, OutputMode::ShadowAov, 0, false};
+    std::vector<Light> lights = {scene.lights[0], second};
+    std::vector<FrameStats> frames;
+    for (int frame = 0; frame < 16; ++frame) {
+        for (uint32_t l = 0; l < 2; ++l) {
+            if (frame == 1 || frame == 2) lights[l].wsDirection = glm::normalize(lights[l].wsDirection + glm::vec3(0.01f, 0.0f, 0.0f));
+            if (frame == 3 && l == 1) lights[l].shadows = LightShadows::None;
+            if (frame >= 1 && frame <= 3) renderer.setLight(l, lights[l]);
+        }
+        renderer.submitFrame(request, settings, view);
+        renderer.waitIdle();
+        for (FrameStats& stats : renderer.takeCompletedFrames()) frames.push_back(std::move(stats));
+    }
+    ASSERT_EQ(frames.size(), 16u);
+    EXPECT_EQ(frames[2].virtualPages.maps, 2u) << "both suns had maps while they turned";
+    EXPECT_EQ(frames[15].virtualPages.maps, 1u);
+    EXPECT_TRUE(frames[15].virtualPages.settled) << "the still sun's frames settle";
+}
+
 // A caster that moves takes its shadow along in the next frame: the pages under its old and new bounds
 // are drawn again (and only pages near it), and the image matches the ray tracer of the edited scene.
 TEST_F(VirtualFrameTest, AMovedCasterIsRedrawnWhereItWasAndWhereItIs) {

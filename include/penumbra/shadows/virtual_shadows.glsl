@@ -8,8 +8,8 @@
 // A level is treated as one shadow map whose "atlas" coordinates are its global virtual texels
 // (virtualLevelFromWorld: texel x, texel y, depth; atlas size 1), so the bias and filter code is the
 // cascades' own. The level is the one the marking pass requested for the pixel: levelForFootprint of
-// view depth x wsFootprintPerDepth x the slot's footprint scale, or the first coarser one whose page holding the receiver is ready
-// (Unreal Engine's "Virtual Shadow Maps" documentation: a clipmap level picked by the pixel's footprint).
+// view depth x wsFootprintPerDepth x the slot's footprint scale, or the first coarser one whose page
+// holding the receiver is ready (Unreal Engine's "Virtual Shadow Maps" documentation: a clipmap level picked by the pixel's footprint).
 #ifndef PENUMBRA_VIRTUAL_SHADOWS_GLSL
 #define PENUMBRA_VIRTUAL_SHADOWS_GLSL
 #extension GL_EXT_control_flow_attributes : require
