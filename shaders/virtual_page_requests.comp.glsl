@@ -22,7 +22,7 @@ void main() {
         if (isResident(page.flags)) continue;  // cached: step 1 counted it
         const ivec2 windowPage = windowPageOfEntry(entry);
         entries[entry] = VirtualPageEntry(kVirtualPageNone, kVirtualPageRequested, windowPage.x, windowPage.y,
-                                          page.lastRequested, 0u, 0u, 0u);
+                                          page.lastRequested, 0.0, 0.0, 0u);
         atomicAdd(counters.levelMissing[bucket], 1u);
         missingEntries[atomicAdd(counters.missing, 1u)] = entry;
     }

@@ -7,7 +7,7 @@ layout(local_size_x = kVirtualPageGroupSize) in;
 
 void main() {
     const uint i = gl_GlobalInvocationID.x;
-    if (i < table.entryCount) entries[i] = VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
+    if (i < table.entryCount) entries[i] = VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0.0, 0.0, 0u);
     if (i < table.capacity) {
         owners[i] = kVirtualPageNone;
         freePages[i] = table.capacity - 1u - i;

@@ -25,7 +25,7 @@ void main() {
         owners[physical] = kVirtualPageNone;
         freePages[atomicAdd(pool.freeCount, 1u)] = physical;
         atomicAdd(counters.stats.evicted, 1u);
-        entries[entry] = VirtualPageEntry(kVirtualPageNone, 0u, windowPage.x, windowPage.y, page.lastRequested, 0u, 0u, 0u);
+        entries[entry] = VirtualPageEntry(kVirtualPageNone, 0u, windowPage.x, windowPage.y, page.lastRequested, 0.0, 0.0, 0u);
         return;  // requested again, step 1b lists it as missing
     }
     page.flags &= kVirtualPageResident | kVirtualPageDirty;

@@ -22,7 +22,7 @@ layout(push_constant) uniform ShadowProbeBlock { VirtualShadowProbeConstants con
 // One table is bound, whichever kind the lookup data names.
 VirtualPageEntry virtualShadowEntry(bool faces, uint record) {
     if (record < constants.entryCount) return entries[record];
-    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
+    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0.0, 0.0, 0u);
 }
 
 float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) { return texelFetch(pool, poolTexel, 0).r; }

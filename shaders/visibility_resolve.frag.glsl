@@ -11,5 +11,5 @@ void main() {
     uvec2 pixel = uvec2(gl_FragCoord.xy);
     uvec2 word = visibility[pixel.y * constants.width + pixel.x];
     gl_FragDepth = uintBitsToFloat(word.y);
-    outColor = word.x == 0u ? unpackUnorm4x8(constants.background) : shadeVisiblePixel(word.x, pixel);
+    outColor = word.x == 0u ? backgroundPixel(pixel) : shadeVisiblePixel(word.x, pixel);
 }

@@ -94,6 +94,16 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
 
 // The shaded colour of pixel `pixel` (its payload != 0), or magenta for an id no instance has (a
 // visible error, never a read out of bounds).
+// The colour of a pixel no surface covers: the clear colour, or the colour output's gradient background
+// (background.frag's: the pixel's view ray's radiance, exposed and tone mapped).
+vec4 backgroundPixel(uvec2 pixel) {
+    if (constants.backgroundGradient == 0u) return unpackUnorm4x8(constants.background);
+    vec2 ndc = (vec2(pixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+    vec4 wsNear = frame.worldFromClip * vec4(ndc, 1.0, 1.0);  // reversed Z: the near plane at depth 1
+    vec3 wsDirection = wsNear.xyz / wsNear.w - frame.wsCameraPosition.xyz;
+    return vec4(toneMap(backgroundRadiance(wsDirection) * frame.exposure, frame.toneMapping), 1.0);
+}
+
 vec4 shadeVisiblePixel(uint payload, uvec2 pixel) {
     uint id = payload - 1u, triangleBits = constants.triangleBits;
     uint instance = id >> triangleBits, triangle = triangleBits == 0u ? 0u : id & ((1u << triangleBits) - 1u);

@@ -50,6 +50,9 @@ struct ExternalVulkanDevice {
     // The timelineSemaphore feature (1.2): ShadowSystem's frames, recorded into the caller's command
     // buffers, complete on a timeline semaphore value that the caller's submission signals.
     bool timelineSemaphores = false;
+    // The shaderStorageImageExtendedFormats feature (1.0): the virtual shadow maps' pools take 2 bytes a
+    // texel (R16_UNORM) instead of 4.
+    bool storageImageExtendedFormats = false;
 };
 
 // What is alive on a device, and what it has done so far (see Device::liveObjects).

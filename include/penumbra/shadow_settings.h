@@ -83,13 +83,19 @@ struct SpotShadowSettings {
 struct VirtualShadowSettings {
     uint32_t pageSize = 128;
     uint32_t resolution = 16384;
-    // Rounded down to a square: 60^2 = 3600 pages of 128^2 texels, one R32F image of 225 MiB (with the
-    // drawing's depth target of 484 pages, 256 MiB in all).
-    uint32_t poolPages = 3600;
-    uint32_t facePoolPages = 2048;  // the faces' pool, rounded down as well: 45^2 = 2025 pages
+    // Rounded down to a square: 84^2 = 7056 pages of 128^2 texels of 16-bit depth codes, one R16_UNORM
+    // image of 220.5 MiB (with the drawing's depth target of 484 pages of 32-bit depths, 251 MiB in all;
+    // twice the image on a device without R16_UNORM storage images: render/virtual_page_storage.h).
+    uint32_t poolPages = 7056;
+    // The faces' pool, rounded down as well: 45^2 = 2025 pages, 63 MiB. More lets 16 lights at 1920x1080
+    // read a mip finer (pool pressure coarsens them here: docs/rendering.md), at the cost of their pages'
+    // and lookups' time.
+    uint32_t facePoolPages = 2048;
     uint32_t levelCount = 16;
     float firstLevelSize = 2.0f;  // scene units (metres) along level 0's side
-    float lodBias = -1.0f;        // levels finer (< 0) than the one whose texel matches a pixel's footprint
+    // Levels finer (< 0) than the one whose texel matches a pixel's footprint: -1.5, a third less shimmer
+    // than -1 for twice the pages (docs/fidelity.md).
+    float lodBias = -1.5f;
     // The lodBias of a directional light whose direction changed in one of its last kVirtualMovingFrames
     // records: its pages are drawn again every frame, so a finer lodBias than this would cost a turning
     // light that many more pages (Unreal Engine's r.Shadow.Virtual.ResolutionLodBiasDirectionalMoving).

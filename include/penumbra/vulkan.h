@@ -10,6 +10,8 @@
 //   optional: shaderInt64 (1.0) + shaderBufferInt64Atomics (1.2) for the visibility-buffer main view
 //             (say so with externalVulkanDevice's bufferInt64Atomics argument);
 //             timelineSemaphore (1.2) for ShadowSystem (its timelineSemaphores argument);
+//             shaderStorageImageExtendedFormats (1.0): virtual shadow map pools of 2 bytes a texel, not 4
+//             (set the returned struct's storageImageExtendedFormats);
 //   a queue whose family supports graphics and compute (Penumbra submits to it: externally
 //   synchronize it with your own submissions, e.g. submit from one thread).
 // The target image needs VK_IMAGE_USAGE_TRANSFER_DST_BIT and a format that is a blit destination.

@@ -107,7 +107,7 @@ PENUMBRA_CONST(uint, kResolveBindingVisibility, 16u)
 PENUMBRA_CONST(uint, kResolveBindingIndices, 17u)
 PENUMBRA_CONST(uint, kResolveBindingMeshes, 18u)     // CullMesh[]
 PENUMBRA_CONST(uint, kResolveBindingInstances, 19u)  // CullInstance[] (their mesh slots)
-PENUMBRA_CONST(uint, kResolveBindingColor, 20u)      // RGBA8 per pixel, copied into the colour target (compute only)
+PENUMBRA_CONST(uint, kResolveBindingColor, 20u)      // RGBA8 storage image, copied into the colour target (compute only)
 PENUMBRA_CONST(uint, kResolveBindingDepth, 21u)      // float per pixel, copied into the depth target (compute only)
 
 // The main view's depth pyramid (depth_pyramid.comp).
@@ -159,8 +159,9 @@ PENUMBRA_CONST(uint, kPageDrawBindingDrawList, 0u)     // VirtualPageDrawHeader 
 PENUMBRA_CONST(uint, kPageDrawBindingTiles, 1u)        // CullTileListHeader + CullTile[] (written)
 PENUMBRA_CONST(uint, kPageDrawBindingRasterList, 2u)   // RasterTileListHeader + entries (written)
 PENUMBRA_CONST(uint, kPageDrawBindingTargetDepth, 3u)  // the record's depth target, float bits per texel
-PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's R32F image (storage), sampled later
+PENUMBRA_CONST(uint, kPageDrawBindingPoolTexture, 4u)  // the pool's image of depth codes (R16_UNORM or R32_SFLOAT storage), sampled later
 PENUMBRA_CONST(uint, kPageDrawBindingFaces, 5u)        // virtual_face_tiles.comp: VirtualFaceData[]
+PENUMBRA_CONST(uint, kPageDrawBindingEntries, 6u)      // virtual_page_copy.comp: the table's entries (a drawn page's depth range)
 
 // The virtual shadow map lookup's test probe (virtual_shadow_probe.comp, driven by
 // tests/render/virtual_shadow_lookup_test.cpp).

@@ -14,9 +14,11 @@
 //   (the compute rasterizer's atomic-min buffer, targetPagesPerSide^2 slots of pageSize^2 texels), the
 //   pageSize^2 texels at ((i % targetPagesPerSide), (i / targetPagesPerSide)) * pageSize;
 // - its place in the pool: physical page p is the pageSize^2 texels at ((p % poolPagesPerSide),
-//   (p / poolPagesPerSide)) * pageSize plus (0, poolOriginY) of the pool texture, which several maps may
+//   (p / poolPagesPerSide)) * pageSize plus (0, poolOriginY) of the pool's texels, which several maps may
 //   share (render/virtual_page_storage.h: each map's pool a square at its own rows); the copy step moves
-//   slot i there. The target holds one record's pages, not the pool's: the pool is one image.
+//   slot i there as 16-bit codes of the page's own depth range (virtual_page_structs.h, "The pool's
+//   texels"), and writes the range into the page's entry. The target
+//   holds one record's pages, not the pool's: the pool is one image.
 #ifndef PENUMBRA_VIRTUAL_PAGE_DRAW_STRUCTS_H
 #define PENUMBRA_VIRTUAL_PAGE_DRAW_STRUCTS_H
 #include "gpu_shared.h"
@@ -51,7 +53,7 @@ struct VirtualPageCopyConstants {
     uint pageSize;
     uint poolPagesPerSide;
     uint capacity;            // pages a draw list may hold here
-    uint poolOriginY;         // pool texture texels: the pool's page 0 lies at (0, poolOriginY) (a shared texture)
+    uint poolOriginY;         // pool texture rows: the pool's page 0 lies at (0, poolOriginY) (a shared texture)
     uint targetPagesPerSide;  // the depth target's slots per side (VirtualPageTilesConstants)
 };
 PENUMBRA_CHECK_SIZE(VirtualPageCopyConstants, 20)

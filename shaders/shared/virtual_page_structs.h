@@ -65,13 +65,36 @@ struct VirtualPageEntry {
     int pageX;           // the global page (level's page coordinates) the slot holds or was requested for
     int pageY;
     uint lastRequested;  // the frame (VirtualPageTableData::frame) that last requested it
+    float depthMin;      // the drawn page's depth codes (virtualPageDecodeDepth): written when it is drawn
+    float depthStep;
     uint reserved0;
-    uint reserved1;
-    uint reserved2;
 };
 PENUMBRA_CHECK_SIZE(VirtualPageEntry, 32)
 PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, pageX, 8)
 PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, lastRequested, 16)
+PENUMBRA_CHECK_LAYOUT(VirtualPageEntry, depthMin, 20)
+
+// ---- The pool's texels: 16-bit depth codes relative to their page's own depth range. The pool image is
+// R16_UNORM (2 bytes a texel) where the device has shaderStorageImageExtendedFormats, else R32_SFLOAT
+// holding the same values (4 bytes a texel); either way texel value v stands for code round(v * 65535)
+// (virtualPageCodeOfTexel), and the copy pass stores virtualPageTexelOfCode(code). When a page is drawn,
+// its texels nearer than far (depth < 1) span [depthMin, depthMax]; code c in [0, kVirtualPageDepthCodeMax]
+// stands for depthMin + c * depthStep, depthStep = (depthMax - depthMin) / kVirtualPageDepthCodeMax,
+// rounded up (away from the light): a stored depth is never nearer than the drawn one, so quantization
+// never shadows a surface that the float depths light. The error is at most one step: a 1/65534 of the
+// page's own depth range (a page of casters within 10 m: 0.15 mm), not of the map's. Far texels (nothing
+// cast) take kVirtualPageDepthCodeFar (texel value 1) and decode to exactly 1.
+PENUMBRA_CONST(uint, kVirtualPageDepthCodeMax, 65534u)
+PENUMBRA_CONST(uint, kVirtualPageDepthCodeFar, 65535u)
+
+PENUMBRA_INLINE float virtualPageDecodeDepth(uint code, float depthMin, float depthStep) {
+    return code == kVirtualPageDepthCodeFar ? 1.0f : depthMin + float(code) * depthStep;
+}
+
+// The code a pool texel's value stands for, and the value that stores a code (exact both ways: an
+// R16_UNORM texel converts the value to the code, an R32_SFLOAT one keeps it).
+PENUMBRA_INLINE uint virtualPageCodeOfTexel(float texel) { return uint(texel * 65535.0f + 0.5f); }
+PENUMBRA_INLINE float virtualPageTexelOfCode(uint code) { return float(code) / 65535.0f; }
 
 // A level's window this frame (ClipmapLevel::window): its first page and that page's slot.
 struct VirtualPageLevelWindow {

@@ -31,8 +31,14 @@ struct VisibilityConstants {
     uint instanceCount;
     uint meshletCulling;
     uint listsPerBuffer;
+    // The resolve's: 1 where no surface is drawn shows the colour output's gradient background (render.
+    // background, background.frag's), not the colour `background`.
+    uint backgroundGradient;
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
 };
-PENUMBRA_CHECK_SIZE(VisibilityConstants, 48)
+PENUMBRA_CHECK_SIZE(VisibilityConstants, 64)
 PENUMBRA_CHECK_LAYOUT(VisibilityConstants, largeCapacity, 16)
 PENUMBRA_CHECK_LAYOUT(VisibilityConstants, list, 32)
 

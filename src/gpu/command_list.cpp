@@ -301,6 +301,20 @@ void CommandList::copyBufferRegions(BufferHandle source, BufferHandle destinatio
                     uint32_t(regions.size()), reinterpret_cast<const VkBufferCopy*>(regions.data()));
 }
 
+void CommandList::copyTexture(TextureHandle source, TextureHandle destination) {
+    Device::Impl& d = impl(*this);
+    const TextureResource& from = d.textures.at(source.id);
+    const TextureResource& to = d.textures.at(destination.id);
+    PENUMBRA_ASSERT(from.desc.width == to.desc.width && from.desc.height == to.desc.height &&
+                    bytesPerPixel(from.desc.format) == bytesPerPixel(to.desc.format));
+    VkImageCopy copy{};
+    copy.srcSubresource = {aspectOf(from), 0, 0, 1};
+    copy.dstSubresource = {aspectOf(to), 0, 0, 1};
+    copy.extent = {from.desc.width, from.desc.height, 1};
+    vkCmdCopyImage(native(*this), from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, to.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   1, &copy);
+}
+
 void CommandList::copyTextureToBuffer(TextureHandle texture, BufferHandle destination) {
     Device::Impl& d = impl(*this);
     const TextureResource& t = d.textures.at(texture.id);

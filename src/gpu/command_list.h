@@ -68,6 +68,9 @@ public:
     void copyBuffer(const BufferSlice& source, BufferHandle destination, uint64_t destinationOffset);
     // Many regions of `source` into `destination` in one command (a scattered update).
     void copyBufferRegions(BufferHandle source, BufferHandle destination, std::span<const BufferCopyRegion> regions);
+    // Copies level 0 of `source` (declared TransferRead) into level 0 of `destination` (TransferWrite):
+    // the same size, formats of one texel size (RGBA8 UNORM into sRGB keeps the bytes).
+    void copyTexture(TextureHandle source, TextureHandle destination);
     // Copies level 0 of `texture` (declared TransferRead) tightly packed into `destination`.
     void copyTextureToBuffer(TextureHandle texture, BufferHandle destination);
     // Blits `source` (declared TransferRead) onto an imported external image, converting the format:

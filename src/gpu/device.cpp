@@ -219,7 +219,7 @@ void requireComputeSubgroups(VkPhysicalDevice physicalDevice, const std::string&
 
 VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
                              bool memoryBudget, bool& bufferInt64Atomics, bool& storageBufferArrayIndexing,
-                             bool& timelineSemaphores) {
+                             bool& timelineSemaphores, bool& storageImageExtendedFormats, const DeviceFaultInjection& faults) {
     VkPhysicalDeviceFeatures supported{};
     vkGetPhysicalDeviceFeatures(physicalDevice, &supported);
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -248,6 +248,9 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
     features.features.depthClamp = VK_TRUE;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    // Storage images of R16_UNORM (the virtual shadow maps' pools of 16-bit depth codes), where supported.
+    storageImageExtendedFormats = supported.shaderStorageImageExtendedFormats && !faults.noStorageImageExtendedFormats;
+    features.features.shaderStorageImageExtendedFormats = storageImageExtendedFormats;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderInt64 = bufferInt64Atomics;
     // Indirect draws that name their instance (firstInstance) and many draws per call: the GPU-culled
@@ -315,7 +318,8 @@ void Device::createOwnDevice(const DeviceOptions& options) {
     d.memoryBudget = hasDeviceExtension(d.physicalDevice, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
     requireComputeSubgroups(d.physicalDevice, "no Vulkan device", d.info.name, options.faults);
     d.device = createLogicalDevice(d.physicalDevice, d.queueFamily, d.info.name, d.memoryBudget, d.bufferInt64Atomics,
-                                   d.storageBufferArrayIndexing, d.timelineSemaphores);
+                                   d.storageBufferArrayIndexing, d.timelineSemaphores, d.storageImageExtendedFormats,
+                                   options.faults);
     vkGetDeviceQueue(d.device, d.queueFamily, 0, &d.queue);
 }
 
@@ -330,6 +334,7 @@ Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& option
     d.queueFamily = external.queueFamily;
     d.bufferInt64Atomics = external.bufferInt64Atomics;
     d.timelineSemaphores = external.timelineSemaphores;
+    d.storageImageExtendedFormats = external.storageImageExtendedFormats && !options.faults.noStorageImageExtendedFormats;
     if (!d.instance || !d.physicalDevice || !d.device || !d.queue)
         throw Error("external Vulkan device: instance, physical device, device and queue are all required");
     d.info = describe(d.physicalDevice, 0);
@@ -445,6 +450,8 @@ bool Device::hasTimestamps() const { return impl_->timestampsSupported; }
 bool Device::hasBufferInt64Atomics() const { return impl_->bufferInt64Atomics; }
 bool Device::hasStorageBufferArrayIndexing() const { return impl_->storageBufferArrayIndexing; }
 bool Device::hasTimelineSemaphores() const { return impl_->timelineSemaphores; }
+bool Device::hasStorageImageExtendedFormats() const { return impl_->storageImageExtendedFormats; }
+const DeviceFaultInjection& Device::faults() const { return impl_->options.faults; }
 
 uint64_t Device::spinWaitPolls() const { return impl_->spinWaitPolls; }
 

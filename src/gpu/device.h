@@ -49,6 +49,10 @@ public:
     // a shader indexes with a dynamically uniform index (the culling lists split over buffers need it).
     bool hasStorageBufferArrayIndexing() const;
     bool hasTimelineSemaphores() const;  // the timelineSemaphore feature is enabled (external frames)
+    // shaderStorageImageExtendedFormats enabled: storage images of Format::R16Unorm (Vulkan then requires
+    // their support), what halves the virtual shadow maps' pools.
+    bool hasStorageImageExtendedFormats() const;
+    const DeviceFaultInjection& faults() const;  // what the device's options inject (tests)
 
     // ---- objects. destroy() is deferred: the Vulkan objects go when no frame in flight can use them.
     BufferHandle createBuffer(size_t size, uint32_t usage, MemoryKind memory, const void* initialData = nullptr,

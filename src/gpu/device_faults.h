@@ -23,6 +23,10 @@ struct DeviceFaultInjection {
     // lavapipe too.
     uint32_t garbageByte = 0;
     bool noSubgroupArithmetic = false;  // the device seems to lack arithmetic subgroup operations
+    bool noStorageImageExtendedFormats = false;  // the device seems to lack shaderStorageImageExtendedFormats
+    // The visibility-buffer resolve takes a GPU's path (compute, then copies into the targets) on a CPU
+    // device too, which otherwise resolves with fragments (render/visibility_pass.h).
+    bool computeResolve = false;
 };
 
 // PENUMBRA_FAULT_INJECTION, e.g. "allocation=3" or "submit=2,max-image-size=512" or

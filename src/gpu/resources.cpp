@@ -12,6 +12,7 @@ VkFormat toVkFormat(Format format) {
         case Format::RGBA8Unorm: return VK_FORMAT_R8G8B8A8_UNORM;
         case Format::RGBA8Srgb: return VK_FORMAT_R8G8B8A8_SRGB;
         case Format::R8Unorm: return VK_FORMAT_R8_UNORM;
+        case Format::R16Unorm: return VK_FORMAT_R16_UNORM;
         case Format::R32Float: return VK_FORMAT_R32_SFLOAT;
         case Format::R32Uint: return VK_FORMAT_R32_UINT;
         case Format::RGBA16Float: return VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -26,6 +27,7 @@ bool isDepthFormat(Format format) { return format == Format::D32Float; }
 uint32_t bytesPerPixel(Format format) {
     switch (format) {
         case Format::R8Unorm: return 1;
+        case Format::R16Unorm: return 2;
         case Format::RGBA16Float: return 8;
         case Format::Undefined: return 0;
         default: return 4;

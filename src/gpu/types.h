@@ -19,7 +19,7 @@ struct SamplerHandle { uint32_t id = 0; explicit operator bool() const { return 
 struct PipelineHandle { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
 struct TextureTableHandle { uint32_t id = 0; explicit operator bool() const { return id != 0; } };
 
-enum class Format { Undefined, RGBA8Unorm, RGBA8Srgb, R8Unorm, R32Float, R32Uint, RGBA16Float, D32Float };
+enum class Format { Undefined, RGBA8Unorm, RGBA8Srgb, R8Unorm, R16Unorm, R32Float, R32Uint, RGBA16Float, D32Float };
 
 enum BufferUsage : uint32_t {
     kBufferStorage = 1, kBufferUniform = 2, kBufferIndex = 4, kBufferTransferSrc = 8, kBufferTransferDst = 16,

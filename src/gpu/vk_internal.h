@@ -147,6 +147,7 @@ struct Device::Impl {
     bool bufferInt64Atomics = false;  // enabled on devices it creates; external devices: not known, off
     bool storageBufferArrayIndexing = false;  // shaderStorageBufferArrayDynamicIndexing, as bufferInt64Atomics
     bool timelineSemaphores = false;  // the timelineSemaphore feature (external frames need it)
+    bool storageImageExtendedFormats = false;  // shaderStorageImageExtendedFormats enabled (R16Unorm storage)
     // The timeline semaphore a caller's submission of an external frame signals (made by the first one).
     VkSemaphore externalTimeline = VK_NULL_HANDLE;
     uint64_t externalTimelineValue = 0;

@@ -63,6 +63,9 @@ public:
     MainPass(const MainPass&) = delete;
     MainPass& operator=(const MainPass&) = delete;
 
+    // Whether a pass of `variant` draws blended materials (the scene has some and the output shows them).
+    bool drawsBlended(const MainPassVariant& variant) const { return variant.drawBlended && !blendedDraws_.empty(); }
+
     struct Target {
         gpu::TextureHandle color;
         gpu::TextureHandle depth;

@@ -150,7 +150,7 @@ std::vector<BindingDesc> visibilityResolveBindings(gpu::ShaderStage shading) {
                                      {"CullMeshBlock", kResolveBindingMeshes, kStorage, s},
                                      {"CullInstanceBlock", kResolveBindingInstances, kStorage, s}});
     if (shading == gpu::kStageCompute)
-        bindings.insert(bindings.end(), {{"ColorBlock", kResolveBindingColor, kStorage, kC},
+        bindings.insert(bindings.end(), {{"resolvedColor", kResolveBindingColor, gpu::DescriptorType::StorageTexture, kC},
                                          {"DepthBlock", kResolveBindingDepth, kStorage, kC}});
     return bindings;
 }
@@ -233,9 +233,10 @@ std::vector<BindingDesc> virtualPageDrawBindings(const std::string& shader) {
     const BindingDesc rasterList{"RasterTileBlock", kPageDrawBindingRasterList, kStorage, kC};
     if (shader == "virtual_page_tiles.comp") return {draws, tiles, rasterList};
     if (shader == "virtual_face_tiles.comp") return {draws, tiles, rasterList, {"FaceBlock", kPageDrawBindingFaces, kStorage, kC}};
-    if (shader == "virtual_page_copy.comp")
+    if (shader == "virtual_page_copy.comp" || shader == "virtual_page_copy_r32f.comp")
         return {draws, {"TargetDepthBlock", kPageDrawBindingTargetDepth, kStorage, kC},
-                {"poolTexture", kPageDrawBindingPoolTexture, gpu::DescriptorType::StorageTexture, kC}};
+                {"poolTexture", kPageDrawBindingPoolTexture, gpu::DescriptorType::StorageTexture, kC},
+                {"EntryBlock", kPageDrawBindingEntries, kStorage, kC}};
     throw Error("internal: no virtual page drawing bindings for '" + shader + "'");
 }
 

@@ -35,7 +35,7 @@ std::vector<gpu::BindingDesc> virtualFaceMarkBindings(bool visibility);
 // The virtual page table's steps (virtual_page_{reset,invalidate,update,plan,candidates,allocate,finish,
 // drawn}.comp): each reads its own subset of virtual_page_table.glsl's blocks; throws Error for another shader.
 std::vector<gpu::BindingDesc> virtualPageTableBindings(const std::string& shader);
-// Virtual page drawing (virtual_page_tiles.comp, virtual_page_copy.comp); throws Error for another shader.
+// Virtual page drawing (virtual_page_tiles.comp, virtual_page_copy[_r32f].comp); throws Error for another shader.
 std::vector<gpu::BindingDesc> virtualPageDrawBindings(const std::string& shader);
 std::vector<gpu::BindingDesc> virtualShadowProbeBindings(bool faces = false);  // virtual_shadow_probe.comp, or virtual_face_probe.comp (tests)
 

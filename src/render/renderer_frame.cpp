@@ -140,6 +140,7 @@ void Renderer::State::uploadFrameInputs(FrameRecording& recording, const RenderR
     const float clear = request.output == OutputMode::ShadowAov ? 1.0f : 0.0f;
     std::fill(recording.clearColor, recording.clearColor + 3, clear);
     recording.clearColor[3] = 1.0f;
+    recording.backgroundGradient = request.output == OutputMode::Color && settings.render.background == Background::Gradient;
     const gpu_data::FrameData frameData = makeFrameData(recording.view, lights, request, settings, recording.screenSpace);
     recording.frameSlice = uploadFrameData(device, &frameData, sizeof(frameData));
     recording.lightSlice =
@@ -286,7 +287,7 @@ MainPassInputs& Renderer::State::recordLightingInputs(FrameRecording& recording)
     return inputs;
 }
 
-void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,
+void Renderer::State::recordMainView(FrameRecording& recording, MainPassInputs& inputs,
                                      const MainPassVariant& litPass, bool oneShot) {
     gpu::CommandList& commands = recording.commands;
     PendingFrame& frame = recording.frame;
@@ -303,7 +304,7 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
     main.variant = litPass;
     main.genericSpecialization = genericLitSpecialization();
     std::copy(recording.clearColor, recording.clearColor + 4, main.clearColor);
-    main.background = request.output == OutputMode::Color && render.background == Background::Gradient;
+    main.background = recording.backgroundGradient && !frame.visibilityView;  // the visibility resolve draws it
     main.opaqueDone = false;
     main.passName = MainPass::Target{}.passName;
     if (frame.visibilityView) {
@@ -317,7 +318,8 @@ void Renderer::State::recordMainView(FrameRecording& recording, const RenderRequ
         frame.readback.viewLists = device.readBackAtFrameEnd(commands, culling.viewStats());
         frame.readback.viewMeshlets = device.readBackAtFrameEnd(commands, visibility->meshletCounts());
     }
-    mainPass.record(commands, scene, view, inputs, main);
+    // After the visibility buffer's resolve only blended materials are left to draw.
+    if (!main.opaqueDone || mainPass.drawsBlended(litPass)) mainPass.record(commands, scene, view, inputs, main);
     commands.endTimer();
     if (tightCascadeFit(recording.settings) && !oneShot)
         recordVisibleBounds(recording, targets.depth);
@@ -491,7 +493,7 @@ uint64_t Renderer::State::submitInto(PendingFrame& frame, const RenderRequest& r
         recordShadowAtlases(recording, draw);
         MainPassInputs& inputs = recordLightingInputs(recording);
         recordViewShadowInputs(recording, inputs, *litPass);
-        recordMainView(recording, request, inputs, *litPass, oneShot);
+        recordMainView(recording, inputs, *litPass, oneShot);
         gpu::ExternalTarget sync = recordOutputs(recording, target, readback, captureAtlas);
         stats.cpu.record = phase.milliseconds();
 

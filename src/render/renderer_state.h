@@ -85,6 +85,7 @@ struct FrameRecording {
     gpu::TextureHandle prepassDepth;  // the depth prepass's depth, when this frame recorded one
     gpu::TextureHandle callerDepth;   // a ShadowSystem caller's depth of the view, in place of the prepass
     float clearColor[4] = {0, 0, 0, 1};  // the main view's: 1 (lit) for the shadow AOV, else black
+    bool backgroundGradient = false;      // the colour output's render.background gradient behind the surfaces
 };
 
 // A failure while frame `frameIndex` was at `stage`, as one line naming both.
@@ -247,7 +248,7 @@ private:
     gpu::TextureHandle prepassDepthOf(FrameRecording& recording, MainPassInputs& inputs);
     // The visibility buffer's targets and constants for this frame (opaqueTarget, refilled).
     const VisibilityPass::Target& opaqueTargetFor(const FrameRecording& recording, const MainPassVariant& litPass);
-    void recordMainView(FrameRecording& recording, const RenderRequest& request, MainPassInputs& inputs,
+    void recordMainView(FrameRecording& recording, MainPassInputs& inputs,
                         const MainPassVariant& litPass, bool oneShot);
     gpu::ExternalTarget recordOutputs(FrameRecording& recording, const ExternalImage* target, bool readback,
                                       bool captureAtlas);

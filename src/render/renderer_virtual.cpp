@@ -19,6 +19,9 @@ const VisibilityPass::Target& Renderer::State::opaqueTargetFor(const FrameRecord
     opaque.height = recording.view.height;
     opaque.specialization = litPass.specialization;
     std::copy(recording.clearColor, recording.clearColor + 4, opaque.clearColor);
+    opaque.backgroundGradient = recording.backgroundGradient;
+    // Read after the resolve by the blended draws or the tight fit's depth reduction (recordVisibleBounds).
+    opaque.depthRead = mainPass.drawsBlended(litPass) || tightCascadeFit(recording.settings);
     return opaque;
 }
 

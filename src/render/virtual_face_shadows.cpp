@@ -199,7 +199,7 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
                               {uploads_, base + layout.invalidations, kMaxInvalidations * sizeof(gpu_data::VirtualPageInvalidation)},
                               invalidationCount_});
     commands.endTimer();
-    VirtualPageDrawInputs inputs{table_->drawList(), nullptr, rasterOptions_, faces, config_.faceCount};
+    VirtualPageDrawInputs inputs{table_->drawList(), table_->entriesSlice(), nullptr, rasterOptions_, faces, config_.faceCount};
     draw_->record(commands, inputs);
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
     commands.beginTimer("virtualFaces/drawn");

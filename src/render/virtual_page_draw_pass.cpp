@@ -111,6 +111,7 @@ VirtualPageDrawPass::VirtualPageDrawPass(gpu::Device& device, const GpuScene& gp
     if (poolPagesPerSide == 0 || pageSize_ == 0 || uint64_t(poolPagesPerSide) * pageSize_ > device.maxImageSize())
         throw Error("internal: a virtual page pool of " + std::to_string(poolPagesPerSide) + "^2 pages of " +
                     std::to_string(pageSize_) + " texels does not fit an image");
+    poolFormat_ = virtualPoolFormat(device);
     if (shared && shared->poolTexture) useSharedTexture(*shared);
     try {
         create();
@@ -125,12 +126,14 @@ VirtualPageDrawPass::~VirtualPageDrawPass() { release(); }
 void VirtualPageDrawPass::useSharedTexture(const VirtualPageStorage& shared) {
     const gpu::TextureDesc& desc = device_.textureDesc(shared.poolTexture);
     const uint32_t needed = gpu::kTextureSampled | gpu::kTextureStorage;
-    if (desc.format != gpu::Format::R32Float || (desc.usage & needed) != needed || desc.width != poolSide() ||
+    const bool format = desc.format == gpu::Format::R16Unorm || desc.format == gpu::Format::R32Float;
+    if (!format || (desc.usage & needed) != needed || desc.width != poolSide() ||
         uint64_t(shared.poolOriginY) + poolSide() > desc.height)
         throw Error("internal: a shared virtual page pool texture of " + std::to_string(desc.width) + " x " +
                     std::to_string(desc.height) + " texels holds no pool of " + std::to_string(poolSide()) +
                     " texels at row " + std::to_string(shared.poolOriginY));
     poolTexture_ = shared.poolTexture;
+    poolFormat_ = desc.format;
     poolOriginY_ = shared.poolOriginY;
     ownsTexture_ = false;
 }
@@ -147,7 +150,8 @@ void VirtualPageDrawPass::create() {
     desc.bindings = virtualPageDrawBindings(desc.shader);
     desc.pushConstantSize = sizeof(gpu_data::VirtualPageTilesConstants);
     tilesPipeline_ = device_.createComputePipeline(desc);
-    desc.shader = desc.debugName = "virtual_page_copy.comp";
+    // The copy's storage image format is the pool's (virtual_page_structs.h, "The pool's texels").
+    desc.shader = desc.debugName = poolFormat_ == gpu::Format::R16Unorm ? "virtual_page_copy.comp" : "virtual_page_copy_r32f.comp";
     desc.bindings = virtualPageDrawBindings(desc.shader);
     desc.pushConstantSize = sizeof(gpu_data::VirtualPageCopyConstants);
     copyPipeline_ = device_.createComputePipeline(desc);
@@ -171,17 +175,13 @@ void VirtualPageDrawPass::create() {
     targetDepth_ = device_.createBuffer(targetSide * targetSide * 4, gpu::kBufferStorage, MemoryKind::DeviceLocal, nullptr,
                                         "virtual page depth target");
     if (!ownsTexture_) return;  // a shared texture starts far already (VirtualPageStorageSet)
-    gpu::TextureDesc texture;
-    texture.width = texture.height = poolSide();
-    texture.format = gpu::Format::R32Float;
-    texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst;
-    texture.debugName = "virtual page pool";
-    poolTexture_ = device_.createTexture(texture);
+    poolTexture_ = device_.createTexture(virtualPoolTextureDesc(poolFormat_, poolSide(), poolSide(), gpu::kTextureTransferDst,
+                                                                "virtual page pool"));
     fillVirtualPoolTextureFar(device_, poolTexture_);  // the image starts far
 }
 
 void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs) {
-    PENUMBRA_ASSERT(inputs.drawList && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
+    PENUMBRA_ASSERT(inputs.drawList && inputs.entries.buffer && (faces_ ? inputs.faceCount > 0 && inputs.faces.buffer
                                                                        : inputs.space != nullptr));
     PENUMBRA_ASSERT(faces_ || (inputs.space->clipmap.pageSize == pageSize_ && pagesPerSide(inputs.space->clipmap) == pagesPerLevelSide_));
     using namespace gpu_data;
@@ -226,13 +226,15 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     raster_.recordTiles(commands, sceneWrites_, lists, culling_, targetDepth_, targetPagesPerSide_ * pageSize_,
                         inputs.raster, kPassName);
     // 4. The slots into their physical pages of the sampled image, one workgroup per page (the list's pageDispatch).
+    // Each page's depth range goes into its entry (the table's entries: this map's range of them).
     commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
                                         gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(targetDepth_, Usage::ComputeRead),
-                                        gpu::use(poolTexture_, Usage::ComputeWrite)});
+                                        gpu::use(poolTexture_, Usage::ComputeWrite), gpu::use(inputs.entries.buffer, Usage::ComputeWrite)});
     commands.bindPipeline(copyPipeline_);
     const gpu::DescriptorWrite copyWrites[] = {{kPageDrawBindingDrawList, inputs.drawList, {}, {}},
                                                {kPageDrawBindingTargetDepth, targetDepth_, {}, {}},
-                                               {kPageDrawBindingPoolTexture, {}, poolTexture_, {}}};
+                                               {kPageDrawBindingPoolTexture, {}, poolTexture_, {}},
+                                               {kPageDrawBindingEntries, inputs.entries}};
     commands.pushDescriptors(copyWrites);
     const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, pagesPerRecord_, poolOriginY_, targetPagesPerSide_};
     commands.pushConstants(&copy, sizeof(copy));

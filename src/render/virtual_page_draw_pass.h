@@ -11,8 +11,10 @@
 // overlap its square; the rasterizer clears each page's slot of the record's depth target to far and
 // draws it (a triangle reaches only the pages whose lists hold its instance and, within a page, the
 // 16 x 16 chunks it overlaps); virtual_page_copy.comp copies each slot into its physical page of the
-// pool's R32F image. Pages not in the list keep their texels. The depth target holds one record's pages
-// (at most kMaxVirtualPagesPerRecord), not the pool's, so a pool costs one image: 4 bytes a texel.
+// pool's image as 16-bit codes of the page's own depth range (virtual_page_structs.h, "The pool's
+// texels") and writes the range into the page's entry. Pages not in the list keep their texels. The depth
+// target holds one record's pages (at most kMaxVirtualPagesPerRecord), not the pool's, so a pool costs
+// one image: 2 bytes a texel (4 on devices without R16_UNORM storage images).
 // The image may be a pool texture that several maps share (render/virtual_page_storage.h): this pass
 // then writes only its square, the rows from poolOriginY on, and neither initializes nor destroys it.
 //
@@ -65,8 +67,8 @@ gpu::Rect virtualPageRect(uint32_t index, uint32_t pagesPerSide, uint32_t pageSi
 // many as fit, at least kMinVirtualPagesPerRecord (or the pool). The page table's draw budget (VirtualPageTablePass::
 // setDrawBudget) is this: dirty pages past it wait for the next frames.
 // A record draws at most kMaxVirtualPagesPerRecord pages: its depth target's slots (22^2 pages of 128^2
-// texels take 31 MiB beside the default pool's 225 MiB image).
-constexpr uint64_t kVirtualPageListBytes = 256ull << 20;  // the lists' budget: 256 MiB
+// texels take 31 MiB beside the default pool's 220.5 MiB image).
+constexpr uint64_t kVirtualPageListBytes = 512ull << 20;  // the lists' budget: 512 MiB
 constexpr uint32_t kMinVirtualPagesPerRecord = 32;
 constexpr uint32_t kMaxVirtualPagesPerRecord = 484;
 uint32_t virtualPagesPerRecord(uint32_t poolPages, uint32_t instanceCount, uint64_t listBytes);
@@ -80,6 +82,7 @@ inline uint32_t virtualDrawBudget(uint32_t pagesPerFrame, uint32_t pagesPerRecor
 
 struct VirtualPageDrawInputs {
     gpu::BufferHandle drawList;  // VirtualPageDrawHeader + VirtualPageDraw[] (the table pass's drawList())
+    gpu::BufferSlice entries;    // the table's entries (entriesSlice()): a drawn page's depth range goes there
     const VirtualPageDrawSpace* space = nullptr;  // a clipmap's pages (else faces below)
     ShadowRasterOptions raster;                   // render.meshletCulling, shadows.lodErrorTexels
     gpu::BufferSlice faces;  // a faces' pass: faceCount VirtualFaceData (storage)
@@ -90,8 +93,8 @@ class VirtualPageDrawPass {
 public:
     // A pool of poolPagesPerSide^2 physical pages of clipmap pageSize texels (its depth buffer and image
     // start far), tile lists for as many pages; draws with `raster`, which the atlases may share. With
-    // `shared` whose poolTexture is set, the image is that one (R32F, poolSide() texels wide, at least
-    // poolOriginY + poolSide() high, storage and sampled: else Error), its pool the square at
+    // `shared` whose poolTexture is set, the image is that one (virtualPoolTextureDesc: poolSide() texels
+    // wide, at least poolOriginY + poolSide() rows high: else Error), its pool the square at
     // (0, poolOriginY); without, an image of its own.
     VirtualPageDrawPass(gpu::Device& device, const GpuScene& gpuScene, ComputeRasterPass& raster,
                         const VirtualClipmapConfig& clipmap, uint32_t poolPagesPerSide,
@@ -109,8 +112,8 @@ public:
     // virtualPages/copy. Allocates nothing.
     void record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs);
 
-    gpu::TextureHandle poolTexture() const { return poolTexture_; }  // R32F, left in General after a record
-    uint32_t poolOriginY() const { return poolOriginY_; }            // texels: the pool's first row in poolTexture()
+    gpu::TextureHandle poolTexture() const { return poolTexture_; }  // virtualPoolTextureDesc, left in General after a record
+    uint32_t poolOriginY() const { return poolOriginY_; }            // rows: the pool's first row in poolTexture()
     gpu::BufferHandle targetDepth() const { return targetDepth_; }  // float bits per texel: the slots a record draws
     uint32_t targetPagesPerSide() const { return targetPagesPerSide_; }
     uint32_t poolSide() const { return poolPagesPerSide_ * pageSize_; }  // texels along the pool's side
@@ -136,6 +139,7 @@ private:
     uint32_t poolPagesPerSide_ = 0, pageSize_ = 0, pagesPerLevelSide_ = 0;
     uint32_t pagesPerRecord_ = 0, targetPagesPerSide_ = 0;
     uint32_t poolOriginY_ = 0;  // pool texture texels
+    gpu::Format poolFormat_ = gpu::Format::R16Unorm;  // virtualPoolFormat, or the shared texture's
     bool ownsTexture_ = true;
     bool faces_ = false;  // spot and point light faces' pages (virtual_face_tiles.comp)
     ShadowCullingPass culling_;

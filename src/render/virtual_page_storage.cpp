@@ -10,8 +10,6 @@ namespace penumbra {
 
 namespace {
 
-constexpr float kFarDepth = 1.0f;  // nothing cast
-
 // The records of `count` padded up to the next multiple whose bytes are kVirtualPageEntryAlignment-aligned.
 uint32_t paddedEntries(uint32_t count) {
     constexpr uint64_t bytes = sizeof(gpu_data::VirtualPageEntry);
@@ -22,11 +20,33 @@ uint32_t paddedEntries(uint32_t count) {
 
 }  // namespace
 
+gpu::Format virtualPoolFormat(const gpu::Device& device) {
+    return device.hasStorageImageExtendedFormats() ? gpu::Format::R16Unorm : gpu::Format::R32Float;
+}
+
+gpu::TextureDesc virtualPoolTextureDesc(gpu::Format format, uint32_t poolSide, uint32_t rows, uint32_t extraUsage,
+                                        std::string debugName) {
+    PENUMBRA_ASSERT(format == gpu::Format::R16Unorm || format == gpu::Format::R32Float);
+    gpu::TextureDesc texture;
+    texture.width = poolSide;
+    texture.height = rows;
+    texture.format = format;
+    texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | extraUsage;
+    texture.debugName = std::move(debugName);
+    return texture;
+}
+
 void fillVirtualPoolTextureFar(gpu::Device& device, gpu::TextureHandle texture) {
     const gpu::TextureDesc& desc = device.textureDesc(texture);
-    const std::vector<float> far(size_t(desc.width) * desc.height, kFarDepth);  // once, at creation
-    const gpu::BufferHandle staging = device.createBuffer(far.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
-                                                          far.data(), "virtual page pool upload");
+    // Once, at creation: every texel value 1 (the far code), 2 or 4 bytes.
+    const size_t texels = size_t(desc.width) * desc.height;
+    std::vector<uint16_t> far16;
+    std::vector<float> far32;
+    if (desc.format == gpu::Format::R16Unorm) far16.assign(texels, uint16_t(gpu_data::kVirtualPageDepthCodeFar));
+    else far32.assign(texels, gpu_data::virtualPageTexelOfCode(gpu_data::kVirtualPageDepthCodeFar));
+    const void* data = far16.empty() ? static_cast<const void*>(far32.data()) : far16.data();
+    const gpu::BufferHandle staging = device.createBuffer(texels * (far16.empty() ? 4 : 2), gpu::kBufferTransferSrc,
+                                                          gpu::MemoryKind::HostVisible, data, "virtual page pool upload");
     try {
         gpu::CommandList commands = device.beginCommands();
         commands.pass("virtualPool/init", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});
@@ -59,17 +79,13 @@ VirtualPageStorageSet::VirtualPageStorageSet(gpu::Device& device, const VirtualC
     poolSide_ = uint32_t(side);
     try {
         // Empty maps: no entry resident (as virtual_page_reset.comp leaves a table), every texel far.
-        const gpu_data::VirtualPageEntry none{gpu_data::kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u};
+        const gpu_data::VirtualPageEntry none{gpu_data::kVirtualPageNone, 0u, 0, 0, 0u, 0.0f, 0.0f, 0u};
         const std::vector<gpu_data::VirtualPageEntry> entries(size_t(entryStride_) * mapCount, none);
         entries_ = device.createBuffer(entryBytes, gpu::kBufferStorage | gpu::kBufferTransferSrc, gpu::MemoryKind::DeviceLocal,
                                        entries.data(), "virtual page tables (shared)");
-        gpu::TextureDesc texture;
-        texture.width = poolSide_;
-        texture.height = poolSide_ * mapCount;
-        texture.format = gpu::Format::R32Float;
-        texture.usage = gpu::kTextureSampled | gpu::kTextureStorage | gpu::kTextureTransferDst | gpu::kTextureTransferSrc;
-        texture.debugName = "virtual page pools (shared)";
-        poolTexture_ = device.createTexture(texture);
+        poolTexture_ = device.createTexture(virtualPoolTextureDesc(virtualPoolFormat(device), poolSide_, poolSide_ * mapCount,
+                                                                   gpu::kTextureTransferDst | gpu::kTextureTransferSrc,
+                                                                   "virtual page pools (shared)"));
         fillVirtualPoolTextureFar(device, poolTexture_);
     } catch (...) {
         release();  // the destructor does not run

@@ -3,9 +3,10 @@
 // that a lit pass binds one pool texture and one page table for all of them.
 //
 // Layout of a set of mapCount maps of one configuration (VirtualPageStorageSet):
-// - the pool texture: R32F, poolSide = poolPagesPerSide * pageSize texels wide and mapCount * poolSide
-//   high; map i's pool is the poolSide^2 square at pool texture texel (0, i * poolSide), its physical page
-//   p at (p % poolPagesPerSide, p / poolPagesPerSide) * pageSize from there;
+// - the pool texture: 16-bit depth codes (virtual_page_structs.h, "The pool's texels"; R16_UNORM, or
+//   R32_SFLOAT on devices without storage images of it: virtualPoolFormat), poolSide = poolPagesPerSide *
+//   pageSize texels wide and mapCount * poolSide rows high; map i's pool is the poolSide^2 texels from row i * poolSide, its physical page p
+//   at texels (p % poolPagesPerSide, p / poolPagesPerSide) * pageSize from there;
 // - the entry buffer: map i's levelCount * pagesPerSide^2 VirtualPageEntry records start at record
 //   i * entryStride, entryStride that count padded so that every map's first byte is 256-aligned (the
 //   largest minStorageBufferOffsetAlignment Vulkan allows: the table pass binds its own range).
@@ -16,18 +17,27 @@
 // The set owns the texture and the buffer and starts them as empty maps (every texel far, no entry
 // resident), so a map's passes neither initialize nor destroy them: destroy the set after its maps.
 #include <cstdint>
+#include <string>
 
 #include "gpu/device.h"
 #include "shadows/virtual_clipmap.h"
 
 namespace penumbra {
 
-// Every texel of a pool texture (R32F, transfer destination) to far: nothing cast (one submission, waited for).
+// The pool textures' format on `device`: R16_UNORM where it has shaderStorageImageExtendedFormats (2 bytes
+// a texel), else R32_SFLOAT holding the same values (4).
+gpu::Format virtualPoolFormat(const gpu::Device& device);
+// The pool texture of `rows` rows of poolSide texels in `format` (virtualPoolFormat), sampled and written
+// as storage, plus `extraUsage`.
+gpu::TextureDesc virtualPoolTextureDesc(gpu::Format format, uint32_t poolSide, uint32_t rows, uint32_t extraUsage,
+                                        std::string debugName);
+// Every texel of a pool texture (virtualPoolTextureDesc with transfer destination) to far: nothing cast
+// (one submission, waited for).
 void fillVirtualPoolTextureFar(gpu::Device& device, gpu::TextureHandle texture);
 
 // Where one map lives in storage that several maps share.
 struct VirtualPageStorage {
-    gpu::TextureHandle poolTexture;  // R32F; this map's pool is the (poolPagesPerSide*pageSize)^2 square at (0, poolOriginY)
+    gpu::TextureHandle poolTexture;  // virtualPoolTextureDesc; this map's pool is the (poolPagesPerSide*pageSize)^2 square at (0, poolOriginY)
     uint32_t poolOriginY = 0;        // texels
     gpu::BufferHandle entries;       // VirtualPageEntry records
     uint32_t firstEntry = 0;         // this map's levelCount * pagesPerSide^2 entries start here
@@ -50,7 +60,7 @@ public:
     // Map `map`'s place (map < mapCount()).
     VirtualPageStorage storageFor(uint32_t map) const;
 
-    gpu::TextureHandle poolTexture() const { return poolTexture_; }  // R32F, poolSide() x mapCount() * poolSide()
+    gpu::TextureHandle poolTexture() const { return poolTexture_; }  // virtualPoolTextureDesc(poolSide(), mapCount() * poolSide())
     gpu::BufferHandle entries() const { return entries_; }          // entryCount() VirtualPageEntry records
     uint32_t mapCount() const { return mapCount_; }
     uint32_t poolSide() const { return poolSide_; }                 // texels along a map's pool's side

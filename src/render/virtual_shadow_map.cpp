@@ -99,7 +99,7 @@ void VirtualShadowMap::record(gpu::CommandList& commands, const VirtualPageDepth
     table_.record(commands, {mark_.requestWords(), {uploads_, base + layout.table, sizeof(tableData)}, invalidationSlice,
                              rectangles});
     commands.endTimer();
-    draw_.record(commands, {table_.drawList(), &space_, config_.raster, {}, 0});
+    draw_.record(commands, {table_.drawList(), table_.entriesSlice(), &space_, config_.raster, {}, 0});
     commands.beginTimer("virtualPages/drawn");
     table_.recordMarkDrawn(commands);
     commands.endTimer();

@@ -28,7 +28,7 @@ uint32_t packRgba8(const float color[4], bool srgb) {
 }  // namespace
 
 VisibilityPass::VisibilityPass(gpu::Device& device, const GpuScene& gpuScene)
-    : device_(device), scene_(gpuScene), fragmentResolve_(device.info().isCpu) {
+    : device_(device), scene_(gpuScene), fragmentResolve_(device.info().isCpu && !device.faults().computeResolve) {
     try {
         create();
     } catch (...) {
@@ -74,13 +74,15 @@ void VisibilityPass::destroyAll() {
     for (gpu::PipelineHandle p : {raster_, rasterPacked_, bin_, chunks_, args_, pyramid_}) device_.destroy(p);
     for (ResolvePipeline& resolve : resolve_) device_.destroy(resolve.pipeline);
     resolve_.clear();
-    for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_})
-        device_.destroy(b);
+    for (gpu::BufferHandle b : {counters_, large_, chunkList_, visibility_, depth_, pyramidTexels_}) device_.destroy(b);
+    device_.destroy(color_);
 }
 
 void VisibilityPass::ensureSize(uint32_t width, uint32_t height) {
     if (visibility_ && width == width_ && height == height_) return;
-    for (gpu::BufferHandle b : {visibility_, color_, depth_, pyramidTexels_}) device_.destroy(b);
+    for (gpu::BufferHandle b : {visibility_, depth_, pyramidTexels_}) device_.destroy(b);
+    device_.destroy(color_);
+    color_ = {};
     const uint64_t pixels = uint64_t(width) * height;
     using gpu::MemoryKind;
     pyramidLayout_ = depthPyramidLayout(width, height);
@@ -88,8 +90,9 @@ void VisibilityPass::ensureSize(uint32_t width, uint32_t height) {
                                           MemoryKind::DeviceLocal, nullptr, "main view depth pyramid");
     visibility_ = device_.createBuffer(pixels * 8, gpu::kBufferStorage | gpu::kBufferTransferDst, MemoryKind::DeviceLocal,
                                        nullptr, "visibility buffer");
-    if (!fragmentResolve_) color_ = device_.createBuffer(pixels * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
-                                  nullptr, "visibility resolved colour");
+    if (!fragmentResolve_)
+        color_ = device_.createTexture({width, height, gpu::Format::RGBA8Unorm, gpu::kTextureStorage | gpu::kTextureTransferSrc, 1,
+                                        "visibility resolved colour"});
     if (!fragmentResolve_) depth_ = device_.createBuffer(pixels * 4, gpu::kBufferStorage | gpu::kBufferTransferSrc, MemoryKind::DeviceLocal,
                                   nullptr, "visibility resolved depth");
     width_ = width;
@@ -176,7 +179,7 @@ void VisibilityPass::recordResolve(gpu::CommandList& commands, const MainPassInp
         commands.endRendering();
         return;
     }
-    resolveWrites.push_back({gpu_data::kResolveBindingColor, color_, {}, {}});
+    resolveWrites.push_back({gpu_data::kResolveBindingColor, {}, color_, {}});
     resolveWrites.push_back({gpu_data::kResolveBindingDepth, depth_, {}, {}});
     uses.push_back(gpu::use(color_, Usage::ComputeWrite));
     uses.push_back(gpu::use(depth_, Usage::ComputeWrite));
@@ -272,6 +275,7 @@ gpu_data::VisibilityConstants VisibilityPass::constantsFor(const Target& target)
     constants.largeCapacity = kLargeCapacity;
     constants.chunkCapacity = kChunkCapacity;
     constants.background = packRgba8(target.clearColor, false);
+    constants.backgroundGradient = target.backgroundGradient ? 1u : 0u;
     constants.meshSlots = scene_.meshSlotCount();
     return constants;
 }
@@ -327,11 +331,16 @@ void VisibilityPass::recordShading(gpu::CommandList& commands, const MainPassInp
     commands.endTimer();
     if (fragmentResolve_) return;
     commands.beginTimer("main/copy");
-    commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::use(depth_, gpu::Usage::TransferRead),
-                                gpu::discard(target.color, gpu::Usage::TransferWrite),
-                                gpu::discard(target.depth, gpu::Usage::TransferWrite)});
-    commands.copyBufferToTexture(color_, target.color);
-    commands.copyBufferToTexture(depth_, target.depth);
+    if (target.depthRead) {
+        commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::use(depth_, gpu::Usage::TransferRead),
+                                    gpu::discard(target.color, gpu::Usage::TransferWrite),
+                                    gpu::discard(target.depth, gpu::Usage::TransferWrite)});
+        commands.copyTexture(color_, target.color);
+        commands.copyBufferToTexture(depth_, target.depth);
+    } else {
+        commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::discard(target.color, gpu::Usage::TransferWrite)});
+        commands.copyTexture(color_, target.color);
+    }
     commands.endTimer();
 }
 

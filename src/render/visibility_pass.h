@@ -45,6 +45,10 @@ public:
         gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
         uint32_t width = 0, height = 0;
         float clearColor[4] = {0, 0, 0, 1};
+        bool backgroundGradient = false;  // where no surface is: render.background's gradient, not clearColor
+        // A later pass of the frame reads `depth` (blended draws, the tight cascade fit): else the compute
+        // resolve does not copy the view's depth into it (the fragment resolve writes it anyway).
+        bool depthRead = true;
         std::vector<gpu::SpecConstant> specialization;  // the lit pass's (ids >= 2)
     };
     // Builds the resolve pipeline of these lit-pass constants and the buffers of this size unless they
@@ -108,7 +112,10 @@ private:
     std::vector<gpu::DescriptorWrite> resolveWrites_, rasterWrites_;
     std::vector<gpu::ResourceUse> resolveUses_, reads_;
     bool fragmentResolve_ = false;
-    gpu::BufferHandle counters_, large_, chunkList_, visibility_, color_, depth_, pyramidTexels_;
+    gpu::BufferHandle counters_, large_, chunkList_, visibility_, depth_, pyramidTexels_;
+    // The compute resolve's colour (RGBA8 UNORM storage, the target's bytes: sRGB-encoded for an sRGB
+    // target), copied image to image into the target.
+    gpu::TextureHandle color_;
     uint32_t width_ = 0, height_ = 0;
     static constexpr uint32_t kLargeCapacity = 1u << 18, kChunkCapacity = 1u << 20;
 };

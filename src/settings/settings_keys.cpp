@@ -188,9 +188,10 @@ std::vector<SettingKey> makeTable() {
     t.push_back(ranged("shadows.virtual.poolPages", SettingType::Integer, 16, 16384, "16..16384",
                        PENUMBRA_FIELD(shadows.virtualMaps.poolPages),
                        "Virtual shadow maps: physical pages per directional light, rounded down to a square number, "
-                       "each pageSize^2 32-bit depths in one image: 3600 pages of 128^2 take 225 MiB, and the "
-                       "rasterizer draws a frame's pages into a target of at most 484 more (31 MiB). A 1920x1080 view "
-                       "needs about 700 pages per light at lodBias 0, 2000-3100 at -1. When the visible pages need "
+                       "each pageSize^2 16-bit depth codes of the page's own depth range in one R16_UNORM image: 7056 "
+                       "pages of 128^2 take 220.5 MiB (twice that on devices without R16_UNORM storage images), and the rasterizer draws a frame's pages into a target of at most 484 "
+                       "32-bit pages (31 MiB). A 1920x1080 view needs about 700 pages per light at lodBias 0, "
+                       "2000-3100 at -1, 4000-6000 at -1.5. When the visible pages need "
                        "more, a coarser level serves the rest (a warning and the stat `overflowed`); a pool larger "
                        "than the device holds is shrunk, with a warning."));
     t.push_back(ranged("shadows.virtual.facePoolPages", SettingType::Integer, 16, 16384, "16..16384",
@@ -209,14 +210,15 @@ std::vector<SettingKey> makeTable() {
     t.push_back(ranged("shadows.virtual.lodBias", SettingType::Number, -4.0, 4.0, "-4..4",
                        PENUMBRA_FIELD(shadows.virtualMaps.lodBias),
                        "Virtual shadow maps: which level a pixel reads, relative to the one whose texel matches the "
-                       "pixel's footprint: -1 reads texels half as wide (four times the pages), +1 twice as wide."));
+                       "pixel's footprint: -1 reads texels half as wide (four times the pages), +1 twice as wide. The default -1.5 "
+                       "shimmers a third less than -1 for twice the pages (about 700 a 1920x1080 frame of a field, "
+                       "4900 the CAD model's close-up)."));
     t.push_back(ranged("shadows.virtual.movingLodBias", SettingType::Number, -4.0, 4.0, "-4..4",
                        PENUMBRA_FIELD(shadows.virtualMaps.movingLodBias),
                        "Virtual shadow maps: the `lodBias` of a directional light whose direction changed in one of "
                        "its last 4 frames; 4 frames after it stops, it reads at `lodBias` again. Such a light's pages "
-                       "are all drawn again every frame: with `lodBias` -1.5 (a third less shimmer than -1, at twice the "
-                       "pages: raise `poolPages` to about 7000 for 1920x1080) a sun that turns every frame keeps the "
-                       "cost of -1. One-shot renders use `lodBias`."));
+                       "are all drawn again every frame: at the default -1 (half the pages of `lodBias`'s -1.5) a sun that "
+                       "turns every frame keeps the cost of -1. One-shot renders use `lodBias`."));
     t.push_back(flag("shadows.virtual.cache", PENUMBRA_FIELD(shadows.virtualMaps.cache),
                        "Virtual shadow maps: a drawn page stays valid across frames until its light, the scene's bounds "
                        "or a caster over it changes; off, every needed page is drawn again every frame."));

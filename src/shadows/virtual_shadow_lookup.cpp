@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shadows/virtual_page_depth.h"
 #include "shadows/spot_projection.h"
 
 namespace penumbra {
@@ -25,6 +26,21 @@ VirtualClipmapConfig clipmapOf(const VirtualShadowLookupData& data) {
     return config;
 }
 
+// The entry of page `page` of `level` when it is ready to sample (resident, drawn, its slot holds that
+// very page), else null.
+const VirtualPageEntry* readyEntry(const VirtualShadowLookupData& data, const VirtualShadowPages& pages, uint32_t level,
+                                   const glm::ivec2& page) {
+    const int32_t index = virtualShadowEntryIndex(data, level, page);
+    if (index < 0) return nullptr;
+    const size_t record = size_t(data.firstEntry) + size_t(index);  // of the whole entry buffer
+    if (record >= pages.entries.size()) return nullptr;
+    const VirtualPageEntry& entry = pages.entries[record];
+    const uint32_t state = entry.flags & (gpu_data::kVirtualPageResident | gpu_data::kVirtualPageDirty);
+    const bool ready = state == gpu_data::kVirtualPageResident && entry.pageX == page.x && entry.pageY == page.y &&
+                       entry.physicalPage < data.poolPagesPerSide * data.poolPagesPerSide;
+    return ready ? &entry : nullptr;
+}
+
 // The stored depth of virtual texel `texel` of `level`, from the first ready level at or above it that
 // holds the texel's centre (texel >> k: each level halves the texels; C++20's >> floors negatives too).
 bool texelDepth(const VirtualShadowLookupData& data, const VirtualShadowPages& pages, uint32_t level,
@@ -34,14 +50,13 @@ bool texelDepth(const VirtualShadowLookupData& data, const VirtualShadowPages& p
         const int shift = int((coarser - level) / stride);
         const glm::ivec2 t(texel.x >> shift, texel.y >> shift);
         const glm::ivec2 page = virtualShadowPageOfTexel(data, t);
-        const int32_t physical = virtualShadowReadyPage(data, pages, coarser, page);
-        if (physical < 0) continue;
-        const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
+        const VirtualPageEntry* entry = readyEntry(data, pages, coarser, page);
+        if (!entry) continue;
+        const int physical = int(entry->physicalPage), pool = int(data.poolPagesPerSide), size = int(data.pageSize);
         const glm::ivec2 origin = glm::ivec2(physical % pool, physical / pool) * size + glm::ivec2(0, int(data.poolOriginY));
         const glm::ivec2 poolTexel = origin + t - page * size;  // pool texture texels
-        const size_t index = size_t(poolTexel.y) * size_t(pool * size) + size_t(poolTexel.x);
-        PENUMBRA_ASSERT(index < pages.poolTexels.size());
-        depth = pages.poolTexels[index];
+        depth = virtualPoolDepth(pages.poolCodes, uint32_t(pool * size), uint32_t(poolTexel.x), uint32_t(poolTexel.y),
+                                 {entry->depthMin, entry->depthStep});
         return true;
     }
     return false;
@@ -109,15 +124,8 @@ int32_t virtualShadowEntryIndex(const VirtualShadowLookupData& data, uint32_t le
 
 int32_t virtualShadowReadyPage(const VirtualShadowLookupData& data, const VirtualShadowPages& pages, uint32_t level,
                                const glm::ivec2& page) {
-    const int32_t index = virtualShadowEntryIndex(data, level, page);
-    if (index < 0) return -1;
-    const size_t record = size_t(data.firstEntry) + size_t(index);  // of the whole entry buffer
-    if (record >= pages.entries.size()) return -1;
-    const VirtualPageEntry& entry = pages.entries[record];
-    const uint32_t state = entry.flags & (gpu_data::kVirtualPageResident | gpu_data::kVirtualPageDirty);
-    const bool ready = state == gpu_data::kVirtualPageResident && entry.pageX == page.x && entry.pageY == page.y &&
-                       entry.physicalPage < data.poolPagesPerSide * data.poolPagesPerSide;
-    return ready ? int32_t(entry.physicalPage) : -1;
+    const VirtualPageEntry* entry = readyEntry(data, pages, level, page);
+    return entry ? int32_t(entry->physicalPage) : -1;
 }
 
 glm::ivec2 virtualShadowPageOfTexel(const VirtualShadowLookupData& data, const glm::ivec2& texel) {

@@ -35,9 +35,10 @@ namespace penumbra {
 struct VirtualShadowPages {
     // At least firstEntry + levelCount * pagesPerSide^2 records; this map's by (level, slot) from firstEntry.
     std::span<const gpu_data::VirtualPageEntry> entries;
-    // The pool texture's stored depths, row by row, poolPagesPerSide * pageSize texels a row; this map's
-    // pool is the square of that side from row poolOriginY.
-    std::span<const float> poolTexels;
+    // The pool texture's 16-bit depth codes (shadows/virtual_page_depth.h), row by row, poolPagesPerSide *
+    // pageSize a row; this map's pool is the poolPagesPerSide * pageSize rows from row poolOriginY. A ready
+    // page's entry holds the range that decodes its codes.
+    std::span<const uint16_t> poolCodes;
 };
 
 struct VirtualShadowSample {

@@ -10,6 +10,7 @@
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene_builder.h"
+#include "render/virtual_page_storage.h"
 #include "render_test_support.h"
 
 using namespace penumbra;
@@ -269,4 +270,25 @@ TEST(DeviceFaults, ADeviceWithoutSubgroupArithmeticIsRefusedInOneLine) {
     EXPECT_TRUE(contains(outcome.error, "no Vulkan device: ")) << outcome.error;
     EXPECT_TRUE(contains(outcome.error, "lacks basic, ballot and arithmetic subgroup operations")) << outcome.error;
     EXPECT_FALSE(outcome.leftObjects);
+}
+
+// Without shaderStorageImageExtendedFormats the virtual shadow maps' pools are R32_SFLOAT images of the
+// same 16-bit codes (render/virtual_page_storage.h): the frame is the very image an R16_UNORM pool gives.
+TEST(DeviceFaults, WithoutR16StorageImagesVirtualPoolsHoldFloatsAndRenderTheSameImage) {
+    Settings settings;
+    settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
+    settings.shadows.spot.mode = SpotShadowMode::Virtual;
+    Image images[2];
+    for (int wide = 0; wide < 2; ++wide) {
+        gpu::DeviceFaultInjection faults;
+        faults.noStorageImageExtendedFormats = wide == 1;
+        Device device = faultyDevice(faults);
+        EXPECT_EQ(gpu::backend(device).hasStorageImageExtendedFormats(), wide == 0);
+        EXPECT_EQ(virtualPoolFormat(gpu::backend(device)), wide ? gpu::Format::R32Float : gpu::Format::R16Unorm);
+        Renderer renderer(device, faultScene());
+        images[wide] = renderer.render(smallRequest(), settings).image;
+        EXPECT_EQ(device.validationMessageCount(), 0u);
+    }
+    ASSERT_FALSE(images[0].empty());
+    EXPECT_EQ(images[1].pixels, images[0].pixels);
 }

@@ -91,7 +91,7 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
     const gpu::BufferHandle faceBuffer = gpu().createBuffer(faceBytes, gpu::kBufferStorage, gpu::MemoryKind::HostVisible,
                                                             faceData.data(), "test faces");
     gpu::CommandList commands = gpu().beginCommands();
-    VirtualPageDrawInputs inputs{table.drawList(), nullptr, true, {}, 0};
+    VirtualPageDrawInputs inputs{table.drawList(), table.entriesSlice(), nullptr, true, {}, 0};
     inputs.faces = {faceBuffer, 0, faceBytes};
     inputs.faceCount = 6;
     draw.record(commands, inputs);
@@ -101,7 +101,7 @@ TEST_F(VirtualFaceLookupTest, GroundPointsAroundAPointLightAreShadowedWhereTheRa
     EXPECT_EQ(state.stats.overflowed, 0u);
     EXPECT_GT(state.stats.allocated, 20u);
     ShadowProbe probe(gpu(), true);
-    const std::vector<float> pool = probe.readPool(draw.poolTexture(), draw.poolSide());
+    const std::vector<uint16_t> pool = probe.readPool(draw.poolTexture());
     const gpu_data::VirtualShadowLookupData data = packVirtualFaceLookup(kConfig, 6, kPoolSide);
 
     // Ground points the view sees, each with its pixel's footprint, lifted 3 cm off the ground (a normal

@@ -318,12 +318,13 @@ TEST_F(VirtualFrameTest, AOneShotRenderThatCannotDrawEveryPageStopsAndWarns) {
     EXPECT_LE(limited.metrics.interiorMisclassifiedPercent, 0.05) << toText(limited.metrics);
 }
 
-// The page raster's culling keeps a list per page drawn with room for every instance: at 150k instances
-// 256 MiB of lists hold 445 pages (of the pool's 3600, fewer than the depth target's 484), so a frame
-// draws at most that many. Before, the lists followed the pool and the scene did not fit lavapipe's
+// The page raster's culling keeps a list per page drawn with room for every instance: at 300k instances
+// the 512 MiB budget holds 447 lists and lavapipe's storage buffers (4 of 128 MiB) 444, two of them the
+// view's: 442 pages (of the pool's 7056, fewer than the depth target's 484), so a frame draws at most
+// that many. Before, the lists followed the pool and the scene did not fit lavapipe's
 // storage buffers.
-TEST_F(VirtualFrameTest, AHundredAndFiftyThousandInstancesDrawAtMostTheirListsPagesAFrame) {
-    Renderer renderer(device(), loadScene("gen:boxes:150000"));
+TEST_F(VirtualFrameTest, ThreeHundredThousandInstancesDrawAtMostTheirListsPagesAFrame) {
+    Renderer renderer(device(), loadScene("gen:boxes:300000"));
     Settings settings;
     settings.shadows.directional.mode = DirectionalShadowMode::Virtual;
     settings.shadows.maxDistance = 900.0f;
@@ -332,8 +333,8 @@ TEST_F(VirtualFrameTest, AHundredAndFiftyThousandInstancesDrawAtMostTheirListsPa
     request.height = 36;
     const RenderResult result = renderer.render(request, settings);
     const VirtualPageCounts& pages = result.stats.virtualPages;
-    EXPECT_EQ(pages.poolPages, 3600u);
-    EXPECT_EQ(pages.pagesPerFrame, 445u);
+    EXPECT_EQ(pages.poolPages, 7056u);
+    EXPECT_EQ(pages.pagesPerFrame, 442u);
     EXPECT_GT(pages.drawn, 0u);
     EXPECT_EQ(pages.overflowed, 0u);
 }

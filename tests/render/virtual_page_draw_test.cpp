@@ -5,8 +5,10 @@
 // plane, its light-space depth computed on the CPU at every texel centre.
 //
 // Tolerances: against the hardware, a texel agrees when both are far or their depths differ by at most
-// 1e-5 of the depth range; at most 0.1 % of a page's texels may disagree (coverage of edges exactly on a
-// texel centre, rounded differently). Against the plane: 2e-5 of the depth range everywhere.
+// 1e-5 of the depth range plus the pool's quantization step (the page's own depth range / 65534:
+// virtual_page_structs.h, "The pool's texels"); at most 0.1 % of a page's texels may disagree (coverage
+// of edges exactly on a texel centre, rounded differently). Against the plane: 2e-5 of the depth range
+// plus the step, everywhere.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -25,6 +27,7 @@
 #include "shadows/cull_packing.h"
 #include "shadows/spot_projection.h"
 #include "shadows/virtual_faces.h"
+#include "shadows/virtual_page_depth.h"
 #include "virtual_face_structs.h"
 
 namespace penumbra::test {
@@ -32,6 +35,9 @@ namespace {
 
 constexpr uint32_t kPoolPagesPerSide = 4;  // 16 physical pages, 512 x 512 texels
 constexpr float kFar = 1.0f;
+using gpu_data::kVirtualPageNone;
+using gpu_data::VirtualPageEntry;
+constexpr uint32_t kMaxLevels = 64;  // levels (faces' mip * faceCount + face) the rig's entries hold, of 16^2 pages
 
 VirtualClipmapConfig testClipmap() {
     VirtualClipmapConfig config;
@@ -75,6 +81,11 @@ public:
         drawList_ = gpu.createBuffer(sizeof(VirtualPageDrawHeader) + pages_.capacity() * sizeof(VirtualPageDraw),
                                      gpu::kBufferStorage | gpu::kBufferIndirect, gpu::MemoryKind::HostVisible, nullptr,
                                      "test page draw list");
+        // Entries for every level the tests draw (the copy step writes a drawn page's depth range there).
+        const std::vector<VirtualPageEntry> entries(size_t(kMaxLevels) * 16 * 16, VirtualPageEntry{kVirtualPageNone, 0, 0, 0, 0, 0.0f, 0.0f, 0});
+        entries_ = gpu.createBuffer(entries.size() * sizeof(VirtualPageEntry), gpu::kBufferStorage, gpu::MemoryKind::HostVisible,
+                                    entries.data(), "test page entries");
+        physicalEntry_.assign(pages_.capacity(), kVirtualPageNone);
         std::vector<VirtualFaceData> faceData;
         for (const VirtualFace& face : faces_) faceData.push_back({face.clipFromWorld, face.wsPosition, face.tanHalfFov});
         if (!faceData.empty())
@@ -83,6 +94,7 @@ public:
     }
     ~PageRig() {
         gpu_.destroy(drawList_);
+        gpu_.destroy(entries_);
         gpu_.destroy(faceBuffer_);
     }
 
@@ -106,11 +118,12 @@ public:
             const auto wrap = [&](int v) { return uint32_t(((v % int(perSide)) + int(perSide)) % int(perSide)); };
             const uint32_t entry = (d.level * perSide + wrap(d.page.y)) * perSide + wrap(d.page.x);
             list.push_back({entry, d.physical, d.page.x, d.page.y});
+            physicalEntry_.at(d.physical) = entry;
         }
         gpu_.writeBuffer(drawList_, &header, sizeof(header));
         if (!list.empty()) gpu_.writeBuffer(drawList_, list.data(), list.size() * sizeof(list[0]), sizeof(header));
         gpu::CommandList commands = gpu_.beginCommands();
-        VirtualPageDrawInputs inputs{drawList_, faces_.empty() ? &space_ : nullptr, true, {}, 0};
+        VirtualPageDrawInputs inputs{drawList_, {entries_, 0, gpu_.bufferSize(entries_)}, faces_.empty() ? &space_ : nullptr, true, {}, 0};
         if (!faces_.empty()) {
             inputs.faces = {faceBuffer_, 0, faces_.size() * sizeof(gpu_data::VirtualFaceData)};
             inputs.faceCount = uint32_t(faces_.size());
@@ -119,8 +132,30 @@ public:
         gpu_.submitAndWait(commands);
     }
 
-    // The pool's sampled image, row by row.
-    std::vector<float> readPool() { return readTexture(pages_.poolTexture(), "pool"); }
+    // The pool's depths, row by row: its codes decoded with the ranges the copy step wrote into the entries of
+    // the pages drawn last into each physical page (a page never drawn holds far codes, which decode to far).
+    std::vector<float> readPool() {
+        const std::vector<uint16_t> codes = readCodes(pages_.poolTexture());
+        std::vector<VirtualPageEntry> entries(gpu_.bufferSize(entries_) / sizeof(VirtualPageEntry));
+        std::memcpy(entries.data(), gpu_.mappedPointer(entries_), entries.size() * sizeof(VirtualPageEntry));
+        std::vector<float> texels(size_t(side()) * side());
+        for (uint32_t y = 0; y < side(); ++y)
+            for (uint32_t x = 0; x < side(); ++x) {
+                const uint32_t physical = y / 128 * poolPagesPerSide() + x / 128, entry = physicalEntry_[physical];
+                const VirtualPageDepthRange range =
+                    entry == kVirtualPageNone ? VirtualPageDepthRange{} : VirtualPageDepthRange{entries[entry].depthMin, entries[entry].depthStep};
+                texels[size_t(y) * side() + x] = virtualPoolDepth(codes, side(), x, y, range);
+            }
+        return texels;
+    }
+    // The quantization step of the page last drawn into `physical` (what a tolerance must add).
+    float depthStep(uint32_t physical) {
+        const uint32_t entry = physicalEntry_.at(physical);
+        if (entry == kVirtualPageNone) return 0.0f;
+        VirtualPageEntry e;
+        std::memcpy(&e, static_cast<const uint8_t*>(gpu_.mappedPointer(entries_)) + entry * sizeof(e), sizeof(e));
+        return e.depthStep;
+    }
 
     // The hardware rasterizer's depth of the same pages, drawn where the compute rasterizer draws them and laid out as the pool: every caster
     // drawn (a culling tile that keeps everything), projected by the CPU's virtualPageClipFromWorld.
@@ -192,19 +227,30 @@ public:
     }
 
 private:
-    std::vector<float> readTexture(gpu::TextureHandle texture, const char* what) {
-        std::vector<float> texels(size_t(side()) * side());
-        const gpu::BufferHandle readback = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferDst,
+    // A texture of `width` x side() texels of Texel's size (an R16_UNORM pool's codes, an R32_SFLOAT pool's
+    // or a depth image's floats), row by row.
+    template <typename Texel>
+    std::vector<Texel> readTexels(gpu::TextureHandle texture, uint32_t width, const char* what) {
+        std::vector<Texel> texels(size_t(width) * side());
+        const gpu::BufferHandle readback = gpu_.createBuffer(texels.size() * sizeof(Texel), gpu::kBufferTransferDst,
                                                              gpu::MemoryKind::HostVisible, nullptr, what);
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/read", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(readback, gpu::Usage::TransferWrite)});
         commands.copyTextureToBuffer(texture, readback);
         commands.pass("test/host", {gpu::use(readback, gpu::Usage::HostRead)});
         gpu_.submitAndWait(commands);
-        std::memcpy(texels.data(), gpu_.mappedPointer(readback), texels.size() * 4);
+        std::memcpy(texels.data(), gpu_.mappedPointer(readback), texels.size() * sizeof(Texel));
         gpu_.destroy(readback);
         return texels;
     }
+    // The pool's depth codes, row by row, from either pool format (virtual_page_structs.h, "The pool's texels").
+    std::vector<uint16_t> readCodes(gpu::TextureHandle texture) {
+        if (gpu_.textureDesc(texture).format == gpu::Format::R16Unorm) return readTexels<uint16_t>(texture, side(), "pool");
+        std::vector<uint16_t> codes;
+        for (float value : readTexels<float>(texture, side(), "pool")) codes.push_back(uint16_t(gpu_data::virtualPageCodeOfTexel(value)));
+        return codes;
+    }
+    std::vector<float> readTexture(gpu::TextureHandle texture, const char* what) { return readTexels<float>(texture, side(), what); }
 
     gpu::Device& gpu_;
     Scene scene_;
@@ -215,7 +261,8 @@ private:
     gpu::BufferHandle faceBuffer_;
     VirtualPageDrawSpace space_;
     std::vector<gpu::DescriptorWrite> writes_;
-    gpu::BufferHandle drawList_;
+    gpu::BufferHandle drawList_, entries_;
+    std::vector<uint32_t> physicalEntry_;  // by physical page: the entry of the page last drawn there
 };
 
 // What one page of the pool holds compared with a reference.
@@ -291,8 +338,8 @@ TEST(VirtualPagesPerRecord, FollowTheCullingListsBudgetUpToTheDepthTargetsSlots)
     constexpr uint64_t kBudget = kVirtualPageListBytes;
     EXPECT_EQ(virtualPagesPerRecord(400, 1000, kBudget), 400u);
     EXPECT_EQ(virtualPagesPerRecord(3600, 1000, kBudget), kMaxVirtualPagesPerRecord);
-    EXPECT_EQ(virtualPagesPerRecord(3600, 100000, kBudget), kMaxVirtualPagesPerRecord);  // lists for 669
-    EXPECT_EQ(virtualPagesPerRecord(3600, 1000000, kBudget), 67u - 2u);   // 4 MB a list
+    EXPECT_EQ(virtualPagesPerRecord(3600, 100000, kBudget), kMaxVirtualPagesPerRecord);  // lists for 1342
+    EXPECT_EQ(virtualPagesPerRecord(3600, 1000000, kBudget), 134u - 2u);  // 4 MB a list
     EXPECT_EQ(virtualPagesPerRecord(3600, 10000000, kBudget), 32u);       // the least
     EXPECT_EQ(virtualPagesPerRecord(16, 10000000, kBudget), 16u);         // a pool smaller than that
     EXPECT_EQ(virtualPagesPerRecord(3600, 0, kBudget), kMaxVirtualPagesPerRecord);
@@ -314,7 +361,7 @@ TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
     rig.draw(draws);
     const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
     for (const PageDraw& d : draws) {
-        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f + rig.depthStep(d.physical));
         const std::string what = "level " + std::to_string(d.level) + " page (" + std::to_string(d.page.x) + ", " +
                                  std::to_string(d.page.y) + ")";
         EXPECT_GT(c.written, c.texels / 4) << what << ": the page holds casters";
@@ -322,6 +369,43 @@ TEST_F(VirtualPageDrawTest, PagesMatchTheHardwareRasterizerTexelForTexel) {
         std::printf("%s: %zu of %zu texels written, %zu differ, worst %.2e\n", what.c_str(), c.written, c.texels, c.differ,
                     double(c.worst));
         ASSERT_GE(draws.size(), 8u) << "the demo has at least four casters besides its ground";
+    }
+}
+
+// The pool holds each drawn texel as a 16-bit code of its page's own depth range (virtual_page_copy.comp):
+// decoded, never nearer the light than the rasterizer drew it (quantization lights, never shadows) and
+// at most one step (the page's range / 65534) farther; far texels decode to exactly far.
+TEST_F(VirtualPageDrawTest, PoolCodesDecodeNoNearerThanDrawnAndWithinOneStepOfIt) {
+    PageRig rig(gpu(), makeDemoScene());
+    const std::vector<PageDraw> draws = demoPages(rig);
+    rig.draw(draws);
+    const std::vector<float> pool = rig.readPool();
+    const std::vector<uint8_t> bytes = gpu().readBuffer(rig.pass().targetDepth());
+    const uint32_t targetSide = rig.pass().targetPagesPerSide() * 128;
+    for (size_t i = 0; i < draws.size(); ++i) {
+        const gpu::Rect slot = virtualPageRect(uint32_t(i), rig.pass().targetPagesPerSide(), 128);
+        const gpu::Rect page = virtualPageRect(draws[i].physical, rig.poolPagesPerSide(), 128);
+        const float step = rig.depthStep(draws[i].physical);
+        size_t drawn = 0, nearer = 0, beyondStep = 0, farWrong = 0;
+        for (int32_t y = 0; y < 128; ++y)
+            for (int32_t x = 0; x < 128; ++x) {
+                float raw;
+                std::memcpy(&raw, bytes.data() + (size_t(slot.y + y) * targetSide + slot.x + x) * 4, 4);
+                raw = std::max(raw, 0.0f);
+                const float decoded = pool[size_t(page.y + y) * rig.side() + page.x + x];
+                if (raw >= kFar) {
+                    farWrong += decoded != kFar;
+                    continue;
+                }
+                ++drawn;
+                nearer += decoded < raw;
+                beyondStep += decoded - raw > step * 1.001f + 1e-7f;
+            }
+        EXPECT_GT(drawn, 1000u) << "page " << i << " holds casters";
+        EXPECT_GT(step, 0.0f) << "page " << i << " spans depths";
+        EXPECT_EQ(nearer, 0u) << "page " << i;
+        EXPECT_EQ(beyondStep, 0u) << "page " << i;
+        EXPECT_EQ(farWrong, 0u) << "page " << i;
     }
 }
 
@@ -337,7 +421,7 @@ TEST_F(VirtualPageDrawTest, APoolLargerThanTheDepthTargetGetsEveryPageAtItsPhysi
     rig.draw(draws);
     const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
     for (const PageDraw& d : draws) {
-        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f + rig.depthStep(d.physical));
         EXPECT_GT(c.written, c.texels / 4) << "physical page " << d.physical << " holds casters";
         EXPECT_LE(c.differ, c.texels / 1000) << "physical page " << d.physical << ": " << c.differ << " texels differ";
     }
@@ -428,6 +512,7 @@ TEST_F(VirtualPageDrawTest, AGroundTriangleSpanningManyPagesIsDrawnRightInEach) 
         const gpu::Rect rect = virtualPageRect(d.physical, rig.poolPagesPerSide(), 128);
         size_t differ = 0;
         double worst = 0.0;
+        const double tolerance = 2e-5 + rig.depthStep(d.physical);  // plus the pool's quantization step
         for (uint32_t ty = 0; ty < 128; ++ty)
             for (uint32_t tx = 0; tx < 128; ++tx) {
                 const double x = (d.page.x + (tx + 0.5) / 128.0) * lsPage, y = (d.page.y + (ty + 0.5) / 128.0) * lsPage;
@@ -435,7 +520,7 @@ TEST_F(VirtualPageDrawTest, AGroundTriangleSpanningManyPagesIsDrawnRightInEach) 
                 const double expected = (space.lsDepthNear - z) / (space.lsDepthNear - space.lsDepthFar);
                 const float got = pool[size_t(rect.y + ty) * rig.side() + rect.x + tx];
                 worst = std::max(worst, std::abs(got - expected));
-                differ += std::abs(got - expected) > 2e-5;
+                differ += std::abs(got - expected) > tolerance;
             }
         EXPECT_EQ(differ, 0u) << "level " << d.level << " page (" << d.page.x << ", " << d.page.y << "): worst " << worst;
     }
@@ -466,7 +551,7 @@ void expectFacePagesMatchTheHardware(gpu::Device& gpu, const Scene& scene) {
     const std::vector<float> pool = rig.readPool(), reference = rig.hardwareReference(draws);
     uint32_t pagesWithCasters = 0;
     for (const PageDraw& d : draws) {
-        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f);
+        const PageComparison c = comparePage(pool, reference, rig.side(), d.physical, 1e-5f + rig.depthStep(d.physical));
         const std::string what = "face " + std::to_string(d.level % kFaces) + " mip " + std::to_string(d.level / kFaces) +
                                  " page (" + std::to_string(d.page.x) + ", " + std::to_string(d.page.y) + ")";
         EXPECT_LE(c.differ, c.texels / 1000) << what << ": " << c.differ << " texels differ, worst depth difference " << c.worst;

@@ -53,7 +53,7 @@ struct LightPoints {
 // What the lookups of a map read, copied back: the whole entry buffer and pool texture.
 struct StorageCopy {
     std::vector<VirtualPageEntry> entries;
-    std::vector<float> pool;  // row by row, poolSide texels a row
+    std::vector<uint16_t> pool;  // the pool texture's depth codes, row by row, poolSide a row
 };
 
 // One map drawn in a frame: which map, for which light.
@@ -123,8 +123,7 @@ public:
         const std::vector<uint8_t> bytes = gpu_.readBuffer(map.pageEntries());
         c.entries.resize(bytes.size() / sizeof(VirtualPageEntry));
         std::memcpy(c.entries.data(), bytes.data(), c.entries.size() * sizeof(VirtualPageEntry));
-        const gpu::TextureDesc& pool = gpu_.textureDesc(map.poolTexture());
-        c.pool = probe_.readPool(map.poolTexture(), pool.width, pool.height);
+        c.pool = probe_.readPool(map.poolTexture());
         return c;
     }
 
@@ -147,8 +146,8 @@ size_t differences(const std::vector<VirtualShadowProbeResult>& a, const std::ve
     return differ;
 }
 
-// Map `map`'s texels of a shared pool copy (its square, rows from poolOriginY) and entries (from firstEntry).
-std::vector<float> poolSquare(const StorageCopy& c, const VirtualShadowMap& map) {
+// Map `map`'s codes of a shared pool copy (its square, rows from poolOriginY) and entries (from firstEntry).
+std::vector<uint16_t> poolSquare(const StorageCopy& c, const VirtualShadowMap& map) {
     const VirtualPageStorage at = map.storage();
     const size_t side = mapConfig().poolPagesPerSide * mapConfig().clipmap.pageSize;
     const auto first = c.pool.begin() + std::ptrdiff_t(at.poolOriginY * side);
@@ -170,6 +169,7 @@ TEST_F(VirtualPageStorageTest, TheSetPlacesEachMapInItsOwnAlignedRangeAndSquare)
     const uint32_t side = config.poolPagesPerSide * config.clipmap.pageSize;
     EXPECT_EQ(set.poolSide(), side);
     EXPECT_EQ(gpu().textureDesc(set.poolTexture()).width, side);
+    EXPECT_EQ(gpu().textureDesc(set.poolTexture()).format, virtualPoolFormat(gpu()));
     EXPECT_EQ(gpu().textureDesc(set.poolTexture()).height, 3 * side);
     EXPECT_EQ(set.entriesPerMap(), config.clipmap.levelCount * 128u * 128u);
     EXPECT_GE(gpu().bufferSize(set.entries()), uint64_t(set.entryCount()) * sizeof(VirtualPageEntry));

@@ -25,6 +25,7 @@
 #include "render_test_support.h"
 #include "virtual_shadow_test_support.h"
 #include "shadows/cascades.h"
+#include "shadows/virtual_page_depth.h"
 #include "shadows/virtual_shadow_lookup.h"
 
 namespace penumbra::test {
@@ -68,11 +69,15 @@ TEST_F(VirtualShadowLookupTest, TheGpuLookupMatchesTheCpuReferenceOnTheSameTable
                 const uint32_t h = mixBits(uint32_t(x * 73856093) ^ uint32_t(y * 19349663) ^ (level * 83492791u));
                 const uint32_t state = h % 10, flags = state == 6 ? 3u : state == 7 ? 0u : 1u;  // 3: resident | dirty
                 VirtualPageEntry& e = entries[size_t(virtualShadowEntryIndex(data, level, {x, y}))];
-                e = {flags ? (h >> 8) % (kPool * kPool) : gpu_data::kVirtualPageNone, flags, x + (state == 8 ? 16 : 0), y, 0, 0, 0, 0};
+                e = {flags ? (h >> 8) % (kPool * kPool) : gpu_data::kVirtualPageNone, flags, x + (state == 8 ? 16 : 0), y, 0, 0.0f, 0.0f, 0};
             }
     }
-    std::vector<float> pool(size_t(kSide) * kSide);
-    for (size_t i = 0; i < pool.size(); ++i) pool[i] = 0.3f + 0.4f * float(mixBits(uint32_t(i) + 12345u) % 4096u) / 4096.0f;
+    std::vector<float> depths(size_t(kSide) * kSide);
+    for (size_t i = 0; i < depths.size(); ++i) depths[i] = 0.3f + 0.4f * float(mixBits(uint32_t(i) + 12345u) % 4096u) / 4096.0f;
+    // As the copy pass stores drawn pages: each page's codes of its own range, the range in its entries.
+    const VirtualPoolCodes codes = encodeVirtualPool(depths, kSide, config.pageSize);
+    setVirtualPageRanges(entries, codes, kPool, 0);
+    const std::vector<uint16_t>& pool = codes.codes;
 
     std::mt19937 random(20261205u);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -132,15 +137,21 @@ std::vector<uint8_t> drawListBytes(const VirtualShadowLookupData& data, const st
     return bytes;
 }
 
-// Draws the pages of a draw list with the page drawing pass.
+// Draws the pages of a draw list with the page drawing pass; `entries` gets the drawn pages' depth ranges.
 void drawPages(gpu::Device& gpu, VirtualPageDrawPass& drawPass, const VirtualPageDrawSpace& space,
-               const std::vector<uint8_t>& list) {
+               const std::vector<uint8_t>& list, std::vector<VirtualPageEntry>& entries) {
     const gpu::BufferHandle drawList = gpu.createBuffer(list.size(), gpu::kBufferStorage | gpu::kBufferIndirect,
                                                         gpu::MemoryKind::HostVisible, list.data(), "test page draw list");
+    const uint64_t entryBytes = entries.size() * sizeof(VirtualPageEntry);
+    const gpu::BufferHandle entryBuffer = gpu.createBuffer(entryBytes, gpu::kBufferStorage, gpu::MemoryKind::HostVisible,
+                                                           entries.data(), "test page entries");
     gpu::CommandList commands = gpu.beginCommands();
-    drawPass.record(commands, {drawList, &space, true, {}, 0});
+    drawPass.record(commands, {drawList, {entryBuffer, 0, entryBytes}, &space, true, {}, 0});
+    commands.pass("test/host", {gpu::use(entryBuffer, gpu::Usage::HostRead)});
     gpu.submitAndWait(commands);
+    std::memcpy(entries.data(), gpu.mappedPointer(entryBuffer), entryBytes);
     gpu.destroy(drawList);
+    gpu.destroy(entryBuffer);
 }
 
 TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSaysSo) {
@@ -165,11 +176,11 @@ TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSays
     std::vector<VirtualPageEntry> entries(size_t(config.levelCount) * 256, kNoPage);
     for (const ScenePage& p : pages)
         entries[size_t(virtualShadowEntryIndex(data, p.level, p.page))] = {p.physical, gpu_data::kVirtualPageResident, p.page.x,
-                                                                            p.page.y, 0, 0, 0, 0};
+                                                                            p.page.y, 0, 0.0f, 0.0f, 0};
     GpuScene gpuScene(gpu(), scene);
     ComputeRasterPass raster(gpu(), gpuScene);
     VirtualPageDrawPass drawPass(gpu(), gpuScene, raster, config, kScenePool);
-    drawPages(gpu(), drawPass, space, drawListBytes(data, pages));
+    drawPages(gpu(), drawPass, space, drawListBytes(data, pages), entries);
     const glm::vec2 drawnMin = glm::vec2(pages.front().page) * 4.0f;  // level 3's 4 x 4 pages, 4 m each
     const Aabb drawn{glm::vec3(drawnMin, 0.0f), glm::vec3(drawnMin + 16.0f, 0.0f)};
     std::vector<VirtualShadowProbePoint> points;
@@ -178,7 +189,7 @@ TEST_F(VirtualShadowLookupTest, DemoGroundPointsAreShadowedWhereTheRayTracerSays
     clearGroundPoints(scene, space.lightRotationFromWorld, wsLight, drawn, points, shadowed);
     ShadowProbe probe(gpu());
     const std::vector<VirtualShadowProbeResult> results = probe.run(data, entries, drawPass.poolTexture(), points);
-    const std::vector<float> pool = probe.readPool(drawPass.poolTexture(), drawPass.poolSide());
+    const std::vector<uint16_t> pool = probe.readPool(drawPass.poolTexture());
     size_t wrong = 0, inShadow = 0, served[2] = {0, 0};
     for (size_t i = 0; i < points.size(); ++i) {
         ASSERT_GE(results[i].level, 2) << "every ground point lies in a drawn page";

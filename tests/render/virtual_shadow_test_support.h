@@ -20,6 +20,7 @@
 #include "render/main_pass.h"
 #include "render/pass_layouts.h"
 #include "render/screen_space_shadow_pass.h"
+#include "render/virtual_page_storage.h"
 #include "render/virtual_shadow_map.h"
 #include "shadows/virtual_page_marking.h"
 #include "shadows/virtual_shadow_lookup.h"
@@ -187,12 +188,18 @@ private:
     }
 
 public:
-    // An R32F texture of side x side texels, row by row.
-    gpu::TextureHandle uploadPool(const std::vector<float>& texels, uint32_t side) {
-        const gpu::BufferHandle staging = gpu_.createBuffer(texels.size() * 4, gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
-                                                            texels.data(), "probe pool upload");
-        const gpu::TextureHandle texture = gpu_.createTexture(
-            {side, side, gpu::Format::R32Float, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
+    // A pool texture of side x side texels of `codes` (shadows/virtual_page_depth.h), row by row, in the
+    // device's pool format (render/virtual_page_storage.h virtualPoolFormat).
+    gpu::TextureHandle uploadPool(const std::vector<uint16_t>& codes, uint32_t side) {
+        const gpu::Format format = virtualPoolFormat(gpu_);
+        std::vector<float> values;
+        if (format == gpu::Format::R32Float)
+            for (uint16_t code : codes) values.push_back(gpu_data::virtualPageTexelOfCode(code));
+        const void* data = values.empty() ? static_cast<const void*>(codes.data()) : values.data();
+        const gpu::BufferHandle staging = gpu_.createBuffer(codes.size() * (values.empty() ? 2 : 4), gpu::kBufferTransferSrc,
+                                                            gpu::MemoryKind::HostVisible, data, "probe pool upload");
+        const gpu::TextureHandle texture =
+            gpu_.createTexture({side, side, format, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/upload", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});
         commands.copyBufferToTexture(staging, texture);
@@ -201,11 +208,13 @@ public:
         return texture;
     }
 
-    // The pool texture's texels (side x side, or side x height: pools several maps share), row by row, through
-    // a buffer that Device::readBuffer reads back.
-    std::vector<float> readPool(gpu::TextureHandle texture, uint32_t side, uint32_t height = 0) {
-        const size_t rows = height ? height : side;
-        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(side) * rows * 4, gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
+    // The pool texture's depth codes, row by row (from either pool format), through a buffer that
+    // Device::readBuffer reads back.
+    std::vector<uint16_t> readPool(gpu::TextureHandle texture) {
+        const gpu::TextureDesc& desc = gpu_.textureDesc(texture);
+        const bool wide = desc.format == gpu::Format::R32Float;
+        const size_t texels = size_t(desc.width) * desc.height;
+        const gpu::BufferHandle copy = gpu_.createBuffer(texels * (wide ? 4 : 2), gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
                                                          gpu::MemoryKind::DeviceLocal, nullptr, "probe pool copy");
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/pool", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(copy, gpu::Usage::TransferWrite)});
@@ -213,9 +222,17 @@ public:
         gpu_.submitAndWait(commands);
         const std::vector<uint8_t> bytes = gpu_.readBuffer(copy);
         gpu_.destroy(copy);
-        std::vector<float> texels(bytes.size() / 4);
-        std::memcpy(texels.data(), bytes.data(), texels.size() * 4);
-        return texels;
+        std::vector<uint16_t> codes(texels);
+        if (!wide) {
+            std::memcpy(codes.data(), bytes.data(), texels * 2);
+            return codes;
+        }
+        for (size_t i = 0; i < texels; ++i) {
+            float value;
+            std::memcpy(&value, bytes.data() + i * 4, 4);
+            codes[i] = uint16_t(gpu_data::virtualPageCodeOfTexel(value));
+        }
+        return codes;
     }
 
 private:

@@ -77,6 +77,45 @@ TEST_F(VisibilityViewTest, BlendedMaterialsAreDrawnForwardOnTheVisibilityBuffer)
     std::printf("demo (blended materials): %.4f %% of pixels differ by more than 2 levels\n", 100.0 * over);
 }
 
+// A half-transparent blue quad half hidden by an opaque green one in front, over a red backdrop: drawn
+// without the opaque surfaces' depth, the blue would cover the green too.
+Scene glassBehindAnOpaqueQuad() {
+    SceneBuilder builder;
+    Material red, green, blue;
+    red.baseColorFactor = {1, 0, 0, 1};
+    green.baseColorFactor = {0, 1, 0, 1};
+    blue.alphaMode = AlphaMode::Blend;
+    blue.baseColorFactor = {0, 0, 1, 0.5f};
+    const uint32_t r = builder.addMaterial(red), g = builder.addMaterial(green), b = builder.addMaterial(blue);
+    builder.addInstance(builder.addMesh(makeQuadMesh({10, 10}, r)), glm::translate(glm::mat4(1), {0, 0, -1}));
+    builder.addInstance(builder.addMesh(makeQuadMesh({2, 2}, g)), glm::translate(glm::mat4(1), {1, 0, 0.5f}));
+    builder.addInstance(builder.addMesh(makeQuadMesh({2, 2}, b)), glm::mat4(1));
+    builder.addLight(makeDirectionalLight({0.3f, -0.4f, -1.0f}, 3.0f));
+    builder.setCamera(makeLookAtCamera({0, 0, 3}, {0, 0, 0}, 0.9f));
+    return builder.build();
+}
+
+// GPUs resolve in compute and copy the colour into the target, the view's depth only for a later pass
+// that reads it (blended materials); the gradient background is the resolve's too. On lavapipe, made to
+// take that path: the forward pass's image with the gradient, with and without blended materials.
+TEST_F(VisibilityViewTest, TheComputeResolveDrawsTheBackgroundAndKeepsDepthForBlendedMaterials) {
+    gpu::DeviceFaultInjection faults;
+    faults.computeResolve = true;
+    Device gpuLike = DeviceAccess::makeDevice({testDeviceOptions(), faults});
+    for (const char* name : {"glass", "low_sun"}) {  // a blended material behind an opaque one; low_sun's sky
+        const Scene scene = std::string(name) == "glass" ? glassBehindAnOpaqueQuad() : makeCanonicalScene(name);
+        Renderer forwardRenderer(device(), scene), computeRenderer(gpuLike, scene);
+        Settings forward = settingsFor(MainView::Forward), visibility = settingsFor(MainView::Visibility);
+        forward.render.background = visibility.render.background = Background::Gradient;
+        const RenderResult expected = renderWith(forwardRenderer, forward, OutputMode::Color);
+        const RenderResult resolved = renderWith(computeRenderer, visibility, OutputMode::Color);
+        EXPECT_EQ(resolved.stats.mainView, "visibility") << name;
+        const double over = shareOfPixelsOver(expected.image, resolved.image, 2);
+        EXPECT_LE(over, 0.005) << name << ": " << 100.0 * over << " % of pixels differ by more than 2 levels";
+        EXPECT_EQ(gpuLike.validationMessageCount(), 0u) << name;
+    }
+}
+
 TEST_F(VisibilityViewTest, ColourEqualsTheForwardPassWith400PointLightsClusteredOrNot) {
     const Scene scene = loadScene("gen:boxes:100:400");
     const double clustered = colourDifference(scene, "400 points, clustered");

@@ -5,7 +5,8 @@
 // The includer supplies, before the include, its two reads of the page table and the pool:
 //   VirtualPageEntry virtualShadowEntry(bool faces, uint record);  // record of the bound entry buffer:
 //                       // data.firstEntry + (level * pagesPerSide + slotY) * pagesPerSide + slotX
-//   float virtualShadowPoolTexel(bool faces, ivec2 poolTexel);     // the pool texture's stored depth (R32F)
+//   float virtualShadowPoolTexel(bool faces, ivec2 poolTexel);     // the pool texture's value: a 16-bit
+//                       // depth code's (virtual_page_structs.h, "The pool's texels")
 // `faces` (data.faceCount > 0) names the table: the spot and point lights' faces, or the directional
 // lights' clipmaps, so that a shader reading both binds two tables and two pools.
 // Several maps may share the entry buffer and the pool texture (render/virtual_page_storage.h): a map's
@@ -18,7 +19,8 @@
 //   coarser resident page; Timberdoodle, GPU Zen 3 "Virtual Shadow Maps");
 // - the compare: the 2 x 2 texels around the receiver at that level, each compared with the receiver's
 //   depth (lit when depth <= stored, as the cascades' compare) and weighted bilinearly, what
-//   hardware 2 x 2 PCF does; the pool is R32F, so each texel is fetched and compared here. Each texel looks
+//   hardware 2 x 2 PCF does; the pool holds depth codes, so each texel is fetched, decoded with its page's
+//   depth range (the page's entry) and compared here. Each texel looks
 //   up its own page, so the four may come from different pages (a filter reads across page borders); a
 //   texel whose page is not ready reads the texel of the first coarser ready level holding its centre;
 // - conventions: a texel no level holds has nothing cast (lit); a receiver whose page no level holds is
@@ -60,15 +62,35 @@ int virtualShadowEntryIndex(VirtualShadowLookupData data, uint level, ivec2 page
     return int((level * data.pagesPerSide + slot.y) * data.pagesPerSide + slot.x);
 }
 
-// The physical page holding page `page` of `level` ready to sample, or -1.
-int virtualShadowReadyPage(VirtualShadowLookupData data, uint level, ivec2 page) {
+// The physical page holding page `page` of `level` ready to sample, or -1; depthRange: its entry's
+// (depthMin, depthStep), what decodes its texels.
+int virtualShadowReadyPage(VirtualShadowLookupData data, uint level, ivec2 page, out vec2 depthRange) {
+    depthRange = vec2(0.0);
     const int index = virtualShadowEntryIndex(data, level, page);
     if (index < 0) return -1;
     const VirtualPageEntry entry = virtualShadowEntry(data.faceCount > 0u, data.firstEntry + uint(index));
     const bool ready = (entry.flags & (kVirtualPageResident | kVirtualPageDirty)) == kVirtualPageResident &&
                        entry.pageX == page.x && entry.pageY == page.y &&
                        entry.physicalPage < data.poolPagesPerSide * data.poolPagesPerSide;
+    depthRange = vec2(entry.depthMin, entry.depthStep);
     return ready ? int(entry.physicalPage) : -1;
+}
+
+int virtualShadowReadyPage(VirtualShadowLookupData data, uint level, ivec2 page) {
+    vec2 depthRange;
+    return virtualShadowReadyPage(data, level, page, depthRange);
+}
+
+// The pool texel of texel `texel` of global page `page` held by physical page `physical`.
+ivec2 virtualShadowPoolTexelOf(VirtualShadowLookupData data, int physical, ivec2 page, ivec2 texel) {
+    const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
+    return ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY)) + texel - page * size;
+}
+
+// The stored depth of pool texel `poolTexel` of a page whose entry's range is depthRange.
+float virtualShadowPoolDepth(bool faces, ivec2 poolTexel, vec2 depthRange) {
+    const uint code = virtualPageCodeOfTexel(virtualShadowPoolTexel(faces, poolTexel));
+    return virtualPageDecodeDepth(code, depthRange.x, depthRange.y);
 }
 
 // The stored depth of virtual texel `texel` of `level`: from its page, else from the texel holding its
@@ -79,11 +101,10 @@ bool virtualShadowTexelDepth(VirtualShadowLookupData data, uint level, ivec2 tex
     for (uint coarser = level; coarser < data.levelCount; coarser += stride) {
         const ivec2 t = texel >> int((coarser - level) / stride);
         const ivec2 page = virtualShadowPageOfTexel(data, t);
-        const int physical = virtualShadowReadyPage(data, coarser, page);
+        vec2 depthRange;
+        const int physical = virtualShadowReadyPage(data, coarser, page, depthRange);
         if (physical < 0) continue;
-        const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
-        const ivec2 origin = ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY));  // pool texture texels
-        depth = virtualShadowPoolTexel(data.faceCount > 0u, origin + t - page * size);
+        depth = virtualShadowPoolDepth(data.faceCount > 0u, virtualShadowPoolTexelOf(data, physical, page, t), depthRange);
         return true;
     }
     return false;

@@ -41,20 +41,24 @@ VirtualPageEntry virtualShadowEntry(bool faces, uint entry) {
     } else if (entry < uint(virtualPageEntries.length())) {
         return virtualPageEntries[entry];
     }
-    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0u, 0u, 0u);
+    return VirtualPageEntry(kVirtualPageNone, 0u, 0, 0, 0u, 0.0, 0.0, 0u);
 }
 
 float virtualShadowPoolTexel(bool faces, ivec2 poolTexel) {
     return faces ? texelFetch(virtualFacePool, poolTexel, 0).r : texelFetch(virtualShadowPool, poolTexel, 0).r;
 }
 
-// The 2 x 2 pool texels from poolTexel (its lower corner) to poolTexel + 1 in one gather, in the order
-// (0,0) (1,0) (0,1) (1,1); textureGather gives them as (0,1) (1,1) (1,0) (0,0).
-vec4 virtualShadowPoolGather(bool faces, ivec2 poolTexel) {
-    vec4 gathered;
-    if (faces) gathered = textureGather(virtualFacePool, vec2(poolTexel + 1) / vec2(textureSize(virtualFacePool, 0)), 0);
-    else gathered = textureGather(virtualShadowPool, vec2(poolTexel + 1) / vec2(textureSize(virtualShadowPool, 0)), 0);
-    return gathered.wzxy;
+// The stored depths of the 2 x 2 pool texels from poolTexel (its lower corner) to poolTexel + 1, in the
+// order (0,0) (1,0) (0,1) (1,1), of one page whose entry's range is depthRange: one gather of their
+// values (textureGather gives them as (0,1) (1,1) (1,0) (0,0)), each decoded.
+vec4 virtualShadowPoolGather(bool faces, ivec2 poolTexel, vec2 depthRange) {
+    vec4 v;  // (0,0) (1,0) (0,1) (1,1)
+    if (faces) v = textureGather(virtualFacePool, vec2(poolTexel + 1) / vec2(textureSize(virtualFacePool, 0)), 0).wzxy;
+    else v = textureGather(virtualShadowPool, vec2(poolTexel + 1) / vec2(textureSize(virtualShadowPool, 0)), 0).wzxy;
+    return vec4(virtualPageDecodeDepth(virtualPageCodeOfTexel(v.x), depthRange.x, depthRange.y),
+                virtualPageDecodeDepth(virtualPageCodeOfTexel(v.y), depthRange.x, depthRange.y),
+                virtualPageDecodeDepth(virtualPageCodeOfTexel(v.z), depthRange.x, depthRange.y),
+                virtualPageDecodeDepth(virtualPageCodeOfTexel(v.w), depthRange.x, depthRange.y));
 }
 
 #include "virtual_shadow_lookup.glsl"
@@ -103,11 +107,13 @@ float virtualCompareBilinear(VirtualShadowLookupData data, uint level, vec2 q, v
 }
 
 // virtualCompareBilinear where every texel of the block lies in one ready page of the level, whose pool
-// texel is texel + poolFromTexel: one gather, no page lookup; the same texels, so the same result.
-float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 q, vec3 uvDepth, vec2 u, vec2 g, bool perTexelPlane) {
+// texel is texel + poolFromTexel and whose entry's range is depthRange: one gather, no page lookup; the
+// same texels, so the same result.
+float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 depthRange, vec2 q, vec3 uvDepth, vec2 u, vec2 g,
+                             bool perTexelPlane) {
     vec2 first = floor(q - 0.5);
     vec2 f = q - 0.5 - first;
-    vec4 stored = virtualShadowPoolGather(faces, ivec2(first) + poolFromTexel);
+    vec4 stored = virtualShadowPoolGather(faces, ivec2(first) + poolFromTexel, depthRange);
     vec4 lit;  // (0,0) (1,0) (0,1) (1,1)
     for (int i = 0; i < 4; ++i) {
         vec2 offset = vec2(float(i & 1), float(i >> 1));
@@ -119,17 +125,18 @@ float virtualCompareGathered(bool faces, ivec2 poolFromTexel, vec2 q, vec3 uvDep
 
 // Whether a filter that reads the texels within `reach` of the one nearest u (on both axes) reads one
 // ready page of the level (most receivers: a kernel of a few texels in a page of 128), and where that
-// page's texels are in the pool (pool texel = texel + poolFromTexel).
-bool virtualKernelInOnePage(VirtualShadowLookupData data, uint level, vec2 u, int reach, out ivec2 poolFromTexel) {
+// page's texels are in the pool (pool texel = texel + poolFromTexel) and its entry's depthRange.
+bool virtualKernelInOnePage(VirtualShadowLookupData data, uint level, vec2 u, int reach, out ivec2 poolFromTexel,
+                            out vec2 depthRange) {
     poolFromTexel = ivec2(0);
+    depthRange = vec2(0.0);
     if (any(greaterThan(abs(u), vec2(kVirtualShadowMaxTexel)))) return false;
     ivec2 centre = ivec2(floor(u + 0.5));
     ivec2 page = virtualShadowPageOfTexel(data, centre - reach);
     if (page != virtualShadowPageOfTexel(data, centre + reach)) return false;
-    int physical = virtualShadowReadyPage(data, level, page);
+    int physical = virtualShadowReadyPage(data, level, page, depthRange);
     if (physical < 0) return false;
-    const int pool = int(data.poolPagesPerSide), size = int(data.pageSize);
-    poolFromTexel = ivec2(physical % pool, physical / pool) * size + ivec2(0, int(data.poolOriginY)) - page * size;
+    poolFromTexel = virtualShadowPoolTexelOf(data, physical, page, ivec2(0));
     return true;
 }
 
@@ -143,9 +150,10 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
     bool faces = data.faceCount > 0u;
     int pairs = filterMode == kShadowFilterPcf2x2 ? 0 : int(filterMode) + 1;
     ivec2 poolFromTexel;
-    bool onePage = virtualKernelInOnePage(data, level, u, max(pairs, 1) + 1, poolFromTexel);
+    vec2 depthRange;
+    bool onePage = virtualKernelInOnePage(data, level, u, max(pairs, 1) + 1, poolFromTexel, depthRange);
     if (pairs == 0)
-        return onePage ? virtualCompareGathered(faces, poolFromTexel, u, uvDepth, u, g, perTexelPlane)
+        return onePage ? virtualCompareGathered(faces, poolFromTexel, depthRange, u, uvDepth, u, g, perTexelPlane)
                        : virtualCompareBilinear(data, level, u, uvDepth, u, g, perTexelPlane);
     vec4 px, wx, py, wy;
     penumbraTentFetches1D(u.x, pairs, px, wx);
@@ -154,8 +162,8 @@ float virtualShadowFiltered(VirtualShadowLookupData data, uint level, vec3 uvDep
     if (onePage) {
         for (int y = 0; y < pairs; ++y)
             for (int x = 0; x < pairs; ++x)
-                shadow += wx[x] * wy[y] * virtualCompareGathered(faces, poolFromTexel, vec2(px[x], py[y]), uvDepth, u, g,
-                                                                 perTexelPlane);
+                shadow += wx[x] * wy[y] * virtualCompareGathered(faces, poolFromTexel, depthRange, vec2(px[x], py[y]),
+                                                                 uvDepth, u, g, perTexelPlane);
         return shadow;
     }
     // Across a page border (few receivers): the per-texel lookups, kept a loop. Unrolled, its 16 blocks of
