@@ -92,8 +92,6 @@ SurfaceInput surfaceAt(uint instance, uint triangle, vec2 pixel) {
     return SurfaceInput(wsPosition, wsNormal, wsGeometric, pixel, material, baseColor, false);
 }
 
-// The shaded colour of pixel `pixel` (its payload != 0), or magenta for an id no instance has (a
-// visible error, never a read out of bounds).
 // The colour of a pixel no surface covers: the clear colour, or the colour output's gradient background
 // (background.frag's: the pixel's view ray's radiance, exposed and tone mapped).
 vec4 backgroundPixel(uvec2 pixel) {
@@ -104,6 +102,8 @@ vec4 backgroundPixel(uvec2 pixel) {
     return vec4(toneMap(backgroundRadiance(wsDirection) * frame.exposure, frame.toneMapping), 1.0);
 }
 
+// The shaded colour of pixel `pixel` (its payload != 0), or magenta for an id no instance has (a
+// visible error, never a read out of bounds).
 vec4 shadeVisiblePixel(uint payload, uvec2 pixel) {
     uint id = payload - 1u, triangleBits = constants.triangleBits;
     uint instance = id >> triangleBits, triangle = triangleBits == 0u ? 0u : id & ((1u << triangleBits) - 1u);

@@ -91,10 +91,14 @@ PENUMBRA_INLINE float virtualPageDecodeDepth(uint code, float depthMin, float de
     return code == kVirtualPageDepthCodeFar ? 1.0f : depthMin + float(code) * depthStep;
 }
 
-// The code a pool texel's value stands for, and the value that stores a code (exact both ways: an
-// R16_UNORM texel converts the value to the code, an R32_SFLOAT one keeps it).
+// The code a pool texel's value stands for, and the value that stores a code: a quarter step above the
+// code (far: exactly 1), so that an R16_UNORM store gives the code whether the conversion rounds to
+// nearest (Vulkan's preference) or truncates; an R32_SFLOAT texel keeps the value, which reads back as
+// the code too.
 PENUMBRA_INLINE uint virtualPageCodeOfTexel(float texel) { return uint(texel * 65535.0f + 0.5f); }
-PENUMBRA_INLINE float virtualPageTexelOfCode(uint code) { return float(code) / 65535.0f; }
+PENUMBRA_INLINE float virtualPageTexelOfCode(uint code) {
+    return code >= kVirtualPageDepthCodeFar ? 1.0f : (float(code) + 0.25f) / 65535.0f;
+}
 
 // A level's window this frame (ClipmapLevel::window): its first page and that page's slot.
 struct VirtualPageLevelWindow {

@@ -248,8 +248,13 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
     features.features.depthClamp = VK_TRUE;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-    // Storage images of R16_UNORM (the virtual shadow maps' pools of 16-bit depth codes), where supported.
-    storageImageExtendedFormats = supported.shaderStorageImageExtendedFormats && !faults.noStorageImageExtendedFormats;
+    // Storage images of R16_UNORM (the virtual shadow maps' pools of 16-bit depth codes), where supported:
+    // the feature, and the format sampled and stored in optimal tiling.
+    VkFormatProperties r16{};
+    vkGetPhysicalDeviceFormatProperties(physicalDevice, VK_FORMAT_R16_UNORM, &r16);
+    constexpr VkFormatFeatureFlags kPoolFeatures = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    storageImageExtendedFormats = supported.shaderStorageImageExtendedFormats && !faults.noStorageImageExtendedFormats &&
+                                  (r16.optimalTilingFeatures & kPoolFeatures) == kPoolFeatures;
     features.features.shaderStorageImageExtendedFormats = storageImageExtendedFormats;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderInt64 = bufferInt64Atomics;

@@ -309,7 +309,7 @@ void Renderer::State::recordMainView(FrameRecording& recording, MainPassInputs& 
     main.passName = MainPass::Target{}.passName;
     if (frame.visibilityView) {
         const VisibilityPass::Target& opaque = opaqueTargetFor(recording, litPass);
-        // Leaves both targets in their target states.
+        // Writes the colour target, and the depth target where a later pass reads it (Target::depthRead).
         if (recording.viewGeometryDone) visibility->recordShading(commands, inputs, opaque);
         else visibility->record(commands, inputs, opaque, culling, recording.cullSlice, render.viewCulling,
                                 render.meshletCulling);

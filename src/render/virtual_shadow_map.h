@@ -80,7 +80,7 @@ public:
     // The next record invalidates every page (the scene's geometry was replaced, say).
     void invalidateAll() { forceInvalidate_ = true; }
 
-    // What a lit pass samples after the last record (storage buffer, R32F texture in General, uniform): the
+    // What a lit pass samples after the last record (storage buffer, pool texture in General, uniform): the
     // whole buffer and texture, shared or the map's own; lookupData() places this map's entries and pool.
     gpu::BufferHandle pageEntries() const { return table_.entries(); }
     gpu::TextureHandle poolTexture() const { return draw_.poolTexture(); }

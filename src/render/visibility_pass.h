@@ -41,7 +41,7 @@ public:
     static bool supported(const gpu::Device& device, const GpuScene& gpuScene);
 
     struct Target {
-        gpu::TextureHandle color, depth;  // left in ColorTarget / DepthTarget
+        gpu::TextureHandle color, depth;  // colour written; depth written when depthRead (or by the fragment resolve)
         gpu::Format colorFormat = gpu::Format::RGBA8Srgb;
         uint32_t width = 0, height = 0;
         float clearColor[4] = {0, 0, 0, 1};

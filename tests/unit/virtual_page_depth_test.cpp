@@ -1,9 +1,11 @@
 // The virtual shadow map pool's 16-bit depth codes (shadows/virtual_page_depth.h, shaders/shared/
 // virtual_page_structs.h "The pool's texels"): what the copy pass stores and the lookups decode.
-#include <gtest/gtest.h>
-
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "shadows/virtual_page_depth.h"
 
@@ -60,6 +62,10 @@ TEST(VirtualPageDepth, EveryCodeSurvivesItsTexelValue) {
     for (uint32_t code = 0; code <= kVirtualPageDepthCodeFar; ++code) {
         ASSERT_EQ(gpu_data::virtualPageCodeOfTexel(gpu_data::virtualPageTexelOfCode(code)), code);
         ASSERT_EQ(gpu_data::virtualPageCodeOfTexel(float(double(code) / 65535.0)), code);
+        // What an R16_UNORM store keeps of the value, rounding to nearest or truncating: the code.
+        const double stored = double(gpu_data::virtualPageTexelOfCode(code)) * 65535.0;
+        ASSERT_EQ(uint32_t(std::lround(stored)), code);
+        ASSERT_EQ(uint32_t(std::min(stored, 65535.0)), code);
     }
     EXPECT_EQ(gpu_data::virtualPageTexelOfCode(kVirtualPageDepthCodeFar), 1.0f) << "far is the texel value 1";
 }

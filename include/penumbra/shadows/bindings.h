@@ -20,10 +20,10 @@ PENUMBRA_SHADOW_BINDING(kShadowBindingDirectionalAtlas, 3u)    // sampler2D (R32
 PENUMBRA_SHADOW_BINDING(kShadowBindingOther, 4u)               // uniform OtherShadowData: spot and point lights
 PENUMBRA_SHADOW_BINDING(kShadowBindingOtherAtlas, 5u)          // sampler2D (R32F depth), nearest
 PENUMBRA_SHADOW_BINDING(kShadowBindingVirtual, 6u)             // uniform VirtualDirectionalShadowData
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPool, 7u)         // sampler2D (R32F depth), nearest
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPool, 7u)         // sampler2D (16-bit depth codes), nearest
 PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualPages, 8u)        // VirtualPageEntry[]: the page tables
 PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFaces, 9u)        // uniform VirtualFaceShadowData
-PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePool, 10u)    // sampler2D (R32F depth), nearest
+PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePool, 10u)    // sampler2D (16-bit depth codes), nearest
 PENUMBRA_SHADOW_BINDING(kShadowBindingVirtualFacePages, 11u)   // VirtualPageEntry[]: the faces' page table
 PENUMBRA_SHADOW_BINDING(kShadowBindingCount, 12u)
 
