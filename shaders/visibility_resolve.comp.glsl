@@ -23,12 +23,9 @@ void main() {
     uint index = pixel.y * constants.width + pixel.x;
     uvec2 word = visibility[index];
     resolvedDepth[index] = uintBitsToFloat(word.y);
-    if (word.x == 0u) {  // nothing drawn: the clear colour as given, or the gradient
-        vec4 background = unpackUnorm4x8(constants.background);
-        if (constants.backgroundGradient != 0u) {
-            background = backgroundPixel(pixel);
-            if (constants.encodeSrgb != 0u) background.rgb = srgbEncode(background.rgb);
-        }
+    if (word.x == 0u) {  // nothing drawn: the clear colour as given, or the gradient (encoded as shading is)
+        vec4 background = backgroundPixel(pixel);
+        if (constants.backgroundGradient != 0u && constants.encodeSrgb != 0u) background.rgb = srgbEncode(background.rgb);
         imageStore(resolvedColor, ivec2(pixel), background);
         return;
     }

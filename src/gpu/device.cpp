@@ -217,6 +217,15 @@ void requireComputeSubgroups(VkPhysicalDevice physicalDevice, const std::string&
         throw Error(who + ": " + name + " lacks basic, ballot and arithmetic subgroup operations in compute shaders");
 }
 
+// R16_UNORM sampled and stored in optimal tiling (what the virtual pools need besides the feature), unless
+// the faults say otherwise.
+bool r16StorageImages(VkPhysicalDevice physicalDevice, const DeviceFaultInjection& faults) {
+    VkFormatProperties r16{};
+    vkGetPhysicalDeviceFormatProperties(physicalDevice, VK_FORMAT_R16_UNORM, &r16);
+    constexpr VkFormatFeatureFlags kPoolFeatures = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    return !faults.noStorageImageExtendedFormats && (r16.optimalTilingFeatures & kPoolFeatures) == kPoolFeatures;
+}
+
 VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFamily, const std::string& name,
                              bool memoryBudget, bool& bufferInt64Atomics, bool& storageBufferArrayIndexing,
                              bool& timelineSemaphores, bool& storageImageExtendedFormats, const DeviceFaultInjection& faults) {
@@ -248,13 +257,8 @@ VkDevice createLogicalDevice(VkPhysicalDevice physicalDevice, uint32_t queueFami
     if (!supported.depthClamp) throw Error("no Vulkan device: " + name + " lacks depthClamp (needed for shadow pancaking)");
     features.features.depthClamp = VK_TRUE;
     features.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-    // Storage images of R16_UNORM (the virtual shadow maps' pools of 16-bit depth codes), where supported:
-    // the feature, and the format sampled and stored in optimal tiling.
-    VkFormatProperties r16{};
-    vkGetPhysicalDeviceFormatProperties(physicalDevice, VK_FORMAT_R16_UNORM, &r16);
-    constexpr VkFormatFeatureFlags kPoolFeatures = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
-    storageImageExtendedFormats = supported.shaderStorageImageExtendedFormats && !faults.noStorageImageExtendedFormats &&
-                                  (r16.optimalTilingFeatures & kPoolFeatures) == kPoolFeatures;
+    // Storage images of R16_UNORM (the virtual shadow maps' pools of 16-bit depth codes), where supported.
+    storageImageExtendedFormats = supported.shaderStorageImageExtendedFormats && r16StorageImages(physicalDevice, faults);
     features.features.shaderStorageImageExtendedFormats = storageImageExtendedFormats;
     features.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     features.features.shaderInt64 = bufferInt64Atomics;
@@ -339,7 +343,7 @@ Device::Device(const ExternalVulkanDevice& external, const DeviceOptions& option
     d.queueFamily = external.queueFamily;
     d.bufferInt64Atomics = external.bufferInt64Atomics;
     d.timelineSemaphores = external.timelineSemaphores;
-    d.storageImageExtendedFormats = external.storageImageExtendedFormats && !options.faults.noStorageImageExtendedFormats;
+    d.storageImageExtendedFormats = external.storageImageExtendedFormats && r16StorageImages(d.physicalDevice, options.faults);
     if (!d.instance || !d.physicalDevice || !d.device || !d.queue)
         throw Error("external Vulkan device: instance, physical device, device and queue are all required");
     d.info = describe(d.physicalDevice, 0);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "shadows/virtual_page_depth.h"
 #include "virtual_page_structs.h"
 
 namespace penumbra {
@@ -38,15 +39,11 @@ gpu::TextureDesc virtualPoolTextureDesc(gpu::Format format, uint32_t poolSide, u
 
 void fillVirtualPoolTextureFar(gpu::Device& device, gpu::TextureHandle texture) {
     const gpu::TextureDesc& desc = device.textureDesc(texture);
-    // Once, at creation: every texel value 1 (the far code), 2 or 4 bytes.
-    const size_t texels = size_t(desc.width) * desc.height;
-    std::vector<uint16_t> far16;
-    std::vector<float> far32;
-    if (desc.format == gpu::Format::R16Unorm) far16.assign(texels, uint16_t(gpu_data::kVirtualPageDepthCodeFar));
-    else far32.assign(texels, gpu_data::virtualPageTexelOfCode(gpu_data::kVirtualPageDepthCodeFar));
-    const void* data = far16.empty() ? static_cast<const void*>(far32.data()) : far16.data();
-    const gpu::BufferHandle staging = device.createBuffer(texels * (far16.empty() ? 4 : 2), gpu::kBufferTransferSrc,
-                                                          gpu::MemoryKind::HostVisible, data, "virtual page pool upload");
+    // Once, at creation: every texel the far code.
+    const std::vector<uint16_t> far(size_t(desc.width) * desc.height, uint16_t(gpu_data::kVirtualPageDepthCodeFar));
+    const std::vector<uint8_t> bytes = virtualPoolTexelBytes(far, virtualPoolBytesPerTexel(desc.format));
+    const gpu::BufferHandle staging = device.createBuffer(bytes.size(), gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
+                                                          bytes.data(), "virtual page pool upload");
     try {
         gpu::CommandList commands = device.beginCommands();
         commands.pass("virtualPool/init", {gpu::use(staging, gpu::Usage::TransferRead), gpu::discard(texture, gpu::Usage::TransferWrite)});

@@ -27,6 +27,9 @@ namespace penumbra {
 // The pool textures' format on `device`: R16_UNORM where it has shaderStorageImageExtendedFormats (2 bytes
 // a texel), else R32_SFLOAT holding the same values (4).
 gpu::Format virtualPoolFormat(const gpu::Device& device);
+// The bytes of a texel of a pool texture of `format` (R16Unorm 2, R32Float 4: shadows/virtual_page_depth.h
+// virtualPoolTexelBytes).
+inline uint32_t virtualPoolBytesPerTexel(gpu::Format format) { return format == gpu::Format::R16Unorm ? 2u : 4u; }
 // The pool texture of `rows` rows of poolSide texels in `format` (virtualPoolFormat), sampled and written
 // as storage, plus `extraUsage`.
 gpu::TextureDesc virtualPoolTextureDesc(gpu::Format format, uint32_t poolSide, uint32_t rows, uint32_t extraUsage,

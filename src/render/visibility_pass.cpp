@@ -331,16 +331,13 @@ void VisibilityPass::recordShading(gpu::CommandList& commands, const MainPassInp
     commands.endTimer();
     if (fragmentResolve_) return;
     commands.beginTimer("main/copy");
-    if (target.depthRead) {
-        commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::use(depth_, gpu::Usage::TransferRead),
-                                    gpu::discard(target.color, gpu::Usage::TransferWrite),
-                                    gpu::discard(target.depth, gpu::Usage::TransferWrite)});
-        commands.copyTexture(color_, target.color);
-        commands.copyBufferToTexture(depth_, target.depth);
-    } else {
-        commands.pass("main/copy", {gpu::use(color_, gpu::Usage::TransferRead), gpu::discard(target.color, gpu::Usage::TransferWrite)});
-        commands.copyTexture(color_, target.color);
-    }
+    using gpu::Usage;
+    std::vector<gpu::ResourceUse>& uses = copyUses_;  // a member: its storage is reused frame to frame
+    uses = {gpu::use(color_, Usage::TransferRead), gpu::discard(target.color, Usage::TransferWrite)};
+    if (target.depthRead) uses.insert(uses.end(), {gpu::use(depth_, Usage::TransferRead), gpu::discard(target.depth, Usage::TransferWrite)});
+    commands.pass("main/copy", uses);
+    commands.copyTexture(color_, target.color);
+    if (target.depthRead) commands.copyBufferToTexture(depth_, target.depth);
     commands.endTimer();
 }
 

@@ -110,7 +110,7 @@ private:
     DepthPyramidLayout pyramidLayout_;  // of width_ x height_
     // Per-record lists, kept to reuse their storage (a steady frame allocates nothing).
     std::vector<gpu::DescriptorWrite> resolveWrites_, rasterWrites_;
-    std::vector<gpu::ResourceUse> resolveUses_, reads_;
+    std::vector<gpu::ResourceUse> resolveUses_, copyUses_, reads_;
     bool fragmentResolve_ = false;
     gpu::BufferHandle counters_, large_, chunkList_, visibility_, depth_, pyramidTexels_;
     // The compute resolve's colour (RGBA8 UNORM storage, the target's bytes: sRGB-encoded for an sRGB

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/error.h"
 
@@ -67,6 +68,35 @@ void setVirtualPageRanges(std::span<gpu_data::VirtualPageEntry> entries, const V
         entry.depthMin = pool.squareRanges[square].depthMin;
         entry.depthStep = pool.squareRanges[square].depthStep;
     }
+}
+
+std::vector<uint8_t> virtualPoolTexelBytes(std::span<const uint16_t> codes, uint32_t bytesPerTexel) {
+    PENUMBRA_ASSERT(bytesPerTexel == 2 || bytesPerTexel == 4);
+    std::vector<uint8_t> bytes(codes.size() * bytesPerTexel);
+    for (size_t i = 0; i < codes.size(); ++i) {
+        if (bytesPerTexel == 2) {
+            std::memcpy(bytes.data() + i * 2, &codes[i], 2);
+            continue;
+        }
+        const float value = gpu_data::virtualPageTexelOfCode(codes[i]);
+        std::memcpy(bytes.data() + i * 4, &value, 4);
+    }
+    return bytes;
+}
+
+std::vector<uint16_t> virtualPoolCodesOfBytes(std::span<const uint8_t> bytes, uint32_t bytesPerTexel) {
+    PENUMBRA_ASSERT((bytesPerTexel == 2 || bytesPerTexel == 4) && bytes.size() % bytesPerTexel == 0);
+    std::vector<uint16_t> codes(bytes.size() / bytesPerTexel);
+    for (size_t i = 0; i < codes.size(); ++i) {
+        if (bytesPerTexel == 2) {
+            std::memcpy(&codes[i], bytes.data() + i * 2, 2);
+            continue;
+        }
+        float value;
+        std::memcpy(&value, bytes.data() + i * 4, 4);
+        codes[i] = uint16_t(gpu_data::virtualPageCodeOfTexel(value));
+    }
+    return codes;
 }
 
 float virtualPoolDepth(std::span<const uint16_t> codes, uint32_t codesPerRow, uint32_t x, uint32_t y,

@@ -37,6 +37,11 @@ VirtualPoolCodes encodeVirtualPool(std::span<const float> texels, uint32_t poolS
 void setVirtualPageRanges(std::span<gpu_data::VirtualPageEntry> entries, const VirtualPoolCodes& pool,
                           uint32_t poolPagesPerSide, uint32_t poolOriginY);
 
+// A pool texture's bytes holding `codes`, bytesPerTexel 2 (R16_UNORM: the codes) or 4 (R32_SFLOAT:
+// virtualPageTexelOfCode of each), and the codes back from such bytes.
+std::vector<uint8_t> virtualPoolTexelBytes(std::span<const uint16_t> codes, uint32_t bytesPerTexel);
+std::vector<uint16_t> virtualPoolCodesOfBytes(std::span<const uint8_t> bytes, uint32_t bytesPerTexel);
+
 // The stored depth of texel (x, y) of a pool texture's codes, `codesPerRow` a row, in a page of `range`.
 float virtualPoolDepth(std::span<const uint16_t> codes, uint32_t codesPerRow, uint32_t x, uint32_t y,
                        const VirtualPageDepthRange& range);

@@ -23,6 +23,7 @@
 #include "render/shadow_caster_pass.h"
 #include "render/shadow_culling_pass.h"
 #include "render/virtual_page_draw_pass.h"
+#include "render/virtual_page_storage.h"
 #include "render_test_support.h"
 #include "shadows/cull_packing.h"
 #include "shadows/spot_projection.h"
@@ -227,8 +228,8 @@ public:
     }
 
 private:
-    // A texture of `width` x side() texels of Texel's size (an R16_UNORM pool's codes, an R32_SFLOAT pool's
-    // or a depth image's floats), row by row.
+    // A texture of side() rows of `width` Texels (a pool's bytes, `width` its row's bytes; a depth image's
+    // floats), row by row.
     template <typename Texel>
     std::vector<Texel> readTexels(gpu::TextureHandle texture, uint32_t width, const char* what) {
         std::vector<Texel> texels(size_t(width) * side());
@@ -245,10 +246,8 @@ private:
     }
     // The pool's depth codes, row by row, from either pool format (virtual_page_structs.h, "The pool's texels").
     std::vector<uint16_t> readCodes(gpu::TextureHandle texture) {
-        if (gpu_.textureDesc(texture).format == gpu::Format::R16Unorm) return readTexels<uint16_t>(texture, side(), "pool");
-        std::vector<uint16_t> codes;
-        for (float value : readTexels<float>(texture, side(), "pool")) codes.push_back(uint16_t(gpu_data::virtualPageCodeOfTexel(value)));
-        return codes;
+        const uint32_t texelBytes = virtualPoolBytesPerTexel(gpu_.textureDesc(texture).format);
+        return virtualPoolCodesOfBytes(readTexels<uint8_t>(texture, side() * texelBytes, "pool"), texelBytes);
     }
     std::vector<float> readTexture(gpu::TextureHandle texture, const char* what) { return readTexels<float>(texture, side(), what); }
 

@@ -22,6 +22,7 @@
 #include "render/screen_space_shadow_pass.h"
 #include "render/virtual_page_storage.h"
 #include "render/virtual_shadow_map.h"
+#include "shadows/virtual_page_depth.h"
 #include "shadows/virtual_page_marking.h"
 #include "shadows/virtual_shadow_lookup.h"
 #include "shadows/visible_surfaces.h"
@@ -192,12 +193,9 @@ public:
     // device's pool format (render/virtual_page_storage.h virtualPoolFormat).
     gpu::TextureHandle uploadPool(const std::vector<uint16_t>& codes, uint32_t side) {
         const gpu::Format format = virtualPoolFormat(gpu_);
-        std::vector<float> values;
-        if (format == gpu::Format::R32Float)
-            for (uint16_t code : codes) values.push_back(gpu_data::virtualPageTexelOfCode(code));
-        const void* data = values.empty() ? static_cast<const void*>(codes.data()) : values.data();
-        const gpu::BufferHandle staging = gpu_.createBuffer(codes.size() * (values.empty() ? 2 : 4), gpu::kBufferTransferSrc,
-                                                            gpu::MemoryKind::HostVisible, data, "probe pool upload");
+        const std::vector<uint8_t> bytes = virtualPoolTexelBytes(codes, virtualPoolBytesPerTexel(format));
+        const gpu::BufferHandle staging = gpu_.createBuffer(bytes.size(), gpu::kBufferTransferSrc, gpu::MemoryKind::HostVisible,
+                                                            bytes.data(), "probe pool upload");
         const gpu::TextureHandle texture =
             gpu_.createTexture({side, side, format, gpu::kTextureSampled | gpu::kTextureTransferDst, 1, "probe pool"});
         gpu::CommandList commands = gpu_.beginCommands();
@@ -212,9 +210,9 @@ public:
     // Device::readBuffer reads back.
     std::vector<uint16_t> readPool(gpu::TextureHandle texture) {
         const gpu::TextureDesc& desc = gpu_.textureDesc(texture);
-        const bool wide = desc.format == gpu::Format::R32Float;
-        const size_t texels = size_t(desc.width) * desc.height;
-        const gpu::BufferHandle copy = gpu_.createBuffer(texels * (wide ? 4 : 2), gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
+        const uint32_t texelBytes = virtualPoolBytesPerTexel(desc.format);
+        const gpu::BufferHandle copy = gpu_.createBuffer(size_t(desc.width) * desc.height * texelBytes,
+                                                         gpu::kBufferTransferDst | gpu::kBufferTransferSrc,
                                                          gpu::MemoryKind::DeviceLocal, nullptr, "probe pool copy");
         gpu::CommandList commands = gpu_.beginCommands();
         commands.pass("test/pool", {gpu::use(texture, gpu::Usage::TransferRead), gpu::use(copy, gpu::Usage::TransferWrite)});
@@ -222,17 +220,7 @@ public:
         gpu_.submitAndWait(commands);
         const std::vector<uint8_t> bytes = gpu_.readBuffer(copy);
         gpu_.destroy(copy);
-        std::vector<uint16_t> codes(texels);
-        if (!wide) {
-            std::memcpy(codes.data(), bytes.data(), texels * 2);
-            return codes;
-        }
-        for (size_t i = 0; i < texels; ++i) {
-            float value;
-            std::memcpy(&value, bytes.data() + i * 4, 4);
-            codes[i] = uint16_t(gpu_data::virtualPageCodeOfTexel(value));
-        }
-        return codes;
+        return virtualPoolCodesOfBytes(bytes, texelBytes);
     }
 
 private:

@@ -2,6 +2,7 @@
 // virtual_page_structs.h "The pool's texels"): what the copy pass stores and the lookups decode.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -68,6 +69,18 @@ TEST(VirtualPageDepth, EveryCodeSurvivesItsTexelValue) {
         ASSERT_EQ(uint32_t(std::min(stored, 65535.0)), code);
     }
     EXPECT_EQ(gpu_data::virtualPageTexelOfCode(kVirtualPageDepthCodeFar), 1.0f) << "far is the texel value 1";
+}
+
+TEST(VirtualPageDepth, PoolBytesOfEitherFormatHoldTheCodes) {
+    const std::vector<uint16_t> codes = {0, 1, 12345, uint16_t(kVirtualPageDepthCodeMax), uint16_t(kVirtualPageDepthCodeFar)};
+    for (uint32_t texelBytes : {2u, 4u}) {
+        const std::vector<uint8_t> bytes = virtualPoolTexelBytes(codes, texelBytes);
+        ASSERT_EQ(bytes.size(), codes.size() * texelBytes);
+        EXPECT_EQ(virtualPoolCodesOfBytes(bytes, texelBytes), codes) << texelBytes << " bytes a texel";
+    }
+    float far;  // an R32_SFLOAT pool's far texel is the value 1
+    std::memcpy(&far, virtualPoolTexelBytes(std::vector<uint16_t>{uint16_t(kVirtualPageDepthCodeFar)}, 4).data(), 4);
+    EXPECT_EQ(far, 1.0f);
 }
 
 TEST(VirtualPageDepth, EachPageOfAPoolHasItsOwnRange) {
