@@ -6,7 +6,7 @@
 //   [pageX, pageX + 1) * lsPageSize and y in [pageY, pageY + 1) * lsPageSize, lsPageSize =
 //   firstLevelSize * 2^level / pagesPerSide (shadows/virtual_clipmap.h); texel (tx, ty) of the page covers
 //   [tx, tx + 1) and [ty, ty + 1) texels from that corner (rows go with light-space y);
-// - its depth: light-space z (lightRotationFromWorld: the light travels along -z) mapped linearly from
+// - its depth: light-space z (clipmapRotationFromWorld: the light travels along -z) mapped linearly from
 //   lsDepthNear (depth 0) to lsDepthFar (depth 1), the same two planes for every page of every level and
 //   every frame, so depths compare across pages and a cached page stays valid; casters nearer the light
 //   than lsDepthNear clamp to 0 (pancaking, as the cascades);
@@ -29,7 +29,7 @@ PENUMBRA_CONST(uint, kVirtualPageCopyGroup, 16u)  // virtual_page_copy.comp: 16 
 
 // Push constants of virtual_page_tiles.comp.
 struct VirtualPageTilesConstants {
-    mat4 lightRotationFromWorld;  // the clipmap's space (shadows/cascades.h lightRotationFromWorld)
+    mat4 lightRotationFromWorld;  // the clipmap's space (shadows/virtual_clipmap.h clipmapRotationFromWorld)
     float lsDepthNear;            // light-space z of depth 0 (toward the light)
     float lsDepthFar;             // light-space z of depth 1
     float firstLevelSize;         // metres along level 0's side

@@ -21,7 +21,7 @@ PENUMBRA_INLINE uint virtualPageBit(uint level, uint pagesPerSide, uint slotX, u
 struct VirtualPageMarkData {
     mat4 worldFromClip;   // inverse of the camera's clipFromWorld: pixels back to world space
     mat4 viewFromWorld;   // the camera's: view depth of a pixel
-    mat4 lightFromWorld;  // the light's rotation (lightRotationFromWorld): the clipmap's space
+    mat4 lightFromWorld;  // the light's rotation (clipmapRotationFromWorld): the clipmap's space
     vec2 lsCamera;              // (lightFromWorld * camera position).xy: where the levels are centred
     float marginTexels;         // the filter's reach around a receiver, in texels of its level
     float wsFootprintPerDepth;  // a pixel's world footprint per metre of view depth

@@ -3,7 +3,7 @@
 // virtual_shadow_probe.comp): what the lookup needs of the clipmap, the light and the pool.
 //
 // Spaces and units (virtual_page_draw_structs.h has the drawing side): light space is the light's
-// rotation (lightRotationFromWorld, the light travels along -z); a level's virtual texel (x, y) covers
+// rotation (clipmapRotationFromWorld, the light travels along -z); a level's virtual texel (x, y) covers
 // light-space [x, x + 1) * lsTexelSize by [y, y + 1) * lsTexelSize, lsTexelSize = firstLevelSize * 2^level
 // / resolution; page (px, py) holds texels px * pageSize .. px * pageSize + pageSize - 1 (and so for y);
 // depth is light-space z mapped linearly from lsDepthNear (0) to lsDepthFar (1).

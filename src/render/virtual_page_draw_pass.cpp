@@ -30,7 +30,7 @@ VirtualPageDrawSpace makeVirtualPageDrawSpace(const VirtualClipmapConfig& clipma
                                               const Aabb& wsSceneBounds) {
     VirtualPageDrawSpace space;
     space.clipmap = clipmap;
-    space.lightRotationFromWorld = lightRotationFromWorld(wsLightDirection);
+    space.lightRotationFromWorld = clipmapRotationFromWorld(wsLightDirection);
     const Aabb lsBounds = wsSceneBounds.valid() ? wsSceneBounds.transformed(space.lightRotationFromWorld) : Aabb{};
     const float zMin = lsBounds.valid() ? lsBounds.min.z : -1.0f, zMax = lsBounds.valid() ? lsBounds.max.z : 1.0f;
     const float margin = 0.01f * (zMax - zMin) + 0.01f;

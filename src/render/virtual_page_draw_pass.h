@@ -43,7 +43,7 @@ namespace penumbra {
 // shares (virtual_page_draw_structs.h).
 struct VirtualPageDrawSpace {
     VirtualClipmapConfig clipmap;
-    glm::mat4 lightRotationFromWorld{1.0f};  // shadows/cascades.h lightRotationFromWorld
+    glm::mat4 lightRotationFromWorld{1.0f};  // the clipmap's space: shadows/virtual_clipmap.h clipmapRotationFromWorld
     float lsDepthNear = 1.0f;                // light-space z of depth 0
     float lsDepthFar = -1.0f;                // light-space z of depth 1
     float slopeBias = 0.0f;                  // slope-scale depth bias of every page

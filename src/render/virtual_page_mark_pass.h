@@ -18,7 +18,7 @@
 
 namespace penumbra {
 
-// The uniform data of one marking: camera, light rotation (lightRotationFromWorld), clipmap and the
+// The uniform data of one marking: camera, light rotation (clipmapRotationFromWorld), clipmap and the
 // filter's margin in texels.
 gpu_data::VirtualPageMarkData packVirtualPageMark(const VirtualClipmapConfig& config, const glm::mat4& lightRotation,
                                                   const CameraView& view, float marginTexels);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shadows/cascades.h"
 
 namespace penumbra {
 
@@ -22,6 +23,17 @@ PageRect intersect(const PageRect& a, const PageRect& b) {
 }
 
 }  // namespace
+
+glm::mat4 clipmapRotationFromWorld(const glm::vec3& wsLightDirection) {
+    const float turn = glm::radians(kClipmapGridTurnDegrees);
+    const float c = std::cos(turn), s = std::sin(turn);
+    glm::mat4 turned(1.0f);  // about light-space z (the light's axis): x' = c x + s y, y' = -s x + c y
+    turned[0][0] = c;
+    turned[1][0] = s;
+    turned[0][1] = -s;
+    turned[1][1] = c;
+    return turned * lightRotationFromWorld(wsLightDirection);
+}
 
 uint32_t pagesPerSide(const VirtualClipmapConfig& config) {
     PENUMBRA_ASSERT(config.pageSize > 0 && config.resolution % config.pageSize == 0);

@@ -1,6 +1,6 @@
 #pragma once
 // Geometry of a directional light's virtual shadow map: a clipmap of square levels in the light's
-// rotation-only space (lightRotationFromWorld), each `resolution` virtual texels a side, cut into
+// rotation-only space (clipmapRotationFromWorld), each `resolution` virtual texels a side, cut into
 // square pages of `pageSize` texels; level i is firstLevelSize * 2^i metres wide. The design follows
 // the published virtual shadow maps: Unreal Engine's documentation ("Virtual Shadow Maps": 16K virtual
 // texels, 128-texel pages, a clipmap whose radius doubles per level) and Timberdoodle's (GPU Zen 3,
@@ -31,6 +31,17 @@ struct VirtualClipmapConfig {
     uint32_t levelCount = 16;
     float firstLevelSize = 2.0f;  // metres along level 0's side; level i is firstLevelSize * 2^i
 };
+
+// The clipmap's light space: lightRotationFromWorld (the cascades' frame, whose y axis is world up seen
+// from the light) turned by kClipmapGridTurnDegrees about the light's direction. In the cascades' frame
+// every vertical caster (a pole, a wall's edge, a tree trunk) casts a shadow whose sides run along the
+// texel columns, so the rasterized edge snaps to a texel border and the filter cannot average the
+// staircase away: the edge sits up to half a texel off, the same way all along it. Turned by 45 degrees
+// those sides cross the texels diagonally, and the tent filter of a staircase whose steps are one texel
+// finds the edge within a small fraction of a texel (a fence of 6 cm poles at 1920x1080: half the
+// misclassified pixels and half the shimmer; docs/fidelity.md, "A clipmap grid turned 45 degrees").
+constexpr float kClipmapGridTurnDegrees = 45.0f;
+glm::mat4 clipmapRotationFromWorld(const glm::vec3& wsLightDirection);
 
 // Pages along a level's side: resolution / pageSize.
 uint32_t pagesPerSide(const VirtualClipmapConfig& config);

@@ -23,6 +23,7 @@
 #include "render/virtual_shadow_map.h"
 #include "render_test_support.h"
 #include "shadows/cascades.h"
+#include "shadows/virtual_clipmap.h"
 #include "virtual_shadow_test_support.h"
 
 namespace penumbra::test {
@@ -143,7 +144,7 @@ TEST_F(VirtualShadowMapTest, TheFirstFrameDrawsEveryRequestedPageAndTheLookupsAg
     ViewCase c = rig.viewCase(demoView(), light);
     const VirtualPageStats stats = rig.frame(c, light);
     const uint32_t onCpu =
-        markVirtualPages(mapConfig().clipmap, lightRotationFromWorld(light), c.view, c.depth.image, kMarginTexels).pageCount();
+        markVirtualPages(mapConfig().clipmap, clipmapRotationFromWorld(light), c.view, c.depth.image, kMarginTexels).pageCount();
     std::printf("first frame: %u pages requested (CPU marking %u), %u drawn\n", stats.requested, onCpu, stats.toDraw);
     EXPECT_NEAR(double(stats.requested), double(onCpu), double(markingTolerance(onCpu)));
     EXPECT_GT(stats.requested, 50u);
@@ -179,7 +180,7 @@ TEST_F(VirtualShadowMapTest, ASecondFrameWithTheSameCameraDrawsNoPageAndLooksUpT
 TEST_F(VirtualShadowMapTest, ACameraMovedByAFractionOfAPageDrawsOnlyTheNewlyRequestedPages) {
     MapRig rig(gpu());
     const glm::vec3 light = sceneLight(rig.scene());
-    const glm::mat4 rotation = lightRotationFromWorld(light);
+    const glm::mat4 rotation = clipmapRotationFromWorld(light);
     const CameraView first = demoView();
     // 0.3 of a level-0 page (0.5 m) to the camera's right, level with the ground.
     const glm::vec3 right = glm::normalize(glm::vec3(first.worldFromView[0].x, 0.0f, first.worldFromView[0].z));
@@ -245,7 +246,7 @@ TEST_F(VirtualShadowMapTest, MovedCastersRedrawOnlyTheRequestedPagesOfTheirRecta
     const VirtualPageStats first = rig.frame(c, light);
     // The pages of levels 0 to 3 within 2 m of the light-space origin (the demo's casters stand there).
     const VirtualClipmapConfig config = mapConfig().clipmap;
-    const glm::mat4 rotation = lightRotationFromWorld(light);
+    const glm::mat4 rotation = clipmapRotationFromWorld(light);
     const VirtualPageRequests requests = markVirtualPages(config, rotation, c.view, c.depth.image, kMarginTexels);
     const glm::vec2 lsCamera = lsClipmapCentre(rotation, c.view);
     std::vector<gpu_data::VirtualPageInvalidation> moved;

@@ -22,6 +22,8 @@
 #include "render/screen_space_shadow_pass.h"
 #include "render/virtual_page_storage.h"
 #include "render/virtual_shadow_map.h"
+#include "shadows/cascades.h"
+#include "shadows/virtual_clipmap.h"
 #include "shadows/virtual_page_depth.h"
 #include "shadows/virtual_page_marking.h"
 #include "shadows/virtual_shadow_lookup.h"
@@ -307,11 +309,13 @@ inline int clearShadowAt(const EmbreeScene& tracer, const SurfaceHit& hit, const
 // Ground points of a scene (what a camera from above sees of the instance named "ground") whose
 // light-space xy (lightRotation) lies in lsDrawn, lifted 3 cm along the normal (the caller's normal
 // bias), with the ray tracer's clear answer (clearShadowAt) and a footprint of 2 cm; points near
-// alpha-clipped or dithered casters are left out.
+// alpha-clipped or dithered casters are left out (by their bounds in the cascades' light space, whose
+// axes follow the world's: the tightest boxes around the demo's world-aligned casters).
 inline void clearGroundPoints(const Scene& scene, const glm::mat4& lightRotation, const glm::vec3& wsLight, const Aabb& lsDrawn,
                               std::vector<gpu_data::VirtualShadowProbePoint>& points, std::vector<bool>& shadowed) {
     const EmbreeScene tracer(scene);
-    const Aabb notOpaque = notOpaqueCasterBounds(scene, lightRotation);
+    const glm::mat4 castersRotation = lightRotationFromWorld(wsLight);
+    const Aabb notOpaque = notOpaqueCasterBounds(scene, castersRotation);
     const float step = 0.173f, half = 12.0f;
     for (float z = -half; z <= half; z += step)
         for (float x = -half; x <= half; x += step) {
@@ -319,7 +323,8 @@ inline void clearGroundPoints(const Scene& scene, const glm::mat4& lightRotation
             if (!hit || scene.instances[hit->instanceIndex].nodeName != "ground") continue;
             const glm::vec3 receiver = hit->wsPosition + 0.03f * hit->wsGeometricNormal;
             const glm::vec2 ls(lightRotation * glm::vec4(receiver, 1.0f));
-            if (!insideXy(lsDrawn, ls, -0.1f) || insideXy(notOpaque, ls, 0.2f)) continue;
+            if (!insideXy(lsDrawn, ls, -0.1f) || insideXy(notOpaque, glm::vec2(castersRotation * glm::vec4(receiver, 1.0f)), 0.2f))
+                continue;
             const int clear = clearShadowAt(tracer, *hit, wsLight);
             if (clear < 0) continue;
             points.push_back({receiver, 0.02f});

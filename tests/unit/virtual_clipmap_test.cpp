@@ -1,8 +1,10 @@
 // The directional virtual shadow map's clipmap geometry (src/shadows/virtual_clipmap.h): level sizes,
 // camera-centred windows snapped to whole pages, a texel grid fixed in light space, wrap-around page
-// table slots, the level a receiver samples, and the pages a filter or a caster touches.
+// table slots, the level a receiver samples, the pages a filter or a caster touches, and the grid's turn
+// about the light.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 #include <utility>
 
@@ -19,6 +21,22 @@ VirtualClipmapConfig smallConfig() {
     config.levelCount = 4;
     config.firstLevelSize = 2.0f;
     return config;
+}
+
+TEST(VirtualClipmap, AVerticalCastersShadowCrossesTheTexelsDiagonally) {
+    for (const glm::vec3& wsLight : {glm::vec3(0.3f, -1.0f, 0.45f), glm::vec3(-0.9f, -0.2f, 0.1f), glm::vec3(0.0f, -0.5f, -1.0f)}) {
+        const glm::vec3 forward = glm::normalize(wsLight);
+        const glm::mat4 rotation = clipmapRotationFromWorld(forward);
+        // A rotation whose z axis is the light's (the light travels along -z), as the cascades' frame.
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_NEAR(glm::length(glm::vec3(rotation[0][i], rotation[1][i], rotation[2][i])), 1.0f, 1e-5f);
+            EXPECT_NEAR(glm::vec3(rotation * glm::vec4(-forward, 0.0f))[i], i == 2 ? 1.0f : 0.0f, 1e-5f);
+        }
+        // World up, the direction of a pole, and so of its shadow's sides: 45 degrees off both texel axes.
+        const glm::vec2 lsUp = glm::normalize(glm::vec2(rotation * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)));
+        EXPECT_NEAR(std::abs(lsUp.x), std::sqrt(0.5f), 1e-5f) << wsLight.x;
+        EXPECT_NEAR(std::abs(lsUp.y), std::sqrt(0.5f), 1e-5f) << wsLight.x;
+    }
 }
 
 TEST(VirtualClipmap, LevelsDoubleInSizeAndKeepTheirTexelCount) {
