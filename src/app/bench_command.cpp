@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/bench_motion.h"
+#include "app/bench_thread.h"
 #include "app/bench_variations.h"
 #include "app/commands.h"
 #include "penumbra/files.h"
@@ -226,6 +227,7 @@ struct TimedRun {
     DeviceObjectCounts before, after;
     double rssFirst = 0.0, rssLast = 0.0, deviceFirst = 0.0, deviceLast = 0.0;
     uint32_t turnedLights = 0, movedInstances = 0;  // --light-motion, --move-objects: every frame
+    FrameThreadCpus frameThread{-1};
 };
 
 // The frame loops' fixed inputs.
@@ -250,6 +252,7 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
     const Scene& scene = renderer.scene();
     const std::vector<Light> originalLights = scene.lights;
     TimedRun run;
+    run.frameThread = FrameThreadCpus(bench.pinCpu);
     run.before = device.liveObjects();
     run.rssFirst = hostRssMegabytes();
     run.deviceFirst = deviceMegabytes(device);
@@ -275,6 +278,7 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
         }
         const uint64_t submitted = submitBenchFrame(renderer, bench, loop, current, frame++);
         if (i == 0) firstTimed = submitted;
+        run.frameThread.observe();
         renderer.takeCompletedFrames(finished);  // exchanges elements with the renderer: no allocation once warm
         for (const FrameStats& stats : finished) take(stats);
         if (bench.varyPeriod > 0 && (i + 1) % bench.varyPeriod == 0)
@@ -295,6 +299,7 @@ nlohmann::json benchJson(const Device& device, const RenderOptions& options, con
     nlohmann::json json;
     json["device"] = device.info().name;
     json["hostWait"] = options.spinWait ? "spin" : "sleep";
+    json["frameThread"] = run.frameThread.json();
     json["driver"] = device.info().driver;
     json["width"] = request.width;
     json["height"] = request.height;
@@ -401,6 +406,7 @@ void printReport(const Device& device, const RenderOptions& options, const Bench
                 measured.lightsPerClusterMax);
     std::printf("host RSS %.1f -> %.1f MB, device memory %.1f -> %.1f MB\n", run.rssFirst, run.rssLast, run.deviceFirst,
                 run.deviceLast);
+    std::printf("%s\n", run.frameThread.summary().c_str());
     const uint64_t made = run.after.objectsCreated - run.before.objectsCreated;
     std::printf("after warm-up: %llu GPU objects made (%llu pipelines compiled, %llu reused; last \"%s\"), "
                 "%llu vkAllocateMemory calls\n",
@@ -447,6 +453,7 @@ std::string frameTimesCsv(const Measurements& measured) {
 int runBenchCommand(const RenderOptions& options, const BenchOptions& bench) {
     checkWritable(bench.jsonPath);
     if (bench.frameTimesPath != "-") checkWritable(bench.frameTimesPath);
+    checkPinCpu(bench.pinCpu);
     const Settings userSettings = loadSettings(options);
     Device device = openDevice(options);
     // The warm-up frames build the pipelines that fixed settings need (on demand); --vary-settings

@@ -131,6 +131,9 @@ int runCli(int argc, char** argv) {
     bench->add_option("--move-objects", benchSettings.moveObjects,
                       "move this fraction of the instances every frame, 0..1 (default 0: none)")
         ->check(numberIn(0.0, 1.0));
+    bench->add_option("--pin-cpu", benchSettings.pinCpu,
+                      "run the frame thread on logical CPU N while timed (no migrations between cores); default: any")
+        ->check(CLI::Range(0, 4095));
     bench->add_flag("--spin-wait", benchOptions.spinWait,
                     "wait for the GPU by polling its fences instead of sleeping: steadier CPU phases, one core busy");
 

@@ -53,6 +53,7 @@ struct BenchOptions {
     uint32_t varyPeriod = 0;        // frames between changes of --vary-settings (0 = no changes)
     double lightMotion = 0.0;       // --light-motion: degrees the directional lights turn per frame (0 = still)
     double moveObjects = 0.0;       // --move-objects: the share of instances that move every frame (0 = none)
+    int pinCpu = -1;                // --pin-cpu: the logical CPU the frame thread runs on while timed (-1 = any)
 };
 
 // The scene the options name (file, demo or gen:), its warnings printed on stderr.

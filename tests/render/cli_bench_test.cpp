@@ -1,9 +1,12 @@
 // `penumbra bench`, the instrument of docs/performance.md: its JSON carries every documented key,
 // and a steady-state frame makes no GPU object.
+#include <sched.h>
+
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -140,6 +143,33 @@ TEST(CliBench, MoveObjectsMovesThatShareOfTheInstancesEveryFrame) {
     EXPECT_EQ(json["validationMessages"], 0);
     // 0.28 x 25 is 7.000000000000001 in binary: still 7 of 24 boxes and the ground.
     EXPECT_EQ(runBenchJson("gen:boxes:24 --frames 1 --warmup 0 --move-objects 0.28")["moveObjects"]["moved"], 7);
+}
+
+// The CPUs this test process may run on (the bench inherits them).
+std::vector<int> allowedCpus() {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    std::vector<int> cpus;
+    if (sched_getaffinity(0, sizeof(set), &set) != 0) return cpus;
+    for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+        if (CPU_ISSET(cpu, &set)) cpus.push_back(cpu);
+    return cpus;
+}
+
+TEST(CliBench, PinCpuKeepsTheFrameThreadOnThatCpu) {
+    const std::vector<int> cpus = allowedCpus();
+    if (cpus.size() < 2) GTEST_SKIP() << "one CPU: pinned and unpinned threads look alike";
+    const int cpu = cpus.back();
+    const nlohmann::json pinned = runBenchJson("--frames 6 --warmup 1 --pin-cpu " + std::to_string(cpu))["frameThread"];
+    EXPECT_EQ(pinned["pinnedCpu"], cpu);
+    EXPECT_EQ(pinned["allowedCpus"], 1);
+    EXPECT_EQ(pinned["cpusSeen"], 1);
+    EXPECT_EQ(pinned["migrations"], 0);
+    // Unpinned, the frame thread may use every CPU the process may.
+    const nlohmann::json free = runBenchJson("--frames 2 --warmup 1")["frameThread"];
+    EXPECT_EQ(free["pinnedCpu"], -1);
+    EXPECT_EQ(free["allowedCpus"], int(cpus.size()));
+    EXPECT_GE(free["cpusSeen"].get<int>(), 1);
 }
 
 TEST(CliBench, PrintsTheMotionInTheHeader) {

@@ -79,6 +79,11 @@ TEST(CliErrors, BenchMotionOutsideItsRangeIsOneLine) {
     expectOneLineError(runPenumbra("bench --light-motion nan" + kSmall), "--light-motion: nan");  // CLI::Range lets NaN in
 }
 
+TEST(CliErrors, PinCpuThatTheProcessMayNotUseIsOneLine) {
+    expectOneLineError(runPenumbra("bench --pin-cpu 4095" + kSmall), "--pin-cpu 4095: this process may not run on that CPU");
+    expectOneLineError(runPenumbra("bench --pin-cpu -1" + kSmall), "--pin-cpu");
+}
+
 TEST(CliErrors, DirectoryAsTheSceneIsOneLineSayingSo) {
     const fs::path dir = freshFolder("scene_dir");
     expectOneLineError(runPenumbra("render " + dir.string() + " -o " + (dir / "x.png").string()), "it is a directory");
