@@ -286,6 +286,7 @@ TimedRun runTimedFrames(Device& device, Renderer& renderer, const BenchOptions& 
         if (i % 8 == 0 || i + 1 == bench.frames) progress.update(i + 1);
     }
     renderer.waitIdle();
+    run.frameThread.unpin();
     for (const FrameStats& stats : renderer.takeCompletedFrames()) take(stats);
     run.rssLast = hostRssMegabytes();
     run.deviceLast = deviceMegabytes(device);

@@ -32,6 +32,7 @@ FrameThreadCpus::FrameThreadCpus(int cpu) : pinnedCpu_(cpu) {
     CPU_ZERO(&seen_);
     if (cpu >= 0) {
         checkPinCpu(cpu);
+        before_ = threadCpus();
         cpu_set_t one;
         CPU_ZERO(&one);
         CPU_SET(cpu, &one);
@@ -48,6 +49,10 @@ void FrameThreadCpus::observe() {
     CPU_SET(cpu, &seen_);
     if (lastCpu_ >= 0 && cpu != lastCpu_) ++migrations_;
     lastCpu_ = cpu;
+}
+
+void FrameThreadCpus::unpin() {
+    if (pinnedCpu_ >= 0 && CPU_COUNT(&before_) > 0) pthread_setaffinity_np(pthread_self(), sizeof(before_), &before_);
 }
 
 std::string FrameThreadCpus::summary() const {

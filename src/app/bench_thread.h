@@ -3,6 +3,7 @@
 // the timed frames ran. A thread the scheduler moves between cores of different clocks or caches shows
 // steps in its CPU phases that are not the engine's; pinned, it stays on one.
 #include <cstdint>
+#include <string>
 
 #include <sched.h>
 
@@ -21,6 +22,8 @@ public:
 
     // Once per timed frame, on the frame thread: notes the CPU it runs on. Allocates nothing.
     void observe();
+    // After the timed frames, on the frame thread: the CPUs it had before the constructor pinned it.
+    void unpin();
 
     int pinnedCpu() const { return pinnedCpu_; }
     int allowedCpus() const { return allowedCpus_; }  // the CPUs the frame thread may run on
@@ -37,6 +40,7 @@ private:
     int lastCpu_ = -1;
     uint64_t migrations_ = 0;
     cpu_set_t seen_{};
+    cpu_set_t before_{};  // the thread's CPUs before pinning (pinnedCpu_ >= 0)
 };
 
 }  // namespace penumbra

@@ -101,7 +101,7 @@ struct LevelPageRect {
 };
 
 // The pages a caster with world bounds wsBounds covers in every level's window, as seen by the light of
-// rotation lightRotation (lightRotationFromWorld) with the levels around lsCamera: its shadow can only
+// rotation lightRotation (clipmapRotationFromWorld) with the levels around lsCamera: its shadow can only
 // change depth there, so when a caster moves, appears or disappears these pages of its old and of its
 // new bounds are drawn again. Writes one rectangle per level the bounds touch into out[0 ..
 // config.levelCount) and returns how many.

@@ -54,7 +54,7 @@ float wsPixelFootprint(const CameraView& view, float vsDepth);
 glm::vec2 lsClipmapCentre(const glm::mat4& lightRotation, const CameraView& view);
 
 // depth: the main view's reversed-Z depth (view.width x view.height, 4 bytes of float per pixel, 0 =
-// nothing drawn), as visibleSurfacesFromDepth reads it. lightRotation: lightRotationFromWorld of the
+// nothing drawn), as visibleSurfacesFromDepth reads it. lightRotation: clipmapRotationFromWorld of the
 // light. marginTexels: the filter's reach around a receiver in texels of the level it samples.
 VirtualPageRequests markVirtualPages(const VirtualClipmapConfig& config, const glm::mat4& lightRotation,
                                      const CameraView& view, const Image& depth, float marginTexels);
