@@ -200,7 +200,9 @@ void VirtualFaceShadows::record(gpu::CommandList& commands, const VirtualPageDep
                               invalidationCount_});
     commands.endTimer();
     VirtualPageDrawInputs inputs{table_->drawList(), table_->entriesSlice(), nullptr, rasterOptions_, faces, config_.faceCount};
+    commands.beginTimer("virtualFaces/draw");
     draw_->record(commands, inputs);
+    commands.endTimer();
     rasterReadback = device_.readBackAtFrameEnd(commands, raster_.counters());
     commands.beginTimer("virtualFaces/drawn");
     table_->recordMarkDrawn(commands);

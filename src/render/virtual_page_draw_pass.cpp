@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
@@ -20,7 +21,6 @@ namespace {
 
 using gpu::Usage;
 
-constexpr const char* kPassName = "virtualPages";
 
 uint32_t groupsOf(uint32_t count, uint32_t group) { return (count + group - 1) / group; }
 
@@ -186,6 +186,9 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     PENUMBRA_ASSERT(faces_ || (inputs.space->clipmap.pageSize == pageSize_ && pagesPerSide(inputs.space->clipmap) == pagesPerLevelSide_));
     using namespace gpu_data;
     const uint64_t tileBytes = device_.bufferSize(tiles_), listBytes = device_.bufferSize(rasterList_);
+    // GPU timers per kind of map, so the faces' draws and the clipmaps' are told apart.
+    const std::string_view timers = faces_ ? "virtualFacePages" : "virtualPages";
+    commands.beginTimer(faces_ ? "virtualFacePages/cull" : "virtualPages/cull");
     // 1. The draw list -> tile lists (one thread per page the lists can hold: the count is the GPU's).
     const gpu::ResourceUse tileUses[] = {gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(tiles_, Usage::ComputeWrite),
                                          gpu::use(rasterList_, Usage::ComputeWrite),
@@ -218,15 +221,17 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     commands.dispatch(groupsOf(pagesPerRecord_, kVirtualPageGroupSize), 1);
     // 2. Culling per page, 3. clear and raster per page (both sized by the lists' headers).
     culling_.record(commands, {cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, "virtualPages.culling");
+    commands.endTimer();
     const RasterTileLists lists{{cullFrame_, 0, sizeof(CullFrame)}, {tiles_, 0, tileBytes}, {rasterList_, 0, listBytes}};
     sceneWrites_.clear();  // the scene's buffers may be new since the last record
     sceneWrites_.push_back({kSceneBindingVertices, scene_.vertexBuffer(), {}, {}});
     sceneWrites_.push_back({kSceneBindingInstances, scene_.instanceBuffer(), {}, {}});
     sceneWrites_.push_back({kSceneBindingMaterials, scene_.materialBuffer(), {}, {}});
     raster_.recordTiles(commands, sceneWrites_, lists, culling_, targetDepth_, targetPagesPerSide_ * pageSize_,
-                        inputs.raster, kPassName);
+                        inputs.raster, timers);
     // 4. The slots into their physical pages of the sampled image, one workgroup per page (the list's pageDispatch).
     // Each page's depth range goes into its entry (the table's entries: this map's range of them).
+    commands.beginTimer(faces_ ? "virtualFacePages/copy" : "virtualPages/copy");
     commands.pass("virtualPages/copy", {gpu::use(inputs.drawList, Usage::IndirectArguments),
                                         gpu::use(inputs.drawList, Usage::ComputeRead), gpu::use(targetDepth_, Usage::ComputeRead),
                                         gpu::use(poolTexture_, Usage::ComputeWrite), gpu::use(inputs.entries.buffer, Usage::ComputeWrite)});
@@ -239,6 +244,7 @@ void VirtualPageDrawPass::record(gpu::CommandList& commands, const VirtualPageDr
     const VirtualPageCopyConstants copy{pageSize_, poolPagesPerSide_, pagesPerRecord_, poolOriginY_, targetPagesPerSide_};
     commands.pushConstants(&copy, sizeof(copy));
     commands.dispatchIndirect(inputs.drawList, offsetof(VirtualPageDrawHeader, pageDispatch));
+    commands.endTimer();
 }
 
 }  // namespace penumbra

@@ -109,7 +109,8 @@ public:
 
     // Draws the pages of inputs.drawList (its count is read on the GPU, at most pagesPerRecord()); its steps are
     // the frame graph passes virtualPages.tiles, virtualPages.culling*, virtualPages/clear ... /chunks,
-    // virtualPages/copy. Allocates nothing.
+    // virtualPages/copy; GPU timers PREFIX/cull (tiles and culling), PREFIX/clear ... /chunks (the raster)
+    // and PREFIX/copy, PREFIX virtualFacePages for faces' pages, else virtualPages. Allocates nothing.
     void record(gpu::CommandList& commands, const VirtualPageDrawInputs& inputs);
 
     gpu::TextureHandle poolTexture() const { return poolTexture_; }  // virtualPoolTextureDesc, left in General after a record
