@@ -21,7 +21,6 @@ namespace {
 
 using gpu::Usage;
 
-
 uint32_t groupsOf(uint32_t count, uint32_t group) { return (count + group - 1) / group; }
 
 }  // namespace

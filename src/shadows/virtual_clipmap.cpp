@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/error.h"
 #include "shadows/cascades.h"
 
@@ -25,13 +27,8 @@ PageRect intersect(const PageRect& a, const PageRect& b) {
 }  // namespace
 
 glm::mat4 clipmapRotationFromWorld(const glm::vec3& wsLightDirection) {
-    const float turn = glm::radians(kClipmapGridTurnDegrees);
-    const float c = std::cos(turn), s = std::sin(turn);
-    glm::mat4 turned(1.0f);  // about light-space z (the light's axis): x' = c x + s y, y' = -s x + c y
-    turned[0][0] = c;
-    turned[1][0] = s;
-    turned[0][1] = -s;
-    turned[1][1] = c;
+    // About light-space z, the light's axis: x' = c x + s y, y' = -s x + c y.
+    const glm::mat4 turned = glm::rotate(glm::mat4(1.0f), -glm::radians(kClipmapGridTurnDegrees), glm::vec3(0.0f, 0.0f, 1.0f));
     return turned * lightRotationFromWorld(wsLightDirection);
 }
 
